@@ -1,0 +1,10 @@
+"""navlab: 2D mobile-robot path planning and navigation."""
+
+from .planning import plan
+from .result import Result, Status
+from .sampling import make_planner, make_sampler
+from .world import World, load_world
+
+__version__ = "0.1.0"
+
+__all__ = ["Result", "Status", "World", "load_world", "make_planner", "make_sampler", "plan", "__version__"]

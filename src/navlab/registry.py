@@ -1,0 +1,99 @@
+"""Name → component registries with "did you mean" errors.
+
+Every pluggable part (planner, sampler, scene, heuristic, ...) is registered
+by name with a decorator, so the CLI, YAML files and the benchmark harness
+reach it by name without if/elif factories (STYLE.md rule 8).
+"""
+
+from __future__ import annotations
+
+import difflib
+import inspect
+from typing import Any, Callable, Dict, Generic, Iterator, TypeVar
+
+T = TypeVar("T")
+
+
+class UnknownNameError(KeyError, ValueError):
+    """Raised for a name no registry entry has; the message lists valid names."""
+
+    def __str__(self) -> str:  # KeyError would quote the message
+        return str(self.args[0])
+
+
+def suggest(name: str, valid: list[str]) -> str:
+    """Return a ``did you mean`` hint for ``name`` among ``valid`` (may be '')."""
+    close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
+    return f" Did you mean '{close[0]}'?" if close else ""
+
+
+class Registry(Generic[T]):
+    """A named collection of factories of one kind.
+
+    Parameters
+    ----------
+    kind : str
+        What the entries are ("planner", "sampler", ...), used in messages.
+    """
+
+    def __init__(self, kind: str) -> None:
+        self.kind = kind
+        self._entries: Dict[str, T] = {}
+
+    def register(self, name: str) -> Callable[[T], T]:
+        """Decorator registering a class or function under ``name``."""
+
+        def decorate(obj: T) -> T:
+            if name in self._entries:
+                raise ValueError(f"{self.kind} '{name}' is registered twice")
+            self._entries[name] = obj
+            try:
+                obj.registered_name = name  # type: ignore[attr-defined]
+            except (AttributeError, TypeError):
+                pass
+            return obj
+
+        return decorate
+
+    def get(self, name: str) -> T:
+        """Return the entry called ``name`` or raise :class:`UnknownNameError`."""
+        try:
+            return self._entries[name]
+        except KeyError:
+            valid = sorted(self._entries)
+            raise UnknownNameError(
+                f"unknown {self.kind} '{name}'; valid: {', '.join(valid)}."
+                + suggest(name, valid)
+            ) from None
+
+    def names(self) -> list[str]:
+        return sorted(self._entries)
+
+    def __contains__(self, name: object) -> bool:
+        return name in self._entries
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.names())
+
+    def __len__(self) -> int:
+        return len(self._entries)
+
+
+def parameters_of(factory: Callable[..., Any]) -> Dict[str, Any]:
+    """Keyword parameters of a factory with their defaults (for ``navlab list``)."""
+    out: Dict[str, Any] = {}
+    for p in inspect.signature(factory).parameters.values():
+        if p.kind in (p.KEYWORD_ONLY, p.POSITIONAL_OR_KEYWORD) and p.name != "self":
+            out[p.name] = None if p.default is p.empty else p.default
+    return out
+
+
+def check_params(factory: Callable[..., Any], params: Dict[str, Any], what: str) -> None:
+    """Raise ``TypeError``-free, readable errors for unknown keyword parameters."""
+    valid = list(parameters_of(factory))
+    for key in params:
+        if key not in valid:
+            raise ValueError(
+                f"unknown parameter '{key}' for {what}; valid: {', '.join(valid) or 'none'}."
+                + suggest(key, valid)
+            )

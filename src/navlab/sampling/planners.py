@@ -1,0 +1,353 @@
+"""Sampling-based planners, registered by name.
+
+Settings go to the constructor, the query to :meth:`TreePlanner.plan`; one
+planner object serves many queries. Planners see the world only through its
+:class:`~navlab.world.CollisionChecker` (the compiled loop receives the
+checker's packed geometry and reports how many edges it checked).
+
+Parameter names follow seed 000 (and the PythonRobotics RRT* it was ported
+from): ``expand_dis``, ``goal_sample_rate`` (a probability, on the sampler),
+``max_iter``, ``connect_circle_dist``. The seed's ``path_resolution`` does
+not exist here: edges are checked exactly, not at points spaced along them.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any, Dict, Optional, Union
+
+import numpy as np
+
+from ..registry import Registry, parameters_of
+from ..result import Result, Status
+from . import tree_kernel as K
+from .regions import BoxRegion, InformedRegion
+from .samplers import Sampler, make_sampler
+
+PLANNERS: Registry[type] = Registry("planner")
+
+RngLike = Union[None, int, np.random.Generator]
+
+
+def _check_positive(name: str, value: Any, integer: bool = False) -> None:
+    if value is None:
+        return
+    kinds = (int,) if integer else (int, float)
+    if isinstance(value, bool) or not isinstance(value, kinds) or not value > 0 or not math.isfinite(value):
+        raise ValueError(f"{name} must be a positive {'integer' if integer else 'number'}, got {value!r}")
+
+
+def rrt_star_gamma(world) -> float:
+    """The RRT* near-radius constant for the world's area, with OMPL's 1.1
+    rewire factor: γ = 1.1 · 2 · (1 + 1/d)^(1/d) · (μ(X)/ζ_d)^(1/d), d = 2.
+
+    References
+    ----------
+    S. Karaman, E. Frazzoli, "Sampling-based algorithms for optimal motion
+    planning", IJRR 30(7), 2011, Theorem 38.
+    """
+    return 1.1 * 2.0 * math.sqrt(1.5) * math.sqrt(world.bounds.area / math.pi)
+
+
+class TreePlanner:
+    """Common machinery of the tree planners.
+
+    Parameters
+    ----------
+    sampler : str or Sampler
+        Sampling strategy (a registered name or an instance).
+    expand_dis : float, optional
+        Step length (m). Default: 20% of the bounds' diagonal, as OMPL's range.
+    max_iter : int, optional
+        Iterations (samples drawn).
+    max_time : float, optional
+        Wall-clock limit in seconds (checked between sample batches; a run
+        limited by time is not reproducible bit for bit).
+    batch_size : int
+        Samples drawn per call of the sampler.
+    keep_tree : bool
+        Return the tree in ``Result.tree`` (for drawing).
+    """
+
+    mode = K.MODE_RRT
+    default_max_iter = 10000
+
+    def __init__(self, sampler: Union[str, Sampler] = "uniform", expand_dis: Optional[float] = None,
+                 max_iter: Optional[int] = None, max_time: Optional[float] = None,
+                 batch_size: int = 64, keep_tree: bool = False) -> None:
+        self.sampler = sampler
+        self.expand_dis = expand_dis
+        self.max_iter = max_iter
+        self.max_time = max_time
+        self.batch_size = batch_size
+        self.keep_tree = keep_tree
+
+    # -- settings -----------------------------------------------------------
+    def get_params(self) -> Dict[str, Any]:
+        return {k: getattr(self, k) for k in parameters_of(type(self))}
+
+    def _validate(self) -> None:
+        _check_positive("expand_dis", self.expand_dis)
+        _check_positive("max_iter", self.max_iter, integer=True)
+        _check_positive("max_time", self.max_time)
+        _check_positive("batch_size", self.batch_size, integer=True)
+
+    def resolved_params(self, world) -> Dict[str, Any]:
+        """Settings with the world-derived defaults filled in."""
+        params = self.get_params()
+        params["expand_dis"] = self.expand_dis or 0.2 * world.bounds.diagonal
+        params["max_iter"] = self.max_iter or self.default_max_iter
+        params["sampler"] = self._sampler().registered_name if hasattr(self._sampler(), "registered_name") else repr(self.sampler)
+        return params
+
+    def _sampler(self) -> Sampler:
+        return make_sampler(self.sampler) if isinstance(self.sampler, str) else self.sampler
+
+    def _fparams(self, world, params) -> np.ndarray:
+        f = np.zeros(K.N_FPARAMS)
+        f[K.P_STEP] = params["expand_dis"]
+        f[K.P_GX], f[K.P_GY] = world.goal
+        f[K.P_SX], f[K.P_SY] = world.start
+        f[K.P_GTOL] = world.goal_tolerance
+        f[K.P_CONNECT] = params["expand_dis"]
+        return f
+
+    def _region(self, world, tree: K.Tree, default: BoxRegion):
+        return default
+
+    # -- the query ----------------------------------------------------------
+    def plan(self, world, rng: RngLike = None) -> Result:
+        """Plan from ``world.start`` to ``world.goal``.
+
+        Parameters
+        ----------
+        world : World
+        rng : int, Generator or None
+            Seed or generator for every random draw.
+        """
+        self._validate()
+        t0 = time.perf_counter()
+        rng = np.random.default_rng(rng)
+        sampler = self._sampler()
+        params = self.resolved_params(world)
+        checker = world.checker()
+        invalid = _check_query(world, checker)
+        if invalid is not None:
+            invalid.params = params
+            return invalid
+
+        max_iter = params["max_iter"]
+        tree = K.Tree(max_iter + 1, world.start, max_iter)
+        fparams = self._fparams(world, params)
+        geom = checker.geometry
+        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.istate, fparams, self.mode):
+            tree.best_cost[0] = tree.goal_extra[0]
+            tree.istate[K.S_BEST] = 0
+        box = BoxRegion(world.bounds)
+        it = 0
+        first_time = None
+        already_done = tree.istate[K.S_GOALS] > 0 and self.mode != K.MODE_RRT_STAR
+        while it < max_iter and not already_done:
+            if self.max_time is not None and time.perf_counter() - t0 > self.max_time:
+                break
+            batch = min(self.batch_size, max_iter - it)
+            samples = np.ascontiguousarray(
+                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box)))
+            used = K.grow(samples, it, geom, tree.xy, tree.parent, tree.cost, tree.child, tree.sibling,
+                          tree.goal_node, tree.goal_extra, tree.trace, tree.istate, tree.best_cost,
+                          fparams, self.mode, tree.scratch_idx, tree.scratch_val, tree.scratch_dist,
+                          tree.scratch_state, tree.scratch_stack)
+            it += used
+            if first_time is None and tree.istate[K.S_FIRST_ITER] >= 0:
+                first_time = time.perf_counter() - t0
+            if tree.istate[K.S_DONE]:
+                break
+        checker.add_counts(segments=int(tree.istate[K.S_EDGE_CHECKS]))
+        if tree.istate[K.S_GOALS] > 0 and self.mode == K.MODE_RRT_STAR:
+            # Rewiring may have lowered a goal node's cost after it was found.
+            K._refresh_best(tree.cost, tree.goal_node, tree.goal_extra, tree.istate, tree.best_cost)
+        return self._result(world, tree, it, checker, params, time.perf_counter() - t0, first_time)
+
+    def _result(self, world, tree, iterations, checker, params, elapsed, first_time) -> Result:
+        stats: Dict[str, Any] = {
+            "iterations": int(iterations),
+            "nodes": tree.size,
+            "collision_checks": checker.checks,
+            "edge_checks": int(tree.istate[K.S_EDGE_CHECKS]),
+            "time_s": elapsed,
+            "first_solution_iteration": int(tree.istate[K.S_FIRST_ITER]) if tree.istate[K.S_FIRST_ITER] >= 0 else None,
+            "first_solution_time_s": first_time,
+            "rewires": int(tree.istate[K.S_REWIRES]),
+            "cost_trace": tree.trace[:iterations].copy(),
+        }
+        best = int(tree.istate[K.S_BEST])
+        goal = np.asarray(world.goal)
+        if best >= 0:
+            node = int(tree.goal_node[best])
+            path = tree.branch(node)
+            if tree.goal_extra[best] > 0:
+                path = np.vstack((path, goal))
+            status, reason = Status.EXACT, ""
+        else:
+            node = int(np.argmin(np.linalg.norm(tree.xy[: tree.size] - goal, axis=1)))
+            path = tree.branch(node)
+            status = Status.APPROXIMATE if tree.size > 1 else Status.FAILED
+            reason = (f"goal not reached in {iterations} iterations; the path ends "
+                      f"{np.linalg.norm(path[-1] - goal):.4g} m from the goal") if tree.size > 1 else \
+                     f"the tree did not grow in {iterations} iterations"
+        cost = float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) if len(path) > 1 else 0.0
+        treedata = {"nodes": tree.nodes(), "parent": tree.parents()} if self.keep_tree else None
+        return Result(status=status, path=path, cost=cost, stats=stats, reason=reason,
+                      tree=treedata, params=params)
+
+
+def _check_query(world, checker) -> Optional[Result]:
+    """INVALID_START / INVALID_GOAL results with the reason, or None."""
+    for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
+        p = np.asarray(point, float)
+        if not world.bounds.contains(p)[0]:
+            b = world.bounds
+            return Result(status=status, reason=f"{label} {tuple(p)} is outside the bounds x=[{b.xmin}, {b.xmax}] y=[{b.ymin}, {b.ymax}]")
+        if not checker.points_free(p)[0]:
+            gap = float(checker.clearance(p)[0])
+            return Result(status=status, reason=(
+                f"{label} {tuple(p)} is in collision: clearance {gap:.4g} m < robot radius {world.robot_radius:.4g} m"))
+    return None
+
+
+@PLANNERS.register("rrt")
+class RRT(TreePlanner):
+    """Rapidly-exploring random tree; stops at the first solution.
+
+    References
+    ----------
+    S. M. LaValle, "Rapidly-exploring random trees: a new tool for path
+    planning", TR 98-11, Iowa State University, 1998.
+    """
+
+    mode = K.MODE_RRT
+
+
+@PLANNERS.register("rrt_star")
+class RRTStar(TreePlanner):
+    """RRT* with choose-parent and rewiring (cost changes propagate to subtrees).
+
+    Runs all ``max_iter`` iterations (the seed's stop condition). The near
+    radius is ``min(connect_circle_dist · sqrt(log n / n), expand_dis)``.
+
+    Parameters
+    ----------
+    connect_circle_dist : float, optional
+        γ of the near radius; default from the world's area
+        (:func:`rrt_star_gamma`).
+
+    References
+    ----------
+    S. Karaman, E. Frazzoli, "Sampling-based algorithms for optimal motion
+    planning", IJRR 30(7):846–894, 2011.
+    """
+
+    mode = K.MODE_RRT_STAR
+    default_max_iter = 5000
+
+    def __init__(self, sampler: Union[str, Sampler] = "uniform", expand_dis: Optional[float] = None,
+                 max_iter: Optional[int] = None, max_time: Optional[float] = None,
+                 connect_circle_dist: Optional[float] = None, batch_size: int = 64,
+                 keep_tree: bool = False) -> None:
+        super().__init__(sampler, expand_dis, max_iter, max_time, batch_size, keep_tree)
+        self.connect_circle_dist = connect_circle_dist
+
+    def _validate(self) -> None:
+        super()._validate()
+        _check_positive("connect_circle_dist", self.connect_circle_dist)
+
+    def resolved_params(self, world) -> Dict[str, Any]:
+        params = super().resolved_params(world)
+        params["connect_circle_dist"] = self.connect_circle_dist or rrt_star_gamma(world)
+        return params
+
+    def _fparams(self, world, params) -> np.ndarray:
+        f = super()._fparams(world, params)
+        f[K.P_GAMMA] = params["connect_circle_dist"]
+        return f
+
+
+@PLANNERS.register("informed_rrt_star")
+class InformedRRTStar(RRTStar):
+    """RRT* that, once a solution of cost c exists, draws every sample (of any
+    sampler) from the informed ellipse |x − start| + |x − goal| ≤ c.
+
+    References
+    ----------
+    J. D. Gammell, S. S. Srinivasa, T. D. Barfoot, "Informed RRT*", IROS 2014.
+    """
+
+    def __init__(self, sampler: Union[str, Sampler] = "uniform", expand_dis: Optional[float] = None,
+                 max_iter: Optional[int] = None, max_time: Optional[float] = None,
+                 connect_circle_dist: Optional[float] = None, batch_size: int = 32,
+                 keep_tree: bool = False) -> None:
+        super().__init__(sampler, expand_dis, max_iter, max_time, connect_circle_dist, batch_size, keep_tree)
+
+    def _region(self, world, tree, default):
+        c_best = float(tree.best_cost[0])
+        if not math.isfinite(c_best):
+            return default
+        # With a goal region the path may stop short of the goal point.
+        return InformedRegion(world.start, world.goal, c_best + world.goal_tolerance, world.bounds)
+
+
+@PLANNERS.register("growth_ratio_rrt")
+class GrowthRatioRRT(TreePlanner):
+    """RRT whose step adapts to where the samples fall (seed 003).
+
+    The target area is the rectangle spanned by start and goal. With T and O
+    the running counts of samples inside and outside it, a sample inside moves
+    the tree by T/(T+O) of the distance to it, a sample outside by O/(T+O).
+    The seed's printed formulas are garbled by text extraction; this is
+    navlab's reading of them. It stops when a node comes within ``p_min`` of
+    the goal (then the goal is appended when visible from that node).
+
+    Parameters
+    ----------
+    p_min : float, optional
+        Goal distance that ends the search; default ``world.goal_tolerance``,
+        or 0.5 m (the seed's) when that is 0.
+    expand_dis : float, optional
+        Cap on the step; by default there is none, as in the seed.
+    """
+
+    mode = K.MODE_GROWTH
+
+    def __init__(self, sampler: Union[str, Sampler] = "uniform", p_min: Optional[float] = None,
+                 expand_dis: Optional[float] = None, max_iter: Optional[int] = None,
+                 max_time: Optional[float] = None, batch_size: int = 64, keep_tree: bool = False) -> None:
+        super().__init__(sampler, expand_dis, max_iter, max_time, batch_size, keep_tree)
+        self.p_min = p_min
+
+    def _validate(self) -> None:
+        super()._validate()
+        _check_positive("p_min", self.p_min)
+
+    def resolved_params(self, world) -> Dict[str, Any]:
+        params = super().resolved_params(world)
+        params["expand_dis"] = self.expand_dis
+        params["p_min"] = self.p_min or world.goal_tolerance or 0.5
+        return params
+
+    def _fparams(self, world, params) -> np.ndarray:
+        f = super()._fparams(world, {**params, "expand_dis": params["expand_dis"] or 0.0})
+        f[K.P_GTOL] = params["p_min"]
+        f[K.P_CAP] = params["expand_dis"] or 0.0
+        return f
+
+
+def make_planner(name: str, **params: Any) -> TreePlanner:
+    """Build a registered planner by name with its settings."""
+    from ..registry import check_params
+
+    cls = PLANNERS.get(name)
+    check_params(cls, params, f"planner '{name}'")
+    planner = cls(**params)
+    planner._validate()
+    return planner

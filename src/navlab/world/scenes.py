@@ -1,0 +1,141 @@
+"""Built-in scenes, registered by name (``navlab list`` shows them).
+
+- ``pythonrobotics``: the classic Python RRT* demo (PythonRobotics,
+  A. Sakai et al.), whose parameter names the seed 000 LabVIEW program shares.
+- ``clutter``, ``squarefield``, ``trap``: navlab's canonical versions of the
+  seed 000 environments (the seed gives no geometry), sized so that paths are
+  10–25 m like the seed's 12.7–20.8 m.
+- ``growth_ratio``: the seed 003 set-up, root (1, 5), goal (5, 6), p_min 0.5
+  (as ``goal_tolerance``) in an empty 10 m × 10 m workspace.
+
+Pictures: ``docs/scenes.md``.
+"""
+
+from __future__ import annotations
+
+from typing import Callable
+
+from ..registry import Registry
+from .shapes import Circle, Polygon, Rectangle
+from .world import Bounds, World
+
+SCENES: Registry[Callable[[], World]] = Registry("scene")
+
+
+@SCENES.register("pythonrobotics")
+def pythonrobotics() -> World:
+    """PythonRobotics' RRT* demo: 8 circles, robot radius 0.8 m; optimum 21.9987 m."""
+    circles = [(5, 5, 1), (3, 6, 2), (3, 8, 2), (3, 10, 2), (7, 5, 2), (9, 5, 2), (8, 10, 1), (6, 12, 1)]
+    return World(
+        name="pythonrobotics",
+        bounds=Bounds(-2.0, 15.0, -2.0, 15.0),
+        start=(0.0, 0.0),
+        goal=(6.0, 10.0),
+        obstacles=tuple(Circle((x, y), r) for x, y, r in circles),
+        robot_radius=0.8,
+    )
+
+
+# 34 scattered circles, boxes and star-shaped polygons (drawn once from
+# numpy.random.default_rng(7), then frozen here so the scene never changes).
+_CLUTTER = (
+    Circle((4.75, 10.11), 0.3),
+    Polygon(((10.94, 6.45), (10.84, 6.35), (10.35, 5.87), (10.17, 5.62), (10.50, 5.49))),
+    Circle((8.66, 0.98), 0.31),
+    Rectangle((6.38, 10.18), (7.28, 10.99)),
+    Circle((4.09, 0.63), 0.38),
+    Rectangle((3.31, 4.03), (3.71, 5.10)),
+    Rectangle((11.09, 7.30), (12.09, 7.77)),
+    Circle((5.04, 2.15), 0.63),
+    Circle((13.23, 6.99), 0.54),
+    Rectangle((9.08, 1.86), (9.83, 2.45)),
+    Circle((2.21, 11.15), 0.39),
+    Rectangle((2.07, 9.23), (3.22, 10.36)),
+    Rectangle((2.25, 2.20), (3.39, 3.04)),
+    Rectangle((5.41, 4.81), (6.00, 5.24)),
+    Polygon(((7.39, 6.61), (6.67, 6.89), (6.85, 6.07))),
+    Polygon(((8.85, 5.77), (8.76, 4.92), (9.65, 4.77))),
+    Rectangle((11.79, 1.96), (12.94, 2.36)),
+    Circle((11.19, 0.66), 0.55),
+    Rectangle((7.12, 8.20), (7.70, 8.76)),
+    Polygon(((8.08, 4.84), (7.59, 4.45), (8.89, 4.02), (8.86, 4.16))),
+    Rectangle((8.54, 10.83), (9.20, 11.55)),
+    Circle((8.85, 7.49), 0.37),
+    Circle((6.14, 8.90), 0.63),
+    Circle((4.16, 3.23), 0.38),
+    Rectangle((1.22, 6.52), (1.75, 7.47)),
+    Rectangle((3.17, 6.30), (3.61, 7.34)),
+    Rectangle((10.42, 3.43), (11.51, 4.47)),
+    Circle((10.59, 10.21), 0.38),
+    Circle((9.28, 9.64), 0.45),
+    Circle((7.74, 2.87), 0.4),
+    Circle((6.72, 1.40), 0.6),
+    Polygon(((12.95, 5.38), (12.39, 4.32), (12.52, 4.33), (12.86, 4.05), (12.94, 4.74))),
+    Circle((1.41, 3.95), 0.42),
+    Rectangle((10.88, 8.33), (11.85, 9.41)),
+)
+
+
+@SCENES.register("clutter")
+def clutter() -> World:
+    """Many scattered obstacles of every type; start (1, 1), goal (12.5, 10.5)."""
+    return World(
+        name="clutter",
+        bounds=Bounds(0.0, 14.0, 0.0, 12.0),
+        start=(1.0, 1.0),
+        goal=(12.5, 10.5),
+        obstacles=_CLUTTER,
+        robot_radius=0.1,
+    )
+
+
+@SCENES.register("squarefield")
+def squarefield() -> World:
+    """A regular 4 × 4 field of 1.2 m square blocks ("SquareField BW")."""
+    half = 0.6
+    blocks = tuple(
+        Rectangle((cx - half, cy - half), (cx + half, cy + half))
+        for cx in (2.0, 4.0, 6.0, 8.0)
+        for cy in (2.0, 4.0, 6.0, 8.0)
+    )
+    return World(
+        name="squarefield",
+        bounds=Bounds(0.0, 10.0, 0.0, 10.0),
+        start=(0.5, 0.5),
+        goal=(9.5, 9.5),
+        obstacles=blocks,
+        robot_radius=0.15,
+    )
+
+
+@SCENES.register("trap")
+def trap() -> World:
+    """A bug trap: a U of walls around the start, open away from the goal."""
+    walls = (
+        Rectangle((3.0, 8.6), (8.0, 9.0)),  # top
+        Rectangle((3.0, 3.0), (8.0, 3.4)),  # bottom
+        Rectangle((7.6, 3.0), (8.0, 9.0)),  # closed side, facing the goal
+        Circle((12.0, 8.0), 0.8),
+        Circle((12.5, 4.0), 0.8),
+        Rectangle((14.0, 5.0), (14.6, 7.5)),
+    )
+    return World(
+        name="trap",
+        bounds=Bounds(0.0, 18.0, 0.0, 12.0),
+        start=(6.0, 6.0),
+        goal=(16.0, 6.0),
+        obstacles=walls,
+        robot_radius=0.15,
+    )
+
+
+@SCENES.register("growth_ratio")
+def growth_ratio() -> World:
+    """Seed 003: root (1, 5), goal (5, 6), p_min = 0.5 m, no obstacles."""
+    return World(
+        name="growth_ratio",
+        bounds=Bounds(0.0, 10.0, 0.0, 10.0),
+        start=(1.0, 5.0),
+        goal=(5.0, 6.0),
+        goal_tolerance=0.5,
+    )

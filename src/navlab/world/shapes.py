@@ -1,0 +1,138 @@
+"""Obstacle shapes: circles, axis-aligned rectangles and simple polygons.
+
+Shapes are immutable values in metres. Collision queries never loop over
+these objects; :mod:`navlab.world.geometry` packs them into flat arrays for
+the compiled kernels.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Dict, Tuple
+
+import numpy as np
+
+Point = Tuple[float, float]
+
+
+def _point(value: Any, what: str) -> Point:
+    arr = np.asarray(value, dtype=float)
+    if arr.shape != (2,) or not np.all(np.isfinite(arr)):
+        raise ValueError(f"{what} must be two finite numbers [x, y], got {value!r}")
+    return (float(arr[0]), float(arr[1]))
+
+
+@dataclass(frozen=True)
+class Circle:
+    """A disc with ``center`` (m) and ``radius`` (m)."""
+
+    center: Point
+    radius: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "center", _point(self.center, "circle center"))
+        if not (math.isfinite(self.radius) and self.radius > 0):
+            raise ValueError(f"circle radius must be positive, got {self.radius!r}")
+        object.__setattr__(self, "radius", float(self.radius))
+
+    def bbox(self) -> Tuple[float, float, float, float]:
+        (x, y), r = self.center, self.radius
+        return (x - r, y - r, x + r, y + r)
+
+    def perimeter(self, inflate: float = 0.0) -> float:
+        return 2 * math.pi * (self.radius + inflate)
+
+    def interior_points(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        """``n`` points uniformly inside the disc."""
+        rho = self.radius * np.sqrt(rng.random(n)) * 0.999
+        phi = rng.random(n) * 2 * math.pi
+        return np.column_stack((self.center[0] + rho * np.cos(phi), self.center[1] + rho * np.sin(phi)))
+
+    def to_dict(self) -> Dict[str, Any]:
+        return {"type": "circle", "center": list(self.center), "radius": self.radius}
+
+
+@dataclass(frozen=True)
+class Rectangle:
+    """An axis-aligned rectangle from corner ``min`` to corner ``max`` (m)."""
+
+    min: Point
+    max: Point
+
+    def __post_init__(self) -> None:
+        lo = _point(self.min, "rectangle min")
+        hi = _point(self.max, "rectangle max")
+        if not (hi[0] > lo[0] and hi[1] > lo[1]):
+            raise ValueError(f"rectangle max {hi} must exceed min {lo} in x and y")
+        object.__setattr__(self, "min", lo)
+        object.__setattr__(self, "max", hi)
+
+    def bbox(self) -> Tuple[float, float, float, float]:
+        return (self.min[0], self.min[1], self.max[0], self.max[1])
+
+    def perimeter(self, inflate: float = 0.0) -> float:
+        w, h = self.max[0] - self.min[0], self.max[1] - self.min[1]
+        return 2 * (w + h) + 2 * math.pi * inflate
+
+    def interior_points(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        lo, hi = np.array(self.min), np.array(self.max)
+        centre, half = (lo + hi) / 2, (hi - lo) / 2 * 0.999
+        return centre + (rng.random((n, 2)) * 2 - 1) * half
+
+    def to_dict(self) -> Dict[str, Any]:
+        return {"type": "rectangle", "min": list(self.min), "max": list(self.max)}
+
+
+@dataclass(frozen=True)
+class Polygon:
+    """A simple polygon given by its vertices (m), in either orientation."""
+
+    points: Tuple[Point, ...]
+
+    def __post_init__(self) -> None:
+        import shapely
+
+        pts = tuple(_point(p, "polygon point") for p in self.points)
+        if len(pts) < 3:
+            raise ValueError(f"polygon needs at least 3 points, got {len(pts)}")
+        shape = shapely.Polygon(pts)
+        if not shape.is_valid or shape.area <= 0:
+            raise ValueError(f"polygon {pts} is not simple (edges cross or it has no area)")
+        object.__setattr__(self, "points", pts)
+
+    def bbox(self) -> Tuple[float, float, float, float]:
+        a = np.asarray(self.points)
+        return (a[:, 0].min(), a[:, 1].min(), a[:, 0].max(), a[:, 1].max())
+
+    def perimeter(self, inflate: float = 0.0) -> float:
+        a = np.asarray(self.points)
+        edges = np.roll(a, -1, axis=0) - a
+        return float(np.hypot(edges[:, 0], edges[:, 1]).sum()) + 2 * math.pi * inflate
+
+    def interior_points(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        """Uniform points inside the polygon via its triangulation."""
+        import shapely
+
+        tris = [np.asarray(t.exterior.coords)[:3] for t in shapely.delaunay_triangles(
+            shapely.Polygon(self.points)).geoms]
+        shape = shapely.Polygon(self.points)
+        tris = [t for t in tris if shape.contains(shapely.Polygon(t).centroid)]
+        tris_arr = np.asarray(tris)
+        v1 = tris_arr[:, 1] - tris_arr[:, 0]
+        v2 = tris_arr[:, 2] - tris_arr[:, 0]
+        areas = np.abs(v1[:, 0] * v2[:, 1] - v1[:, 1] * v2[:, 0])
+        pick = rng.choice(len(tris_arr), size=n, p=areas / areas.sum())
+        u, v = rng.random(n), rng.random(n)
+        flip = u + v > 1
+        u[flip], v[flip] = 1 - u[flip], 1 - v[flip]
+        # Shrink toward the triangle's centroid so points are strictly inside.
+        base = tris_arr[pick, 0] + u[:, None] * v1[pick] + v[:, None] * v2[pick]
+        centroid = tris_arr[pick].mean(axis=1)
+        return centroid + 0.999 * (base - centroid)
+
+    def to_dict(self) -> Dict[str, Any]:
+        return {"type": "polygon", "points": [list(p) for p in self.points]}
+
+
+Obstacle = Circle | Rectangle | Polygon

@@ -113,7 +113,7 @@ class GaussianSampler(Sampler):
     Parameters
     ----------
     sigma : float, optional
-        Standard deviation of the pair distance in metres; default 4% of the
+        Standard deviation of the pair distance in metres; default 2% of the
         bounds' diagonal.
     max_rounds : int
         Batches of pairs tried before topping up with uniform samples (which
@@ -132,7 +132,7 @@ class GaussianSampler(Sampler):
         self.max_rounds = max_rounds
 
     def _sample(self, world, rng, n, checker, region):
-        sigma = self.sigma or 0.04 * world.bounds.diagonal
+        sigma = self.sigma or 0.02 * world.bounds.diagonal
         parts, found = [], 0
         for _ in range(self.max_rounds):
             m = max(4 * (n - found), 16)

@@ -114,6 +114,17 @@ def _refresh_best(cost, goal_node, goal_extra, istate, best_cost):
 
 
 @njit(cache=True)
+def growth_step(inside, n_in, n_out, d, cap):
+    """Seed 003's step: the share of samples in the sample's own area (target
+    rectangle or outside) times the parent–sample distance, optionally capped."""
+    share = (n_in if inside else n_out) / (n_in + n_out)
+    step = share * d
+    if cap > 0.0:
+        step = min(step, cap)
+    return step
+
+
+@njit(cache=True)
 def add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode):
     """Record node k as reaching the goal if it does (returns True then)."""
     gx, gy = fparams[P_GX], fparams[P_GY]
@@ -174,10 +185,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 istate[S_IN] += 1
             else:
                 istate[S_OUT] += 1
-            share = (istate[S_IN] if inside else istate[S_OUT]) / (istate[S_IN] + istate[S_OUT])
-            step = share * d
-            if fparams[P_CAP] > 0.0:
-                step = min(step, fparams[P_CAP])
+            step = growth_step(inside, istate[S_IN], istate[S_OUT], d, fparams[P_CAP])
         else:
             step = min(d, step_max)
         if step <= 1e-12:

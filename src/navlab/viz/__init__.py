@@ -1,0 +1,5 @@
+"""Matplotlib drawing of worlds, trees and paths (never called by algorithms)."""
+
+from .plot import draw_path, draw_tree, draw_world, plot_plan
+
+__all__ = ["draw_path", "draw_tree", "draw_world", "plot_plan"]

@@ -49,6 +49,7 @@ class Result:
     reason: str = ""
     tree: Optional[Any] = None
     params: Dict[str, Any] = field(default_factory=dict)
+    cells: Optional[np.ndarray] = None  #: grid planners: (N, 2) int cells (x, y)
 
     @property
     def success(self) -> bool:
@@ -57,7 +58,7 @@ class Result:
     def to_dict(self) -> Dict[str, Any]:
         """JSON-ready view (numpy arrays become lists, ``inf`` becomes ``None``)."""
         stats = {k: _jsonable(v) for k, v in self.stats.items()}
-        return {
+        out = {
             "status": self.status.name,
             "reason": self.reason,
             "cost": _jsonable(self.cost),
@@ -65,6 +66,9 @@ class Result:
             "stats": stats,
             "params": {k: _jsonable(v) for k, v in self.params.items()},
         }
+        if self.cells is not None:
+            out["cells"] = self.cells.tolist()
+        return out
 
 
 def _jsonable(value: Any) -> Any:

@@ -1,0 +1,469 @@
+"""Compiled grid search: A* (and Dijkstra, weighted A*), JPS and Theta*.
+
+The grid is a flat ``uint8`` array of passable cells padded with a blocked
+border one cell wide, so neighbour lookups need no bounds checks: cell (x, y)
+sits at index ``(y + 1) * S + (x + 1)`` with stride ``S = W + 2``.
+
+Per-cell search state (g, parent) is allocated once per grid and validated by
+a generation mark, so a query never clears whole-grid arrays; the open list is
+described below.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+SQRT2 = math.sqrt(2.0)
+H_ZERO, H_MANHATTAN, H_EUCLIDEAN, H_CHEBYSHEV, H_OCTILE = 0, 1, 2, 3, 4
+
+
+@njit(cache=True, inline="always")
+def heuristic(code, ax, ay, bx, by):
+    dx = abs(ax - bx)
+    dy = abs(ay - by)
+    if code == H_MANHATTAN:
+        return float(dx + dy)
+    if code == H_EUCLIDEAN:
+        return math.sqrt(dx * dx + dy * dy)
+    if code == H_CHEBYSHEV:
+        return float(max(dx, dy))
+    if code == H_OCTILE:
+        return max(dx, dy) + (SQRT2 - 1.0) * min(dx, dy)
+    return 0.0
+
+
+# -- open list: 4-ary min-heap of (f, cell) rows, plus a same-f stack -------
+# A 4-ary heap keeps a node's four children in one cache line (rows of two
+# float64), which on large open lists is what dominates A*'s time. With a
+# consistent heuristic f never decreases, so a successor whose f equals the
+# current minimum skips the heap and goes on a LIFO stack that is expanded
+# first (which also breaks ties toward larger g).
+@njit(cache=True, inline="always")
+def _heap_push(heap, size, f, v):
+    k = size
+    while k > 0:
+        p = (k - 1) >> 2
+        if f < heap[p, 0]:
+            heap[k, 0] = heap[p, 0]
+            heap[k, 1] = heap[p, 1]
+            k = p
+        else:
+            break
+    heap[k, 0] = f
+    heap[k, 1] = v
+
+
+@njit(cache=True, inline="always")
+def _heap_pop(heap, size):
+    """Remove the top row (``size`` is the size before); returns (f, cell)."""
+    f0 = heap[0, 0]
+    v0 = np.int64(heap[0, 1])
+    size -= 1
+    if size > 0:
+        f = heap[size, 0]
+        c = heap[size, 1]
+        k = 0
+        while True:
+            first = 4 * k + 1
+            if first >= size:
+                break
+            m = first
+            fm = heap[first, 0]
+            for j in range(first + 1, min(first + 4, size)):
+                if heap[j, 0] < fm:
+                    fm = heap[j, 0]
+                    m = j
+            if fm < f:
+                heap[k, 0] = fm
+                heap[k, 1] = heap[m, 1]
+                k = m
+            else:
+                break
+        heap[k, 0] = f
+        heap[k, 1] = c
+    return f0, v0
+
+
+TIE = 1e-9  # f values closer than this are equal (distinct a + b√2 lengths differ by far more)
+OVERFLOW = -1
+
+
+# -- line of sight -------------------------------------------------------------
+@njit(cache=True)
+def los_supercover(free, S, x0, y0, x1, y1):
+    """Whether the segment between cell centres crosses only free cells
+    (every cell it touches; through a cell corner both side cells must be free)."""
+    dx = x1 - x0
+    dy = y1 - y0
+    nx = abs(dx)
+    ny = abs(dy)
+    sx = 1 if dx > 0 else -1
+    sy = 1 if dy > 0 else -1
+    x = x0
+    y = y0
+    ix = 0
+    iy = 0
+    while ix < nx or iy < ny:
+        decision = (1 + 2 * ix) * ny - (1 + 2 * iy) * nx
+        if decision == 0:
+            if free[(y + 1) * S + x + sx + 1] == 0 or free[(y + sy + 1) * S + x + 1] == 0:
+                return False
+            x += sx
+            y += sy
+            ix += 1
+            iy += 1
+        elif decision < 0:
+            x += sx
+            ix += 1
+        else:
+            y += sy
+            iy += 1
+        if free[(y + 1) * S + x + 1] == 0:
+            return False
+    return True
+
+
+@njit(cache=True)
+def los_bresenham(free, S, x0, y0, x1, y1):
+    """Bresenham line of sight: every cell of the Bresenham line is free, and a
+    diagonal step never cuts a blocked corner (both orthogonal cells free)."""
+    dx = abs(x1 - x0)
+    dy = -abs(y1 - y0)
+    sx = 1 if x0 < x1 else -1
+    sy = 1 if y0 < y1 else -1
+    err = dx + dy
+    x = x0
+    y = y0
+    while True:
+        if free[(y + 1) * S + x + 1] == 0:
+            return False
+        if x == x1 and y == y1:
+            return True
+        e2 = 2 * err
+        step_x = e2 >= dy
+        step_y = e2 <= dx
+        if step_x and step_y:
+            if free[(y + 1) * S + x + sx + 1] == 0 or free[(y + sy + 1) * S + x + 1] == 0:
+                return False
+        if step_x:
+            err += dy
+            x += sx
+        if step_y:
+            err += dx
+            y += sy
+
+
+# -- A* family -----------------------------------------------------------------
+@njit(cache=True)
+def astar(free, S, start, goal, conn, hcode, weight, g, parent, mark, gen, heap, stack, any_angle):
+    """A* over padded flat indices (Dijkstra with hcode 0; Theta* with any_angle).
+
+    ``mark[v]`` is ``2·gen`` while v is open and ``2·gen + 1`` once closed;
+    anything else means unseen this query. Returns (status, expanded) with
+    status 1 found, 0 no path, OVERFLOW when heap or stack ran out of room.
+    """
+    gx = goal % S
+    gy = goal // S
+    opened = 2 * gen
+    closed = 2 * gen + 1
+    g[start] = 0.0
+    parent[start] = start
+    mark[start] = opened
+    heap[0, 0] = weight * heuristic(hcode, start % S, start // S, gx, gy)
+    heap[0, 1] = start
+    size = 1
+    top = 0
+    fcur = -np.inf
+    expanded = 0
+    cap_heap = heap.shape[0]
+    cap_stack = stack.shape[0]
+    DX = np.array([1, -1, 0, 0, 1, -1, 1, -1])
+    DY = np.array([0, 0, 1, -1, 1, 1, -1, -1])
+    n_moves = 8 if conn == 8 else 4
+    while size > 0 or top > 0:
+        if top > 0:
+            top -= 1
+            u = stack[top]
+        else:
+            fcur, u = _heap_pop(heap, size)
+            size -= 1
+        if mark[u] == closed:
+            continue
+        mark[u] = closed
+        expanded += 1
+        if u == goal:
+            return 1, expanded
+        gu = g[u]
+        ux = u % S
+        uy = u // S
+        pu = parent[u]
+        for k in range(n_moves):
+            dx = DX[k]
+            dy = DY[k]
+            v = u + dx + dy * S
+            if free[v] == 0:
+                continue
+            mv = mark[v]
+            if mv == closed:
+                continue
+            if k >= 4:
+                if free[u + dx] == 0 or free[u + dy * S] == 0:
+                    continue  # no corner cutting
+                ng = gu + SQRT2
+            else:
+                ng = gu + 1.0
+            par = u
+            if any_angle and pu != u:
+                pux = pu % S
+                puy = pu // S
+                if los_supercover(free, S, pux - 1, puy - 1, ux + dx - 1, uy + dy - 1):
+                    ng = g[pu] + math.sqrt((ux + dx - pux) ** 2 + (uy + dy - puy) ** 2)
+                    par = pu
+            if mv != opened or ng < g[v]:
+                mark[v] = opened
+                g[v] = ng
+                parent[v] = par
+                f = ng + weight * heuristic(hcode, ux + dx, uy + dy, gx, gy)
+                if f <= fcur + TIE:
+                    if top == cap_stack:
+                        return OVERFLOW, expanded
+                    stack[top] = v
+                    top += 1
+                else:
+                    if size == cap_heap:
+                        return OVERFLOW, expanded
+                    _heap_push(heap, size, f, v)
+                    size += 1
+    return 0, expanded
+
+
+# -- Jump Point Search (8-connected, no corner cutting) -------------------------
+@njit(cache=True)
+def _jump_straight(free, S, v, d, goal):
+    """Jump from v in straight direction d (±1 or ±S); returns a jump point or -1."""
+    side = S if (d == 1 or d == -1) else 1
+    while True:
+        if free[v] == 0:
+            return -1
+        if v == goal:
+            return v
+        # A forced neighbour: a side cell opens where it was blocked behind us.
+        if (free[v + side] != 0 and free[v + side - d] == 0) or (free[v - side] != 0 and free[v - side - d] == 0):
+            return v
+        v += d
+
+
+@njit(cache=True)
+def _jump_diagonal(free, S, v, dx, dy, goal):
+    """Jump from v in diagonal direction (dx, dy); returns a jump point or -1."""
+    while True:
+        if free[v] == 0:
+            return -1
+        if v == goal:
+            return v
+        if _jump_straight(free, S, v + dx, dx, goal) >= 0 or _jump_straight(free, S, v + dy * S, dy * S, goal) >= 0:
+            return v
+        if free[v + dx] == 0 or free[v + dy * S] == 0:
+            return -1
+        v += dx + dy * S
+
+
+@njit(cache=True, inline="always")
+def _octile_between(a, b, S):
+    dx = abs(a % S - b % S)
+    dy = abs(a // S - b // S)
+    return max(dx, dy) + (SQRT2 - 1.0) * min(dx, dy)
+
+
+@njit(cache=True)
+def jps(free, S, start, goal, g, parent, mark, gen, heap, stack, dirs):
+    """Jump Point Search for 8-connected grids without corner cutting.
+
+    Same open list and return values as :func:`astar`; parents link jump points.
+    """
+    opened = 2 * gen
+    closed = 2 * gen + 1
+    g[start] = 0.0
+    parent[start] = start
+    mark[start] = opened
+    heap[0, 0] = _octile_between(start, goal, S)
+    heap[0, 1] = start
+    size = 1
+    top = 0
+    fcur = -np.inf
+    expanded = 0
+    while size > 0 or top > 0:
+        if top > 0:
+            top -= 1
+            u = stack[top]
+        else:
+            fcur, u = _heap_pop(heap, size)
+            size -= 1
+        if mark[u] == closed:
+            continue
+        mark[u] = closed
+        expanded += 1
+        if u == goal:
+            return 1, expanded
+        # Successor directions (dx, dy) pruned by the direction of arrival.
+        n = 0
+        p = parent[u]
+        if p == u:
+            for ddx in (-1, 0, 1):
+                for ddy in (-1, 0, 1):
+                    if ddx == 0 and ddy == 0:
+                        continue
+                    if ddx != 0 and ddy != 0 and (free[u + ddx] == 0 or free[u + ddy * S] == 0):
+                        continue
+                    dirs[n, 0] = ddx
+                    dirs[n, 1] = ddy
+                    n += 1
+        else:
+            ddx = np.sign(u % S - p % S)
+            ddy = np.sign(u // S - p // S)
+            if ddx != 0 and ddy != 0:
+                dirs[0, 0], dirs[0, 1] = 0, ddy
+                dirs[1, 0], dirs[1, 1] = ddx, 0
+                n = 2
+                if free[u + ddx] != 0 and free[u + ddy * S] != 0:
+                    dirs[2, 0], dirs[2, 1] = ddx, ddy
+                    n = 3
+            elif ddx != 0:
+                dirs[0, 0], dirs[0, 1] = ddx, 0
+                dirs[1, 0], dirs[1, 1] = 0, 1
+                dirs[2, 0], dirs[2, 1] = 0, -1
+                n = 3
+                if free[u + ddx] != 0:
+                    for s in (1, -1):
+                        if free[u + s * S] != 0:
+                            dirs[n, 0], dirs[n, 1] = ddx, s
+                            n += 1
+            else:
+                dirs[0, 0], dirs[0, 1] = 0, ddy
+                dirs[1, 0], dirs[1, 1] = 1, 0
+                dirs[2, 0], dirs[2, 1] = -1, 0
+                n = 3
+                if free[u + ddy * S] != 0:
+                    for s in (1, -1):
+                        if free[u + s] != 0:
+                            dirs[n, 0], dirs[n, 1] = s, ddy
+                            n += 1
+        for k in range(n):
+            ddx = dirs[k, 0]
+            ddy = dirs[k, 1]
+            v = u + ddx + ddy * S
+            if ddx != 0 and ddy != 0:
+                jp = _jump_diagonal(free, S, v, ddx, ddy, goal)
+            elif ddx != 0:
+                jp = _jump_straight(free, S, v, ddx, goal)
+            else:
+                jp = _jump_straight(free, S, v, ddy * S, goal)
+            if jp < 0 or mark[jp] == closed:
+                continue
+            ng = g[u] + _octile_between(u, jp, S)
+            if mark[jp] != opened or ng < g[jp]:
+                mark[jp] = opened
+                g[jp] = ng
+                parent[jp] = u
+                f = ng + _octile_between(jp, goal, S)
+                if f <= fcur + TIE:
+                    if top == stack.shape[0]:
+                        return OVERFLOW, expanded
+                    stack[top] = jp
+                    top += 1
+                else:
+                    if size == heap.shape[0]:
+                        return OVERFLOW, expanded
+                    _heap_push(heap, size, f, jp)
+                    size += 1
+    return 0, expanded
+
+
+@njit(cache=True)
+def unwind(parent, goal, S):
+    """Cells (x, y) from start to goal, filling the straight or diagonal runs
+    between jump points so consecutive cells are 8-neighbours."""
+    count = 0
+    v = goal
+    while True:
+        count += 1
+        p = parent[v]
+        if p == v:
+            break
+        v = p
+    nodes = np.empty(count, dtype=np.int64)
+    v = goal
+    for k in range(count - 1, -1, -1):
+        nodes[k] = v
+        v = parent[v]
+    return nodes
+
+
+@njit(cache=True)
+def fill_runs(nodes, S):
+    """Expand jump-point chains into cell-by-cell (x, y) paths."""
+    total = 1
+    for k in range(1, nodes.shape[0]):
+        a, b = nodes[k - 1], nodes[k]
+        total += max(abs(a % S - b % S), abs(a // S - b // S))
+    out = np.empty((total, 2), dtype=np.int64)
+    out[0, 0] = nodes[0] % S - 1
+    out[0, 1] = nodes[0] // S - 1
+    m = 1
+    for k in range(1, nodes.shape[0]):
+        ax, ay = nodes[k - 1] % S, nodes[k - 1] // S
+        bx, by = nodes[k] % S, nodes[k] // S
+        steps = max(abs(bx - ax), abs(by - ay))
+        sx = np.sign(bx - ax)
+        sy = np.sign(by - ay)
+        for s in range(1, steps + 1):
+            out[m, 0] = ax + s * sx - 1
+            out[m, 1] = ay + s * sy - 1
+            m += 1
+    return out
+
+
+@njit(cache=True)
+def smooth_path(free, S, cells, bresenham):
+    """Greedy line-of-sight shortcut: from each kept cell, advance to the last
+    cell of the following run that stays visible; drop the cells between."""
+    n = cells.shape[0]
+    keep = np.zeros(n, dtype=np.bool_)
+    keep[0] = True
+    keep[n - 1] = True
+    i = 0
+    while i < n - 1:
+        j = i + 1
+        while j + 1 < n:
+            if bresenham:
+                ok = los_bresenham(free, S, cells[i, 0], cells[i, 1], cells[j + 1, 0], cells[j + 1, 1])
+            else:
+                ok = los_supercover(free, S, cells[i, 0], cells[i, 1], cells[j + 1, 0], cells[j + 1, 1])
+            if not ok:
+                break
+            j += 1
+        keep[j] = True
+        i = j
+    return cells[keep]
+
+
+@njit(cache=True)
+def step_counts(cells):
+    """(straight steps, diagonal steps, Euclidean length of longer steps)."""
+    straight = 0
+    diagonal = 0
+    rest = 0.0
+    for k in range(1, cells.shape[0]):
+        dx = abs(cells[k, 0] - cells[k - 1, 0])
+        dy = abs(cells[k, 1] - cells[k - 1, 1])
+        if dx <= 1 and dy <= 1:
+            if dx + dy == 1:
+                straight += 1
+            elif dx + dy == 2:
+                diagonal += 1
+        else:
+            rest += math.sqrt(dx * dx + dy * dy)
+    return straight, diagonal, rest

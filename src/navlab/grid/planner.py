@@ -1,0 +1,224 @@
+"""Grid path planning: ``navlab.grid.plan`` and friends.
+
+Algorithms (registered by name): ``dijkstra``, ``astar`` (weighted A* with
+``weight > 1``), ``jps`` (Harabor & Grastien 2011; 8-connected, no corner
+cutting) and ``theta_star`` (Nash et al. 2007; any-angle).
+
+Heuristics (seed 002 eq. 4 for octile), in cells:
+
+============  ======================  =====================  =====================
+heuristic     formula                 4-connected            8-connected
+============  ======================  =====================  =====================
+manhattan     |dx| + |dy|             admissible, exact      NOT admissible:
+                                      on open grids          paths may be longer
+euclidean     sqrt(dx² + dy²)         admissible (weak)      admissible (weak)
+chebyshev     max(|dx|, |dy|)         admissible (weak)      admissible (weak)
+octile        max + (√2 − 1)·min      admissible (weak)      admissible, exact
+                                                             on open grids
+============  ======================  =====================  =====================
+
+With an admissible, consistent heuristic A* returns an optimal path; with
+Manhattan on an 8-connected grid it can return a longer one (it trades
+optimality for fewer expansions), as does weighted A* (cost ≤ weight × optimum).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+
+from ..registry import Registry
+from ..result import Result, Status
+from . import kernels as K
+from .occupancy import OccupancyGrid
+
+HEURISTICS: Registry[int] = Registry("heuristic")
+for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),
+                     ("chebyshev", K.H_CHEBYSHEV), ("octile", K.H_OCTILE)):
+    HEURISTICS.register(_name)(_code)
+
+GRID_ALGORITHMS: Registry[str] = Registry("grid algorithm")
+for _name, _doc in (("dijkstra", "uniform-cost search (no heuristic)"),
+                    ("astar", "A*; weighted A* with weight > 1"),
+                    ("jps", "Jump Point Search (8-connected, optimal, no corner cutting)"),
+                    ("theta_star", "Theta*: any-angle A* with line of sight")):
+    GRID_ALGORITHMS.register(_name)(_doc)
+
+
+class GridSearcher:
+    """Search state for one grid, allocated once and reused by every query."""
+
+    def __init__(self, passable: np.ndarray) -> None:
+        h, w = passable.shape
+        self.stride = w + 2
+        padded = np.zeros((h + 2, w + 2), dtype=np.uint8)
+        padded[1:-1, 1:-1] = passable
+        self.free = padded.ravel()
+        n = self.free.size
+        self.g = np.empty(n)
+        self.parent = np.empty(n, dtype=np.int64)
+        self.mark = np.zeros(n, dtype=np.int64)
+        self.gen = 0
+        # Open list and same-f stack; grown (and the query rerun) if one fills up.
+        self.heap = np.empty((min(n + 16, 1 << 16), 2))
+        self.stack = np.empty(min(n + 16, 1 << 16), dtype=np.int64)
+        self.dirs = np.zeros((8, 2), dtype=np.int64)
+
+    def index(self, x: int, y: int) -> int:
+        return (y + 1) * self.stride + (x + 1)
+
+    def next_generation(self) -> int:
+        self.gen += 1
+        return self.gen
+
+    def grow(self) -> None:
+        self.heap = np.empty((self.heap.shape[0] * 4, 2))
+        self.stack = np.empty(self.stack.shape[0] * 4, dtype=np.int64)
+
+
+def searcher_for(grid: OccupancyGrid, allow_unknown: bool) -> GridSearcher:
+    key = ("searcher", allow_unknown)
+    if key not in grid._cache:
+        grid._cache[key] = GridSearcher(grid.passable(allow_unknown))
+    return grid._cache[key]
+
+
+def _cell(value, what: str) -> Tuple[int, int]:
+    try:
+        x, y = value
+        if int(x) == x and int(y) == y:
+            return int(x), int(y)
+    except (TypeError, ValueError):
+        pass
+    raise ValueError(f"{what} must be an integer cell (x, y), got {value!r}")
+
+
+def path_cost(cells: np.ndarray) -> float:
+    """Length in cells: exact octile sum for 8-neighbour steps, Euclidean for longer ones."""
+    straight, diagonal, rest = K.step_counts(np.ascontiguousarray(cells, dtype=np.int64))
+    return straight + diagonal * math.sqrt(2.0) + rest
+
+
+def line_of_sight(grid: OccupancyGrid, a, b, method: str = "supercover", allow_unknown: bool = False) -> bool:
+    """Whether cells ``a`` and ``b`` (x, y) see each other over free cells.
+
+    ``method="supercover"`` checks every cell the segment between the cell
+    centres touches; ``"bresenham"`` checks the cells of the Bresenham line
+    (and never cuts a blocked corner on a diagonal step).
+    """
+    if method not in ("supercover", "bresenham"):
+        raise ValueError(f"method must be 'supercover' or 'bresenham', got {method!r}")
+    (ax, ay), (bx, by) = _cell(a, "a"), _cell(b, "b")
+    if not (grid.contains([[ax, ay]])[0] and grid.contains([[bx, by]])[0]):
+        return False
+    s = searcher_for(grid, allow_unknown)
+    if s.free[s.index(ax, ay)] == 0:
+        return False
+    fn = K.los_bresenham if method == "bresenham" else K.los_supercover
+    return bool(fn(s.free, s.stride, ax, ay, bx, by))
+
+
+def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: str = "octile",
+         connectivity: int = 8, smooth: bool = False, weight: float = 1.0, allow_unknown: bool = False,
+         smooth_method: str = "bresenham") -> Result:
+    """Plan on an occupancy grid between cells ``start`` and ``goal`` (x, y).
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+    start, goal : (int, int)
+        Cells as (x, y) = (column, row).
+    algorithm : {"astar", "dijkstra", "jps", "theta_star"}
+    heuristic : {"octile", "euclidean", "chebyshev", "manhattan"}
+        For ``astar`` (JPS uses octile, Theta* Euclidean, Dijkstra none).
+    connectivity : {4, 8}
+        8 allows diagonal moves only when both orthogonal neighbours are free.
+    smooth : bool
+        Shortcut the path along lines of sight (seed 002's Bresenham smoothing).
+    weight : float
+        Weighted A* (≥ 1); cost ≤ weight × optimum.
+    allow_unknown : bool
+        Let the search enter cells of unknown occupancy.
+    smooth_method : {"bresenham", "supercover"}
+
+    Returns
+    -------
+    Result
+        ``cells`` (N, 2) int (x, y), ``path`` (world coordinates of cell
+        centres), ``cost`` (length in cells: 1 per straight step, √2 per
+        diagonal; Euclidean between smoothed waypoints), ``stats`` (expanded,
+        time_s, length_m, raw_cost when smoothed).
+
+    References
+    ----------
+    P. E. Hart, N. J. Nilsson, B. Raphael, "A formal basis for the heuristic
+    determination of minimum cost paths", IEEE TSSC 4(2), 1968.
+    D. Harabor, A. Grastien, "Online graph pruning for pathfinding on grid
+    maps", AAAI 2011.
+    A. Nash, K. Daniel, S. Koenig, A. Felner, "Theta*: any-angle path planning
+    on grids", AAAI 2007.
+    """
+    t0 = time.perf_counter()
+    GRID_ALGORITHMS.get(algorithm)
+    hcode = HEURISTICS.get(heuristic)
+    if connectivity not in (4, 8):
+        raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
+    if isinstance(weight, bool) or not isinstance(weight, (int, float)) or not weight >= 1 or not math.isfinite(weight):
+        raise ValueError(f"weight must be a number >= 1, got {weight!r}")
+    if smooth_method not in ("bresenham", "supercover"):
+        raise ValueError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
+    if algorithm == "jps" and connectivity != 8:
+        raise ValueError("jps needs connectivity 8")
+    params: Dict[str, Any] = {"algorithm": algorithm, "heuristic": heuristic, "connectivity": connectivity,
+                              "smooth": smooth, "weight": weight, "allow_unknown": allow_unknown}
+    s_cell, g_cell = _cell(start, "start"), _cell(goal, "goal")
+    s = searcher_for(grid, allow_unknown)
+    for label, cell, status in (("start", s_cell, Status.INVALID_START), ("goal", g_cell, Status.INVALID_GOAL)):
+        if not (0 <= cell[0] < grid.width and 0 <= cell[1] < grid.height):
+            return Result(status=status, params=params, cells=np.empty((0, 2), dtype=np.int64),
+                          reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
+        if s.free[s.index(*cell)] == 0:
+            kind = "unknown" if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
+            return Result(status=status, params=params, cells=np.empty((0, 2), dtype=np.int64),
+                          reason=f"{label} cell {cell} is {kind}")
+    a, b = s.index(*s_cell), s.index(*g_cell)
+    while True:
+        gen = s.next_generation()
+        if algorithm == "jps":
+            status, expanded = K.jps(s.free, s.stride, a, b, s.g, s.parent, s.mark, gen, s.heap, s.stack, s.dirs)
+        else:
+            code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
+            status, expanded = K.astar(s.free, s.stride, a, b, connectivity, code,
+                                       float(weight) if algorithm == "astar" else 1.0,
+                                       s.g, s.parent, s.mark, gen, s.heap, s.stack, algorithm == "theta_star")
+        if status != K.OVERFLOW:
+            break
+        s.grow()
+    found = status == 1
+    stats: Dict[str, Any] = {"expanded": int(expanded)}
+    if not found:
+        stats["time_s"] = time.perf_counter() - t0
+        return Result(status=Status.FAILED, params=params, stats=stats, cells=np.empty((0, 2), dtype=np.int64),
+                      reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
+    nodes = K.unwind(s.parent, b, s.stride)
+    if algorithm == "theta_star":
+        cells = np.column_stack((nodes % s.stride - 1, nodes // s.stride - 1))
+    else:
+        cells = K.fill_runs(nodes, s.stride)
+    if smooth and len(cells) > 2:
+        stats["raw_cost"] = path_cost(cells)
+        cells = K.smooth_path(s.free, s.stride, np.ascontiguousarray(cells), smooth_method == "bresenham")
+    cost = path_cost(cells)
+    stats["length_m"] = cost * grid.resolution
+    stats["time_s"] = time.perf_counter() - t0
+    return Result(status=Status.EXACT, path=grid.cell_to_world(cells), cost=cost, stats=stats,
+                  params=params, cells=cells)
+
+
+def plan_world(grid: OccupancyGrid, start_xy, goal_xy, **kwargs: Any) -> Result:
+    """:func:`plan` with start and goal in world coordinates (metres)."""
+    cells = grid.world_to_cell(np.array([start_xy, goal_xy], dtype=float))
+    return plan(grid, tuple(cells[0]), tuple(cells[1]), **kwargs)

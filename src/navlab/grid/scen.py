@@ -1,0 +1,53 @@
+"""Moving AI scenario files (``.scen``)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import List
+
+from .mapio import MapFormatError
+
+
+@dataclass(frozen=True)
+class Scenario:
+    """One row: bucket, map name, size, start and goal (x = column, y = row), optimum."""
+
+    bucket: int
+    map_name: str
+    width: int
+    height: int
+    start: tuple
+    goal: tuple
+    optimal: float
+    optimal_text: str  #: as printed, to compare at the printed precision
+
+    def tolerance(self) -> float:
+        """One unit in the last printed digit."""
+        text = self.optimal_text
+        decimals = len(text.split(".")[1]) if "." in text else 0
+        return 10.0 ** -decimals
+
+
+def read_scen(path) -> List[Scenario]:
+    p = Path(path)
+    try:
+        lines = p.read_text().splitlines()
+    except OSError as exc:
+        raise MapFormatError(f"{p}: cannot read: {exc.strerror}") from None
+    if not lines or not lines[0].startswith("version"):
+        raise MapFormatError(f"{p}: not a Moving AI scenario file (first line must be 'version ...')")
+    out = []
+    for n, line in enumerate(lines[1:], start=2):
+        if not line.strip():
+            continue
+        parts = line.split("\t") if "\t" in line else line.split()
+        if len(parts) != 9:
+            raise MapFormatError(f"{p}: line {n}: expected 9 fields, got {len(parts)}")
+        try:
+            out.append(Scenario(int(parts[0]), parts[1], int(parts[2]), int(parts[3]),
+                                (int(parts[4]), int(parts[5])), (int(parts[6]), int(parts[7])),
+                                float(parts[8]), parts[8].strip()))
+        except ValueError:
+            raise MapFormatError(f"{p}: line {n}: bad number in {line!r}") from None
+    return out

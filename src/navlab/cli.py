@@ -20,7 +20,7 @@ class NavlabGroup(click.Group):
 
         try:
             return super().invoke(ctx)
-        except (UnknownNameError, WorldFormatError, ValueError, FileNotFoundError) as exc:
+        except (UnknownNameError, WorldFormatError, ValueError, FileNotFoundError) as exc:  # MapFormatError too
             click.echo(f"Error: {exc}", err=True)
             sys.exit(2)
 
@@ -123,6 +123,10 @@ def list_cmd() -> None:
         click.echo(f"  {'':<20} start {w.start}, goal {w.goal}, robot radius {w.robot_radius} m, "
                    f"{len(w.obstacles)} obstacles")
 
+
+from .grid_cli import grid_group  # noqa: E402
+
+main.add_command(grid_group)
 
 if __name__ == "__main__":  # pragma: no cover
     main()

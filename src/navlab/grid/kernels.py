@@ -58,13 +58,16 @@ def _heap_push(heap, size, f, v):
 
 @njit(cache=True, inline="always")
 def _heap_pop(heap, size):
-    """Remove the top row (``size`` is the size before); returns (f, cell)."""
+    """Remove the top row (``size`` is the size before); returns (f, cell).
+
+    Bottom-up deletion (Floyd): walk the hole down to a leaf along the smaller
+    children, then sift the last row up from there; the last row usually
+    belongs near the bottom, so this needs fewer comparisons.
+    """
     f0 = heap[0, 0]
     v0 = np.int64(heap[0, 1])
     size -= 1
     if size > 0:
-        f = heap[size, 0]
-        c = heap[size, 1]
         k = 0
         while True:
             first = 4 * k + 1
@@ -76,10 +79,17 @@ def _heap_pop(heap, size):
                 if heap[j, 0] < fm:
                     fm = heap[j, 0]
                     m = j
-            if fm < f:
-                heap[k, 0] = fm
-                heap[k, 1] = heap[m, 1]
-                k = m
+            heap[k, 0] = fm
+            heap[k, 1] = heap[m, 1]
+            k = m
+        f = heap[size, 0]
+        c = heap[size, 1]
+        while k > 0:
+            p = (k - 1) >> 2
+            if f < heap[p, 0]:
+                heap[k, 0] = heap[p, 0]
+                heap[k, 1] = heap[p, 1]
+                k = p
             else:
                 break
         heap[k, 0] = f
@@ -200,21 +210,39 @@ def astar(free, S, start, goal, conn, hcode, weight, g, parent, mark, gen, heap,
         ux = u % S
         uy = u // S
         pu = parent[u]
+        # Orthogonal neighbours first; a diagonal needs both of its sides free.
+        east = free[u + 1] != 0
+        west = free[u - 1] != 0
+        north = free[u + S] != 0
+        south = free[u - S] != 0
         for k in range(n_moves):
+            if k == 0:
+                ok = east
+            elif k == 1:
+                ok = west
+            elif k == 2:
+                ok = north
+            elif k == 3:
+                ok = south
+            elif k == 4:
+                ok = east and north
+            elif k == 5:
+                ok = west and north
+            elif k == 6:
+                ok = east and south
+            else:
+                ok = west and south
+            if not ok:
+                continue
             dx = DX[k]
             dy = DY[k]
             v = u + dx + dy * S
-            if free[v] == 0:
+            if k >= 4 and free[v] == 0:
                 continue
             mv = mark[v]
             if mv == closed:
                 continue
-            if k >= 4:
-                if free[u + dx] == 0 or free[u + dy * S] == 0:
-                    continue  # no corner cutting
-                ng = gu + SQRT2
-            else:
-                ng = gu + 1.0
+            ng = gu + (SQRT2 if k >= 4 else 1.0)
             par = u
             if any_angle and pu != u:
                 pux = pu % S

@@ -59,8 +59,8 @@ class GridSearcher:
         self.free = padded.ravel()
         n = self.free.size
         self.g = np.empty(n)
-        self.parent = np.empty(n, dtype=np.int64)
-        self.mark = np.zeros(n, dtype=np.int64)
+        self.parent = np.empty(n, dtype=np.int32)
+        self.mark = np.zeros(n, dtype=np.int32)
         self.gen = 0
         # Open list and same-f stack; grown (and the query rerun) if one fills up.
         self.heap = np.empty((min(n + 16, 1 << 16), 2))
@@ -72,6 +72,9 @@ class GridSearcher:
 
     def next_generation(self) -> int:
         self.gen += 1
+        if 2 * self.gen + 1 >= 2**31:  # int32 marks would wrap: start over
+            self.mark[:] = 0
+            self.gen = 1
         return self.gen
 
     def grow(self) -> None:

@@ -1,0 +1,126 @@
+"""``navlab grid``: plan on maps, run Moving AI scenarios, generate mazes."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import click
+
+
+@click.group("grid")
+def grid_group() -> None:
+    """Grid planning on ROS map_server maps (.yaml) and Moving AI maps (.map)."""
+
+
+ALGORITHMS = ["astar", "dijkstra", "jps", "theta_star"]
+HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
+
+
+@grid_group.command("plan")
+@click.argument("map_path", metavar="MAP", type=click.Path(dir_okay=False))
+@click.option("--start", nargs=2, type=float, required=True, metavar="X Y", help="Start cell (or metres with --world).")
+@click.option("--goal", nargs=2, type=float, required=True, metavar="X Y", help="Goal cell (or metres with --world).")
+@click.option("--world", "in_world", is_flag=True, help="Start and goal are world coordinates in metres.")
+@click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
+@click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
+              help="A* heuristic (manhattan is not admissible with 8-connectivity).")
+@click.option("--connectivity", type=click.Choice(["4", "8"]), default="8", show_default=True)
+@click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A* (>= 1).")
+@click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
+@click.option("--inflate", type=float, default=0.0, show_default=True, help="Inflate obstacles by this radius, m.")
+@click.option("--allow-unknown", is_flag=True, help="Let the path cross cells of unknown occupancy.")
+@click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG of grid and path.")
+def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivity, weight, smooth, inflate,
+              allow_unknown, as_json, plot) -> None:
+    """Plan a path on MAP between two cells (x = column, y = row)."""
+    from .grid import load_map, plan, plan_world
+
+    grid = load_map(map_path)
+    if inflate:
+        grid = grid.inflate(inflate)
+    kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,
+                  weight=weight, allow_unknown=allow_unknown)
+    if in_world:
+        result = plan_world(grid, start, goal, **kwargs)
+    else:
+        for label, v in (("--start", start), ("--goal", goal)):
+            if any(c != int(c) for c in v):
+                raise click.BadParameter(f"cells are integers; use --world for metres, got {v}", param_hint=label)
+        result = plan(grid, (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), **kwargs)
+    if plot:
+        from .viz.grid_plot import plot_grid_plan
+
+        raw = None
+        if smooth and result.success:
+            raw = plan(grid, tuple(result.cells[0]), tuple(result.cells[-1]),
+                       **{**kwargs, "smooth": False}).cells
+        plot_grid_plan(grid, result, plot, raw_cells=raw)
+    if as_json:
+        click.echo(json.dumps(result.to_dict()))
+    else:
+        click.echo(f"{grid.name}: {algorithm}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
+        if result.success:
+            click.echo(f"  {len(result.cells)} cells, length {result.cost:.6f} cells = {result.stats['length_m']:.4f} m, "
+                       f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
+        if plot:
+            click.echo(f"  plot written to {plot}")
+    if not result.success:
+        sys.exit(1)
+
+
+@grid_group.command("scen")
+@click.argument("scen_path", metavar="FILE.scen", type=click.Path(dir_okay=False, exists=True))
+@click.option("--map", "map_path", type=click.Path(dir_okay=False, exists=True), default=None,
+              help="The .map file (default: the scenario's map name next to FILE.scen).")
+@click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
+@click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True)
+@click.option("--limit", type=click.IntRange(min=1), default=None, help="Only the first N scenarios.")
+@click.option("--every", type=click.IntRange(min=1), default=1, show_default=True, help="Only every k-th scenario.")
+@click.option("--json", "as_json", is_flag=True, help="Print the summary and every scenario as JSON.")
+def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json) -> None:
+    """Run a Moving AI scenario file; compare lengths with the stored optima.
+
+    Lengths are compared as the benchmark computes them (a diagonal costs
+    1.414213562) to one unit in the last printed digit; exact lengths are in
+    the JSON rows as exact_length.
+    """
+    from .grid.scen_runner import run_scenarios
+
+    out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every)
+    s = out["summary"]
+    if as_json:
+        click.echo(json.dumps(out))
+    else:
+        click.echo(f"{s['map']}: {s['scenarios']} scenarios, {algorithm} ({heuristic}): "
+                   f"{s['scenarios'] - s['mismatches']} match the stored optimum, {s['mismatches']} do not")
+        click.echo(f"  time per query: median {s['time_median_ms']:.3f} ms, p95 {s['time_p95_ms']:.3f} ms, "
+                   f"total {s['time_total_s']:.3f} s")
+        for row in out["rows"]:
+            if not row["match"]:
+                click.echo(f"  mismatch #{row['index']}: {row['start']} -> {row['goal']}: stored {row['optimal']}, "
+                           f"got {row['length']} ({row['status']})")
+    if s["mismatches"]:
+        sys.exit(1)
+
+
+@grid_group.command("maze")
+@click.option("--cells", nargs=2, type=click.IntRange(min=1), default=(10, 10), show_default=True, metavar="W H",
+              help="Maze size in cells.")
+@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--cell-size", type=click.FloatRange(min=0, min_open=True), default=0.5, show_default=True,
+              help="Distance between cell centres, m.")
+@click.option("--wall", type=click.FloatRange(min=0, min_open=True), default=0.1, show_default=True,
+              help="Wall thickness, m.")
+@click.option("--resolution", type=click.FloatRange(min=0, min_open=True), default=0.05, show_default=True,
+              help="Map resolution, m per pixel.")
+@click.option("--out", type=click.Path(dir_okay=False), required=True, help="Output map_server YAML (PGM beside it).")
+def grid_maze(cells, seed, cell_size, wall, resolution, out) -> None:
+    """Generate a perfect maze as a ROS map_server map (YAML + PGM)."""
+    from .grid import make_maze, save_map
+
+    grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution)
+    image = save_map(grid, out)
+    click.echo(f"wrote {out} and {image}: {cells[0]}x{cells[1]} cells, {grid.width}x{grid.height} pixels "
+               f"at {resolution} m")

@@ -37,6 +37,13 @@ def random_grid(rng, h=24, w=31, p=0.3):
     return OccupancyGrid(rng.random((h, w)) < p)
 
 
+def corner_query(grid):
+    """The first and last free cells (row-major) as (x, y) start and goal."""
+    free = np.argwhere(~grid.blocked)
+    (sy, sx), (gy, gx) = free[0], free[-1]
+    return (int(sx), int(sy)), (int(gx), int(gy))
+
+
 CASES = [("astar", "octile", 8), ("astar", "euclidean", 8), ("astar", "chebyshev", 8), ("dijkstra", "octile", 8),
          ("jps", "octile", 8), ("astar", "manhattan", 4), ("astar", "octile", 4), ("dijkstra", "octile", 4)]
 
@@ -69,8 +76,7 @@ def test_inadmissible_and_weighted_are_valid_but_bounded():
     worse = 0
     for _ in range(30):
         grid = random_grid(rng, 30, 30, 0.25)
-        free = np.argwhere(~grid.blocked)
-        (sy, sx), (gy, gx) = free[0], free[-1]
+        (sx, sy), (gx, gy) = corner_query(grid)
         best = plan(grid, (sx, sy), (gx, gy))
         if not best.success:
             continue
@@ -86,8 +92,7 @@ def test_theta_star_is_any_angle_and_valid():
     rng = np.random.default_rng(2)
     for _ in range(20):
         grid = random_grid(rng, 30, 30, 0.2)
-        free = np.argwhere(~grid.blocked)
-        (sy, sx), (gy, gx) = free[0], free[-1]
+        (sx, sy), (gx, gy) = corner_query(grid)
         astar = plan(grid, (sx, sy), (gx, gy))
         theta = plan(grid, (sx, sy), (gx, gy), algorithm="theta_star")
         assert theta.status is astar.status
@@ -108,8 +113,7 @@ def test_smoothing_keeps_line_of_sight_and_shortens():
     rng = np.random.default_rng(6)
     for _ in range(20):
         grid = random_grid(rng, 40, 40, 0.2)
-        free = np.argwhere(~grid.blocked)
-        (sy, sx), (gy, gx) = free[0], free[-1]
+        (sx, sy), (gx, gy) = corner_query(grid)
         raw = plan(grid, (sx, sy), (gx, gy))
         sm = plan(grid, (sx, sy), (gx, gy), smooth=True)
         if not raw.success:

@@ -102,7 +102,8 @@ class TreePlanner:
         params = self.get_params()
         params["expand_dis"] = self.expand_dis or 0.2 * world.bounds.diagonal
         params["max_iter"] = self.max_iter or self.default_max_iter
-        params["sampler"] = self._sampler().registered_name if hasattr(self._sampler(), "registered_name") else repr(self.sampler)
+        s = self.sampler
+        params["sampler"] = s if isinstance(s, str) else getattr(s, "registered_name", repr(s))
         return params
 
     def _sampler(self) -> Sampler:

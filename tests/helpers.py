@@ -3,7 +3,7 @@
 import numpy as np
 import shapely
 
-from navlab.world.shapes import Circle, Polygon, Rectangle
+from navlab.world.shapes import Circle, Rectangle
 
 
 def shapely_of(obstacle):

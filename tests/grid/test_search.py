@@ -52,7 +52,7 @@ CASES = [("astar", "octile", 8), ("astar", "euclidean", 8), ("astar", "chebyshev
 def test_optimal_against_brute_force(algorithm, heuristic, connectivity):
     rng = np.random.default_rng(4)
     checked = 0
-    for trial in range(12):
+    for _ in range(12):
         grid = random_grid(rng)
         free = np.argwhere(~grid.blocked)
         dist = scipy_dijkstra(explicit_graph(grid.blocked, connectivity), indices=[

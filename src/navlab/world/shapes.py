@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, Dict, Tuple
 
 import numpy as np
@@ -110,19 +111,25 @@ class Polygon:
         edges = np.roll(a, -1, axis=0) - a
         return float(np.hypot(edges[:, 0], edges[:, 1]).sum()) + 2 * math.pi * inflate
 
-    def interior_points(self, rng: np.random.Generator, n: int) -> np.ndarray:
-        """Uniform points inside the polygon via its triangulation."""
+    @cached_property
+    def _triangles(self) -> Tuple[np.ndarray, np.ndarray]:
+        """The polygon's triangles (k, 3, 2) and their area shares, computed once."""
         import shapely
 
-        tris = [np.asarray(t.exterior.coords)[:3] for t in shapely.delaunay_triangles(
-            shapely.Polygon(self.points)).geoms]
         shape = shapely.Polygon(self.points)
-        tris = [t for t in tris if shape.contains(shapely.Polygon(t).centroid)]
-        tris_arr = np.asarray(tris)
+        tris = [np.asarray(t.exterior.coords)[:3] for t in shapely.delaunay_triangles(shape).geoms]
+        tris_arr = np.asarray([t for t in tris if shape.contains(shapely.Polygon(t).centroid)])
         v1 = tris_arr[:, 1] - tris_arr[:, 0]
         v2 = tris_arr[:, 2] - tris_arr[:, 0]
         areas = np.abs(v1[:, 0] * v2[:, 1] - v1[:, 1] * v2[:, 0])
-        pick = rng.choice(len(tris_arr), size=n, p=areas / areas.sum())
+        return tris_arr, areas / areas.sum()
+
+    def interior_points(self, rng: np.random.Generator, n: int) -> np.ndarray:
+        """Uniform points inside the polygon via its triangulation."""
+        tris_arr, shares = self._triangles
+        v1 = tris_arr[:, 1] - tris_arr[:, 0]
+        v2 = tris_arr[:, 2] - tris_arr[:, 0]
+        pick = rng.choice(len(tris_arr), size=n, p=shares)
         u, v = rng.random(n), rng.random(n)
         flip = u + v > 1
         u[flip], v[flip] = 1 - u[flip], 1 - v[flip]

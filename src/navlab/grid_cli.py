@@ -52,10 +52,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     if plot:
         from .viz.grid_plot import plot_grid_plan
 
-        raw = None
-        if smooth and result.success:
-            raw = plan(grid, tuple(result.cells[0]), tuple(result.cells[-1]),
-                       **{**kwargs, "smooth": False}).cells
+        raw = result.tree["raw_cells"] if result.tree else None
         plot_grid_plan(grid, result, plot, raw_cells=raw)
     if as_json:
         click.echo(json.dumps(result.to_dict()))

@@ -153,7 +153,8 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         ``cells`` (N, 2) int (x, y), ``path`` (world coordinates of cell
         centres), ``cost`` (length in cells: 1 per straight step, √2 per
         diagonal; Euclidean between smoothed waypoints), ``stats`` (expanded,
-        time_s, length_m, raw_cost when smoothed).
+        time_s, length_m, raw_cost when smoothed), and when smoothed
+        ``tree = {"raw_cells": ...}``, the path before smoothing (for drawing).
 
     References
     ----------
@@ -211,14 +212,16 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         cells = np.column_stack((nodes % s.stride - 1, nodes // s.stride - 1))
     else:
         cells = K.fill_runs(nodes, s.stride)
+    raw = None
     if smooth and len(cells) > 2:
+        raw = cells
         stats["raw_cost"] = path_cost(cells)
         cells = K.smooth_path(s.free, s.stride, np.ascontiguousarray(cells), smooth_method == "bresenham")
     cost = path_cost(cells)
     stats["length_m"] = cost * grid.resolution
     stats["time_s"] = time.perf_counter() - t0
     return Result(status=Status.EXACT, path=grid.cell_to_world(cells), cost=cost, stats=stats,
-                  params=params, cells=cells)
+                  params=params, cells=cells, tree=None if raw is None else {"raw_cells": raw})
 
 
 def plan_world(grid: OccupancyGrid, start_xy, goal_xy, **kwargs: Any) -> Result:

@@ -211,13 +211,15 @@ def _check_query(world, checker) -> Optional[Result]:
     """INVALID_START / INVALID_GOAL results with the reason, or None."""
     for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
         p = np.asarray(point, float)
+        where = f"{label} ({p[0]:g}, {p[1]:g})"
         if not world.bounds.contains(p)[0]:
             b = world.bounds
-            return Result(status=status, reason=f"{label} {tuple(p)} is outside the bounds x=[{b.xmin}, {b.xmax}] y=[{b.ymin}, {b.ymax}]")
+            return Result(status=status, reason=f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]")
         if not checker.points_free(p)[0]:
             gap = float(checker.clearance(p)[0])
-            return Result(status=status, reason=(
-                f"{label} {tuple(p)} is in collision: clearance {gap:.4g} m < robot radius {world.robot_radius:.4g} m"))
+            why = "inside an obstacle (clearance 0 m)" if gap == 0 else \
+                f"clearance {gap:.4g} m < robot radius {world.robot_radius:g} m"
+            return Result(status=status, reason=f"{where} is in collision: {why}")
     return None
 
 

@@ -124,9 +124,11 @@ def list_cmd() -> None:
                    f"{len(w.obstacles)} obstacles")
 
 
+from .bench_cli import bench_cmd  # noqa: E402
 from .grid_cli import grid_group  # noqa: E402
 
 main.add_command(grid_group)
+main.add_command(bench_cmd)
 
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -1,0 +1,112 @@
+"""Where trials run: in this process, in a local process pool, or on a Dask
+cluster. Each executor yields one row per trial as trials finish; the rows
+do not depend on which executor computed them (seeds travel with the trials).
+"""
+
+from __future__ import annotations
+
+import os
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from typing import Any, Callable, Dict, Iterator, List, Optional
+
+from ..registry import Registry
+from .trial import run_trial
+
+Spec = Dict[str, Any]
+EXECUTORS: Registry[Callable[..., Iterator[Dict[str, Any]]]] = Registry("executor")
+
+
+def crash_row(spec: Spec, message: str) -> Dict[str, Any]:
+    """The row of a trial whose worker died (no Python traceback exists)."""
+    from .trial import machine
+    from .. import __version__
+
+    return {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")} | {
+        "world": spec["cell"]["world"], "planner": spec["cell"]["planner"]["label"],
+        "sampler": spec["cell"]["sampler"]["label"] if spec["cell"]["sampler"] else "-",
+        "status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message,
+        "version": __version__, "machine": machine()}
+
+
+@EXECUTORS.register("serial")
+def serial(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[str] = None,
+           trial: Callable[[Spec], Dict[str, Any]] = run_trial) -> Iterator[Dict[str, Any]]:
+    """Run the trials one after another in this process."""
+    for spec in specs:
+        yield trial(spec)
+
+
+@EXECUTORS.register("process")
+def process(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[str] = None,
+            trial: Callable[[Spec], Dict[str, Any]] = run_trial) -> Iterator[Dict[str, Any]]:
+    """A local process pool, all cores by default.
+
+    At most two trials per worker are in flight, so when a worker dies (a
+    crash in compiled code, the OOM killer) only those few are in doubt:
+    each is then rerun alone in a fresh process, and the one that kills its
+    process again is recorded as an ``ERROR`` row. The run goes on.
+    """
+    jobs = jobs or os.cpu_count() or 1
+    queue = list(reversed(specs))
+    in_doubt: List[Spec] = []
+    while queue:
+        with ProcessPoolExecutor(jobs) as pool:
+            running: Dict[Any, Spec] = {}
+            try:
+                while queue or running:
+                    while queue and len(running) < 2 * jobs:
+                        spec = queue.pop()
+                        running[pool.submit(trial, spec)] = spec
+                    done, _ = wait(running, return_when=FIRST_COMPLETED)
+                    for fut in done:
+                        spec = running.pop(fut)
+                        try:
+                            yield fut.result()
+                        except BrokenProcessPool:
+                            in_doubt.append(spec)
+            except BrokenProcessPool:
+                pass  # submit() on a broken pool; those in flight are handled below
+            in_doubt.extend(running.values())
+        for spec in in_doubt:
+            yield _alone(spec, trial)
+        in_doubt = []
+
+
+def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any]:
+    with ProcessPoolExecutor(1) as solo:
+        try:
+            return solo.submit(trial, spec).result()
+        except BrokenProcessPool:
+            return crash_row(spec, "the worker process running this trial died (crash or killed); "
+                                   "it died again when the trial was rerun alone")
+
+
+@EXECUTORS.register("dask")
+def dask(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[str] = None,
+         trial: Callable[[Spec], Dict[str, Any]] = run_trial) -> Iterator[Dict[str, Any]]:
+    """A Dask cluster: the scheduler at ``scheduler`` (``tcp://host:8786``), or
+    a LocalCluster with ``jobs`` workers when none is given. Needs the
+    ``dask`` extra, and navlab installed on every worker."""
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:
+        raise ImportError("the dask executor needs the dask extra: pip install 'navlab[dask]'") from None
+    cluster = None
+    if scheduler is None:
+        cluster = LocalCluster(n_workers=jobs or os.cpu_count() or 1, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
+        scheduler = cluster
+    client = Client(scheduler)
+    try:
+        futures = client.map(trial, specs, pure=False)
+        by_key = {f.key: s for f, s in zip(futures, specs)}
+        for fut in as_completed(futures):
+            try:
+                yield fut.result()
+            except Exception as exc:  # noqa: BLE001 - KilledWorker and the like: record and go on
+                yield crash_row(by_key[fut.key], f"Dask could not run this trial: {type(exc).__name__}: {exc}")
+    finally:
+        client.close()
+        if cluster is not None:
+            cluster.close()

@@ -1,0 +1,276 @@
+"""Experiments as data: worlds × planners × samplers × parameter grid × trials.
+
+An experiment is a mapping (usually a YAML file)::
+
+    name: my-study
+    worlds: [clutter, trap, my_world.yaml]     # scene names or world files
+    planners: [rrt_star, {name: rrt, expand_dis: 0.5, label: rrt-0.5}, ompl:RRTstar]
+    samplers: [uniform, {name: goal_bias, goal_sample_rate: 0.05}]
+    params: {connect_circle_dist: 30}           # given to every cell
+    grid: {expand_dis: [0.5, 1.0]}              # every combination is a cell
+    budget: {max_iter: 5000, max_time: null}
+    trials: 20
+    seed: 0
+
+A *cell* is one combination; its trials get seeds derived from the base seed
+and the cell's identity (not its position in the file, nor the number of
+trials), so any trial can be rerun alone and adding trials later keeps the
+earlier ones.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import itertools
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Union
+
+import numpy as np
+import yaml
+
+from ..registry import suggest
+
+OMPL_PREFIX = "ompl:"
+FIELDS = ("name", "description", "worlds", "planners", "samplers", "params", "grid", "budget", "trials", "seed",
+          "claims")
+CLAIM_FIELDS = ("text", "metric", "lower", "higher")
+BUDGET_FIELDS = ("max_iter", "max_time")
+
+
+class ExperimentError(ValueError):
+    """An experiment definition that cannot run; the message says where."""
+
+
+@dataclass(frozen=True)
+class Component:
+    """A planner or sampler by registered name, with its settings."""
+
+    name: str
+    params: Dict[str, Any] = field(default_factory=dict)
+    label: str = ""
+
+    @property
+    def title(self) -> str:
+        return self.label or self.name
+
+    def to_dict(self) -> Dict[str, Any]:
+        return {"name": self.name, "params": dict(self.params), "label": self.title}
+
+
+@dataclass(frozen=True)
+class Cell:
+    """One combination of world, planner, sampler and grid point."""
+
+    world: str
+    planner: Component
+    sampler: Optional[Component]  #: None for OMPL planners (they sample themselves)
+    params: Dict[str, Any] = field(default_factory=dict)
+
+    def to_dict(self) -> Dict[str, Any]:
+        return {"world": self.world, "planner": self.planner.to_dict(),
+                "sampler": self.sampler.to_dict() if self.sampler else None, "params": dict(self.params)}
+
+    @property
+    def cell_id(self) -> str:
+        return stable_hash(self.to_dict())[:12]
+
+    @property
+    def label(self) -> str:
+        parts = [self.world, self.planner.title, self.sampler.title if self.sampler else "-"]
+        parts += [f"{k}={v}" for k, v in sorted(self.params.items())]
+        return " / ".join(parts)
+
+
+def stable_hash(data: Any) -> str:
+    """SHA-256 of the canonical JSON of ``data``."""
+    return hashlib.sha256(json.dumps(data, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
+
+
+def trial_seed(base_seed: int, cell_id: str, trial: int) -> int:
+    """The seed of one trial: a function of the base seed, the cell and the
+    trial index only (numpy SeedSequence, so neighbouring seeds are unrelated)."""
+    seq = np.random.SeedSequence(entropy=int(base_seed), spawn_key=(int(cell_id[:8], 16), int(trial)))
+    return int(seq.generate_state(1, np.uint32)[0])
+
+
+@dataclass
+class Experiment:
+    """A validated experiment definition (see the module docstring)."""
+
+    name: str
+    worlds: List[str]
+    planners: List[Component]
+    samplers: List[Component]
+    params: Dict[str, Any] = field(default_factory=dict)
+    grid: Dict[str, List[Any]] = field(default_factory=dict)
+    budget: Dict[str, Any] = field(default_factory=dict)
+    trials: int = 20
+    seed: int = 0
+    description: str = ""
+    #: hypotheses to test: ``{text, metric, lower, higher}`` with group labels
+    #: (``sampler`` or ``planner`` titles; ``lower`` may be a list)
+    claims: List[Dict[str, Any]] = field(default_factory=list)
+
+    def cells(self) -> List[Cell]:
+        keys = sorted(self.grid)
+        points = [dict(zip(keys, values)) for values in itertools.product(*(self.grid[k] for k in keys))]
+        out = []
+        for world in self.worlds:
+            for planner in self.planners:
+                samplers = [None] if planner.name.startswith(OMPL_PREFIX) else self.samplers
+                for sampler in samplers:
+                    for point in points:
+                        out.append(Cell(world, planner, sampler, {**self.params, **point}))
+        return out
+
+    def trial_specs(self) -> List[Dict[str, Any]]:
+        """Everything a worker needs to run each trial (plain, picklable data)."""
+        specs = []
+        for cell in self.cells():
+            cid = cell.cell_id
+            for i in range(self.trials):
+                specs.append({"trial_id": f"{cid}-{i:04d}", "cell_id": cid, "cell": cell.to_dict(),
+                              "label": cell.label, "trial": i, "seed": trial_seed(self.seed, cid, i),
+                              "budget": dict(self.budget)})
+        return specs
+
+    def to_dict(self) -> Dict[str, Any]:
+        return {"name": self.name, "description": self.description, "worlds": list(self.worlds),
+                "planners": [p.to_dict() for p in self.planners], "samplers": [s.to_dict() for s in self.samplers],
+                "params": dict(self.params), "grid": {k: list(v) for k, v in self.grid.items()},
+                "budget": dict(self.budget), "trials": self.trials, "seed": self.seed,
+                "claims": [dict(c) for c in self.claims]}
+
+    def fingerprint(self) -> str:
+        """Identity of the results this experiment produces. The trial count is
+        left out: more trials extend a result set, they do not change it."""
+        data = self.to_dict()
+        for key in ("trials", "description", "name", "claims"):
+            data.pop(key)
+        return stable_hash(data)[:16]
+
+
+# -- reading and checking ----------------------------------------------------
+
+def load_experiment(source: Union[str, Path, Dict[str, Any]]) -> Experiment:
+    """Read an experiment from a YAML file, a built-in suite name or a mapping,
+    and check every name and parameter before anything runs."""
+    from .suites import SUITES
+
+    where = "experiment"
+    if isinstance(source, dict):
+        data = source
+    elif isinstance(source, (str, Path)) and Path(source).is_file():
+        where = str(source)
+        try:
+            data = yaml.safe_load(Path(source).read_text())
+        except yaml.YAMLError as exc:
+            raise ExperimentError(f"{where}: not valid YAML: {exc}") from None
+    elif isinstance(source, str) and source in SUITES:
+        data = SUITES.get(source)()
+        where = f"suite '{source}'"
+    else:
+        raise ExperimentError(f"no experiment file or suite named '{source}'; suites: "
+                              f"{', '.join(SUITES.names())}." + suggest(str(source), SUITES.names()))
+    if not isinstance(data, dict):
+        raise ExperimentError(f"{where}: expected a mapping with fields {', '.join(FIELDS)}")
+    try:
+        exp = _from_dict(data)
+        validate(exp)
+    except ExperimentError as exc:
+        raise ExperimentError(f"{where}: {exc}") from None
+    except ValueError as exc:  # unknown names/parameters from the registries
+        raise ExperimentError(f"{where}: {exc}") from None
+    return exp
+
+
+def _from_dict(data: Dict[str, Any]) -> Experiment:
+    for key in data:
+        if key not in FIELDS:
+            raise ExperimentError(f"unknown field '{key}'; valid: {', '.join(FIELDS)}." + suggest(key, list(FIELDS)))
+    for key in ("worlds", "planners"):
+        if key not in data:
+            raise ExperimentError(f"missing field '{key}'")
+    budget = dict(data.get("budget") or {})
+    for key in budget:
+        if key not in BUDGET_FIELDS:
+            raise ExperimentError(f"unknown budget field '{key}'; valid: {', '.join(BUDGET_FIELDS)}."
+                                  + suggest(key, list(BUDGET_FIELDS)))
+    grid = data.get("grid") or {}
+    if not isinstance(grid, dict):
+        raise ExperimentError("'grid' must map parameter names to lists of values")
+    grid = {k: (list(v) if isinstance(v, (list, tuple)) else [v]) for k, v in grid.items()}
+    return Experiment(
+        name=str(data.get("name", "experiment")),
+        description=str(data.get("description", "")),
+        worlds=[str(w) for w in _as_list(data["worlds"], "worlds")],
+        planners=[_component(p, "planners") for p in _as_list(data["planners"], "planners")],
+        samplers=[_component(s, "samplers") for s in _as_list(data.get("samplers", ["uniform"]), "samplers")],
+        params=dict(data.get("params") or {}),
+        grid=grid,
+        budget={k: v for k, v in budget.items() if v is not None},
+        trials=data.get("trials", 20),
+        seed=data.get("seed", 0),
+        claims=[_claim(c) for c in data.get("claims") or []],
+    )
+
+
+def _claim(entry: Any) -> Dict[str, Any]:
+    if not isinstance(entry, dict) or set(entry) - set(CLAIM_FIELDS) or not {"text", "lower", "higher"} <= set(entry):
+        raise ExperimentError(f"each claim is a mapping with {', '.join(CLAIM_FIELDS)}, got {entry!r}")
+    if entry.get("metric", "cost") not in ("cost", "time_s", "iterations", "first_solution_iteration"):
+        raise ExperimentError(f"claim metric must be cost, time_s, iterations or first_solution_iteration, "
+                              f"got {entry['metric']!r}")
+    return {"metric": "cost", **entry}
+
+
+def _as_list(value: Any, what: str) -> list:
+    items = value if isinstance(value, list) else [value]
+    if not items or any(v is None for v in items):
+        raise ExperimentError(f"'{what}' is empty: nothing to run")
+    return items
+
+
+def _component(entry: Any, what: str) -> Component:
+    if isinstance(entry, str):
+        return Component(entry)
+    if isinstance(entry, dict) and "name" in entry:
+        params = {k: v for k, v in entry.items() if k not in ("name", "label")}
+        return Component(str(entry["name"]), params, str(entry.get("label", "")))
+    raise ExperimentError(f"each of '{what}' is a name or a mapping with 'name' (and settings), got {entry!r}")
+
+
+def validate(exp: Experiment) -> None:
+    """Check names, counts and parameters by building each cell's parts once."""
+    from ..planning import build_sampler, split_params
+    from ..sampling.planners import make_planner
+    from ..world import load_world
+    from .ompl_planners import check_ompl_name
+
+    if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
+        raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
+    if isinstance(exp.seed, bool) or not isinstance(exp.seed, int) or exp.seed < 0:
+        raise ExperimentError(f"'seed' must be a non-negative integer, got {exp.seed!r}")
+    for key, values in exp.grid.items():
+        if not values:
+            raise ExperimentError(f"grid parameter '{key}' has no values: the grid is empty")
+    max_iter = exp.budget.get("max_iter")
+    if max_iter is not None and (isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1):
+        raise ExperimentError(f"budget max_iter must be a positive integer, got {max_iter!r}")
+    max_time = exp.budget.get("max_time")
+    if max_time is not None and (not isinstance(max_time, (int, float)) or max_time <= 0):
+        raise ExperimentError(f"budget max_time must be a positive number, got {max_time!r}")
+    labels = [p.title for p in exp.planners]
+    if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
+        raise ExperimentError("two planners or two samplers share a label; give them distinct 'label's")
+    for world in exp.worlds:
+        load_world(world)
+    for cell in exp.cells():
+        if cell.planner.name.startswith(OMPL_PREFIX):
+            check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
+            continue
+        params = {**cell.params, **cell.planner.params, **cell.sampler.params, **exp.budget}
+        to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
+        make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)

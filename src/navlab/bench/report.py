@@ -1,0 +1,145 @@
+"""The benchmark report, as Markdown (``report.md``) and as one
+self-contained HTML page (``report.html``, images embedded).
+
+The report is built once as a list of blocks (heading, paragraph, table,
+image) and rendered to both formats, so they always say the same thing.
+"""
+
+from __future__ import annotations
+
+import base64
+import html
+import math
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+from .analysis import by_world, judge_claims, overall_verdicts, side_by_side
+
+Block = Tuple[str, Any]
+
+
+def fmt(value: Any, digits: int = 3) -> str:
+    if value is None:
+        return "-"
+    if isinstance(value, float):
+        if not math.isfinite(value):
+            return "-"
+        return f"{value:.{digits}g}" if abs(value) < 1e-3 and value != 0 else f"{value:.{digits}f}"
+    return str(value)
+
+
+def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[str, Any],
+          images: Dict[str, List[str]], elapsed_s: Optional[float], meta: Dict[str, Any]) -> List[Block]:
+    """The report's blocks. ``images[world]`` lists image files (relative paths)."""
+    blocks: List[Block] = [("h1", f"navlab bench: {experiment['name']}")]
+    if experiment.get("description"):
+        blocks.append(("p", experiment["description"]))
+    n_err = sum(r.get("status") == "ERROR" for r in rows)
+    budget = ", ".join(f"{k}={v}" for k, v in experiment.get("budget", {}).items()) or "planner defaults"
+    blocks.append(("p", f"{len(rows)} trials ({n_err} errors), {experiment['trials']} per cell, base seed "
+                        f"{experiment['seed']}, budget {budget}. navlab {meta.get('version')} on "
+                        f"{meta.get('cpu')} ({meta.get('cores')} cores)"
+                        + (f"; wall time {elapsed_s:.1f} s." if elapsed_s is not None else ".")))
+
+    blocks.append(("h2", "Summary per cell"))
+    blocks.append(("p", "Cost over successful trials; time over every trial that ran. CI: 95% t-interval "
+                        "of the mean."))
+    header = ["world", "planner / sampler", "success", "cost mean", "cost 95% CI", "cost median", "cost min",
+              "cost max", "cost std", "time mean [s]", "time median [s]", "first solution it. (median)"]
+    table = []
+    for c in summary["cells"]:
+        cost, t = c["cost"], c["time_s"]
+        rate = c["success_rate"]
+        table.append([c["world"], c["group"], f"{c['successes']}/{c['trials'] - c['errors']}"
+                      + (f" ({c['errors']} err)" if c["errors"] else "") if rate is not None else "-",
+                      fmt(cost["mean"]), f"[{fmt(cost['ci95'][0])}, {fmt(cost['ci95'][1])}]",
+                      fmt(cost["median"]), fmt(cost["min"]), fmt(cost["max"]), fmt(cost["std"]),
+                      fmt(t["mean"], 4), fmt(t["median"], 4), fmt(c["first_solution_iteration"]["median"], 0)])
+    blocks.append(("table", (header, table)))
+
+    verdicts = judge_claims(rows, experiment.get("claims") or [])
+    if verdicts:
+        blocks.append(("h2", "The claims, tested"))
+        blocks.append(("p", "Each claim per world: Mann–Whitney U (two-sided), Holm-corrected over the claims "
+                            "tested in that world, α = 0.05; δ is Cliff's delta of the first group against the "
+                            "second (negative: the first is lower)."))
+        blocks.append(("table", (["claim", "overall"], [[k, v] for k, v in overall_verdicts(verdicts).items()])))
+        blocks.append(("table", (["world", "claim", "verdict", "median (lower)", "median (higher)", "δ",
+                                  "p (Holm)"],
+                                 [[v["world"], f"{v['claim']} ({v['lower']} < {v['higher']})", v["verdict"],
+                                   fmt(v["median_lower"], 4), fmt(v["median_higher"], 4),
+                                   f"{fmt(v['delta'], 2)} ({v['magnitude']})", fmt(v["p_holm"], 3)]
+                                  for v in verdicts])))
+
+    worlds = by_world(rows)
+    for world, groups in worlds.items():
+        blocks.append(("h2", f"World: {world}"))
+        for image in images.get(world, []):
+            blocks.append(("img", image))
+        for metric in ("cost", "time_s"):
+            comps = summary["comparisons"][world][metric]
+            if not comps:
+                continue
+            blocks.append(("h3", f"Pairwise comparisons of {'path cost' if metric == 'cost' else 'time'}"))
+            blocks.append(("table", (["A", "B", "median A", "median B", "δ (A vs B)", "p", "p (Holm)", "verdict"],
+                                     [[c["a"], c["b"], fmt(c["median_a"], 4), fmt(c["median_b"], 4),
+                                       f"{fmt(c['delta'], 2)} ({c['magnitude']})", fmt(c["p"], 3),
+                                       fmt(c["p_holm"], 3), _verdict(c)] for c in comps])))
+        names = list(groups)
+        for other in names[1:]:
+            blocks.append(("h3", f"Per trial: {names[0]} beside {other} (the seed's layout)"))
+            body = side_by_side(groups, names[0], other)
+            blocks.append(("table", (["trial", f"{names[0]} cost [m]", "time [s]", f"{other} cost [m]", "time [s]"],
+                                     [[r[0]] + [fmt(v, 3 if i % 2 == 0 else 4) for i, v in enumerate(r[1:])]
+                                      for r in body])))
+    return blocks
+
+
+def _verdict(c: Dict[str, Any]) -> str:
+    if not c["significant"]:
+        return "no significant difference"
+    return f"{c['a'] if c['delta'] < 0 else c['b']} lower"
+
+
+def to_markdown(blocks: Sequence[Block]) -> str:
+    out = []
+    for kind, value in blocks:
+        if kind in ("h1", "h2", "h3"):
+            out.append("#" * int(kind[1]) + " " + value)
+        elif kind == "p":
+            out.append(value)
+        elif kind == "img":
+            out.append(f"![{Path(value).stem}]({value})")
+        elif kind == "table":
+            header, body = value
+            lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+            lines += ["| " + " | ".join(str(c).replace("|", "\\|") for c in row) + " |" for row in body]
+            out.append("\n".join(lines))
+    return "\n\n".join(out) + "\n"
+
+
+CSS = ("body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
+       "table{border-collapse:collapse;margin:1em 0;font-size:13px}td,th{border:1px solid #ccc;padding:3px 7px;"
+       "text-align:right}th{background:#f3f3f3}td:first-child,td:nth-child(2){text-align:left}"
+       "img{max-width:100%;display:block;margin:1em 0}")
+
+
+def to_html(blocks: Sequence[Block], folder: Path) -> str:
+    """A single page: images are read from ``folder`` and embedded as data URIs."""
+    title = next((v for k, v in blocks if k == "h1"), "navlab bench")
+    out = ["<!DOCTYPE html>", "<html lang=\"en\"><head><meta charset=\"utf-8\">",
+           f"<title>{html.escape(title)}</title><style>{CSS}</style></head><body>"]
+    for kind, value in blocks:
+        if kind in ("h1", "h2", "h3", "p"):
+            out.append(f"<{kind}>{html.escape(value)}</{kind}>")
+        elif kind == "img":
+            data = base64.b64encode((folder / value).read_bytes()).decode("ascii")
+            out.append(f"<img alt=\"{html.escape(Path(value).stem)}\" src=\"data:image/png;base64,{data}\">")
+        elif kind == "table":
+            header, body = value
+            out.append("<table><thead><tr>" + "".join(f"<th>{html.escape(str(h))}</th>" for h in header)
+                       + "</tr></thead><tbody>")
+            out += ["<tr>" + "".join(f"<td>{html.escape(str(c))}</td>" for c in row) + "</tr>" for row in body]
+            out.append("</tbody></table>")
+    out.append("</body></html>")
+    return "\n".join(out) + "\n"

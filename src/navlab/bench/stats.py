@@ -1,0 +1,121 @@
+"""Summaries and comparisons of trial rows.
+
+Costs are summarised over successful trials only (a failed trial has no
+path length); times over every trial that ran. Comparisons use the
+two-sided Mann–Whitney U test (no normality assumed: planner costs are
+skewed) with Cliff's delta as effect size, and Holm's correction across the
+comparisons made within one environment.
+
+References
+----------
+H. B. Mann, D. R. Whitney, "On a test of whether one of two random variables
+is stochastically larger than the other", Ann. Math. Statist. 18(1), 1947.
+N. Cliff, "Dominance statistics: ordinal analyses to answer ordinal
+questions", Psychological Bulletin 114(3), 1993.
+S. Holm, "A simple sequentially rejective multiple test procedure",
+Scand. J. Statist. 6(2), 1979.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict, List, Optional, Sequence
+
+import numpy as np
+from scipy import stats as sps
+
+ALPHA = 0.05
+
+
+def describe(values: Sequence[float]) -> Dict[str, Any]:
+    """n, mean, median, min, max, sample std and the 95% t-interval of the mean."""
+    x = np.asarray([v for v in values if v is not None], dtype=float)
+    n = len(x)
+    if n == 0:
+        return {"n": 0, "mean": None, "median": None, "min": None, "max": None, "std": None,
+                "ci95": [None, None]}
+    mean = float(np.mean(x))
+    std = float(np.std(x, ddof=1)) if n > 1 else 0.0
+    if n > 1 and std > 0:
+        half = float(sps.t.ppf(0.975, n - 1)) * std / math.sqrt(n)
+        ci = [mean - half, mean + half]
+    else:
+        ci = [mean, mean]
+    return {"n": n, "mean": mean, "median": float(np.median(x)), "min": float(np.min(x)),
+            "max": float(np.max(x)), "std": std, "ci95": ci}
+
+
+def cell_summary(rows: List[Dict[str, Any]]) -> Dict[str, Any]:
+    """Success rate and descriptions of cost, time and iterations for one cell."""
+    ran = [r for r in rows if r.get("status") != "ERROR"]
+    ok = [r for r in ran if r.get("success")]
+    return {
+        "trials": len(rows), "errors": len(rows) - len(ran), "successes": len(ok),
+        "success_rate": len(ok) / len(ran) if ran else None,
+        "cost": describe([r["cost"] for r in ok]),
+        "time_s": describe([r["time_s"] for r in ran]),
+        "iterations": describe([r.get("iterations") for r in ran]),
+        "first_solution_iteration": describe([r.get("first_solution_iteration") for r in ok]),
+    }
+
+
+def cliffs_delta(a: Sequence[float], b: Sequence[float]) -> float:
+    """P(A > B) − P(A < B) over all pairs: −1 when every a is below every b."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    if not len(a) or not len(b):
+        return float("nan")
+    u = sps.mannwhitneyu(a, b, alternative="two-sided").statistic  # U of a: #(a > b) + #ties/2
+    return float(2.0 * u / (len(a) * len(b)) - 1.0)
+
+
+def compare(a: Sequence[float], b: Sequence[float]) -> Dict[str, Any]:
+    """Mann–Whitney U (two-sided) of samples a and b, with Cliff's delta."""
+    a = [v for v in a if v is not None]
+    b = [v for v in b if v is not None]
+    out: Dict[str, Any] = {"n_a": len(a), "n_b": len(b),
+                           "median_a": float(np.median(a)) if a else None,
+                           "median_b": float(np.median(b)) if b else None}
+    if len(a) < 2 or len(b) < 2:
+        return out | {"u": None, "p": None, "delta": None}
+    test = sps.mannwhitneyu(a, b, alternative="two-sided")
+    p = float(test.pvalue)
+    return out | {"u": float(test.statistic), "p": p if math.isfinite(p) else 1.0, "delta": cliffs_delta(a, b)}
+
+
+def holm(pvalues: Sequence[Optional[float]]) -> List[Optional[float]]:
+    """Holm–Bonferroni adjusted p-values (None stays None)."""
+    idx = [i for i, p in enumerate(pvalues) if p is not None]
+    order = sorted(idx, key=lambda i: pvalues[i])
+    m = len(order)
+    adjusted: List[Optional[float]] = [None] * len(pvalues)
+    running = 0.0
+    for rank, i in enumerate(order):
+        running = max(running, min(1.0, (m - rank) * pvalues[i]))
+        adjusted[i] = running
+    return adjusted
+
+
+def magnitude(delta: Optional[float]) -> str:
+    """Romano et al.'s thresholds for |Cliff's delta|."""
+    if delta is None or not math.isfinite(delta):
+        return "n/a"
+    d = abs(delta)
+    return "negligible" if d < 0.147 else "small" if d < 0.33 else "medium" if d < 0.474 else "large"
+
+
+def pairwise(groups: Dict[str, List[Dict[str, Any]]], metric: str) -> List[Dict[str, Any]]:
+    """Every pair of groups (e.g. samplers within one world) compared on
+    ``metric`` ('cost' over successes, else over every trial that ran),
+    with Holm-adjusted p-values."""
+    names = list(groups)
+    out = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            pick = (lambda rows: [r[metric] for r in rows if r.get("success")]) if metric == "cost" else \
+                   (lambda rows: [r.get(metric) for r in rows if r.get("status") != "ERROR"])
+            out.append({"a": a, "b": b, "metric": metric, **compare(pick(groups[a]), pick(groups[b]))})
+    for row, p in zip(out, holm([r["p"] for r in out])):
+        row["p_holm"] = p
+        row["significant"] = p is not None and p < ALPHA
+        row["magnitude"] = magnitude(row["delta"])
+    return out

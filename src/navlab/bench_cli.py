@@ -1,0 +1,127 @@
+"""``navlab bench``: run an experiment file or a built-in suite."""
+
+from __future__ import annotations
+
+import sys
+
+import click
+import yaml
+
+from .cli import parse_params
+
+
+@click.command("bench")
+@click.argument("experiment", required=False)
+@click.option("--suite", default=None, help="A built-in suite: seed000, seed003, anchors, smoke.")
+@click.option("--out", type=click.Path(file_okay=False), default=None,
+              help="Output folder (default: bench-results/NAME).")
+@click.option("--world", "worlds", multiple=True, help="World or scene (repeatable; replaces the file's).")
+@click.option("--planner", "planners", multiple=True, help="Planner, e.g. rrt_star or ompl:RRTstar (repeatable).")
+@click.option("--sampler", "samplers", multiple=True, help="Sampler (repeatable).")
+@click.option("--param", "params", multiple=True, metavar="KEY=VALUE", help="Setting for every cell (repeatable).")
+@click.option("--grid", "grid", multiple=True, metavar="KEY=[V1,V2]", help="Parameter grid axis (repeatable).")
+@click.option("--trials", type=click.IntRange(min=1), default=None, help="Trials per cell.")
+@click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iteration budget per trial.")
+@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None, help="Time budget per trial [s].")
+@click.option("--seed", type=click.IntRange(min=0), default=None, help="Base seed of the per-trial seeds.")
+@click.option("--executor", type=click.Choice(["process", "serial", "dask"]), default="process", show_default=True,
+              help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")
+@click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Workers (default: all cores).")
+@click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
+@click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")
+@click.option("--overwrite", is_flag=True, help="Discard the results in --out and start again.")
+@click.option("--no-plots", is_flag=True, help="Skip the figures (faster).")
+@click.option("--show", is_flag=True, help="Print the experiment as YAML and exit (a template for your own).")
+@click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
+def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, trials, max_iter, max_time, seed,
+              executor, jobs, scheduler, resume, overwrite, no_plots, show, quiet) -> None:
+    """Run a benchmark: EXPERIMENT (a YAML file) or --suite NAME, optionally
+    changed by flags, or an experiment made of flags alone (--world, --planner).
+
+    Rows go to OUT/results.jsonl as trials finish; OUT/report.md and
+    OUT/report.html summarise them. Exit status 1 when a trial errored.
+
+    \b
+    Examples:
+      navlab bench --suite seed000
+      navlab bench --suite seed000 --trials 40 --out runs/s0 --resume
+      navlab bench --world trap --planner rrt_star --sampler uniform --sampler gaussian --trials 10
+      navlab bench my_study.yaml --executor dask --scheduler tcp://10.0.0.5:8786
+    """
+    from .bench import load_experiment, run_experiment
+    from .bench.experiment import Experiment  # noqa: F401 (re-validated below)
+
+    if experiment and suite:
+        raise click.UsageError("give an experiment file or --suite, not both")
+    data = _base(experiment or suite, worlds, planners)
+    if worlds:
+        data["worlds"] = list(worlds)
+    if planners:
+        data["planners"] = list(planners)
+    if samplers:
+        data["samplers"] = list(samplers)
+    if params:
+        data["params"] = {**(data.get("params") or {}), **parse_params(params)}
+    if grid:
+        data["grid"] = {**(data.get("grid") or {}), **parse_params(grid)}
+    budget = dict(data.get("budget") or {})
+    if max_iter is not None:
+        budget["max_iter"] = max_iter
+    if max_time is not None:
+        budget["max_time"] = max_time
+    data["budget"] = budget
+    if trials is not None:
+        data["trials"] = trials
+    if seed is not None:
+        data["seed"] = seed
+    exp = load_experiment(data)
+    if show:
+        click.echo(yaml.safe_dump(data, sort_keys=False))
+        return
+    folder = out or f"bench-results/{exp.name}"
+    run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
+                         overwrite=overwrite, progress=not quiet, plots=not no_plots)
+    click.echo(f"{len(run.rows)} trials ({run.ran} run now, {run.errors} errors) in {run.elapsed_s:.1f} s")
+    for cell in run.summary["cells"]:
+        cost = cell["cost"]
+        click.echo(f"  {cell['world']:<14} {cell['group']:<32} success {cell['successes']}/{cell['trials']}"
+                   f"  cost mean {_f(cost['mean'])} min {_f(cost['min'])}  time mean {_f(cell['time_s']['mean'], 4)} s")
+    for verdict in _overall(run.summary):
+        click.echo(verdict)
+    click.echo(f"report: {run.folder / 'report.html'} (and report.md, results.jsonl)")
+    if run.errors:
+        sys.exit(1)
+
+
+def _base(source, worlds, planners) -> dict:
+    from .bench.experiment import ExperimentError, load_experiment  # noqa: F401
+    from .bench.suites import SUITES
+    from pathlib import Path
+
+    if source is None:
+        if not worlds or not planners:
+            raise click.UsageError("give an experiment file, --suite NAME, or at least --world and --planner")
+        return {"name": "custom"}
+    if source in SUITES:
+        return SUITES.get(source)()
+    path = Path(source)
+    if not path.is_file():
+        load_experiment(source)  # raises the "no file or suite" error with suggestions
+    try:
+        data = yaml.safe_load(path.read_text())
+    except yaml.YAMLError as exc:
+        raise ExperimentError(f"{source}: not valid YAML: {exc}") from None
+    if not isinstance(data, dict):
+        raise ExperimentError(f"{source}: expected a mapping of experiment fields")
+    data.setdefault("name", path.stem)
+    return data
+
+
+def _overall(summary) -> list:
+    from .bench.analysis import overall_verdicts
+
+    return [f"  claim: {k}: {v}" for k, v in overall_verdicts(summary.get("claims", [])).items()]
+
+
+def _f(value, digits: int = 3) -> str:
+    return "-" if value is None else f"{value:.{digits}f}"

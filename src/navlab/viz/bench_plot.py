@@ -1,0 +1,96 @@
+"""Benchmark figures: cost and time box plots, convergence curves and one
+example tree per cell, each world on one figure."""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Sequence, Tuple
+
+import numpy as np
+
+from .plot import _pyplot, draw_path, draw_tree, draw_world
+
+Rows = List[Dict[str, Any]]
+
+
+def box_plots(world: str, groups: Dict[str, Rows], out: str) -> None:
+    """Cost (successful trials) and time (every trial) per group."""
+    plt = _pyplot()
+    names = list(groups)
+    fig, axes = plt.subplots(1, 2, figsize=(4 + 1.3 * len(names), 4.2))
+    for ax, metric, unit in ((axes[0], "cost", "path cost [m]"), (axes[1], "time_s", "time [s]")):
+        data = [[r[metric] for r in groups[g] if r.get(metric) is not None
+                 and (metric != "cost" or r.get("success"))] for g in names]
+        ax.boxplot([d if d else [np.nan] for d in data], showmeans=True)
+        ax.set_xticks(range(1, len(names) + 1), [n.replace(" / ", "\n") for n in names], fontsize=8)
+        ax.set_ylabel(unit)
+        ax.grid(axis="y", alpha=0.3)
+    fig.suptitle(f"{world}: cost and time per trial")
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
+    plt.close(fig)
+
+
+def convergence(groups: Dict[str, Rows]) -> Dict[str, Tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]:
+    """Per group: iterations, and the 25th, 50th and 75th percentile of the
+    best cost so far over trials (a trial without a solution yet counts as
+    infinitely long, so the median appears once half the trials have one)."""
+    out = {}
+    for name, rows in groups.items():
+        traces = [r["trace"] for r in rows if r.get("trace")]
+        if not traces:
+            continue
+        its = np.asarray(traces[0]["iteration"])
+        same = [t for t in traces if t["iteration"] == traces[0]["iteration"]]
+        costs = np.array([[np.inf if c is None else c for c in t["cost"]] for t in same])
+        with np.errstate(invalid="ignore"):  # inf − inf while interpolating: still no solution
+            q25, q50, q75 = np.nan_to_num(np.percentile(costs, [25, 50, 75], axis=0), nan=np.inf)
+        out[name] = (its, q25, q50, q75)
+    return out
+
+
+def convergence_plot(world: str, groups: Dict[str, Rows], out: str) -> bool:
+    curves = convergence(groups)
+    if not curves:
+        return False
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 4.2))
+    for name, (its, q25, q50, q75) in curves.items():
+        shown = np.isfinite(q50)
+        if not shown.any():
+            continue
+        line, = ax.plot(its[shown], q50[shown], label=name, lw=1.6)
+        band = np.isfinite(q75)
+        ax.fill_between(its[band], q25[band], q75[band], color=line.get_color(), alpha=0.18, lw=0)
+    ax.set_xscale("log")
+    ax.set_xlabel("iteration")
+    ax.set_ylabel("best path cost [m] (median, 25–75% band)")
+    ax.set_title(f"{world}: convergence")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(out, dpi=100)
+    plt.close(fig)
+    return True
+
+
+def example_trees(world, examples: Sequence[Tuple[str, Any]], out: str) -> None:
+    """One panel per (title, Result): tree, path, world."""
+    plt = _pyplot()
+    n = len(examples)
+    cols = min(n, 3)
+    rows = (n + cols - 1) // cols
+    fig, axes = plt.subplots(rows, cols, figsize=(4.6 * cols, 4.4 * rows), squeeze=False)
+    for ax in axes.ravel()[n:]:
+        ax.axis("off")
+    for ax, (title, result) in zip(axes.ravel(), examples):
+        draw_world(ax, world, show_inflation=False)
+        if result.tree is not None:
+            draw_tree(ax, result.tree["nodes"], result.tree["parent"])
+        draw_path(ax, result.path, label="path")
+        cost = f"{result.cost:.2f} m" if result.success else result.status.name
+        ax.set_title(f"{title}\n{cost}", fontsize=9)
+        ax.set_xlabel("")
+        ax.set_ylabel("")
+    fig.tight_layout()
+    fig.savefig(out, dpi=90)
+    plt.close(fig)

@@ -56,8 +56,8 @@ def process(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[s
             try:
                 while queue or running:
                     while queue and len(running) < 2 * jobs:
-                        spec = queue.pop()
-                        running[pool.submit(trial, spec)] = spec
+                        running[pool.submit(trial, queue[-1])] = queue[-1]
+                        queue.pop()
                     done, _ = wait(running, return_when=FIRST_COMPLETED)
                     for fut in done:
                         spec = running.pop(fut)

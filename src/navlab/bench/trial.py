@@ -9,7 +9,7 @@ import os
 import platform
 import socket
 import traceback
-from typing import Any, Dict
+from typing import Any, Callable, Dict
 
 import numpy as np
 
@@ -62,8 +62,9 @@ def execute(spec: Dict[str, Any], keep_tree: bool = False) -> Result:
     return plan(world, planner=name, sampler=cell["sampler"]["name"], seed=spec["seed"], **kwargs)
 
 
-def run_trial(spec: Dict[str, Any]) -> Dict[str, Any]:
-    """Run one trial; an exception becomes an ``ERROR`` row with its traceback."""
+def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute) -> Dict[str, Any]:
+    """Run one trial with ``runner``; an exception becomes an ``ERROR`` row
+    with its traceback."""
     from .. import __version__
 
     row: Dict[str, Any] = {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")}
@@ -72,7 +73,7 @@ def run_trial(spec: Dict[str, Any]) -> Dict[str, Any]:
                sampler=cell["sampler"]["label"] if cell["sampler"] else "-",
                params=_jsonable(cell_kwargs(cell, spec["budget"])))
     try:
-        row.update(result_fields(execute(spec)))
+        row.update(result_fields(runner(spec)))
     except Exception:  # noqa: BLE001 - any failure of one trial is data, not the end of the run
         row.update(status="ERROR", success=False, cost=None, time_s=None, error=traceback.format_exc())
     row.update(version=__version__, machine=machine())

@@ -39,11 +39,11 @@ def convergence(groups: Dict[str, Rows]) -> Dict[str, Tuple[np.ndarray, np.ndarr
         traces = [r["trace"] for r in rows if r.get("trace")]
         if not traces:
             continue
-        its = np.asarray(traces[0]["iteration"])
+        its = np.asarray(traces[0]["iteration"], dtype=float)
         same = [t for t in traces if t["iteration"] == traces[0]["iteration"]]
         costs = np.array([[np.inf if c is None else c for c in t["cost"]] for t in same])
-        with np.errstate(invalid="ignore"):  # inf − inf while interpolating: still no solution
-            q25, q50, q75 = np.nan_to_num(np.percentile(costs, [25, 50, 75], axis=0), nan=np.inf)
+        # No interpolation: between a cost and inf it would give nan.
+        q25, q50, q75 = np.percentile(costs, [25, 50, 75], axis=0, method="higher")
         out[name] = (its, q25, q50, q75)
     return out
 
@@ -60,7 +60,8 @@ def convergence_plot(world: str, groups: Dict[str, Rows], out: str) -> bool:
             continue
         line, = ax.plot(its[shown], q50[shown], label=name, lw=1.6)
         band = np.isfinite(q75)
-        ax.fill_between(its[band], q25[band], q75[band], color=line.get_color(), alpha=0.18, lw=0)
+        if band.any():  # an empty band would spoil the axis limits
+            ax.fill_between(its[band], q25[band], q75[band], color=line.get_color(), alpha=0.18, lw=0)
     ax.set_xscale("log")
     ax.set_xlabel("iteration")
     ax.set_ylabel("best path cost [m] (median, 25–75% band)")

@@ -1,0 +1,192 @@
+"""The benchmark harness: seeds, storage, resume, executors, crashes, report."""
+
+import json
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+
+from navlab.bench import ExperimentError, load_experiment, run_experiment, trial_seed
+from navlab.bench.executors import EXECUTORS
+from navlab.bench.store import read_rows
+from navlab.bench.trial import run_trial
+
+TINY = {"name": "tiny", "worlds": ["squarefield", "trap"], "planners": ["rrt_star"],
+        "samplers": ["uniform", "gaussian"], "budget": {"max_iter": 150}, "trials": 3, "seed": 7}
+# What must not depend on the executor or on resuming (times and hosts may).
+STABLE = ("trial_id", "seed", "status", "success", "cost", "iterations", "nodes", "collision_checks",
+          "first_solution_iteration", "trace")
+
+
+def stable(rows):
+    return sorted(({k: r.get(k) for k in STABLE} for r in rows), key=lambda r: r["trial_id"])
+
+
+def test_trial_seeds_depend_on_cell_and_index_only():
+    exp = load_experiment(TINY)
+    more = load_experiment({**TINY, "trials": 5, "worlds": ["trap", "squarefield"]})
+    seeds = {s["trial_id"]: s["seed"] for s in exp.trial_specs()}
+    seeds_more = {s["trial_id"]: s["seed"] for s in more.trial_specs()}
+    assert all(seeds_more[t] == s for t, s in seeds.items())  # order and count of trials do not matter
+    assert len(set(seeds_more.values())) == len(seeds_more)
+    assert trial_seed(7, "abcdef123456", 0) != trial_seed(8, "abcdef123456", 0)
+
+
+def test_a_single_trial_reruns_alone_identically():
+    spec = load_experiment(TINY).trial_specs()[4]
+    a, b = run_trial(spec), run_trial(dict(spec))
+    assert stable([a]) == stable([b]) and a["status"] != "ERROR"
+
+
+def test_serial_and_process_pool_give_identical_rows(tmp_path):
+    exp = load_experiment(TINY)
+    serial = run_experiment(exp, tmp_path / "s", executor="serial", progress=False, plots=False)
+    pool = run_experiment(exp, tmp_path / "p", executor="process", jobs=2, progress=False, plots=False)
+    assert len(serial.rows) == 12 and serial.errors == 0
+    assert stable(serial.rows) == stable(pool.rows)
+    cost = lambda run: [(c["group"], c["cost"]) for c in run.summary["cells"]]  # noqa: E731
+    assert cost(serial) == cost(pool)
+
+
+def test_dask_local_cluster_gives_identical_rows(tmp_path):
+    pytest.importorskip("distributed")
+    exp = load_experiment({**TINY, "worlds": ["squarefield"], "trials": 2})
+    serial = run_experiment(exp, tmp_path / "s", executor="serial", progress=False, plots=False)
+    dask = run_experiment(exp, tmp_path / "d", executor="dask", jobs=1, progress=False, plots=False)
+    assert stable(serial.rows) == stable(dask.rows)
+
+
+def test_resume_after_a_kill_completes_the_same_result_set(tmp_path):
+    exp = load_experiment(TINY)
+    full = run_experiment(exp, tmp_path / "full", executor="serial", progress=False, plots=False)
+    out = tmp_path / "killed"
+    run_experiment(exp, out, executor="serial", progress=False, plots=False)
+    lines = (out / "results.jsonl").read_text().splitlines()
+    # killed after 5 trials, in the middle of writing the 6th row
+    (out / "results.jsonl").write_text("\n".join(lines[:5]) + "\n" + lines[5][:40])
+    resumed = run_experiment(exp, out, executor="serial", resume=True, progress=False, plots=False)
+    assert resumed.ran == 7
+    assert stable(resumed.rows) == stable(full.rows)
+    assert json.loads((out / "summary.json").read_text())["cells"] == json.loads(
+        (tmp_path / "full" / "summary.json").read_text())["cells"] or _same_costs(out, tmp_path / "full")
+
+
+def _same_costs(a: Path, b: Path) -> bool:
+    load = lambda p: [(c["group"], c["cost"]) for c in json.loads((p / "summary.json").read_text())["cells"]]  # noqa: E731
+    return load(a) == load(b)
+
+
+def test_more_trials_extend_a_result_set(tmp_path):
+    run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False, plots=False)
+    bigger = run_experiment(load_experiment({**TINY, "trials": 4}), tmp_path, executor="serial", resume=True,
+                            progress=False, plots=False)
+    assert bigger.ran == 4 and len(bigger.rows) == 16
+
+
+def test_incompatible_or_unannounced_reuse_of_a_folder_is_refused(tmp_path):
+    run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False, plots=False)
+    with pytest.raises(ExperimentError, match="different experiment.*budget"):
+        run_experiment(load_experiment({**TINY, "budget": {"max_iter": 151}}), tmp_path, progress=False)
+    with pytest.raises(ExperimentError, match="--resume"):
+        run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False)
+    again = run_experiment(load_experiment(TINY), tmp_path, executor="serial", overwrite=True, progress=False,
+                           plots=False)
+    assert again.ran == 12 and len(list(read_rows(tmp_path / "results.jsonl"))) == 12
+
+
+def test_a_trial_that_raises_is_an_error_row_and_the_run_goes_on():
+    from bench_helpers import raising_trial
+
+    specs = load_experiment(TINY).trial_specs()
+    rows = list(EXECUTORS.get("serial")(specs, trial=raising_trial))
+    errors = [r for r in rows if r["status"] == "ERROR"]
+    assert len(rows) == 12 and len(errors) == 4
+    assert all("planner blew up" in r["error"] and "Traceback" in r["error"] for r in errors)
+
+
+def test_a_worker_that_dies_is_an_error_row_and_the_run_goes_on():
+    from bench_helpers import crashing_trial
+
+    specs = load_experiment(TINY).trial_specs()
+    rows = list(EXECUTORS.get("process")(specs, jobs=2, trial=crashing_trial))
+    assert sorted(r["trial_id"] for r in rows) == sorted(s["trial_id"] for s in specs)
+    errors = {r["trial_id"] for r in rows if r["status"] == "ERROR"}
+    assert errors == {s["trial_id"] for s in specs if s["trial_id"].endswith("-0001")}
+    assert stable([r for r in rows if r["status"] != "ERROR"]) == stable(
+        [run_trial(s) for s in specs if not s["trial_id"].endswith("-0001")])
+
+
+class _Parser(HTMLParser):
+    def __init__(self):
+        super().__init__()
+        self.tags, self.images = [], []
+
+    def handle_starttag(self, tag, attrs):
+        self.tags.append(tag)
+        if tag == "img":
+            self.images.append(dict(attrs)["src"])
+
+
+def test_report_renders_with_embedded_images(tmp_path):
+    run = run_experiment(load_experiment({**TINY, "worlds": ["trap"], "claims": [
+        {"text": "uniform is faster", "metric": "time_s", "lower": "uniform", "higher": "gaussian"}]}),
+        tmp_path, executor="serial", progress=False)
+    parser = _Parser()
+    parser.feed((tmp_path / "report.html").read_text())
+    assert parser.tags.count("table") >= 3
+    assert len(parser.images) == 3 and all(src.startswith("data:image/png;base64,") for src in parser.images)
+    md = (tmp_path / "report.md").read_text()
+    for image in ("plots/box_trap.png", "plots/convergence_trap.png", "plots/trees_trap.png"):
+        assert image in md and (tmp_path / image).stat().st_size > 1000
+    assert "uniform is faster" in md and "| mean |" in md and "| min |" in md
+    assert run.summary["claims"][0]["verdict"] in ("confirmed", "not shown", "contradicted")
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"samplers": ["gausian"]}, "did you mean 'gaussian'"),
+    ({"planners": ["rrt_str"]}, "did you mean 'rrt_star'"),
+    ({"worlds": ["clutterr"]}, "clutter"),
+    ({"sampels": ["uniform"]}, "unknown field 'sampels'"),
+    ({"grid": {"expand_dis": []}}, "grid is empty"),
+    ({"samplers": []}, "empty"),
+    ({"trials": 0}, "positive integer"),
+    ({"params": {"expand_dist": 1.0}}, "did you mean 'expand_dis'"),
+    ({"budget": {"max_iters": 10}}, "did you mean 'max_iter'"),
+    ({"planners": ["ompl:RRTstr"]}, "did you mean 'RRTstar'"),
+])
+def test_bad_experiments_are_refused_before_anything_runs(change, message):
+    with pytest.raises(ValueError, match=f"(?i){message}"):
+        load_experiment({**TINY, **change})
+
+
+def test_experiment_file_and_cli(tmp_path):
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    path = tmp_path / "exp.yaml"
+    path.write_text("worlds: [trap]\nplanners: [rrt_star]\nsamplers: [uniform]\nbudget: {max_iter: 100}\n"
+                    "trials: 2\n")
+    runner = CliRunner()
+    res = runner.invoke(main, ["bench", str(path), "--out", str(tmp_path / "o"), "--executor", "serial",
+                               "--no-plots", "-q"])
+    assert res.exit_code == 0, res.output
+    assert len(list(read_rows(tmp_path / "o" / "results.jsonl"))) == 2
+    res = runner.invoke(main, ["bench", str(path), "--out", str(tmp_path / "o"), "-q"])
+    assert res.exit_code == 2 and "--resume" in res.output
+    (tmp_path / "bad.yaml").write_text("worlds: [trap\n")
+    res = runner.invoke(main, ["bench", str(tmp_path / "bad.yaml")])
+    assert res.exit_code == 2 and "not valid YAML" in res.output
+    res = runner.invoke(main, ["bench", "--suite", "seed00"])
+    assert res.exit_code == 2 and "seed000" in res.output
+    res = runner.invoke(main, ["bench", "--suite", "seed000", "--show"])
+    assert res.exit_code == 0 and "integration" in res.output
+
+
+def test_ompl_anchor_rows(tmp_path):
+    pytest.importorskip("ompl")
+    exp = load_experiment({"worlds": ["pythonrobotics"], "planners": ["ompl:RRTstar", "ompl:RRTConnect"],
+                           "budget": {"max_iter": 300, "max_time": 5.0}, "trials": 1})
+    rows = run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False).rows
+    assert [r["status"] for r in rows] == ["EXACT", "EXACT"]
+    assert all(r["cost"] >= 21.9987 - 1e-6 for r in rows)  # never below the true optimum

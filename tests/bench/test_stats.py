@@ -1,0 +1,47 @@
+"""Statistics against scipy and brute force on known inputs."""
+
+import itertools
+
+import numpy as np
+import pytest
+from scipy import stats as sps
+
+from navlab.bench.stats import cliffs_delta, compare, describe, holm, pairwise
+
+
+def test_describe_matches_numpy_and_scipy():
+    x = np.random.default_rng(1).normal(10, 2, 25)
+    d = describe(list(x))
+    assert d["mean"] == pytest.approx(x.mean()) and d["std"] == pytest.approx(x.std(ddof=1))
+    lo, hi = sps.t.interval(0.95, len(x) - 1, loc=x.mean(), scale=sps.sem(x))
+    assert d["ci95"] == pytest.approx([lo, hi])
+    assert describe([None, None])["n"] == 0 and describe([3.0])["ci95"] == [3.0, 3.0]
+
+
+def test_cliffs_delta_equals_the_pairwise_count():
+    rng = np.random.default_rng(2)
+    a, b = rng.integers(0, 6, 17).astype(float), rng.integers(1, 7, 13).astype(float)  # with ties
+    brute = sum(np.sign(x - y) for x, y in itertools.product(a, b)) / (len(a) * len(b))
+    assert cliffs_delta(a, b) == pytest.approx(brute)
+    assert cliffs_delta([1, 2], [3, 4]) == -1.0
+
+
+def test_compare_is_scipys_mann_whitney():
+    a, b = [1.1, 2.3, 2.9, 4.0, 5.5], [3.2, 4.4, 6.1, 7.0, 8.8, 9.1]
+    ref = sps.mannwhitneyu(a, b, alternative="two-sided")
+    out = compare(a, b)
+    assert out["u"] == ref.statistic and out["p"] == pytest.approx(ref.pvalue)
+    assert compare([1.0], [2.0])["p"] is None
+
+
+def test_holm_on_a_textbook_example():
+    # Holm (1979) style: p = .01, .04, .03, .005 with m = 4
+    assert holm([0.01, 0.04, 0.03, 0.005]) == pytest.approx([0.03, 0.06, 0.06, 0.02])
+    assert holm([None, 0.2]) == [None, 0.2]
+
+
+def test_pairwise_flags_a_clear_difference():
+    rows = {"fast": [{"success": True, "cost": 1.0 + i * 0.01, "status": "EXACT"} for i in range(20)],
+            "slow": [{"success": True, "cost": 2.0 + i * 0.01, "status": "EXACT"} for i in range(20)]}
+    (c,) = pairwise(rows, "cost")
+    assert c["significant"] and c["delta"] == -1.0 and c["magnitude"] == "large"

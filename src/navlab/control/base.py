@@ -1,0 +1,69 @@
+"""What every controller shares: a command, a status and the registry."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable, Optional
+
+from ..registry import Registry
+
+CONTROLLERS: Registry[Callable[..., "Controller"]] = Registry("controller")
+
+RUNNING, REACHED, STALLED = "RUNNING", "REACHED", "STALLED"
+
+
+@dataclass
+class Command:
+    """A body-frame twist and what the controller thinks of the run."""
+
+    vx: float = 0.0
+    vy: float = 0.0
+    omega: float = 0.0
+    status: str = RUNNING
+
+
+class Controller:
+    """Maps the robot's pose estimate (and LiDAR points) to a body twist.
+
+    ``needs_path`` controllers follow waypoints (``reset(goal, path)``);
+    ``needs_scan`` controllers read obstacle points from the LiDAR.
+    """
+
+    needs_path = False
+    needs_scan = False
+    holonomic = False  #: commands a sideways velocity
+
+    def reset(self, goal, path=None) -> None:
+        raise NotImplementedError
+
+    def command(self, t: float, pose, points=None) -> Command:
+        raise NotImplementedError
+
+
+def make_controller(name: str, **params) -> Controller:
+    from ..registry import check_params
+
+    factory = CONTROLLERS.get(name)
+    check_params(factory, params, f"controller '{name}'")
+    return factory(**params)
+
+
+class StallDetector:
+    """Flags a run that stops getting closer to its goal: the distance has
+    not dropped by ``progress`` metres over the last ``window`` seconds."""
+
+    def __init__(self, window: float = 4.0, progress: float = 0.03) -> None:
+        if window <= 0 or progress <= 0:
+            raise ValueError("stall window and progress must be positive")
+        self.window, self.progress = window, progress
+        self._t0: Optional[float] = None
+        self._best = float("inf")
+
+    def reset(self) -> None:
+        self._t0, self._best = None, float("inf")
+
+    def stalled(self, t: float, distance: float) -> bool:
+        if self._t0 is None or distance < self._best - self.progress:
+            self._t0, self._best = t, min(distance, self._best)
+            return False
+        return t - self._t0 > self.window

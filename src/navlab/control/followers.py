@@ -1,0 +1,143 @@
+"""Path followers for a differential drive: seed 002's goto_waypoint and
+pure pursuit."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..robots.kinematics import _wrap
+from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+
+
+class _Follower(Controller):
+    needs_path = True
+
+    def __init__(self, stall_window: float = 8.0, stall_progress: float = 0.02) -> None:
+        self.stall = StallDetector(stall_window, stall_progress)
+        self.path = np.zeros((1, 2))
+        self.index = 0
+
+    def reset(self, goal, path=None) -> None:
+        pts = np.asarray(path if path is not None else [goal], float)[:, :2]
+        if len(pts) == 0:
+            raise ValueError("a path follower needs at least one waypoint")
+        self.path = pts
+        self.index = 1 if len(pts) > 1 else 0
+        self.stall.reset()
+
+    def _stalled(self, t: float, pose) -> bool:
+        # progress towards the current waypoint, measured along the remaining path
+        remaining = math.hypot(*(self.path[self.index] - pose[:2])) + \
+            float(np.sum(np.linalg.norm(np.diff(self.path[self.index:], axis=0), axis=1)))
+        return self.stall.stalled(t, remaining)
+
+
+@CONTROLLERS.register("goto_waypoint")
+class GotoWaypoint(_Follower):
+    """Seed 002's follower: proportional control on the heading error to the
+    next waypoint; when the error is large it turns harder and slows down; a
+    waypoint counts as reached inside ``reach_radius``; it stops at the last.
+
+    Parameters
+    ----------
+    speed : float
+        Forward speed when roughly on course (m/s).
+    heading_gain : float
+        Turn rate per radian of heading error (1/s).
+    turn_threshold : float
+        Heading error (rad) above which it turns in place-ish: speed drops to
+        ``slow_speed`` and the gain is multiplied by ``turn_boost``.
+    reach_radius : float
+        Waypoint tolerance (m); the last waypoint uses ``goal_radius``.
+    """
+
+    def __init__(self, speed: float = 0.2, heading_gain: float = 1.5, turn_threshold: float = 0.5,
+                 slow_speed: float = 0.02, turn_boost: float = 1.5, reach_radius: float = 0.1,
+                 goal_radius: float = 0.05, stall_window: float = 8.0) -> None:
+        super().__init__(stall_window)
+        for name, value in (("speed", speed), ("heading_gain", heading_gain), ("reach_radius", reach_radius),
+                            ("goal_radius", goal_radius), ("turn_threshold", turn_threshold)):
+            if not value > 0:
+                raise ValueError(f"goto_waypoint {name} must be positive, got {value!r}")
+        self.speed, self.heading_gain, self.turn_threshold = speed, heading_gain, turn_threshold
+        self.slow_speed, self.turn_boost = slow_speed, turn_boost
+        self.reach_radius, self.goal_radius = reach_radius, goal_radius
+
+    def command(self, t: float, pose, points=None) -> Command:
+        last = len(self.path) - 1
+        while True:
+            dx, dy = self.path[self.index] - pose[:2]
+            dist = math.hypot(dx, dy)
+            if dist >= (self.goal_radius if self.index == last else self.reach_radius):
+                break
+            if self.index == last:
+                return Command(status=REACHED)
+            self.index += 1
+        if self._stalled(t, pose):
+            return Command(status=STALLED)
+        error = _wrap(math.atan2(dy, dx) - pose[2])
+        if abs(error) > self.turn_threshold:
+            return Command(self.slow_speed, 0.0, self.turn_boost * self.heading_gain * error)
+        # slow down near the final waypoint so the robot stops inside goal_radius
+        v = self.speed * math.cos(error)
+        if self.index == last:
+            v = min(v, max(0.05, dist))
+        return Command(v, 0.0, self.heading_gain * error, RUNNING)
+
+
+@CONTROLLERS.register("pure_pursuit")
+class PurePursuit(_Follower):
+    """Pure pursuit: steer on the arc through the path point ``lookahead``
+    metres ahead (curvature 2·sin(α)/L).
+
+    References
+    ----------
+    R. C. Coulter, "Implementation of the pure pursuit path tracking
+    algorithm", CMU-RI-TR-92-01, 1992.
+    """
+
+    def __init__(self, lookahead: float = 0.3, speed: float = 0.2, goal_radius: float = 0.05,
+                 stall_window: float = 8.0) -> None:
+        super().__init__(stall_window)
+        for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius)):
+            if not value > 0:
+                raise ValueError(f"pure_pursuit {name} must be positive, got {value!r}")
+        self.lookahead, self.speed, self.goal_radius = lookahead, speed, goal_radius
+
+    def _target(self, pose) -> np.ndarray:
+        """The first point at distance ≥ lookahead on the path after the
+        closest point (the path's end when none is that far)."""
+        p = pose[:2]
+        while self.index < len(self.path) - 1 and \
+                np.linalg.norm(self.path[self.index] - p) < self.lookahead:
+            self.index += 1
+        a = self.path[self.index - 1] if self.index > 0 else p
+        b = self.path[self.index]
+        # the point on segment ab at distance lookahead from p (if any)
+        d = b - a
+        f = a - p
+        qa, qb, qc = d @ d, 2 * f @ d, f @ f - self.lookahead ** 2
+        disc = qb * qb - 4 * qa * qc
+        if qa > 0 and disc >= 0:
+            u = (-qb + math.sqrt(disc)) / (2 * qa)
+            if 0 <= u <= 1:
+                return a + u * d
+        return b
+
+    def command(self, t: float, pose, points=None) -> Command:
+        goal = self.path[-1]
+        dist = math.hypot(*(goal - pose[:2]))
+        if dist < self.goal_radius:
+            return Command(status=REACHED)
+        if self._stalled(t, pose):
+            return Command(status=STALLED)
+        tx, ty = self._target(pose) - pose[:2]
+        alpha = _wrap(math.atan2(ty, tx) - pose[2])
+        ld = max(math.hypot(tx, ty), 1e-9)
+        v = self.speed * min(1.0, dist / self.lookahead) if self.index == len(self.path) - 1 else self.speed
+        v = max(v, 0.03)
+        if abs(alpha) > math.pi / 2:  # target behind: turn in place first
+            return Command(0.0, 0.0, math.copysign(1.5, alpha))
+        return Command(v, 0.0, v * 2.0 * math.sin(alpha) / ld)

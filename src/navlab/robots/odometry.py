@@ -1,0 +1,53 @@
+"""Dead reckoning from wheel encoders (and a compass for the heading)."""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import numpy as np
+
+from .kinematics import DiffDrive, Omni3, _wrap, body_to_world
+
+
+class Odometry:
+    """Pose estimate from encoder increments.
+
+    For the omni robot (seed 004, eq. 5–8) the wheel displacements give the
+    body displacement through the forward kinematics, which the compass
+    heading rotates into the world. For the differential drive it is the
+    standard midpoint model: distance (dl + dr)/2 along the mean heading,
+    turn (dr − dl)/track; a compass heading replaces the integrated one when
+    given.
+
+    Parameters
+    ----------
+    robot : DiffDrive or Omni3
+    pose : array-like
+        Initial pose (x, y, θ).
+    """
+
+    def __init__(self, robot, pose) -> None:
+        self.robot = robot
+        self.pose = np.array(pose, dtype=float)
+
+    def update(self, wheel_rotation: np.ndarray, heading: Optional[float] = None) -> np.ndarray:
+        """Advance by wheel rotations (rad) since the last update; ``heading``
+        is the compass's calibrated heading (rad) after the motion."""
+        r = self.robot.wheel_radius
+        x, y, th = self.pose
+        if isinstance(self.robot, Omni3):
+            dx_b, dy_b, dth = self.robot.forward(wheel_rotation)  # rotations are speeds × dt
+            th_new = heading if heading is not None else _wrap(th + dth)
+            mid = th + 0.5 * _wrap(th_new - th)
+            wx, wy = body_to_world(mid, dx_b, dy_b)
+        elif isinstance(self.robot, DiffDrive):
+            dl, dr = wheel_rotation[0] * r, wheel_rotation[1] * r
+            dist = 0.5 * (dl + dr)
+            th_new = heading if heading is not None else _wrap(th + (dr - dl) / self.robot.track)
+            mid = th + 0.5 * _wrap(th_new - th)
+            wx, wy = dist * math.cos(mid), dist * math.sin(mid)
+        else:  # pragma: no cover - every registered robot is handled above
+            raise TypeError(f"no odometry for {type(self.robot).__name__}")
+        self.pose = np.array((x + wx, y + wy, th_new))
+        return self.pose

@@ -1,0 +1,214 @@
+"""A fixed-step simulator of a wheeled robot with encoders, compass, LiDAR
+and a controller (the Gazebo stand-in).
+
+Each step: the LiDAR scans the world from the true pose; the compass reads
+the true heading; odometry integrates the encoder ticks; the controller sees
+the odometry pose and the LiDAR points placed around it; its twist is
+limited, turned into wheel speeds, perturbed by the motors (encoder noise)
+and slip, and the true pose moves exactly along the resulting arc. The disc
+footprint is checked over the whole motion of each step.
+"""
+
+from __future__ import annotations
+
+import enum
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Dict, List, Optional
+
+import numpy as np
+
+from ..control.base import REACHED, STALLED, Controller
+from ..robots.kinematics import integrate_pose
+from ..robots.odometry import Odometry
+from ..robots.proprioception import Compass, WheelEncoders
+from ..sensors.lidar import Lidar
+from .scene import Scene
+
+
+class SimStatus(enum.Enum):
+    REACHED = "reached"
+    COLLIDED = "collided"
+    TIMEOUT = "timeout"
+    STALLED = "stalled"
+
+
+@dataclass
+class SimResult:
+    """A simulated run. Arrays have one row per step plus the initial state."""
+
+    status: SimStatus
+    time_s: float  #: simulated time at the end
+    steps: int
+    wall_time_s: float
+    t: np.ndarray
+    true_poses: np.ndarray  #: (N, 3) x, y, θ
+    odom_poses: np.ndarray  #: (N, 3) the robot's own estimate
+    commands: np.ndarray  #: (N, 3) vx, vy, ω issued (body frame, after limits)
+    goal: np.ndarray
+    path: Optional[np.ndarray] = None  #: the planned path followed, if any
+    scans: Optional[np.ndarray] = None  #: (N, beams) when recorded
+    reason: str = ""
+    meta: Dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def real_time_factor(self) -> float:
+        return self.time_s / self.wall_time_s if self.wall_time_s > 0 else float("inf")
+
+    @property
+    def final_true(self) -> np.ndarray:
+        return self.true_poses[-1]
+
+    @property
+    def final_odom(self) -> np.ndarray:
+        return self.odom_poses[-1]
+
+    @property
+    def error_true(self) -> float:
+        """Distance of the true final position from the goal (m)."""
+        return float(np.hypot(*(self.final_true[:2] - self.goal)))
+
+    @property
+    def error_odom(self) -> float:
+        """Distance of the odometry's final estimate from the goal (m)."""
+        return float(np.hypot(*(self.final_odom[:2] - self.goal)))
+
+    @property
+    def distance(self) -> float:
+        return float(np.sum(np.hypot(*np.diff(self.true_poses[:, :2], axis=0).T)))
+
+    def tracking_error(self) -> float:
+        """Largest distance of the true trajectory from the planned path (m)."""
+        if self.path is None or len(self.path) < 2:
+            return float("nan")
+        from ..world.geometry import point_segment_dist2
+
+        worst = 0.0
+        a, b = self.path[:-1], self.path[1:]
+        for x, y in self.true_poses[:, :2]:
+            d2 = min(point_segment_dist2(x, y, p[0], p[1], q[0], q[1]) for p, q in zip(a, b))
+            worst = max(worst, d2)
+        return math.sqrt(worst)
+
+    def to_dict(self, trajectory: bool = False) -> Dict[str, Any]:
+        out = {"status": self.status.name, "reason": self.reason, "goal": self.goal.tolist(),
+               "time_s": self.time_s, "steps": self.steps, "wall_time_s": self.wall_time_s,
+               "real_time_factor": self.real_time_factor, "final_true": self.final_true.tolist(),
+               "final_odom": self.final_odom.tolist(), "error_true_m": self.error_true,
+               "error_odom_m": self.error_odom, "distance_m": self.distance, **self.meta}
+        if trajectory:
+            out.update(t=self.t.tolist(), true_poses=self.true_poses.tolist(), odom_poses=self.odom_poses.tolist(),
+                       commands=self.commands.tolist(), path=None if self.path is None else self.path.tolist())
+        return out
+
+
+class Simulation:
+    """One robot in one world.
+
+    Parameters
+    ----------
+    scene_world : World or OccupancyGrid
+    robot : DiffDrive or Omni3
+    controller : Controller
+    start : (x, y, θ)
+    goal : (x, y)
+    lidar : Lidar, optional
+        Needed by controllers that read scans.
+    encoders : WheelEncoders, optional
+        Default: 1440 ticks per revolution, no noise, no slip.
+    compass : Compass, optional
+        When given, odometry takes its heading from it (seed 004).
+    dt : float
+        Step (s).
+    max_time : float
+        Simulated time limit (s); then the status is TIMEOUT.
+    path : (N, 2) array, optional
+        Waypoints for path-following controllers.
+    record_scans : bool
+        Keep every scan in the result.
+    """
+
+    def __init__(self, scene_world, robot, controller: Controller, start, goal, lidar: Optional[Lidar] = None,
+                 encoders: Optional[WheelEncoders] = None, compass: Optional[Compass] = None, dt: float = 0.05,
+                 max_time: float = 120.0, path=None, record_scans: bool = False) -> None:
+        if not (isinstance(dt, (int, float)) and dt > 0 and math.isfinite(dt)):
+            raise ValueError(f"time step dt must be a positive number of seconds, got {dt!r}")
+        if not max_time > 0:
+            raise ValueError(f"max_time must be positive, got {max_time!r}")
+        if controller.needs_scan and lidar is None:
+            raise ValueError(f"controller {type(controller).__name__} reads LiDAR points: give a lidar")
+        if controller.needs_path and path is None:
+            raise ValueError(f"controller {type(controller).__name__} follows a path: give a path or a planner")
+        if controller.holonomic and not robot.holonomic:
+            raise ValueError(f"controller {type(controller).__name__} commands sideways motion, "
+                             f"which a {type(robot).__name__} cannot do")
+        self.scene = Scene(scene_world, robot.radius)
+        self.robot, self.controller, self.lidar = robot, controller, lidar
+        self.encoders = encoders or WheelEncoders()
+        self.compass = compass
+        self.dt, self.max_time = float(dt), float(max_time)
+        self.start = np.array(start, float) if len(start) == 3 else np.array((*start, 0.0))
+        self.goal = np.asarray(goal, float)[:2]
+        self.path = None if path is None else np.asarray(path, float)
+        self.record_scans = record_scans
+        if not self.scene.free(self.start):
+            raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
+        if not self.scene.free(np.array((*self.goal, 0.0))):
+            raise ValueError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
+
+    def run(self, seed: Any = 0) -> SimResult:
+        rng = np.random.default_rng(seed)
+        n_max = int(math.ceil(self.max_time / self.dt)) + 1
+        true = np.empty((n_max, 3))
+        odo = np.empty((n_max, 3))
+        cmds = np.zeros((n_max, 3))
+        scans = np.empty((n_max, self.lidar.beams)) if (self.record_scans and self.lidar) else None
+        pose = self.start.copy()
+        odometry = Odometry(self.robot, self.start)
+        wheel_angles = np.zeros(self.robot.n_wheels)
+        ticks = self.encoders.counts(wheel_angles)
+        self.controller.reset(self.goal, self.path)
+        true[0], odo[0] = pose, odometry.pose
+        status, reason = SimStatus.TIMEOUT, f"goal not reached in {self.max_time:g} s of simulated time"
+        robot, enc, dt = self.robot, self.encoders, self.dt
+        n = 1  # states recorded
+        wall0 = time.perf_counter()
+        while n < n_max:
+            t = (n - 1) * dt
+            points = None
+            if self.lidar is not None and (self.controller.needs_scan or scans is not None):
+                ranges = self.lidar.scan(self.scene.world, pose, rng)
+                if scans is not None:
+                    scans[n - 1] = ranges
+                # the controller places the points around the pose it believes in
+                points = self.lidar.points(ranges, odometry.pose)
+            command = self.controller.command(t, odometry.pose, points)
+            if command.status == REACHED:
+                status, reason = SimStatus.REACHED, ""
+                break
+            if command.status == STALLED:
+                status, reason = SimStatus.STALLED, "no progress towards the goal (a local minimum?)"
+                break
+            vx, vy, om = robot.limit(command.vx, command.vy, command.omega)
+            cmds[n - 1] = (vx, vy, om)
+            rotation = enc.actual_speeds(robot.inverse(vx, vy, om), rng) * dt
+            bx, by, bw = robot.forward(enc.ground_rotation(rotation, rng) / dt)
+            new_pose = integrate_pose(pose, bx, by, bw, dt)
+            collided = not self.scene.free_motion(pose, new_pose)
+            pose = new_pose
+            wheel_angles += rotation
+            new_ticks = enc.counts(wheel_angles)
+            heading = self.compass.heading(self.compass.read(pose[2], rng)) if self.compass else None
+            odometry.update(enc.angles(new_ticks - ticks), heading)
+            ticks = new_ticks
+            true[n], odo[n] = pose, odometry.pose
+            n += 1
+            if collided:
+                status, reason = SimStatus.COLLIDED, f"collision at t = {t + dt:.2f} s: {self.scene.describe(pose)}"
+                break
+        wall = time.perf_counter() - wall0
+        steps = n - 1
+        return SimResult(status, steps * dt, steps, wall, np.arange(n) * dt, true[:n].copy(), odo[:n].copy(),
+                         cmds[:n].copy(), self.goal.copy(), self.path,
+                         None if scans is None else scans[:n].copy(), reason)

@@ -82,14 +82,7 @@ class SimResult:
         """Largest distance of the true trajectory from the planned path (m)."""
         if self.path is None or len(self.path) < 2:
             return float("nan")
-        from ..world.geometry import point_segment_dist2
-
-        worst = 0.0
-        a, b = self.path[:-1], self.path[1:]
-        for x, y in self.true_poses[:, :2]:
-            d2 = min(point_segment_dist2(x, y, p[0], p[1], q[0], q[1]) for p, q in zip(a, b))
-            worst = max(worst, d2)
-        return math.sqrt(worst)
+        return float(np.max(distance_to_polyline(self.true_poses[:, :2], self.path)))
 
     def to_dict(self, trajectory: bool = False) -> Dict[str, Any]:
         out = {"status": self.status.name, "reason": self.reason, "goal": self.goal.tolist(),
@@ -101,6 +94,16 @@ class SimResult:
             out.update(t=self.t.tolist(), true_poses=self.true_poses.tolist(), odom_poses=self.odom_poses.tolist(),
                        commands=self.commands.tolist(), path=None if self.path is None else self.path.tolist())
         return out
+
+
+def distance_to_polyline(points: np.ndarray, path: np.ndarray) -> np.ndarray:
+    """Distance of each point to the nearest segment of a polyline."""
+    a, d = path[:-1], np.diff(path, axis=0)
+    rel = points[:, None, :] - a[None, :, :]
+    length2 = np.maximum((d * d).sum(axis=1), 1e-300)
+    u = np.clip((rel * d[None]).sum(axis=2) / length2, 0.0, 1.0)
+    gap = rel - u[..., None] * d[None]
+    return np.sqrt((gap * gap).sum(axis=2).min(axis=1))
 
 
 class Simulation:

@@ -9,16 +9,21 @@ import numpy as np
 from .plot import _pyplot
 
 
-def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[np.ndarray] = None,
-                   expanded: Optional[np.ndarray] = None, title: Optional[str] = None):
-    """The grid (world frame), optional expanded cells, raw and smoothed paths."""
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7, 7))
+def draw_grid(ax, grid) -> None:
+    """The occupancy grid in world coordinates (blocked black, unknown grey)."""
     res = grid.resolution
     x0, y0 = grid.origin[0], grid.origin[1]
     extent = (x0, x0 + grid.width * res, y0, y0 + grid.height * res)
     image = np.where(grid.blocked, 0.0, np.where(grid.unknown, 0.6, 1.0))
     ax.imshow(image, cmap="gray", vmin=0, vmax=1, origin="lower", extent=extent, interpolation="nearest")
+
+
+def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[np.ndarray] = None,
+                   expanded: Optional[np.ndarray] = None, title: Optional[str] = None):
+    """The grid (world frame), optional expanded cells, raw and smoothed paths."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(7, 7))
+    draw_grid(ax, grid)
     if expanded is not None and len(expanded):
         pts = grid.cell_to_world(expanded)
         ax.plot(pts[:, 0], pts[:, 1], ",", color="tab:cyan", alpha=0.5, label="expanded")

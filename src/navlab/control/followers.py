@@ -98,7 +98,7 @@ class PurePursuit(_Follower):
     algorithm", CMU-RI-TR-92-01, 1992.
     """
 
-    def __init__(self, lookahead: float = 0.3, speed: float = 0.2, goal_radius: float = 0.05,
+    def __init__(self, lookahead: float = 0.2, speed: float = 0.2, goal_radius: float = 0.05,
                  stall_window: float = 8.0) -> None:
         super().__init__(stall_window)
         for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius)):

@@ -1,0 +1,48 @@
+"""Potential-field forces by hand (seed 004, eq. 9 and 12) and followers."""
+
+import numpy as np
+import pytest
+
+from navlab.control import GotoWaypoint, PotentialField, attractive, make_controller, repulsive
+
+
+def test_attractive_force_eq9():
+    assert attractive(0.005, 0.0, 2.0, 0.01, 0.5) == pytest.approx([0, 0])  # inside r
+    assert attractive(0.0, 0.3, 2.0, 0.1, 0.5) == pytest.approx([0, 2.0 * 0.2])  # α(d − r)
+    assert attractive(3.0, 4.0, 2.0, 0.1, 0.5) == pytest.approx([0.6, 0.8])  # α·s beyond s + r, continuous
+    below = np.hypot(*attractive(0.6 - 1e-9, 0, 2.0, 0.1, 0.5))
+    assert below == pytest.approx(np.hypot(*attractive(0.6 + 1e-9, 0, 2.0, 0.1, 0.5)))
+
+
+def test_repulsive_force_eq12():
+    pts = np.array([[0.05, 0.0], [0.0, 0.3], [2.0, 0.0]])  # inside r, in the band, beyond
+    f = repulsive(pts, beta=1.0, delta=5.0, r=0.1, s=0.4)
+    assert f == pytest.approx([-5.0, -(0.5 - 0.3)])
+
+
+def test_potential_field_body_velocity_and_reached():
+    pf = PotentialField(alpha=1.0, r=0.01, s=0.3, max_speed=0.3, min_speed=0.0)
+    pf.reset((0.0, 3.0))
+    cmd = pf.command(0.0, np.array((0.0, 0.0, np.pi / 2)))  # facing the goal: body x forward
+    assert (cmd.vx, cmd.vy) == pytest.approx((0.3, 0.0))
+    assert cmd.omega == pytest.approx(-2.0 * np.pi / 2)  # heading held at 0
+    assert pf.command(1.0, np.array((0.0, 2.995, 0.0))).status == "REACHED"
+
+
+def test_goto_waypoint_turns_harder_and_slows_when_off_course():
+    g = GotoWaypoint(speed=0.2, heading_gain=1.0, turn_threshold=0.5, slow_speed=0.0, turn_boost=2.0)
+    g.reset((2.0, 0.0), np.array([[0.0, 0.0], [1.0, 0.0], [2.0, 0.0]]))
+    on = g.command(0.0, np.array((0.0, 0.0, 0.1)))
+    off = g.command(0.0, np.array((0.0, 0.0, 1.2)))
+    assert on.vx == pytest.approx(0.2 * np.cos(0.1)) and on.omega == pytest.approx(-0.1)
+    assert off.vx == 0.0 and off.omega == pytest.approx(-2.4)
+    assert g.command(0.0, np.array((0.95, 0.0, 0.0))).status == "RUNNING"  # passes (1, 0) within reach
+    assert g.index == 2
+    assert g.command(0.0, np.array((1.99, 0.0, 0.0))).status == "REACHED"
+
+
+def test_unknown_controller_and_bad_gains():
+    with pytest.raises(ValueError, match="(?i)did you mean 'potential_field'"):
+        make_controller("potential_feild")
+    with pytest.raises(ValueError):
+        make_controller("potential_field", alpha=0)

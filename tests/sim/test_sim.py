@@ -1,0 +1,91 @@
+"""The simulator: statuses, determinism, bad input, the seeds' experiments."""
+
+import json
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from navlab.cli import main
+from navlab.control import GotoWaypoint, PotentialField
+from navlab.robots import DiffDrive, Omni3
+from navlab.sensors import Lidar
+from navlab.sim import SimStatus, Simulation
+from navlab.sim.experiments import seed002, seed004, seed004_world
+from navlab.world import load_world
+
+
+def test_driving_into_a_wall_is_a_collision_at_the_wall():
+    world = load_world("trap")  # closed side x ∈ [7.6, 8.0]
+    sim = Simulation(world, DiffDrive(), GotoWaypoint(), (6.0, 6.0, 0.0), (9.0, 6.0),
+                     path=np.array([[6.0, 6.0], [9.0, 6.0]]))
+    r = sim.run(0)
+    assert r.status is SimStatus.COLLIDED
+    assert 7.6 - 0.105 - 0.02 < r.final_true[0] <= 7.6 - 0.105 + 0.011  # within one step of contact
+
+
+def test_potential_field_stalls_in_a_trap_and_says_so():
+    world = load_world("trap")
+    sim = Simulation(world, Omni3(), PotentialField(), (6.0, 6.0, 0.0), world.goal, lidar=Lidar(), max_time=120)
+    r = sim.run(0)
+    assert r.status is SimStatus.STALLED and r.time_s < 60
+
+
+def test_same_seed_same_run_and_timeout():
+    sim = Simulation(seed004_world((3.0, 0.0), True), Omni3(), PotentialField(), (0, 0, 0), (3.0, 0.0),
+                     lidar=Lidar(noise="rplidar_a1"), max_time=4.0)
+    a, b = sim.run(11), sim.run(11)
+    assert a.status is SimStatus.TIMEOUT and a.time_s == pytest.approx(4.0)
+    assert np.array_equal(a.true_poses, b.true_poses) and np.array_equal(a.odom_poses, b.odom_poses)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"goal": (0.0, 1.5)}, "goal"),  # inside the obstacle
+    ({"goal": (9.0, 0.0)}, "goal"),  # outside the world
+    ({"start": (0.0, 1.45, 0.0)}, "starts in collision"),
+    ({"dt": 0.0}, "dt"),
+])
+def test_bad_simulations_fail_before_running(kwargs, message):
+    args = {"start": (0.0, 0.0, 0.0), "goal": (0.0, 3.0), "dt": 0.05, **kwargs}
+    with pytest.raises(ValueError, match=message):
+        Simulation(seed004_world((0.0, 3.0), True), Omni3(), PotentialField(), args["start"], args["goal"],
+                   lidar=Lidar(), dt=args["dt"])
+
+
+def test_seed004_reaches_every_target_within_tens_of_millimetres():
+    rows = seed004(runs=1)
+    assert len(rows) == 8 and all(r["status"] == "REACHED" for r in rows)
+    assert all(r["error_true_mm"] < 60 and r["error_odom_mm"] < 40 for r in rows)
+    assert all(10 < r["time_s"] < 25 for r in rows)
+
+
+def test_seed002_mazes_are_solved_and_followed(tmp_path):
+    rows = seed002(runs=1, plot_dir=str(tmp_path))
+    assert [r["maze"] for r in rows] == ["10x10", "10x10", "15x15", "15x15"]
+    assert all(r["status"] == "REACHED" for r in rows)
+    assert all(r["max_tracking_error_m"] < 0.09 for r in rows)  # corridors leave 0.14 m each side
+    assert all((tmp_path / r["plot"].split("/")[-1]).stat().st_size > 5000 for r in rows)
+
+
+def test_cli_experiment_json_and_bad_input(tmp_path):
+    runner = CliRunner()
+    res = runner.invoke(main, ["sim", "--experiment", "seed004", "--runs", "1", "--json"])
+    assert res.exit_code == 0, res.output
+    rows = [json.loads(line) for line in res.output.splitlines()]
+    assert len(rows) == 8 and {"target", "obstacle", "status", "final_true", "final_odom", "error_true_mm",
+                               "error_odom_mm", "time_s"} <= set(rows[0])
+    res = runner.invoke(main, ["sim", "squarefield", "--goal", "50.0", "5.0"])
+    assert res.exit_code == 2 and "goal" in res.output
+    res = runner.invoke(main, ["sim", "trap", "--goal", "7.8", "6.0"])  # inside the trap's wall
+    assert res.exit_code == 2 and "goal" in res.output
+    res = runner.invoke(main, ["sim", "squarefield", "--controller", "potential_feild"])
+    assert res.exit_code == 2 and "Did you mean" in res.output
+    res = runner.invoke(main, ["sim", "squarefield", "--robot-param", "wheel_radius=-0.1"])
+    assert res.exit_code == 2 and "wheel_radius" in res.output
+    res = runner.invoke(main, ["sim", "squarefield", "--dt", "0"])
+    assert res.exit_code == 2 and "dt" in res.output
+    gif = tmp_path / "run.gif"
+    res = runner.invoke(main, ["sim", "squarefield", "--robot", "diff", "--gif", str(gif), "--plot",
+                               str(tmp_path / "run.png")])
+    assert res.exit_code == 0, res.output
+    assert gif.read_bytes()[:3] == b"GIF" and (tmp_path / "run.png").exists()

@@ -86,6 +86,6 @@ def test_cli_experiment_json_and_bad_input(tmp_path):
     assert res.exit_code == 2 and "dt" in res.output
     gif = tmp_path / "run.gif"
     res = runner.invoke(main, ["sim", "squarefield", "--robot", "diff", "--gif", str(gif), "--plot",
-                               str(tmp_path / "run.png")])
-    assert res.exit_code == 0, res.output
+                               str(tmp_path / "run.png"), "--max-time", "3"])
+    assert res.exit_code == 1 and "TIMEOUT" in res.output
     assert gif.read_bytes()[:3] == b"GIF" and (tmp_path / "run.png").exists()

@@ -167,18 +167,23 @@ def seed004_table(rows: List[Dict[str, Any]]) -> str:
             lines.append(f"{r['run']:>3} {target[0]:>9.0f} {target[1]:>7.0f} | {tx:>8.1f} {ty:>8.1f} "
                          f"{r['error_true_mm']:>7.1f} | {ox:>8.1f} {oy:>8.1f} {r['error_odom_mm']:>7.1f} | "
                          f"{r['time_s']:>6.2f}  {r['status']}")
-        mae = lambda f: float(np.mean([f(r) for r in group]))  # noqa: E731
-        lines.append(f"{'MAE':>3} {'':>9} {'':>7} | {mae(lambda r: abs(r['final_true'][0] - target[0])):>8.1f} "
-                     f"{mae(lambda r: abs(r['final_true'][1] - target[1])):>8.1f} {mae(lambda r: r['error_true_mm']):>7.1f} | "
-                     f"{mae(lambda r: abs(r['final_odom'][0] - target[0])):>8.1f} "
-                     f"{mae(lambda r: abs(r['final_odom'][1] - target[1])):>8.1f} {mae(lambda r: r['error_odom_mm']):>7.1f} | "
-                     f"{mae(lambda r: r['time_s']):>6.2f}  mean time")
+        true_x, true_y = _mae(group, "final_true", 0, target[0]), _mae(group, "final_true", 1, target[1])
+        odom_x, odom_y = _mae(group, "final_odom", 0, target[0]), _mae(group, "final_odom", 1, target[1])
+        lines.append(f"{'MAE':>3} {'':>9} {'':>7} | {true_x:>8.1f} {true_y:>8.1f} "
+                     f"{np.mean([r['error_true_mm'] for r in group]):>7.1f} | {odom_x:>8.1f} {odom_y:>8.1f} "
+                     f"{np.mean([r['error_odom_mm'] for r in group]):>7.1f} | "
+                     f"{np.mean([r['time_s'] for r in group]):>6.2f}  mean time")
     overall = [r["error_true_mm"] for r in rows]
     lines.append(f"\nAll {len(rows)} runs: {sum(r['status'] == 'REACHED' for r in rows)} reached; true error "
                  f"mean {np.mean(overall):.1f} mm (max {np.max(overall):.1f}); odometry's own error mean "
                  f"{np.mean([r['error_odom_mm'] for r in rows]):.1f} mm; time mean "
                  f"{np.mean([r['time_s'] for r in rows]):.2f} s")
     return "\n".join(lines).lstrip("\n")
+
+
+def _mae(rows: List[Dict[str, Any]], key: str, axis: int, target: float) -> float:
+    """Mean absolute error of one coordinate (mm) over runs."""
+    return float(np.mean([abs(r[key][axis] - target) for r in rows]))
 
 
 def seed002_table(rows: List[Dict[str, Any]]) -> str:

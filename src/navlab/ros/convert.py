@@ -1,0 +1,169 @@
+"""Conversions between ROS 2 messages and navlab's data.
+
+Conventions: nav_msgs/OccupancyGrid stores cells row-major starting with
+cell (0, 0) at ``info.origin`` (row index = y), exactly navlab's
+``OccupancyGrid.blocked[y, x]``, so no flip is needed (the flip happens only
+between map images, whose first row is the top, and grids). Occupancy
+values: 100 blocked, 0 free, −1 unknown. Angles are radians; quaternions
+are planar rotations about z.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional, Tuple
+
+import numpy as np
+
+from ..grid.occupancy import OccupancyGrid
+
+
+def yaw_to_quaternion(yaw: float) -> Tuple[float, float, float, float]:
+    """(x, y, z, w) of a rotation by ``yaw`` about z."""
+    return 0.0, 0.0, math.sin(yaw / 2.0), math.cos(yaw / 2.0)
+
+
+def quaternion_to_yaw(x: float, y: float, z: float, w: float) -> float:
+    """The rotation about z of a quaternion (its planar part)."""
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
+
+
+def pose_msg(x: float, y: float, yaw: float):
+    from geometry_msgs.msg import Pose
+
+    p = Pose()
+    p.position.x, p.position.y = float(x), float(y)
+    q = yaw_to_quaternion(yaw)
+    p.orientation.x, p.orientation.y, p.orientation.z, p.orientation.w = q
+    return p
+
+
+def pose_from_msg(pose) -> Tuple[float, float, float]:
+    o = pose.orientation
+    return pose.position.x, pose.position.y, quaternion_to_yaw(o.x, o.y, o.z, o.w)
+
+
+def grid_to_msg(grid: OccupancyGrid, frame_id: str = "map", stamp=None):
+    """nav_msgs/OccupancyGrid of a navlab grid (100 blocked, 0 free, −1 unknown)."""
+    from nav_msgs.msg import OccupancyGrid as GridMsg
+
+    msg = GridMsg()
+    msg.header.frame_id = frame_id
+    if stamp is not None:
+        msg.header.stamp = stamp
+    msg.info.resolution = float(grid.resolution)
+    msg.info.width, msg.info.height = grid.width, grid.height
+    msg.info.origin = pose_msg(*grid.origin)
+    data = np.where(grid.blocked, 100, np.where(grid.unknown, -1, 0)).astype(np.int8)
+    msg.data = data.ravel().tolist()
+    return msg
+
+
+def grid_from_msg(msg, occupied_threshold: int = 65, free_threshold: int = 25, name: str = "map") -> OccupancyGrid:
+    """A navlab grid from nav_msgs/OccupancyGrid: values ≥ ``occupied_threshold``
+    are blocked, −1 and values between the thresholds unknown.
+
+    Raises
+    ------
+    ValueError
+        Empty map, zero resolution, or data of the wrong length.
+    """
+    w, h = int(msg.info.width), int(msg.info.height)
+    if w == 0 or h == 0 or not msg.info.resolution > 0:
+        raise ValueError(f"empty map or bad resolution: {w}x{h} cells at {msg.info.resolution} m")
+    data = np.asarray(msg.data, dtype=np.int16)
+    if data.size != w * h:
+        raise ValueError(f"map data has {data.size} cells, expected {w}x{h} = {w * h}")
+    values = data.reshape(h, w)
+    blocked = values >= occupied_threshold
+    unknown = (values < 0) | ((values > free_threshold) & ~blocked)
+    return OccupancyGrid(blocked, float(msg.info.resolution), pose_from_msg(msg.info.origin), unknown, name)
+
+
+def path_to_msg(points: np.ndarray, frame_id: str = "map", stamp=None):
+    """nav_msgs/Path through (N, 2) points; each pose faces the next point."""
+    from geometry_msgs.msg import PoseStamped
+    from nav_msgs.msg import Path
+
+    msg = Path()
+    msg.header.frame_id = frame_id
+    if stamp is not None:
+        msg.header.stamp = stamp
+    pts = np.asarray(points, float)
+    for i, (x, y) in enumerate(pts):
+        nxt = pts[min(i + 1, len(pts) - 1)] if i + 1 < len(pts) else pts[i] + (pts[i] - pts[i - 1] if i else 0)
+        yaw = math.atan2(nxt[1] - y, nxt[0] - x) if np.any(nxt != pts[i]) else 0.0
+        ps = PoseStamped()
+        ps.header = msg.header
+        ps.pose = pose_msg(x, y, yaw)
+        msg.poses.append(ps)
+    return msg
+
+
+def path_from_msg(msg) -> np.ndarray:
+    return np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses], dtype=float).reshape(-1, 2)
+
+
+def scan_to_msg(ranges: np.ndarray, lidar, frame_id: str = "base_link", stamp=None, scan_time: float = 0.1):
+    """sensor_msgs/LaserScan of a navlab scan (REP 117 infinities kept)."""
+    from sensor_msgs.msg import LaserScan
+
+    msg = LaserScan()
+    msg.header.frame_id = frame_id
+    if stamp is not None:
+        msg.header.stamp = stamp
+    msg.angle_min = float(lidar.angles[0])
+    msg.angle_increment = float(lidar.angle_increment)
+    msg.angle_max = float(lidar.angles[-1])
+    msg.range_min, msg.range_max = float(lidar.range_min), float(lidar.range_max)
+    msg.scan_time = float(scan_time)
+    msg.time_increment = float(scan_time / max(len(ranges), 1))
+    msg.ranges = [float(r) for r in ranges]
+    return msg
+
+
+def scan_from_msg(msg) -> Tuple[np.ndarray, np.ndarray]:
+    """(angles, ranges) of a LaserScan; readings outside [range_min,
+    range_max] and NaNs become ±inf as in REP 117."""
+    ranges = np.asarray(msg.ranges, dtype=float)
+    if ranges.size == 0:
+        raise ValueError("empty LaserScan")
+    angles = msg.angle_min + msg.angle_increment * np.arange(ranges.size)
+    ranges = np.where(np.isnan(ranges), np.inf, ranges)
+    ranges = np.where(ranges > msg.range_max, np.inf, ranges)
+    ranges = np.where(ranges < msg.range_min, -np.inf, ranges)
+    return angles, ranges
+
+
+def odometry_msg(pose, twist, frame_id: str = "odom", child_frame_id: str = "base_link", stamp=None):
+    """nav_msgs/Odometry: pose in ``frame_id``, twist (vx, vy, ω) in the body frame."""
+    from nav_msgs.msg import Odometry
+
+    msg = Odometry()
+    msg.header.frame_id = frame_id
+    msg.child_frame_id = child_frame_id
+    if stamp is not None:
+        msg.header.stamp = stamp
+    msg.pose.pose = pose_msg(*pose)
+    msg.twist.twist.linear.x, msg.twist.twist.linear.y = float(twist[0]), float(twist[1])
+    msg.twist.twist.angular.z = float(twist[2])
+    return msg
+
+
+def twist_msg(vx: float, vy: float, omega: float):
+    from geometry_msgs.msg import Twist
+
+    msg = Twist()
+    msg.linear.x, msg.linear.y, msg.angular.z = float(vx), float(vy), float(omega)
+    return msg
+
+
+def twist_from_msg(msg) -> Tuple[float, float, float]:
+    values = (msg.linear.x, msg.linear.y, msg.angular.z)
+    if not all(math.isfinite(v) for v in values):
+        raise ValueError(f"non-finite velocity command {values}")
+    return values
+
+
+def stamp_seconds(stamp) -> Optional[float]:
+    return stamp.sec + 1e-9 * stamp.nanosec if stamp is not None else None

@@ -1,0 +1,65 @@
+"""Message conversions against the real ROS 2 message classes."""
+
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("rclpy", reason="rclpy cannot be imported: the ros2 extra is not installed")
+
+from navlab.grid.occupancy import OccupancyGrid  # noqa: E402
+from navlab.ros import convert as C  # noqa: E402
+from navlab.sensors import Lidar  # noqa: E402
+
+
+def test_grid_round_trip_keeps_origin_resolution_and_row_order():
+    blocked = np.zeros((3, 4), bool)
+    blocked[0, 3] = True  # bottom row (y = 0), right column
+    unknown = np.zeros_like(blocked)
+    unknown[2, 0] = True
+    grid = OccupancyGrid(blocked, 0.05, (-1.0, 2.0, 0.3), unknown)
+    msg = C.grid_to_msg(grid)
+    assert (msg.info.width, msg.info.height) == (4, 3)
+    assert msg.data[3] == 100 and msg.data[8] == -1 and msg.data[0] == 0  # row-major from cell (0, 0)
+    back = C.grid_from_msg(msg)
+    assert np.array_equal(back.blocked, blocked) and np.array_equal(back.unknown, unknown)
+    assert back.resolution == pytest.approx(0.05) and back.origin == pytest.approx((-1.0, 2.0, 0.3))
+
+
+def test_bad_grid_messages():
+    msg = C.grid_to_msg(OccupancyGrid(np.zeros((2, 2), bool)))
+    msg.data = [0, 0, 0]
+    with pytest.raises(ValueError, match="expected 2x2"):
+        C.grid_from_msg(msg)
+    msg.info.width = 0
+    with pytest.raises(ValueError, match="empty"):
+        C.grid_from_msg(msg)
+
+
+@pytest.mark.parametrize("yaw", [0.0, 0.5, -2.0, math.pi - 1e-9])
+def test_quaternions(yaw):
+    q = C.yaw_to_quaternion(yaw)
+    assert math.isclose(sum(v * v for v in q), 1.0)
+    assert C.quaternion_to_yaw(*q) == pytest.approx(yaw)
+
+
+def test_path_and_scan_round_trips():
+    pts = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 2.0]])
+    msg = C.path_to_msg(pts)
+    assert np.array_equal(C.path_from_msg(msg), pts)
+    assert C.pose_from_msg(msg.poses[0].pose)[2] == pytest.approx(0.0)
+    assert C.pose_from_msg(msg.poses[1].pose)[2] == pytest.approx(math.pi / 2)
+    lidar = Lidar(beams=4, range_min=0.15, range_max=12.0)
+    ranges = np.array([1.0, np.inf, -np.inf, 11.0])
+    angles, back = C.scan_from_msg(C.scan_to_msg(ranges, lidar))
+    assert np.array_equal(back, ranges) and angles == pytest.approx(lidar.angles)
+
+
+def test_twists_and_odometry():
+    assert C.twist_from_msg(C.twist_msg(0.1, -0.2, 0.3)) == pytest.approx((0.1, -0.2, 0.3))
+    bad = C.twist_msg(float("nan"), 0, 0)
+    with pytest.raises(ValueError):
+        C.twist_from_msg(bad)
+    odom = C.odometry_msg((1.0, 2.0, 0.5), (0.2, 0.0, 0.1))
+    assert C.pose_from_msg(odom.pose.pose) == pytest.approx((1.0, 2.0, 0.5))
+    assert odom.child_frame_id == "base_link"

@@ -20,10 +20,9 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from ..control.base import REACHED, STALLED, Controller
-from ..robots.kinematics import integrate_pose
-from ..robots.odometry import Odometry
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
+from .plant import Plant
 from .scene import Scene
 
 
@@ -167,48 +166,36 @@ class Simulation:
         odo = np.empty((n_max, 3))
         cmds = np.zeros((n_max, 3))
         scans = np.empty((n_max, self.lidar.beams)) if (self.record_scans and self.lidar) else None
-        pose = self.start.copy()
-        odometry = Odometry(self.robot, self.start)
-        wheel_angles = np.zeros(self.robot.n_wheels)
-        ticks = self.encoders.counts(wheel_angles)
+        plant = Plant(self.scene, self.robot, self.start, self.encoders, self.compass)
         self.controller.reset(self.goal, self.path)
-        true[0], odo[0] = pose, odometry.pose
+        true[0], odo[0] = plant.pose, plant.odometry.pose
         status, reason = SimStatus.TIMEOUT, f"goal not reached in {self.max_time:g} s of simulated time"
-        robot, enc, dt = self.robot, self.encoders, self.dt
+        dt = self.dt
         n = 1  # states recorded
         wall0 = time.perf_counter()
         while n < n_max:
             t = (n - 1) * dt
             points = None
             if self.lidar is not None and (self.controller.needs_scan or scans is not None):
-                ranges = self.lidar.scan(self.scene.world, pose, rng)
+                ranges = self.lidar.scan(self.scene.world, plant.pose, rng)
                 if scans is not None:
                     scans[n - 1] = ranges
                 # the controller places the points around the pose it believes in
-                points = self.lidar.points(ranges, odometry.pose)
-            command = self.controller.command(t, odometry.pose, points)
+                points = self.lidar.points(ranges, plant.odometry.pose)
+            command = self.controller.command(t, plant.odometry.pose, points)
             if command.status == REACHED:
                 status, reason = SimStatus.REACHED, ""
                 break
             if command.status == STALLED:
                 status, reason = SimStatus.STALLED, "no progress towards the goal (a local minimum?)"
                 break
-            vx, vy, om = robot.limit(command.vx, command.vy, command.omega)
-            cmds[n - 1] = (vx, vy, om)
-            rotation = enc.actual_speeds(robot.inverse(vx, vy, om), rng) * dt
-            bx, by, bw = robot.forward(enc.ground_rotation(rotation, rng) / dt)
-            new_pose = integrate_pose(pose, bx, by, bw, dt)
-            collided = not self.scene.free_motion(pose, new_pose)
-            pose = new_pose
-            wheel_angles += rotation
-            new_ticks = enc.counts(wheel_angles)
-            heading = self.compass.heading(self.compass.read(pose[2], rng)) if self.compass else None
-            odometry.update(enc.angles(new_ticks - ticks), heading)
-            ticks = new_ticks
-            true[n], odo[n] = pose, odometry.pose
+            collided = plant.step(command.vx, command.vy, command.omega, dt, rng)
+            cmds[n - 1] = plant.last_twist
+            true[n], odo[n] = plant.pose, plant.odometry.pose
             n += 1
             if collided:
-                status, reason = SimStatus.COLLIDED, f"collision at t = {t + dt:.2f} s: {self.scene.describe(pose)}"
+                status, reason = SimStatus.COLLIDED, \
+                    f"collision at t = {t + dt:.2f} s: {self.scene.describe(plant.pose)}"
                 break
         wall = time.perf_counter() - wall0
         steps = n - 1

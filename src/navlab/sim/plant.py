@@ -1,0 +1,54 @@
+"""The robot's physical side, one step at a time: a commanded twist moves
+the true pose (through the wheel model) and the odometry (through the
+encoders and compass). The closed-loop :class:`~navlab.sim.Simulation` and
+the ROS 2 sim node both drive it."""
+
+from __future__ import annotations
+
+from typing import Optional
+
+import numpy as np
+
+from ..robots.kinematics import integrate_pose
+from ..robots.odometry import Odometry
+from ..robots.proprioception import Compass, WheelEncoders
+from .scene import Scene
+
+
+class Plant:
+    """A robot in a scene, moved by body twists.
+
+    Parameters
+    ----------
+    scene : Scene
+    robot : DiffDrive or Omni3
+    start : (x, y, θ)
+    encoders : WheelEncoders
+    compass : Compass, optional
+    """
+
+    def __init__(self, scene: Scene, robot, start, encoders: WheelEncoders, compass: Optional[Compass] = None):
+        self.scene, self.robot, self.encoders, self.compass = scene, robot, encoders, compass
+        self.pose = np.array(start, float)
+        self.odometry = Odometry(robot, self.pose)
+        self._wheel_angles = np.zeros(robot.n_wheels)
+        self._ticks = encoders.counts(self._wheel_angles)
+        self.last_twist = (0.0, 0.0, 0.0)  #: the limited command of the last step
+
+    def step(self, vx: float, vy: float, omega: float, dt: float, rng: Optional[np.random.Generator]) -> bool:
+        """Move for ``dt`` under a commanded twist (limited to the robot's
+        capabilities); True when the motion hit something (the pose is then
+        the colliding one)."""
+        robot, enc = self.robot, self.encoders
+        self.last_twist = robot.limit(vx, vy, omega)
+        rotation = enc.actual_speeds(robot.inverse(*self.last_twist), rng) * dt
+        bx, by, bw = robot.forward(enc.ground_rotation(rotation, rng) / dt)
+        new_pose = integrate_pose(self.pose, bx, by, bw, dt)
+        collided = not self.scene.free_motion(self.pose, new_pose)
+        self.pose = new_pose
+        self._wheel_angles += rotation
+        ticks = enc.counts(self._wheel_angles)
+        heading = self.compass.heading(self.compass.read(new_pose[2], rng)) if self.compass else None
+        self.odometry.update(enc.angles(ticks - self._ticks), heading)
+        self._ticks = ticks
+        return collided

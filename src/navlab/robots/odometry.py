@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import math
 from typing import Optional
 
 import numpy as np
 
-from .kinematics import DiffDrive, Omni3, _wrap, body_to_world
+from .kinematics import _wrap, body_to_world
 
 
 class Odometry:
@@ -34,20 +33,12 @@ class Odometry:
     def update(self, wheel_rotation: np.ndarray, heading: Optional[float] = None) -> np.ndarray:
         """Advance by wheel rotations (rad) since the last update; ``heading``
         is the compass's calibrated heading (rad) after the motion."""
-        r = self.robot.wheel_radius
+        # Rotations are speeds × dt, so the forward kinematics gives the body
+        # displacement: (dx, dy, dθ) for the omni, ((dl + dr)/2, 0, (dr − dl)/track)
+        # for the differential drive.
+        dx_b, dy_b, dth = self.robot.forward(wheel_rotation)
         x, y, th = self.pose
-        if isinstance(self.robot, Omni3):
-            dx_b, dy_b, dth = self.robot.forward(wheel_rotation)  # rotations are speeds × dt
-            th_new = heading if heading is not None else _wrap(th + dth)
-            mid = th + 0.5 * _wrap(th_new - th)
-            wx, wy = body_to_world(mid, dx_b, dy_b)
-        elif isinstance(self.robot, DiffDrive):
-            dl, dr = wheel_rotation[0] * r, wheel_rotation[1] * r
-            dist = 0.5 * (dl + dr)
-            th_new = heading if heading is not None else _wrap(th + (dr - dl) / self.robot.track)
-            mid = th + 0.5 * _wrap(th_new - th)
-            wx, wy = dist * math.cos(mid), dist * math.sin(mid)
-        else:  # pragma: no cover - every registered robot is handled above
-            raise TypeError(f"no odometry for {type(self.robot).__name__}")
+        th_new = heading if heading is not None else _wrap(th + dth)
+        wx, wy = body_to_world(th + 0.5 * _wrap(th_new - th), dx_b, dy_b)
         self.pose = np.array((x + wx, y + wy, th_new))
         return self.pose

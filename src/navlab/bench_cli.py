@@ -49,11 +49,18 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
       navlab bench my_study.yaml --executor dask --scheduler tcp://10.0.0.5:8786
     """
     from .bench import load_experiment, run_experiment
-    from .bench.experiment import Experiment  # noqa: F401 (re-validated below)
+    from .bench.experiment import experiment_data
 
     if experiment and suite:
         raise click.UsageError("give an experiment file or --suite, not both")
-    data = _base(experiment or suite, worlds, planners)
+    if experiment or suite:
+        data, where = experiment_data(experiment or suite)
+    elif worlds and planners:
+        data, where = {"name": "custom"}, "flags"
+    else:
+        raise click.UsageError("give an experiment file, --suite NAME, or at least --world and --planner")
+    if not isinstance(data, dict):
+        raise click.UsageError(f"{where}: expected a mapping of experiment fields")
     if worlds:
         data["worlds"] = list(worlds)
     if planners:
@@ -74,7 +81,7 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
         data["trials"] = trials
     if seed is not None:
         data["seed"] = seed
-    exp = load_experiment(data)
+    exp = load_experiment(data, where)
     if show:
         click.echo(yaml.safe_dump(data, sort_keys=False))
         return
@@ -91,30 +98,6 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
     click.echo(f"report: {run.folder / 'report.html'} (and report.md, results.jsonl)")
     if run.errors:
         sys.exit(1)
-
-
-def _base(source, worlds, planners) -> dict:
-    from .bench.experiment import ExperimentError, load_experiment  # noqa: F401
-    from .bench.suites import SUITES
-    from pathlib import Path
-
-    if source is None:
-        if not worlds or not planners:
-            raise click.UsageError("give an experiment file, --suite NAME, or at least --world and --planner")
-        return {"name": "custom"}
-    if source in SUITES:
-        return SUITES.get(source)()
-    path = Path(source)
-    if not path.is_file():
-        load_experiment(source)  # raises the "no file or suite" error with suggestions
-    try:
-        data = yaml.safe_load(path.read_text())
-    except yaml.YAMLError as exc:
-        raise ExperimentError(f"{source}: not valid YAML: {exc}") from None
-    if not isinstance(data, dict):
-        raise ExperimentError(f"{source}: expected a mapping of experiment fields")
-    data.setdefault("name", path.stem)
-    return data
 
 
 def _overall(summary) -> list:

@@ -6,7 +6,7 @@ from __future__ import annotations
 from collections import defaultdict
 from typing import Any, Dict, List
 
-from .stats import ALPHA, cell_summary, compare, holm, magnitude, pairwise
+from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values, pairwise
 
 METRICS = ("cost", "time_s")
 
@@ -41,12 +41,6 @@ def _matches(group: str, name: str) -> bool:
     return name in (group, planner, sampler)
 
 
-def _values(rows: List[Dict[str, Any]], metric: str) -> List[float]:
-    if metric in ("cost", "first_solution_iteration"):
-        return [r[metric] for r in rows if r.get("success") and r.get(metric) is not None]
-    return [r[metric] for r in rows if r.get("status") != "ERROR" and r.get(metric) is not None]
-
-
 def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
     """For each claim and world: 'confirmed' (the 'lower' group is lower,
     Mann–Whitney significant after Holm over the comparisons in that world),
@@ -63,8 +57,8 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]]) -> Li
                     gb = next((g for g in groups if _matches(g, high)), None)
                     if ga is None or gb is None:
                         continue
-                    tests.append((claim, low, high, compare(_values(groups[ga], claim["metric"]),
-                                                            _values(groups[gb], claim["metric"]))))
+                    tests.append((claim, low, high, compare(metric_values(groups[ga], claim["metric"]),
+                                                            metric_values(groups[gb], claim["metric"]))))
         for (claim, low, high, test), p in zip(tests, holm([t[3]["p"] for t in tests])):
             delta = test["delta"]
             if p is not None and p < ALPHA and delta is not None:
@@ -116,7 +110,7 @@ def side_by_side(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> Lis
         row = [label]
         for side in (ra, rb):
             for metric in ("cost", "time_s"):
-                vals = _values(side, metric)
+                vals = metric_values(side, metric)
                 row.append(fn(vals) if vals else None)
         table.append(row)
     return table

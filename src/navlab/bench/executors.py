@@ -11,7 +11,7 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Dict, Iterator, List, Optional
 
 from ..registry import Registry
-from .trial import run_trial
+from .trial import error_fields, identity_fields, run_trial
 
 Spec = Dict[str, Any]
 EXECUTORS: Registry[Callable[..., Iterator[Dict[str, Any]]]] = Registry("executor")
@@ -19,14 +19,7 @@ EXECUTORS: Registry[Callable[..., Iterator[Dict[str, Any]]]] = Registry("executo
 
 def crash_row(spec: Spec, message: str) -> Dict[str, Any]:
     """The row of a trial whose worker died (no Python traceback exists)."""
-    from .trial import machine
-    from .. import __version__
-
-    return {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")} | {
-        "world": spec["cell"]["world"], "planner": spec["cell"]["planner"]["label"],
-        "sampler": spec["cell"]["sampler"]["label"] if spec["cell"]["sampler"] else "-",
-        "status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message,
-        "version": __version__, "machine": machine()}
+    return identity_fields(spec) | error_fields(message)
 
 
 @EXECUTORS.register("serial")

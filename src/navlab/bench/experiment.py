@@ -25,7 +25,7 @@ import itertools
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Union
+from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 import yaml
@@ -154,34 +154,38 @@ class Experiment:
 
 # -- reading and checking ----------------------------------------------------
 
-def load_experiment(source: Union[str, Path, Dict[str, Any]]) -> Experiment:
-    """Read an experiment from a YAML file, a built-in suite name or a mapping,
-    and check every name and parameter before anything runs."""
+def experiment_data(source: Union[str, Path]) -> Tuple[Dict[str, Any], str]:
+    """The raw mapping of a YAML experiment file or a built-in suite, and how
+    to name it in messages (a file's name defaults to its stem)."""
     from .suites import SUITES
 
-    where = "experiment"
-    if isinstance(source, dict):
-        data = source
-    elif isinstance(source, (str, Path)) and Path(source).is_file():
+    if Path(source).is_file():
         where = str(source)
         try:
             data = yaml.safe_load(Path(source).read_text())
         except yaml.YAMLError as exc:
             raise ExperimentError(f"{where}: not valid YAML: {exc}") from None
-    elif isinstance(source, str) and source in SUITES:
-        data = SUITES.get(source)()
-        where = f"suite '{source}'"
-    else:
-        raise ExperimentError(f"no experiment file or suite named '{source}'; suites: "
-                              f"{', '.join(SUITES.names())}." + suggest(str(source), SUITES.names()))
+        if isinstance(data, dict):
+            data.setdefault("name", Path(source).stem)
+        return data, where
+    if isinstance(source, str) and source in SUITES:
+        return SUITES.get(source)(), f"suite '{source}'"
+    raise ExperimentError(f"no experiment file or suite named '{source}'; suites: "
+                          f"{', '.join(SUITES.names())}." + suggest(str(source), SUITES.names()))
+
+
+def load_experiment(source: Union[str, Path, Dict[str, Any]], where: str = "experiment") -> Experiment:
+    """Read an experiment from a YAML file, a built-in suite name or a mapping,
+    and check every name and parameter before anything runs."""
+    data = source
+    if not isinstance(source, dict):
+        data, where = experiment_data(source)
     if not isinstance(data, dict):
         raise ExperimentError(f"{where}: expected a mapping with fields {', '.join(FIELDS)}")
     try:
         exp = _from_dict(data)
         validate(exp)
-    except ExperimentError as exc:
-        raise ExperimentError(f"{where}: {exc}") from None
-    except ValueError as exc:  # unknown names/parameters from the registries
+    except ValueError as exc:  # ExperimentError, and unknown names/parameters from the registries
         raise ExperimentError(f"{where}: {exc}") from None
     return exp
 

@@ -45,18 +45,28 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
             "max": float(np.max(x)), "std": std, "ci95": ci}
 
 
+#: metrics that exist only for trials that found a path
+SUCCESS_ONLY = ("cost", "first_solution_iteration")
+
+
+def metric_values(rows: List[Dict[str, Any]], metric: str) -> List[float]:
+    """``metric`` over the trials it means something for: path metrics over
+    successful trials, the others over every trial that ran."""
+    if metric in SUCCESS_ONLY:
+        picked = [r.get(metric) for r in rows if r.get("success")]
+    else:
+        picked = [r.get(metric) for r in rows if r.get("status") != "ERROR"]
+    return [v for v in picked if v is not None]
+
+
 def cell_summary(rows: List[Dict[str, Any]]) -> Dict[str, Any]:
     """Success rate and descriptions of cost, time and iterations for one cell."""
-    ran = [r for r in rows if r.get("status") != "ERROR"]
-    ok = [r for r in ran if r.get("success")]
-    return {
-        "trials": len(rows), "errors": len(rows) - len(ran), "successes": len(ok),
-        "success_rate": len(ok) / len(ran) if ran else None,
-        "cost": describe([r["cost"] for r in ok]),
-        "time_s": describe([r["time_s"] for r in ran]),
-        "iterations": describe([r.get("iterations") for r in ran]),
-        "first_solution_iteration": describe([r.get("first_solution_iteration") for r in ok]),
-    }
+    ran = sum(r.get("status") != "ERROR" for r in rows)
+    ok = sum(bool(r.get("success")) for r in rows)
+    return {"trials": len(rows), "errors": len(rows) - ran, "successes": ok,
+            "success_rate": ok / ran if ran else None,
+            **{m: describe(metric_values(rows, m))
+               for m in ("cost", "time_s", "iterations", "first_solution_iteration")}}
 
 
 def cliffs_delta(a: Sequence[float], b: Sequence[float]) -> float:
@@ -105,15 +115,14 @@ def magnitude(delta: Optional[float]) -> str:
 
 def pairwise(groups: Dict[str, List[Dict[str, Any]]], metric: str) -> List[Dict[str, Any]]:
     """Every pair of groups (e.g. samplers within one world) compared on
-    ``metric`` ('cost' over successes, else over every trial that ran),
+    ``metric`` (over the trials :func:`metric_values` picks),
     with Holm-adjusted p-values."""
     names = list(groups)
     out = []
     for i, a in enumerate(names):
         for b in names[i + 1:]:
-            pick = (lambda rows: [r[metric] for r in rows if r.get("success")]) if metric == "cost" else \
-                   (lambda rows: [r.get(metric) for r in rows if r.get("status") != "ERROR"])
-            out.append({"a": a, "b": b, "metric": metric, **compare(pick(groups[a]), pick(groups[b]))})
+            out.append({"a": a, "b": b, "metric": metric,
+                        **compare(metric_values(groups[a], metric), metric_values(groups[b], metric))})
     for row, p in zip(out, holm([r["p"] for r in out])):
         row["p_holm"] = p
         row["significant"] = p is not None and p < ALPHA

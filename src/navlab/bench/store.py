@@ -38,32 +38,19 @@ class ResultStore:
         self.folder = Path(folder)
         self.experiment = experiment
         self.results_path = self.folder / RESULTS_FILE
-        meta_path = self.folder / EXPERIMENT_FILE
         if self.folder.exists() and not self.folder.is_dir():
             raise ExperimentError(f"output '{folder}' exists and is not a folder")
-        old_rows = list(read_rows(self.results_path)) if self.results_path.exists() else []
         if overwrite:
-            old_rows = []
             self.results_path.unlink(missing_ok=True)
-        elif meta_path.exists():
-            old = json.loads(meta_path.read_text())
-            if old.get("fingerprint") != experiment.fingerprint():
-                raise ExperimentError(
-                    f"'{folder}' holds results of a different experiment ('{old.get('experiment', {}).get('name')}'; "
-                    f"differs in: {', '.join(_differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
-                    "Use another --out, or --overwrite to discard them.")
-            if old_rows and not resume:
-                raise ExperimentError(f"'{folder}' already holds {len(old_rows)} finished trials of this experiment; "
-                                      "pass --resume to continue it or --overwrite to start again")
-        elif old_rows:
-            raise ExperimentError(f"'{folder}' holds results without {EXPERIMENT_FILE}; use another --out")
+            old_rows = []
+        else:
+            old_rows = list(read_rows(self.results_path)) if self.results_path.exists() else []
+            _check_reuse(self.folder, experiment, old_rows, resume)
         self.folder.mkdir(parents=True, exist_ok=True)
-        meta_path.write_text(json.dumps({"fingerprint": experiment.fingerprint(),
-                                         "experiment": experiment.to_dict()}, indent=2))
+        meta = {"fingerprint": experiment.fingerprint(), "experiment": experiment.to_dict()}
+        (self.folder / EXPERIMENT_FILE).write_text(json.dumps(meta, indent=2))
         # Errors are retried on resume; the newest row of a trial wins.
-        self.rows: Dict[str, Dict[str, Any]] = {}
-        for row in old_rows:
-            self.rows[row["trial_id"]] = row
+        self.rows: Dict[str, Dict[str, Any]] = {row["trial_id"]: row for row in old_rows}
         self._file = None
 
     def finished(self) -> set:
@@ -86,6 +73,24 @@ class ResultStore:
     def current_rows(self, specs: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
         """Rows of the given trials, in the experiment's order."""
         return [self.rows[s["trial_id"]] for s in specs if s["trial_id"] in self.rows]
+
+
+def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, Any]], resume: bool) -> None:
+    """Refuse to mix results: another experiment's folder, or this one's
+    without ``resume``."""
+    meta_path = folder / EXPERIMENT_FILE
+    if meta_path.exists():
+        old = json.loads(meta_path.read_text())
+        if old.get("fingerprint") != experiment.fingerprint():
+            raise ExperimentError(
+                f"'{folder}' holds results of a different experiment ('{old.get('experiment', {}).get('name')}'; "
+                f"differs in: {', '.join(_differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
+                "Use another --out, or --overwrite to discard them.")
+        if old_rows and not resume:
+            raise ExperimentError(f"'{folder}' already holds {len(old_rows)} finished trials of this experiment; "
+                                  "pass --resume to continue it or --overwrite to start again")
+    elif old_rows:
+        raise ExperimentError(f"'{folder}' holds results without {EXPERIMENT_FILE}; use another --out")
 
 
 def read_rows(path) -> Iterator[Dict[str, Any]]:

@@ -62,22 +62,31 @@ def execute(spec: Dict[str, Any], keep_tree: bool = False) -> Result:
     return plan(world, planner=name, sampler=cell["sampler"]["name"], seed=spec["seed"], **kwargs)
 
 
+def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
+    """What every row says about its trial, whatever became of it."""
+    from .. import __version__
+
+    cell = spec["cell"]
+    row = {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")}
+    row.update(world=cell["world"], planner=cell["planner"]["label"],
+               sampler=cell["sampler"]["label"] if cell["sampler"] else "-",
+               params=_jsonable(cell_kwargs(cell, spec["budget"])), version=__version__, machine=machine())
+    return row
+
+
 def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute) -> Dict[str, Any]:
     """Run one trial with ``runner``; an exception becomes an ``ERROR`` row
     with its traceback."""
-    from .. import __version__
-
-    row: Dict[str, Any] = {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")}
-    cell = spec["cell"]
-    row.update(world=cell["world"], planner=cell["planner"]["label"],
-               sampler=cell["sampler"]["label"] if cell["sampler"] else "-",
-               params=_jsonable(cell_kwargs(cell, spec["budget"])))
+    row = identity_fields(spec)
     try:
         row.update(result_fields(runner(spec)))
     except Exception:  # noqa: BLE001 - any failure of one trial is data, not the end of the run
-        row.update(status="ERROR", success=False, cost=None, time_s=None, error=traceback.format_exc())
-    row.update(version=__version__, machine=machine())
+        row.update(error_fields(traceback.format_exc()))
     return row
+
+
+def error_fields(message: str) -> Dict[str, Any]:
+    return {"status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message}
 
 
 def result_fields(result: Result) -> Dict[str, Any]:

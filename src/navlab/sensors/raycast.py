@@ -40,28 +40,25 @@ def ray_circle(ox, oy, dx, dy, cx, cy, r):
 
 
 @njit(cache=True, inline="always")
+def _slab(o, d, lo, hi, t0, t1):
+    """Clip the ray interval [t0, t1] to the slab lo ≤ o + t·d ≤ hi along
+    one axis (an empty interval has t0 > t1)."""
+    if d != 0.0:
+        a = (lo - o) / d
+        b = (hi - o) / d
+        if a > b:
+            a, b = b, a
+        return max(t0, a), min(t1, b)
+    if o < lo or o > hi:
+        return 1.0, 0.0
+    return t0, t1
+
+
+@njit(cache=True, inline="always")
 def ray_rect(ox, oy, dx, dy, xmin, ymin, xmax, ymax):
     """Entry distance of the ray into an axis-aligned box (slab method)."""
-    t0 = 0.0
-    t1 = INF
-    if dx != 0.0:
-        a = (xmin - ox) / dx
-        b = (xmax - ox) / dx
-        if a > b:
-            a, b = b, a
-        t0 = max(t0, a)
-        t1 = min(t1, b)
-    elif ox < xmin or ox > xmax:
-        return INF
-    if dy != 0.0:
-        a = (ymin - oy) / dy
-        b = (ymax - oy) / dy
-        if a > b:
-            a, b = b, a
-        t0 = max(t0, a)
-        t1 = min(t1, b)
-    elif oy < ymin or oy > ymax:
-        return INF
+    t0, t1 = _slab(ox, dx, xmin, xmax, 0.0, INF)
+    t0, t1 = _slab(oy, dy, ymin, ymax, t0, t1)
     return t0 if t0 <= t1 else INF
 
 

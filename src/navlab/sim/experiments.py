@@ -87,9 +87,6 @@ def _tag(target) -> str:
 
 
 SEED002_CELL, SEED002_WALL = 0.6, 0.1
-#: inflation beyond the robot radius: half a cell diagonal for the grid's
-#: discretisation plus room for the follower's tracking error
-SEED002_MARGIN = 0.07
 
 
 @EXPERIMENTS.register("seed002")
@@ -104,6 +101,7 @@ def seed002(runs: int = 1, seed: int = 0, plot_dir: Optional[str] = ".", **_: An
     from ..grid import make_maze, plan_world
     from ..grid.maze import maze_cell_center
     from ..robots import DiffDrive
+    from .runner import PLAN_MARGIN
     from .simulation import Simulation
 
     rows = []
@@ -115,7 +113,7 @@ def seed002(runs: int = 1, seed: int = 0, plot_dir: Optional[str] = ".", **_: An
             start = maze_cell_center(0, 0, SEED002_CELL, SEED002_WALL)
             for corner in ((size - 1, 0), (size - 1, size - 1)):
                 goal = maze_cell_center(*corner, SEED002_CELL, SEED002_WALL)
-                planned = plan_world(grid.inflate(robot.radius + SEED002_MARGIN), start, goal, algorithm="astar",
+                planned = plan_world(grid.inflate(robot.radius + PLAN_MARGIN), start, goal, algorithm="astar",
                                      heuristic="octile", smooth=True)
                 row = {"experiment": "seed002", "maze": f"{size}x{size}", "maze_seed": maze_seed,
                        "start": list(start), "goal": list(goal), "plan_status": planned.status.name}

@@ -14,7 +14,9 @@ from .scene import load_scene_world
 from .simulation import SimResult, Simulation
 
 DEFAULT_CONTROLLER = {"omni3": "potential_field", "diff": "goto_waypoint"}
-#: inflation beyond the robot radius when planning a path to follow
+#: inflation beyond the robot radius when planning a path to follow: half a
+#: 0.05 m cell's diagonal for the grid's discretisation plus room for the
+#: follower's tracking error
 PLAN_MARGIN = 0.07
 
 

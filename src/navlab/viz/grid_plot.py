@@ -6,7 +6,7 @@ from typing import Optional
 
 import numpy as np
 
-from .plot import _pyplot
+from .plot import _pyplot, save_figure
 
 
 def draw_grid(ax, grid) -> None:
@@ -39,7 +39,4 @@ def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[
     ax.set_ylabel("y [m]")
     ax.set_title(title or f"{grid.name}: {result.params.get('algorithm')} — {result.status.name}")
     ax.legend(loc="best", fontsize=8)
-    if out:
-        fig.savefig(out, dpi=110, bbox_inches="tight")
-        plt.close(fig)
-    return fig
+    return save_figure(fig, out)

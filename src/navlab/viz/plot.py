@@ -16,6 +16,14 @@ def _pyplot():
     return plt
 
 
+def save_figure(fig, out: Optional[str], dpi: int = 110):
+    """Write ``fig`` to ``out`` (when given) and release it; return it."""
+    if out:
+        fig.savefig(out, dpi=dpi, bbox_inches="tight")
+        _pyplot().close(fig)
+    return fig
+
+
 def draw_world(ax, world, show_inflation: bool = True) -> None:
     """Obstacles (filled), their inflation by the robot radius (dashed), bounds, start and goal."""
     from matplotlib import patches
@@ -81,7 +89,4 @@ def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = N
     ax.set_title(title or f"{world.name}: {result.params.get('planner', '')} + {result.params.get('sampler', '')} "
                  f"— {result.status.name}")
     ax.legend(loc="upper left", fontsize=8)
-    if out:
-        fig.savefig(out, dpi=110, bbox_inches="tight")
-        plt.close(fig)
-    return fig
+    return save_figure(fig, out)

@@ -7,7 +7,7 @@ from typing import Optional
 
 import numpy as np
 
-from .plot import _pyplot, draw_path, draw_world
+from .plot import _pyplot, draw_path, draw_world, save_figure
 
 
 def _draw_scene(ax, scene_world) -> None:
@@ -38,10 +38,7 @@ def plot_run(scene_world, result, out: Optional[str] = None, raw_path=None, titl
     ax.set_title(title or f"{result.status.name} in {result.time_s:.1f} s, final error "
                  f"{1000 * result.error_true:.0f} mm")
     ax.legend(loc="best", fontsize=8)
-    if out:
-        fig.savefig(out, dpi=110, bbox_inches="tight")
-        plt.close(fig)
-    return fig
+    return save_figure(fig, out)
 
 
 def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = 10, max_frames: int = 150) -> None:

@@ -126,11 +126,13 @@ def list_cmd() -> None:
 
 from .bench_cli import bench_cmd  # noqa: E402
 from .grid_cli import grid_group  # noqa: E402
+from .ros_cli import ros_group  # noqa: E402
 from .sim_cli import sim_cmd  # noqa: E402
 
 main.add_command(grid_group)
 main.add_command(bench_cmd)
 main.add_command(sim_cmd)
+main.add_command(ros_group)
 
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -135,6 +135,17 @@ def scan_from_msg(msg) -> Tuple[np.ndarray, np.ndarray]:
     return angles, ranges
 
 
+def scan_points_from_msg(msg, pose) -> np.ndarray:
+    """World points (N, 2) of a LaserScan's valid readings seen from ``pose``
+    (x, y, θ) of the scanner (seed 004, eq. 18–19)."""
+    from ..sensors.raycast import scan_points
+
+    angles, ranges = scan_from_msg(msg)
+    out = np.empty((ranges.size, 2))
+    n = scan_points(np.asarray(pose, float), angles, ranges, out)
+    return out[:n]
+
+
 def odometry_msg(pose, twist, frame_id: str = "odom", child_frame_id: str = "base_link", stamp=None):
     """nav_msgs/Odometry: pose in ``frame_id``, twist (vx, vy, ω) in the body frame."""
     from nav_msgs.msg import Odometry

@@ -7,6 +7,8 @@
   10–25 m like the seed's 12.7–20.8 m.
 - ``growth_ratio``: the seed 003 set-up, root (1, 5), goal (5, 6), p_min 0.5
   (as ``goal_tolerance``) in an empty 10 m × 10 m workspace.
+- ``one_obstacle``: seed 004's open floor with one cylinder between the
+  start and the goal (the ROS 2 omni-robot demo and test).
 
 Pictures: ``docs/scenes.md``.
 """
@@ -138,4 +140,19 @@ def growth_ratio() -> World:
         start=(1.0, 5.0),
         goal=(5.0, 6.0),
         goal_tolerance=0.5,
+    )
+
+
+@SCENES.register("one_obstacle")
+def one_obstacle() -> World:
+    """Seed 004's open floor with one 0.15 m cylinder half way to the goal
+    (3, 0), 2 cm off the line (an exactly symmetric field has a saddle the
+    potential field would stop on)."""
+    return World(
+        name="one_obstacle",
+        bounds=Bounds(-1.0, 4.0, -1.5, 1.5),
+        start=(0.0, 0.0),
+        goal=(3.0, 0.0),
+        obstacles=(Circle((1.5, 0.02), 0.15),),
+        robot_radius=0.0,
     )

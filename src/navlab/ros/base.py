@@ -1,0 +1,113 @@
+"""What every navlab ROS 2 node shares: declared parameters with their help,
+quality-of-service profiles, logging into the decision cores, and a main
+that turns bad settings into one error line."""
+
+from __future__ import annotations
+
+import sys
+import time
+from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence
+
+import rclpy
+from rcl_interfaces.msg import ParameterDescriptor
+from rclpy.clock import Clock, ClockType
+from rclpy.executors import ExternalShutdownException
+from rclpy.node import Node
+from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
+
+#: /map is latched: late subscribers get the last map (as nav2's map_server).
+MAP_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE)
+#: /scan as drivers publish it (best effort, keep the latest few).
+SCAN_QOS = qos_profile_sensor_data
+#: /odom, /cmd_vel, /plan, /goal_pose
+DEFAULT_QOS = 10
+
+
+class Param(NamedTuple):
+    """A ROS parameter of a navlab node: name, default (its type fixes the
+    parameter's type) and a one-line description."""
+
+    name: str
+    default: Any
+    description: str
+
+
+def parameter_help(params: Sequence[Param]) -> str:
+    return "\n".join(f"  {p.name} (default {p.default!r}): {p.description}" for p in params)
+
+
+def coerce(param: Param, value: Any) -> Any:
+    """``value`` as the type of the parameter's default (ints widen to
+    floats); anything else is refused with the parameter's name."""
+    kind = type(param.default)
+    if kind is float and isinstance(value, int) and not isinstance(value, bool):
+        return float(value)
+    if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
+        raise ValueError(f"parameter {param.name} must be {kind.__name__}, got {value!r}")
+    return value
+
+
+class NavlabNode(Node):
+    """A node with declared parameters (``self.params``) and a ``log(level,
+    text)`` for the decision cores."""
+
+    PARAMETERS: Sequence[Param] = ()
+
+    def __init__(self, name: str, **kwargs: Any) -> None:
+        super().__init__(name, **kwargs)
+        self.params: Dict[str, Any] = {}
+        for p in self.PARAMETERS:
+            # dynamic typing, then our own check: `-p x:=1` for a float must work
+            self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
+                                                                         dynamic_typing=True))
+            self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
+
+    def log(self, level: str, text: str) -> None:
+        getattr(self.get_logger(), level)(text)
+
+    def steady_timer(self, period: float, callback: Callable[[], None]):
+        """A timer on the monotonic clock: it keeps firing when simulated
+        time stops (that is when watchdogs matter)."""
+        return self.create_timer(period, callback, clock=Clock(clock_type=ClockType.STEADY_TIME))
+
+    @staticmethod
+    def monotonic() -> float:
+        return time.monotonic()
+
+    def stamp_seconds(self, stamp) -> float:
+        """A header stamp in seconds; the node's clock when the stamp is zero."""
+        t = stamp.sec + 1e-9 * stamp.nanosec
+        return t if t > 0 else self.get_clock().now().nanoseconds * 1e-9
+
+
+def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> int:
+    """Initialise ROS, build the node and spin until Ctrl-C or shutdown.
+
+    Returns the process exit status: 2 when the node refuses its settings
+    (the reason printed on one line), 0 otherwise.
+    """
+    rclpy.init(args=args)
+    try:
+        try:
+            node = factory()
+        except (ValueError, FileNotFoundError, KeyError) as exc:
+            print(f"Error: {exc}", file=sys.stderr)
+            return 2
+        try:
+            rclpy.spin(node)
+        except (KeyboardInterrupt, ExternalShutdownException):
+            pass
+        finally:
+            node.destroy_node()
+    finally:
+        rclpy.try_shutdown()
+    return 0
+
+
+def node_main(factory: Callable[[], Node]) -> Callable[[Optional[List[str]]], None]:
+    """A console-script entry point for a node class."""
+
+    def main(args: Optional[List[str]] = None) -> None:
+        sys.exit(run_node(factory, args if args is not None else sys.argv))
+
+    return main

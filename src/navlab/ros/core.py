@@ -1,0 +1,196 @@
+"""What the ROS 2 nodes decide, without ROS: planning on request and driving
+a controller from odometry. The nodes only translate messages and log.
+
+Keeping the decisions here lets them be tested directly (every bad input the
+nodes must survive) and keeps rclpy out of everything but the node shells.
+Each class reports through ``log(level, text)`` with level one of
+``"info"``, ``"warn"``, ``"error"``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Callable, Optional, Tuple
+
+import numpy as np
+
+from ..control.base import REACHED, STALLED, Controller
+from ..grid.occupancy import OccupancyGrid
+from ..grid.planner import GRID_ALGORITHMS, HEURISTICS, plan_world
+
+Log = Callable[[str, str], None]
+Twist = Tuple[float, float, float]
+STOP: Twist = (0.0, 0.0, 0.0)
+
+
+def _xy(p) -> str:
+    return f"({p[0]:.3f}, {p[1]:.3f})"
+
+
+class GoalPlanner:
+    """Plans a path from the latest pose to each goal on the latest map
+    (seed 002's A* path planner).
+
+    A goal that arrives before the map or the first pose is kept and planned
+    as soon as both are known. A goal outside the map, in an obstacle or
+    closer to one than ``inflation_radius`` gives an error and no path.
+
+    Parameters
+    ----------
+    log : callable
+    algorithm, heuristic, connectivity, smooth, allow_unknown
+        As in :func:`navlab.grid.plan`.
+    inflation_radius : float
+        Obstacles are grown by this much before planning (m): the robot's
+        radius plus a margin for tracking.
+    """
+
+    def __init__(self, log: Log, algorithm: str = "astar", heuristic: str = "octile", connectivity: int = 8,
+                 smooth: bool = True, inflation_radius: float = 0.175, allow_unknown: bool = False) -> None:
+        GRID_ALGORITHMS.get(algorithm)
+        HEURISTICS.get(heuristic)
+        if connectivity not in (4, 8):
+            raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
+        if not (inflation_radius >= 0 and math.isfinite(inflation_radius)):
+            raise ValueError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
+        self.log = log
+        self.options = dict(algorithm=algorithm, heuristic=heuristic, connectivity=connectivity, smooth=smooth,
+                            allow_unknown=allow_unknown)
+        self.inflation_radius = float(inflation_radius)
+        self.grid: Optional[OccupancyGrid] = None
+        self.inflated: Optional[OccupancyGrid] = None
+        self.pose: Optional[np.ndarray] = None
+        self.pending: Optional[np.ndarray] = None
+
+    def set_map(self, grid: OccupancyGrid) -> Optional[np.ndarray]:
+        self.grid, self.inflated = grid, grid.inflate(self.inflation_radius)
+        self.log("info", f"map {grid.width}x{grid.height} cells at {grid.resolution:g} m")
+        return self._plan_pending()
+
+    def set_pose(self, pose) -> Optional[np.ndarray]:
+        self.pose = np.asarray(pose, float)[:2]
+        return self._plan_pending()
+
+    def set_goal(self, goal) -> Optional[np.ndarray]:
+        goal = np.asarray(goal, float)[:2]
+        if not np.all(np.isfinite(goal)):
+            self.log("error", f"goal {goal.tolist()} is not a finite position: ignored")
+            return None
+        if self.grid is None or self.pose is None:
+            self.pending = goal
+            missing = "a map" if self.grid is None else "the robot's pose on /odom"
+            self.log("info", f"goal {_xy(goal)} kept until {missing} arrives")
+            return None
+        self.pending = None
+        return self.plan(self.pose, goal)
+
+    def _plan_pending(self) -> Optional[np.ndarray]:
+        if self.pending is None or self.grid is None or self.pose is None:
+            return None
+        goal, self.pending = self.pending, None
+        self.log("info", f"planning the kept goal {_xy(goal)}")
+        return self.plan(self.pose, goal)
+
+    def _where_blocked(self, p) -> Optional[str]:
+        """Why the robot cannot stand at p, or None."""
+        grid = self.grid
+        cell = grid.world_to_cell(np.asarray(p, float)[None])[0]
+        if not grid.contains(cell)[0]:
+            ox, oy = grid.origin[:2]
+            return (f"is outside the map ({grid.width * grid.resolution:g} x {grid.height * grid.resolution:g} m "
+                    f"from ({ox:g}, {oy:g}))")
+        x, y = int(cell[0]), int(cell[1])
+        if grid.blocked[y, x]:
+            return "is in an obstacle"
+        if grid.unknown[y, x] and not self.options["allow_unknown"]:
+            return "is in unknown space (set allow_unknown to plan through it)"
+        if self.inflated.blocked[y, x]:
+            return f"is closer to an obstacle than the inflation radius {self.inflation_radius:g} m"
+        return None
+
+    def plan(self, start, goal) -> Optional[np.ndarray]:
+        """The path from start to goal as (N, 2) world points, or None (logged)."""
+        for label, p in (("start", start), ("goal", goal)):
+            why = self._where_blocked(p)
+            if why is not None:
+                self.log("error", f"no path: the {label} {_xy(p)} {why}")
+                return None
+        result = plan_world(self.inflated, start, goal, **self.options)
+        if not result.success:
+            self.log("error", f"no path from {_xy(start)} to {_xy(goal)}: {result.status.name} {result.reason}")
+            return None
+        path = np.array(result.path, float)
+        path[0], path[-1] = start, goal  # cell centres → the exact endpoints
+        self.log("info", f"path from {_xy(start)} to {_xy(goal)}: {len(path)} poses, "
+                         f"{result.stats['length_m']:.2f} m, {result.stats['time_s'] * 1000:.1f} ms")
+        return path
+
+
+class Drive:
+    """Runs a controller on the odometry stream until its goal is reached.
+
+    It commands nothing until given a target; it returns a stop when the
+    controller reports the goal reached or a stall, and when odometry has
+    been silent for ``odom_timeout`` seconds (then again on every watchdog
+    tick until odometry returns, in case a stop is lost).
+    """
+
+    def __init__(self, controller: Controller, log: Log, odom_timeout: float = 0.5) -> None:
+        if not (odom_timeout > 0 and math.isfinite(odom_timeout)):
+            raise ValueError(f"odom_timeout must be a positive number of seconds, got {odom_timeout!r}")
+        self.controller, self.log, self.odom_timeout = controller, log, float(odom_timeout)
+        self.active = False
+        self.last_odom: Optional[float] = None
+        self.odom_lost = False
+
+    def set_target(self, goal, path=None) -> Optional[Twist]:
+        """Start driving to ``goal`` (along ``path`` for path followers). An
+        empty path stops the robot."""
+        if path is not None and len(path) == 0:
+            was_active, self.active = self.active, False
+            self.log("warn", "empty path: stopping")
+            return STOP if was_active else None
+        self.controller.reset(goal, path)
+        self.active = True
+        what = f"a {len(path)}-pose path" if path is not None else "the goal"
+        self.log("info", f"following {what} to {_xy(goal)}")
+        return None
+
+    def _heard(self, now: float) -> None:
+        self.last_odom = now
+        if self.odom_lost:
+            self.odom_lost = False
+            self.log("info", "odometry is back")
+
+    def on_odom(self, t: float, pose, now: float, points=None) -> Optional[Twist]:
+        """The command for a new pose (None when idle). ``t`` is the pose's
+        time stamp (for stall detection), ``now`` a monotonic clock."""
+        self._heard(now)
+        if not self.active:
+            return None
+        command = self.controller.command(t, pose, points)
+        if command.status == REACHED:
+            self.active = False
+            self.log("info", f"goal reached at {_xy(pose)}")
+            return STOP
+        if command.status == STALLED:
+            self.active = False
+            self.log("warn", f"no progress towards the goal from {_xy(pose)}: stopping")
+            return STOP
+        return (command.vx, command.vy, command.omega)
+
+    def hold(self, now: float) -> Optional[Twist]:
+        """A new pose arrived but the controller cannot run (a sensor it
+        needs is missing): stand still while driving."""
+        self._heard(now)
+        return STOP if self.active else None
+
+    def watchdog(self, now: float) -> Optional[Twist]:
+        """A stop while odometry is overdue during a drive."""
+        if not self.active or self.last_odom is None or now - self.last_odom <= self.odom_timeout:
+            return None
+        if not self.odom_lost:
+            self.odom_lost = True
+            self.log("warn", f"no odometry for {now - self.last_odom:.2f} s (timeout {self.odom_timeout:g} s): "
+                             "stopping the robot")
+        return STOP

@@ -1,0 +1,243 @@
+"""``navlab ros demo``: a whole pipeline without ros2 launch, driven to one
+goal and judged from ``/odom``.
+
+- ``diff`` (seed 002): map_server + sim + astar_pathplanner + goto_waypoint
+  on a map (a generated maze by default).
+- ``omni3`` (seed 004): sim + potential_field_navigator on a world or map
+  (the ``one_obstacle`` scene by default).
+
+A mission node publishes the goal once the pipeline listens, follows
+``/odom``, ``/ground_truth``, ``/plan``, ``/cmd_vel`` and every node's
+warnings and errors on ``/rosout``, and ends the run when the robot has
+stopped within ``tolerance`` of the goal, or when the simulated-time budget
+or the wall-clock timeout runs out.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import tempfile
+import time
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence
+
+import numpy as np
+import rclpy
+from geometry_msgs.msg import PoseStamped, Twist
+from nav_msgs.msg import Odometry
+from nav_msgs.msg import Path as PathMsg
+from rcl_interfaces.msg import Log
+from rclpy.executors import SingleThreadedExecutor
+from rclpy.parameter import Parameter
+
+from .base import DEFAULT_QOS, NavlabNode
+from .convert import path_from_msg, pose_from_msg, pose_msg
+from .launch import NodeProcesses, node_class
+
+#: seed 002's maze geometry: 0.6 m cells, 0.1 m walls (0.5 m corridors)
+MAZE_CELL, MAZE_WALL = 0.6, 0.1
+DEFAULT_MAZE = 8
+
+
+def maze_setup(directory: Path, size: int = DEFAULT_MAZE, seed: int = 0):
+    """Write a ``size × size`` maze map and return (yaml path, start, goal):
+    from the centre of cell (0, 0) to the far corner's."""
+    from ..grid import make_maze, maze_cell_center, save_map
+
+    grid = make_maze(size, size, seed=seed, cell_size=MAZE_CELL, wall=MAZE_WALL, resolution=0.05)
+    path = Path(directory) / f"maze{size}x{size}.yaml"
+    save_map(grid, path)
+    return (str(path), maze_cell_center(0, 0, MAZE_CELL, MAZE_WALL),
+            maze_cell_center(size - 1, size - 1, MAZE_CELL, MAZE_WALL))
+
+
+def pipeline(world: str, robot: str, start: Sequence[float], real_time_factor: float,
+             sim_params: Optional[Dict[str, Any]] = None) -> List:
+    """The nodes and their parameters for one robot type."""
+    from ..robots import make_robot
+    from ..sim.runner import PLAN_MARGIN
+
+    x, y, yaw = (list(start) + [0.0])[:3]
+    sim = ("sim", {"world": world, "robot": robot, "x": float(x), "y": float(y), "yaw": float(yaw),
+                   "real_time_factor": float(real_time_factor), **(sim_params or {})})
+    if robot == "omni3":
+        return [sim, ("potential_field_navigator", {"use_sim_time": True})]
+    radius = make_robot(robot).radius
+    return [("map_server", {"yaml_filename": world}), sim,
+            ("astar_pathplanner", {"use_sim_time": True, "inflation_radius": radius + PLAN_MARGIN}),
+            ("goto_waypoint", {"use_sim_time": True})]
+
+
+def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=None, maze_size: int = DEFAULT_MAZE,
+             real_time_factor: float = 5.0, processes: bool = False, record: Optional[str] = None,
+             max_time: Optional[float] = None, timeout: float = 300.0, tolerance: float = 0.1,
+             log_dir: Optional[str] = None, sim_params: Optional[Dict[str, Any]] = None,
+             progress=None) -> Dict[str, Any]:
+    """Run one mission; returns its summary (see :class:`Mission`).
+
+    Raises
+    ------
+    ValueError
+        Bad settings (checked before anything starts).
+    """
+    from ..grid.occupancy import OccupancyGrid
+    from ..sim.scene import load_scene_world
+
+    if robot not in ("diff", "omni3"):
+        raise ValueError(f"robot must be diff or omni3, got {robot!r}")
+    if not (real_time_factor > 0 and math.isfinite(real_time_factor)):
+        raise ValueError(f"real_time_factor must be positive, got {real_time_factor!r}")
+    tmp = tempfile.TemporaryDirectory(prefix="navlab-demo-")
+    try:
+        if world is None:
+            if robot == "diff":
+                world, maze_start, maze_goal = maze_setup(Path(tmp.name), maze_size)
+                start, goal = start or maze_start, goal or maze_goal
+            else:
+                world = "one_obstacle"
+        scene = load_scene_world(world)
+        if isinstance(scene, OccupancyGrid):
+            if start is None or goal is None:
+                raise ValueError("a map has no start or goal of its own: give --start X Y [YAW] and --goal X Y")
+        else:
+            if robot == "diff":
+                raise ValueError("the diff-drive pipeline plans on a map: give a map_server YAML "
+                                 "(or use --robot omni3 in a world file)")
+            start, goal = start or scene.start, goal or scene.goal
+        goal = (float(goal[0]), float(goal[1]))
+        specs = pipeline(str(world), robot, start, real_time_factor, sim_params)
+        if max_time is None:
+            max_time = 600.0
+        return _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress)
+    finally:
+        tmp.cleanup()
+
+
+def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress) -> Dict[str, Any]:
+    rclpy.init()
+    nodes, recorder = [], None
+    try:
+        executor = SingleThreadedExecutor()
+        mission = Mission(goal, tolerance, max_time, parameter_overrides=[Parameter("use_sim_time", value=True)])
+        executor.add_node(mission)
+        if record:
+            from .record import BagRecorder
+
+            recorder = BagRecorder(record, parameter_overrides=[Parameter("use_sim_time", value=True)])
+            executor.add_node(recorder)
+        if processes:
+            launcher = NodeProcesses(specs, Path(log_dir) if log_dir else None)
+        else:
+            launcher = None
+            for name, params in specs:
+                overrides = [Parameter(k, value=v) for k, v in params.items()]
+                nodes.append(node_class(name)(parameter_overrides=overrides))
+                executor.add_node(nodes[-1])
+        wall0 = time.monotonic()
+        with launcher or contextlib.nullcontext():
+            while not mission.done:
+                executor.spin_once(timeout_sec=0.05)
+                wall = time.monotonic() - wall0
+                if launcher is not None and launcher.failed():
+                    mission.finish("node exited: " + ", ".join(f"{n} (status {c})" for n, c in launcher.failed()))
+                elif wall > timeout:
+                    mission.finish(f"wall-clock timeout after {timeout:g} s")
+                if progress is not None:
+                    progress(mission)
+        summary = mission.summary()
+        summary["wall_time_s"] = time.monotonic() - wall0
+        if recorder is not None:
+            summary["recorded"] = {"path": str(recorder.path), "messages": dict(recorder.counts)}
+        return summary
+    finally:
+        if recorder is not None:
+            recorder.close()
+        for node in nodes:
+            node.destroy_node()
+        rclpy.try_shutdown()
+
+
+class Mission(NavlabNode):
+    """The mission node (see the module docstring)."""
+
+    def __init__(self, goal, tolerance: float, max_time: float, **kwargs) -> None:
+        super().__init__("navlab_mission", **kwargs)
+        self.goal, self.tolerance, self.max_time = np.asarray(goal, float), tolerance, max_time
+        self.goal_pub = self.create_publisher(PoseStamped, "goal_pose", DEFAULT_QOS)
+        self.create_subscription(Odometry, "odom", self.on_odom, DEFAULT_QOS)
+        self.create_subscription(Odometry, "ground_truth", self.on_truth, DEFAULT_QOS)
+        self.create_subscription(PathMsg, "plan", self.on_plan, DEFAULT_QOS)
+        self.create_subscription(Twist, "cmd_vel", self.on_cmd, DEFAULT_QOS)
+        self.create_subscription(Log, "/rosout", self.on_log, 100)
+        self.odom: Optional[np.ndarray] = None
+        self.truth: Optional[np.ndarray] = None
+        self.t = 0.0
+        self.sent_at: Optional[float] = None
+        self.plans: List[np.ndarray] = []
+        self.stopped = True
+        self.moved = False
+        self.travelled = 0.0
+        self.logs: List[str] = []
+        self.done, self.reached, self.reason = False, False, ""
+        self.steady_timer(0.05, self.send_goal_when_heard)
+
+    def send_goal_when_heard(self) -> None:
+        # the goal goes out once the robot is heard and someone listens for it
+        if self.sent_at is None and self.odom is not None and self.goal_pub.get_subscription_count() > 0:
+            msg = PoseStamped()
+            msg.header.frame_id = "map"
+            msg.header.stamp = self.get_clock().now().to_msg()
+            msg.pose = pose_msg(self.goal[0], self.goal[1], 0.0)
+            self.goal_pub.publish(msg)
+            self.sent_at = self.t
+
+    def on_odom(self, msg) -> None:
+        self.odom = np.array(pose_from_msg(msg.pose.pose))
+        self.t = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
+        if self.sent_at is None or self.done:
+            return
+        if self.moved and self.stopped and self.error("odom") < self.tolerance:
+            self.finish("", reached=True)
+        elif self.t - self.sent_at > self.max_time:
+            self.finish(f"goal not reached in {self.max_time:g} s of simulated time")
+
+    def on_truth(self, msg) -> None:
+        pose = np.array(pose_from_msg(msg.pose.pose))
+        if self.truth is not None:
+            self.travelled += float(np.hypot(*(pose[:2] - self.truth[:2])))
+        self.truth = pose
+
+    def on_plan(self, msg) -> None:
+        self.plans.append(path_from_msg(msg))
+
+    def on_cmd(self, msg) -> None:
+        self.stopped = msg.linear.x == 0 and msg.linear.y == 0 and msg.angular.z == 0
+        self.moved = self.moved or not self.stopped
+
+    def on_log(self, msg) -> None:
+        if msg.level >= Log.WARN and msg.name != self.get_name():
+            self.logs.append(f"[{msg.name}] {msg.msg}")
+            if msg.level >= Log.ERROR and not self.done:
+                self.finish(f"[{msg.name}] {msg.msg}")
+
+    def error(self, which: str) -> float:
+        pose = self.odom if which == "odom" else self.truth
+        return float(np.hypot(*(pose[:2] - self.goal))) if pose is not None else math.inf
+
+    def finish(self, reason: str, reached: bool = False) -> None:
+        self.done, self.reached, self.reason = True, reached, reason
+
+    def summary(self) -> Dict[str, Any]:
+        plan = self.plans[-1] if self.plans else None
+        return {
+            "status": "REACHED" if self.reached else "FAILED", "reason": self.reason,
+            "goal": self.goal.tolist(), "sim_time_s": self.t - (self.sent_at or 0.0),
+            "final_odom": None if self.odom is None else self.odom.tolist(),
+            "final_true": None if self.truth is None else self.truth.tolist(),
+            "error_odom_m": self.error("odom"), "error_true_m": self.error("truth"),
+            "travelled_m": self.travelled, "plans": len(self.plans),
+            "plan_length_m": None if plan is None else float(np.sum(np.linalg.norm(np.diff(plan, axis=0),
+                                                                                    axis=1))),
+            "warnings": self.logs,
+        }

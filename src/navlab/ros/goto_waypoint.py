@@ -1,0 +1,45 @@
+"""``goto_waypoint`` (seed 002): follows each ``/plan`` with the pose on
+``/odom`` and commands ``/cmd_vel`` (differential drive: linear.x and
+angular.z) until the last pose is reached, then zero velocity."""
+
+from __future__ import annotations
+
+import numpy as np
+from nav_msgs.msg import Path
+
+from .base import DEFAULT_QOS, Param, node_main
+from .convert import path_from_msg
+from .drive_node import ODOM_TIMEOUT, DriveNode
+
+
+class GotoWaypointNode(DriveNode):
+    CONTROLLER = "goto_waypoint"
+    CONTROLLER_PARAMS = ("speed", "heading_gain", "reach_radius", "goal_radius")
+    PARAMETERS = (
+        Param("speed", 0.2, "forward speed when on course (m/s)"),
+        Param("heading_gain", 1.5, "turn rate per radian of heading error (1/s)"),
+        Param("reach_radius", 0.05, "a waypoint counts as reached this close (m)"),
+        Param("goal_radius", 0.05, "the last pose counts as reached this close (m)"),
+        ODOM_TIMEOUT,
+    )
+
+    def __init__(self, **kwargs) -> None:
+        super().__init__("goto_waypoint", **kwargs)
+        self.create_subscription(Path, "plan", self.on_plan, DEFAULT_QOS)
+
+    def on_plan(self, msg) -> None:
+        try:
+            path = path_from_msg(msg)
+        except (ValueError, TypeError) as exc:
+            self.log("error", f"ignoring a malformed /plan: {exc}")
+            return
+        if not np.isfinite(path).all():
+            self.log("error", "ignoring a /plan with non-finite positions")
+            return
+        self.send(self.drive.set_target(path[-1] if len(path) else None, path))
+
+
+main = node_main(GotoWaypointNode)
+
+if __name__ == "__main__":
+    main()

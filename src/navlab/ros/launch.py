@@ -1,0 +1,97 @@
+"""Starting navlab nodes without ros2 launch: as child processes (each its
+own Python, as a real system runs them) or as node objects in one process."""
+
+from __future__ import annotations
+
+import importlib
+import os
+import signal
+import subprocess
+import sys
+from pathlib import Path
+from typing import Any, Dict, List, Optional, Sequence, Tuple
+
+#: node name → (module, class)
+NODES: Dict[str, Tuple[str, str]] = {
+    "map_server": ("navlab.ros.map_server", "MapServer"),
+    "sim": ("navlab.ros.sim", "SimNode"),
+    "astar_pathplanner": ("navlab.ros.astar_pathplanner", "AStarPathPlanner"),
+    "goto_waypoint": ("navlab.ros.goto_waypoint", "GotoWaypointNode"),
+    "potential_field_navigator": ("navlab.ros.potential_field_navigator", "PotentialFieldNavigator"),
+}
+
+NodeSpec = Tuple[str, Dict[str, Any]]
+
+
+def check_node_name(name: str) -> None:
+    if name not in NODES:
+        from ..registry import suggest
+
+        raise ValueError(f"unknown node '{name}'.{suggest(name, list(NODES))} Nodes: {', '.join(NODES)}")
+
+
+def node_class(name: str) -> type:
+    check_node_name(name)
+    module, cls = NODES[name]
+    return getattr(importlib.import_module(module), cls)
+
+
+def ros_value(value: Any) -> str:
+    """A parameter value as ``-p name:=value`` reads it (YAML)."""
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return repr(value)
+    return str(value)
+
+
+def ros_args(params: Dict[str, Any]) -> List[str]:
+    args = ["--ros-args"]
+    for key, value in params.items():
+        args += ["-p", f"{key}:={ros_value(value)}"]
+    return args
+
+
+class NodeProcesses:
+    """Child processes running nodes; a context manager that interrupts
+    them (as Ctrl-C would) on exit, and kills those that hang.
+
+    Parameters
+    ----------
+    specs : [(node name, parameters)]
+    log_dir : path, optional
+        Each node's output goes to ``<log_dir>/<node>.log``; by default it
+        goes to this process's stderr.
+    """
+
+    def __init__(self, specs: Sequence[NodeSpec], log_dir: Optional[Path] = None) -> None:
+        for name, _ in specs:
+            check_node_name(name)
+        self.specs, self.log_dir = list(specs), log_dir
+        self.procs: List[Tuple[str, subprocess.Popen]] = []
+
+    def __enter__(self) -> "NodeProcesses":
+        for name, params in self.specs:
+            out = None
+            if self.log_dir is not None:
+                Path(self.log_dir).mkdir(parents=True, exist_ok=True)
+                out = open(Path(self.log_dir) / f"{name}.log", "w")
+            cmd = [sys.executable, "-m", NODES[name][0], *ros_args(params)]
+            self.procs.append((name, subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT if out else None,
+                                                      env=os.environ.copy())))
+        return self
+
+    def failed(self) -> List[Tuple[str, int]]:
+        """Nodes that have exited, with their exit status."""
+        return [(name, p.returncode) for name, p in self.procs if p.poll() is not None]
+
+    def __exit__(self, *exc) -> None:
+        for _, p in self.procs:
+            if p.poll() is None:
+                p.send_signal(signal.SIGINT)
+        for _, p in self.procs:
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()

@@ -1,0 +1,158 @@
+"""``sim``, the Gazebo stand-in: navlab's simulated robot in a map or world
+file, driven by ``/cmd_vel``; publishes ``/odom`` (encoder odometry),
+``/scan``, ``/clock``, ``/ground_truth`` (the true pose) and, when the
+``tf2_msgs`` package is available, the ``odom → base_link`` transform on
+``/tf``.
+
+The odometry frame starts at the robot's true start pose in the map frame,
+so ``map → odom`` is the identity. Steps run on a wall-clock timer at
+``real_time_factor`` times real time; the other nodes follow ``/clock``
+with ``use_sim_time`` so that a run can go faster than real time.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from builtin_interfaces.msg import Time
+from geometry_msgs.msg import Twist
+from nav_msgs.msg import Odometry
+from rosgraph_msgs.msg import Clock
+from sensor_msgs.msg import LaserScan
+
+from ..grid.occupancy import OccupancyGrid
+from ..robots import Compass, WheelEncoders, make_robot
+from ..sensors import Lidar
+from ..sim.plant import Plant
+from ..sim.scene import Scene, load_scene_world
+from .base import DEFAULT_QOS, SCAN_QOS, NavlabNode, Param, node_main
+from .convert import odometry_msg, scan_to_msg, twist_from_msg
+
+try:  # no PyPI wheel exists for tf2_msgs; a sourced ROS installation has it
+    from geometry_msgs.msg import TransformStamped
+    from tf2_msgs.msg import TFMessage
+except ImportError:  # pragma: no cover - depends on the installation
+    TFMessage = None
+
+
+def time_msg(t: float) -> Time:
+    sec = math.floor(t)
+    return Time(sec=int(sec), nanosec=int(round((t - sec) * 1e9)) % 1_000_000_000)
+
+
+class SimNode(NavlabNode):
+    PARAMETERS = (
+        Param("world", "", "map_server YAML, Moving AI .map, world YAML or built-in scene name"),
+        Param("robot", "diff", "diff (TurtleBot3 Burger) or omni3 (seed 004's three-wheel omni)"),
+        Param("x", math.nan, "start x (m); default: the world's start (maps have none)"),
+        Param("y", math.nan, "start y (m)"),
+        Param("yaw", 0.0, "start heading (rad)"),
+        Param("dt", 0.02, "simulation step (s); /odom is published every step"),
+        Param("real_time_factor", 1.0, "simulated seconds per wall-clock second"),
+        Param("scan_rate", 10.0, "LiDAR scans per simulated second (0: no /scan)"),
+        Param("lidar_beams", 360, "readings per scan"),
+        Param("lidar_range_max", 12.0, "LiDAR range (m)"),
+        Param("noisy", False, "seed 004 noise: RPLiDAR A1 ranges, 2% wheel speed noise, 1% slip, 1° compass"),
+        Param("cmd_vel_timeout", 0.5, "stop when /cmd_vel is older than this (simulated s; 0: never)"),
+        Param("seed", 0, "random seed of the noise"),
+        Param("publish_clock", True, "publish /clock (the other nodes then use use_sim_time)"),
+        Param("odom_frame", "odom", "frame of /odom"),
+        Param("base_frame", "base_link", "the robot's frame (/odom child, /scan frame)"),
+    )
+
+    def __init__(self, **kwargs) -> None:
+        super().__init__("sim", **kwargs)
+        p = self.params
+        if not p["world"]:
+            raise ValueError("sim needs a world: -p world:=maze.yaml (a map, world file or scene name)")
+        for name in ("dt", "real_time_factor"):
+            if not (p[name] > 0 and math.isfinite(p[name])):
+                raise ValueError(f"{name} must be positive, got {p[name]!r}")
+        world = load_scene_world(p["world"])
+        self.robot = make_robot(p["robot"])
+        start = (p["x"], p["y"], p["yaw"])
+        if math.isnan(p["x"]) or math.isnan(p["y"]):
+            if isinstance(world, OccupancyGrid):
+                raise ValueError("a map has no start of its own: set -p x:=... -p y:=...")
+            start = (*world.start, p["yaw"])
+        self.scene = Scene(world, self.robot.radius)
+        if not self.scene.free(start):
+            raise ValueError(f"the robot cannot start there: {self.scene.describe(start)}")
+        noisy = p["noisy"]
+        self.plant = Plant(self.scene, self.robot, start,
+                           WheelEncoders(noise=0.02 if noisy else 0.0, slip=0.01 if noisy else 0.0),
+                           Compass(noise_deg=1.0) if noisy else None)
+        self.lidar = Lidar(beams=p["lidar_beams"], range_max=p["lidar_range_max"],
+                           noise="rplidar_a1" if noisy else None)
+        self.rng = np.random.default_rng(p["seed"])
+        self.dt = p["dt"]
+        self.scan_every = max(1, round(1.0 / (p["scan_rate"] * self.dt))) if p["scan_rate"] > 0 else 0
+        self.steps, self.t = 0, 0.0
+        self.command, self.command_t = (0.0, 0.0, 0.0), -math.inf
+        self.in_contact = False
+        self.odom_pub = self.create_publisher(Odometry, "odom", DEFAULT_QOS)
+        self.truth_pub = self.create_publisher(Odometry, "ground_truth", DEFAULT_QOS)
+        self.scan_pub = self.create_publisher(LaserScan, "scan", SCAN_QOS) if self.scan_every else None
+        self.clock_pub = self.create_publisher(Clock, "clock", DEFAULT_QOS) if p["publish_clock"] else None
+        self.tf_pub = self.create_publisher(TFMessage, "tf", DEFAULT_QOS) if TFMessage is not None else None
+        if self.tf_pub is None:
+            self.log("warn", "tf2_msgs is not installed (there is no PyPI wheel): odom → base_link is not "
+                             "published on /tf; /odom carries the same pose")
+        self.create_subscription(Twist, "cmd_vel", self.on_cmd_vel, DEFAULT_QOS)
+        self.publish_state()
+        self.steady_timer(self.dt / p["real_time_factor"], self.step)
+        self.log("info", f"{p['robot']} robot in {p['world']} at ({start[0]:g}, {start[1]:g}, {start[2]:g}), "
+                         f"step {self.dt:g} s, {p['real_time_factor']:g}x real time")
+
+    def on_cmd_vel(self, msg) -> None:
+        try:
+            self.command = twist_from_msg(msg)
+        except ValueError as exc:
+            self.log("error", f"ignoring /cmd_vel: {exc}")
+            return
+        self.command_t = self.t
+
+    def step(self) -> None:
+        timeout = self.params["cmd_vel_timeout"]
+        stale = timeout > 0 and self.t - self.command_t > timeout
+        vx, vy, omega = (0.0, 0.0, 0.0) if stale else self.command
+        before = self.plant.pose.copy()
+        if self.plant.step(vx, vy, omega, self.dt, self.rng):
+            # the robot pushes against the obstacle and stays put; the wheels turn
+            self.plant.pose = before
+            if not self.in_contact:
+                self.log("error", f"collision at t = {self.t + self.dt:.2f} s: {self.scene.describe(before)}")
+            self.in_contact = True
+        else:
+            self.in_contact = False
+        self.steps += 1
+        self.t = self.steps * self.dt
+        self.publish_state()
+
+    def publish_state(self) -> None:
+        stamp = time_msg(self.t)
+        if self.clock_pub is not None:
+            self.clock_pub.publish(Clock(clock=stamp))
+        p = self.params
+        twist = self.plant.last_twist
+        odom = self.plant.odometry.pose
+        self.odom_pub.publish(odometry_msg(odom, twist, p["odom_frame"], p["base_frame"], stamp))
+        self.truth_pub.publish(odometry_msg(self.plant.pose, twist, "map", p["base_frame"], stamp))
+        if self.scan_pub is not None and self.steps % self.scan_every == 0:
+            ranges = self.lidar.scan(self.scene.world, self.plant.pose, self.rng)
+            self.scan_pub.publish(scan_to_msg(ranges, self.lidar, p["base_frame"], stamp,
+                                              scan_time=self.scan_every * self.dt))
+        if self.tf_pub is not None:  # pragma: no cover - needs tf2_msgs
+            tf = TransformStamped()
+            tf.header.stamp, tf.header.frame_id, tf.child_frame_id = stamp, p["odom_frame"], p["base_frame"]
+            tf.transform.translation.x, tf.transform.translation.y = float(odom[0]), float(odom[1])
+            msg = odometry_msg(odom, twist)
+            tf.transform.rotation = msg.pose.pose.orientation
+            self.tf_pub.publish(TFMessage(transforms=[tf]))
+
+
+main = node_main(SimNode)
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,129 @@
+"""``navlab ros``: the ROS 2 nodes, a one-command demo and bag recording
+(the ``ros2`` extra)."""
+
+from __future__ import annotations
+
+import json
+import sys
+
+import click
+
+from .ros.launch import NODES
+
+ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
+
+
+def _require_rclpy() -> None:
+    try:
+        import rclpy  # noqa: F401
+    except ImportError as exc:
+        raise click.ClickException(f"{ROS_HINT} ({exc})") from None
+
+
+@click.group("ros")
+def ros_group() -> None:
+    """ROS 2 nodes: map_server, sim, astar_pathplanner, goto_waypoint,
+    potential_field_navigator; `navlab ros demo` runs a whole pipeline.
+
+    Run a node with ROS arguments, e.g.
+
+      navlab ros map_server --ros-args -p yaml_filename:=maze.yaml
+
+    Each node is also a console script (navlab-map-server, navlab-sim, ...).
+    `navlab ros NODE --help` lists its parameters.
+    """
+
+
+class NodeCommand(click.Command):
+    """A node as a subcommand: everything after the name goes to ROS; the
+    help lists the node's parameters (which needs rclpy)."""
+
+    def __init__(self, node: str) -> None:
+        super().__init__(node, callback=self.run, add_help_option=True,
+                         context_settings={"ignore_unknown_options": True, "allow_extra_args": True,
+                                           "help_option_names": ["-h", "--help"]},
+                         help=f"Run the {node} node (ROS arguments follow: --ros-args -p NAME:=VALUE).",
+                         short_help=f"Run the {node} node.")
+        self.node = node
+
+    def format_help_text(self, ctx, formatter) -> None:
+        super().format_help_text(ctx, formatter)
+        try:
+            from .ros.base import parameter_help
+            from .ros.launch import node_class
+
+            cls = node_class(self.node)
+            text = (cls.__module__ and sys.modules[cls.__module__].__doc__ or "").strip()
+            formatter.write_paragraph()
+            formatter.write_text(text)
+            formatter.write_paragraph()
+            formatter.write_text("Parameters:")
+            formatter.write(parameter_help(cls.PARAMETERS) + "\n")
+        except ImportError:
+            formatter.write_paragraph()
+            formatter.write_text(ROS_HINT)
+
+    def run(self) -> None:
+        _require_rclpy()
+        from .ros.base import run_node
+        from .ros.launch import node_class
+
+        ctx = click.get_current_context()
+        sys.exit(run_node(node_class(self.node), [f"navlab-{self.node}", *ctx.args]))
+
+
+for _node in NODES:
+    ros_group.add_command(NodeCommand(_node))
+
+
+@ros_group.command("demo")
+@click.option("--map", "--world", "world", default=None,
+              help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "
+                   "diff, the one_obstacle scene for omni3.")
+@click.option("--robot", type=click.Choice(["diff", "omni3"]), default="diff", show_default=True,
+              help="diff: map_server + sim + astar_pathplanner + goto_waypoint; omni3: sim + "
+                   "potential_field_navigator.")
+@click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")
+@click.option("--yaw", type=float, default=0.0, show_default=True, help="Start heading (rad).")
+@click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal (m); maps need one.")
+@click.option("--maze-size", type=click.IntRange(min=2), default=8, show_default=True,
+              help="Cells per side of the generated maze (when no --map is given).")
+@click.option("--real-time-factor", "--rtf", type=click.FloatRange(min=0, min_open=True), default=5.0,
+              show_default=True, help="Simulated seconds per wall-clock second.")
+@click.option("--processes", is_flag=True, help="Run each node in its own process (as a real system does).")
+@click.option("--record", type=click.Path(file_okay=False), default=None,
+              help="Record every topic to this new rosbag2 (MCAP) directory.")
+@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=600.0, show_default=True,
+              help="Simulated-time budget after the goal is sent (s).")
+@click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=300.0, show_default=True,
+              help="Wall-clock limit (s).")
+@click.option("--log-dir", type=click.Path(file_okay=False), default=None,
+              help="With --processes: one log file per node here.")
+@click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
+def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, processes, record, max_time, timeout,
+             log_dir, as_json) -> None:
+    """Drive a simulated robot to a goal through the ROS 2 nodes, in one
+    command, and judge the run from /odom.
+
+    Exit status 0 when the robot stopped within 0.1 m of the goal, 1 otherwise.
+    """
+    _require_rclpy()
+    from .ros.demo import run_demo
+
+    summary = run_demo(world, robot, None if start is None else (*start, yaw), goal, maze_size=maze_size,
+                       real_time_factor=real_time_factor, processes=processes, record=record,
+                       max_time=max_time, timeout=timeout, log_dir=log_dir)
+    if as_json:
+        click.echo(json.dumps(summary))
+    else:
+        click.echo(f"{summary['status']}" + (f": {summary['reason']}" if summary["reason"] else ""))
+        click.echo(f"  goal {summary['goal']}, odometry {summary['error_odom_m'] * 1000:.0f} mm and true pose "
+                   f"{summary['error_true_m'] * 1000:.0f} mm from it")
+        click.echo(f"  {summary['sim_time_s']:.1f} s simulated in {summary['wall_time_s']:.1f} s, "
+                   f"travelled {summary['travelled_m']:.2f} m"
+                   + (f", plan {summary['plan_length_m']:.2f} m" if summary["plan_length_m"] else ""))
+        for line in summary["warnings"]:
+            click.echo(f"  {line}")
+        if "recorded" in summary:
+            click.echo(f"  recorded to {summary['recorded']['path']}: {summary['recorded']['messages']}")
+    sys.exit(0 if summary["status"] == "REACHED" else 1)

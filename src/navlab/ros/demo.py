@@ -184,13 +184,18 @@ class Mission(NavlabNode):
 
     def send_goal_when_heard(self) -> None:
         # the goal goes out once the robot is heard and someone listens for it
-        if self.sent_at is None and self.odom is not None and self.goal_pub.get_subscription_count() > 0:
+        if self.sent_at is None and self.odom is not None and self.goal_listeners():
             msg = PoseStamped()
             msg.header.frame_id = "map"
             msg.header.stamp = self.get_clock().now().to_msg()
             msg.pose = pose_msg(self.goal[0], self.goal[1], 0.0)
             self.goal_pub.publish(msg)
             self.sent_at = self.t
+
+    def goal_listeners(self) -> List[str]:
+        """The nodes that act on goals (a bag recorder does not count)."""
+        return [info.node_name for info in self.get_subscriptions_info_by_topic("/goal_pose")
+                if info.node_name != "navlab_recorder"]
 
     def on_odom(self, msg) -> None:
         self.odom = np.array(pose_from_msg(msg.pose.pose))

@@ -36,6 +36,9 @@ class PotentialFieldNavigator(DriveNode):
         self.waiting_logged = False
         self.create_subscription(PoseStamped, "goal_pose", self.on_goal, DEFAULT_QOS)
         self.create_subscription(LaserScan, "scan", self.on_scan, SCAN_QOS)
+        # load the compiled scan-to-points kernel now (0.3 s), not in the first
+        # control step, where the delay would look like a stall to the field
+        scan_points_from_msg(LaserScan(angle_increment=0.1, range_max=1.0, ranges=[0.5, 0.5]), (0.0, 0.0, 0.0))
 
     def on_goal(self, msg) -> None:
         goal = pose_from_msg(msg.pose)[:2]

@@ -1,0 +1,5 @@
+"""``python -m navlab``: the navlab command."""
+
+from .cli import main
+
+main()

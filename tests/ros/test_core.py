@@ -1,0 +1,146 @@
+"""The ROS nodes' decisions, without ROS: planning on request, driving on
+odometry, and every bad input the nodes must survive."""
+
+import math
+
+import numpy as np
+import pytest
+
+from navlab.control import GotoWaypoint, PotentialField
+from navlab.grid import OccupancyGrid, line_of_sight
+from navlab.ros.core import STOP, Drive, GoalPlanner
+
+
+class Logbook(list):
+    def __call__(self, level, text):
+        self.append((level, text))
+
+    def levels(self):
+        return [level for level, _ in self]
+
+
+def room():
+    """4 × 3 m at 0.1 m with a wall x ∈ [2.0, 2.1) from y = 0 to 2.0 (a gap above)."""
+    blocked = np.zeros((30, 40), bool)
+    blocked[0:20, 20] = True
+    return OccupancyGrid(blocked, 0.1, (0.0, 0.0, 0.0))
+
+
+def test_goal_before_map_and_pose_is_kept_and_planned_when_both_arrive():
+    log = Logbook()
+    planner = GoalPlanner(log, inflation_radius=0.2)
+    assert planner.set_goal((3.5, 0.5)) is None
+    assert "kept until a map" in log[-1][1]
+    assert planner.set_map(room()) is None  # still no pose
+    path = planner.set_pose((0.5, 0.5, 0.0))
+    assert path is not None and "planning the kept goal" in " ".join(t for _, t in log)
+    assert tuple(path[0]) == (0.5, 0.5) and tuple(path[-1]) == (3.5, 0.5)
+    # it goes round the wall through the gap, and each leg keeps 0.2 m from it
+    assert path[:, 1].max() > 2.0
+    inflated = room().inflate(0.2)
+    cells = room().world_to_cell(path)
+    assert all(line_of_sight(inflated, a, b) for a, b in zip(cells[:-1], cells[1:]))
+    assert planner.pending is None and planner.set_pose((0.6, 0.5, 0.0)) is None  # planned once
+
+
+def test_goal_without_pose_waits_for_odometry():
+    log = Logbook()
+    planner = GoalPlanner(log)
+    planner.set_map(room())
+    assert planner.set_goal((3.5, 0.5)) is None and "/odom" in log[-1][1]
+    assert planner.set_pose((0.5, 0.5, 0.0)) is not None
+
+
+@pytest.mark.parametrize("goal, why", [
+    ((9.0, 1.0), "outside the map"),
+    ((-0.01, 1.0), "outside the map"),
+    ((2.05, 1.0), "in an obstacle"),
+    ((2.25, 1.0), "closer to an obstacle than the inflation radius 0.2"),
+    ((math.nan, 1.0), "not a finite position"),
+])
+def test_bad_goals_give_an_error_and_no_path(goal, why):
+    log = Logbook()
+    planner = GoalPlanner(log, inflation_radius=0.2)
+    planner.set_map(room())
+    planner.set_pose((0.5, 0.5, 0.0))
+    assert planner.set_goal(goal) is None
+    assert log[-1][0] == "error" and why in log[-1][1]
+    assert planner.pending is None
+
+
+def test_unreachable_goal_and_unknown_space():
+    grid = room()
+    grid.blocked[20:30, 20] = True  # close the gap
+    log = Logbook()
+    planner = GoalPlanner(log, inflation_radius=0.0)
+    planner.set_map(grid)
+    planner.set_pose((0.5, 0.5, 0.0))
+    assert planner.set_goal((3.5, 0.5)) is None and "FAILED" in log[-1][1]
+    unknown = np.zeros_like(grid.blocked)
+    unknown[5, 30] = True
+    planner.set_map(OccupancyGrid(room().blocked, 0.1, (0.0, 0.0, 0.0), unknown))
+    assert planner.set_goal((3.05, 0.55)) is None and "unknown space" in log[-1][1]
+
+
+def test_start_in_an_obstacle_is_an_error():
+    log = Logbook()
+    planner = GoalPlanner(log, inflation_radius=0.2)
+    planner.set_map(room())
+    planner.set_pose((2.05, 0.5, 0.0))
+    assert planner.set_goal((3.5, 0.5)) is None and "the start" in log[-1][1] and log[-1][0] == "error"
+
+
+def test_bad_planner_settings_are_refused():
+    with pytest.raises(ValueError, match="connectivity"):
+        GoalPlanner(Logbook(), connectivity=6)
+    with pytest.raises(ValueError, match="inflation_radius"):
+        GoalPlanner(Logbook(), inflation_radius=-1.0)
+    with pytest.raises(Exception, match="unknown grid algorithm"):
+        GoalPlanner(Logbook(), algorithm="astra")
+
+
+def test_drive_follows_then_stops_once_at_the_goal():
+    log = Logbook()
+    drive = Drive(GotoWaypoint(), log, odom_timeout=0.5)
+    assert drive.on_odom(0.0, (0.0, 0.0, 0.0), now=0.0) is None  # idle: no command
+    drive.set_target((1.0, 0.0), np.array([[0.0, 0.0], [1.0, 0.0]]))
+    vx, vy, omega = drive.on_odom(0.1, (0.0, 0.0, 0.0), now=0.1)
+    assert vx > 0 and vy == 0 and omega == pytest.approx(0.0)
+    assert drive.on_odom(5.0, (0.99, 0.0, 0.0), now=5.0) == STOP
+    assert "goal reached" in log[-1][1]
+    assert drive.on_odom(5.1, (0.99, 0.0, 0.0), now=5.1) is None and drive.watchdog(99.0) is None
+
+
+def test_drive_stops_the_robot_when_odometry_is_lost_and_resumes():
+    log = Logbook()
+    drive = Drive(GotoWaypoint(), log, odom_timeout=0.5)
+    drive.set_target((5.0, 0.0), np.array([[0.0, 0.0], [5.0, 0.0]]))
+    assert drive.on_odom(0.0, (0.0, 0.0, 0.0), now=10.0)[0] > 0
+    assert drive.watchdog(10.4) is None
+    assert drive.watchdog(10.6) == STOP and log[-1][0] == "warn" and "no odometry" in log[-1][1]
+    assert drive.watchdog(10.8) == STOP and log.levels().count("warn") == 1  # repeated stop, one warning
+    assert drive.on_odom(0.1, (0.0, 0.0, 0.0), now=11.0)[0] > 0 and "back" in log[-1][1]
+
+
+def test_empty_path_stops_a_moving_robot_and_hold_stands_still():
+    log = Logbook()
+    drive = Drive(PotentialField(), log)
+    assert drive.set_target(None, np.zeros((0, 2))) is None  # idle already: nothing to stop
+    drive.set_target((3.0, 0.0))
+    assert drive.hold(now=1.0) == STOP and drive.active
+    assert drive.set_target(None, np.zeros((0, 2))) == STOP and not drive.active
+    assert "empty path" in log[-1][1]
+
+
+def test_drive_reports_a_stall():
+    log = Logbook()
+    drive = Drive(PotentialField(stall_window=1.0), log)
+    drive.set_target((3.0, 0.0))
+    for i in range(40):
+        out = drive.on_odom(0.1 * i, (0.0, 0.0, 0.0), now=0.1 * i)
+    assert out is None and not drive.active and any("no progress" in t for _, t in log)
+
+
+def test_bad_drive_settings():
+    with pytest.raises(ValueError, match="odom_timeout"):
+        Drive(GotoWaypoint(), Logbook(), odom_timeout=0.0)

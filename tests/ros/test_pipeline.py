@@ -1,0 +1,84 @@
+"""End to end on real ROS 2: every node in its own process, in a private
+network namespace; the mission is judged from /odom and the recorded bag."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+pytest.importorskip("rclpy", reason="rclpy cannot be imported: the ros2 extra is not installed")
+
+from ros_helpers import navlab_cmd, run_isolated  # noqa: E402
+from scipy.ndimage import distance_transform_edt  # noqa: E402
+
+from navlab.grid import load_map, make_maze, maze_cell_center, save_map  # noqa: E402
+from navlab.robots import make_robot  # noqa: E402
+from navlab.world import SCENES  # noqa: E402
+
+
+def read_bag(path, topic):
+    """(stamps in s, messages) of one topic, read back with rosbags alone."""
+    from rosbags.rosbag2 import Reader
+    from rosbags.typesys import Stores, get_typestore
+
+    store = get_typestore(Stores.ROS2_KILTED)
+    with Reader(path) as reader:
+        conns = [c for c in reader.connections if c.topic == topic]
+        rows = [(t * 1e-9, store.deserialize_cdr(raw, c.msgtype)) for c, t, raw in reader.messages(connections=conns)]
+    return rows
+
+
+def run_demo(args, timeout=240):
+    proc = run_isolated(navlab_cmd("ros", "demo", "--processes", "--json", *args), timeout)
+    assert proc.stdout.strip(), f"no summary; exit {proc.returncode}\n{proc.stderr[-4000:]}"
+    summary = json.loads(proc.stdout.strip().splitlines()[-1])
+    return proc, summary
+
+
+def test_diff_drive_crosses_a_maze(tmp_path):
+    size, cell, wall = 5, 0.6, 0.1
+    grid = make_maze(size, size, seed=7, cell_size=cell, wall=wall, resolution=0.05)
+    save_map(grid, tmp_path / "maze.yaml")
+    start = maze_cell_center(0, 0, cell, wall)
+    goal = maze_cell_center(size - 1, size - 1, cell, wall)
+    bag = tmp_path / "bag"
+    proc, s = run_demo(["--map", str(tmp_path / "maze.yaml"), "--start", *map(str, start), "--goal", *map(str, goal),
+                        "--rtf", "10", "--max-time", "120", "--record", str(bag), "--log-dir", str(tmp_path / "logs")])
+    logs = "\n".join(p.read_text() for p in (tmp_path / "logs").glob("*.log"))
+    assert s["status"] == "REACHED", f"{s}\n{logs[-4000:]}"
+    assert proc.returncode == 0
+    assert s["error_odom_m"] < 0.1 and s["error_true_m"] < 0.1
+    assert s["plans"] == 1 and s["plan_length_m"] >= math.dist(start, goal)
+    assert s["sim_time_s"] < 120
+    # the trajectory, from the bag: never within the robot's radius of a wall
+    # (checked on the map file with scipy's distance transform, not navlab's collision code)
+    truth = np.array([[m.pose.pose.position.x, m.pose.pose.position.y] for _, m in read_bag(bag, "/ground_truth")])
+    the_map = load_map(tmp_path / "maze.yaml")
+    clearance = distance_transform_edt(~the_map.blocked) * the_map.resolution - the_map.resolution / 2 * math.sqrt(2)
+    cells = np.floor(truth / the_map.resolution).astype(int)
+    assert clearance[cells[:, 1], cells[:, 0]].min() >= make_robot("diff").radius - 0.05
+    assert np.linalg.norm(truth[-1] - goal) < 0.1
+    # the bag holds the whole conversation, stamped in simulated time
+    plan = read_bag(bag, "/plan")
+    assert len(plan) == 1 and len(read_bag(bag, "/map")) == 1 and len(read_bag(bag, "/goal_pose")) == 1
+    cmd = read_bag(bag, "/cmd_vel")
+    assert cmd[-1][1].linear.x == 0 and cmd[-1][1].angular.z == 0  # it stopped at the end
+    stamps = [t for t, _ in read_bag(bag, "/odom")]
+    (sent, goal_msg), = read_bag(bag, "/goal_pose")
+    assert stamps == sorted(stamps) and stamps[-1] - sent == pytest.approx(s["sim_time_s"], abs=0.5)
+
+
+def test_omni_robot_passes_one_obstacle_on_the_potential_field(tmp_path):
+    bag = tmp_path / "bag"
+    proc, s = run_demo(["--robot", "omni3", "--rtf", "10", "--max-time", "60", "--record", str(bag)])
+    assert s["status"] == "REACHED", f"{s}\n{proc.stderr[-4000:]}"
+    world = SCENES.get("one_obstacle")()
+    assert s["goal"] == list(world.goal) and s["error_true_m"] < 0.1
+    truth = np.array([[m.pose.pose.position.x, m.pose.pose.position.y] for _, m in read_bag(bag, "/ground_truth")])
+    (obstacle,) = world.obstacles
+    gap = np.linalg.norm(truth - obstacle.center, axis=1) - obstacle.radius
+    assert gap.min() >= make_robot("omni3").radius  # it went round, never touching
+    assert truth[:, 1].max() - truth[:, 1].min() > 0.1  # and it had to swerve to do so
+    scans = read_bag(bag, "/scan")
+    assert len(scans) > 10 and len(scans[0][1].ranges) == 360

@@ -53,11 +53,13 @@ class NodeCommand(click.Command):
             from .ros.launch import node_class
 
             cls = node_class(self.node)
-            text = (cls.__module__ and sys.modules[cls.__module__].__doc__ or "").strip()
+            text = (sys.modules[cls.__module__].__doc__ or "").strip().replace("``", "")
+            with formatter.indentation():
+                for paragraph in text.split("\n\n"):
+                    formatter.write_paragraph()
+                    formatter.write_text(" ".join(paragraph.split()))
             formatter.write_paragraph()
-            formatter.write_text(text)
-            formatter.write_paragraph()
-            formatter.write_text("Parameters:")
+            formatter.write_text("Parameters (--ros-args -p NAME:=VALUE):")
             formatter.write(parameter_help(cls.PARAMETERS) + "\n")
         except ImportError:
             formatter.write_paragraph()

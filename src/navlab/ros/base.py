@@ -63,7 +63,14 @@ class NavlabNode(Node):
             self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
 
     def log(self, level: str, text: str) -> None:
-        getattr(self.get_logger(), level)(text)
+        # one call site per severity: rclpy refuses a call site whose severity changes
+        logger = self.get_logger()
+        if level == "error":
+            logger.error(text)
+        elif level == "warn":
+            logger.warning(text)
+        else:
+            logger.info(text)
 
     def steady_timer(self, period: float, callback: Callable[[], None]):
         """A timer on the monotonic clock: it keeps firing when simulated

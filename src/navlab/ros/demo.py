@@ -192,10 +192,12 @@ class Mission(NavlabNode):
             self.goal_pub.publish(msg)
             self.sent_at = self.t
 
-    def goal_listeners(self) -> List[str]:
-        """The nodes that act on goals (a bag recorder does not count)."""
-        return [info.node_name for info in self.get_subscriptions_info_by_topic("/goal_pose")
-                if info.node_name != "navlab_recorder"]
+    def goal_listeners(self) -> bool:
+        """Whether a node that acts on goals listens (a bag recorder does not
+        count), and the publisher is matched to every discovered listener (a
+        goal sent before the match would be lost)."""
+        names = [info.node_name for info in self.get_subscriptions_info_by_topic("/goal_pose")]
+        return any(n != "navlab_recorder" for n in names) and self.goal_pub.get_subscription_count() >= len(names)
 
     def on_odom(self, msg) -> None:
         self.odom = np.array(pose_from_msg(msg.pose.pose))

@@ -1,0 +1,85 @@
+"""The nodes against bad input over real ROS 2 topics (bad_input_scenario.py,
+run in a private network namespace), and the node commands' own errors."""
+
+import json
+import sys
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("rclpy", reason="rclpy cannot be imported: the ros2 extra is not installed")
+
+from ros_helpers import navlab_cmd, run_isolated  # noqa: E402
+
+SCENARIO = Path(__file__).with_name("bad_input_scenario.py")
+ERROR, WARN, INFO = 40, 30, 20
+
+
+@pytest.fixture(scope="module")
+def seen(tmp_path_factory):
+    proc = run_isolated([sys.executable, str(SCENARIO), str(tmp_path_factory.mktemp("scenario"))], timeout=120)
+    assert proc.returncode == 0, proc.stderr[-4000:]
+    return json.loads(proc.stdout.strip().splitlines()[-1])
+
+
+def texts(logs, level):
+    return " | ".join(text for lvl, text in logs if lvl == level)
+
+
+def test_goal_before_the_map_is_kept_and_planned_when_it_arrives(seen):
+    assert seen["plans_before_map"] == 0
+    assert "kept until a map arrives" in texts(seen["goal_before_map_logs"], INFO)
+    assert seen["plan_after_map"]
+    points = seen["plan_points"]
+    assert points[0] == [0.5, 0.5] and points[-1] == [3.5, 0.5]
+    assert max(y for _, y in points) > 2.0  # round the wall
+
+
+def test_goals_outside_the_map_or_in_an_obstacle_give_an_error_and_no_path(seen):
+    assert seen["goal_outside_plans"] == 0 and "outside the map" in texts(seen["goal_outside_logs"], ERROR)
+    assert seen["goal_obstacle_plans"] == 0 and "in an obstacle" in texts(seen["goal_obstacle_logs"], ERROR)
+
+
+def test_malformed_maps_are_refused_and_the_planner_keeps_working(seen):
+    assert "expected 40x30" in texts(seen["map_short_logs"], ERROR)
+    assert "empty map" in texts(seen["map_empty_logs"], ERROR)
+    assert seen["plans_after_bad_maps"]
+
+
+def test_follower_stops_the_robot_when_odometry_is_lost(seen):
+    assert seen["commands_while_odom"] > 0
+    assert seen["stops_after_odom_loss"] >= 1 and seen["moves_after_odom_loss"] == 0
+    assert "no odometry" in texts(seen["odom_loss_logs"], WARN)
+
+
+def test_follower_stops_on_an_empty_plan_and_refuses_a_nan_plan(seen):
+    assert seen["empty_plan_stops"] >= 1
+    assert "empty path" in texts(seen["plan_logs"], WARN)
+    assert "non-finite" in texts(seen["plan_logs"], ERROR)
+
+
+def test_sim_refuses_a_nan_command_and_times_out_a_stale_one(seen):
+    assert "non-finite velocity command" in texts(seen["sim_logs"], ERROR)
+    x, y = seen["sim_moved_to"]
+    assert x == pytest.approx(0.5 + 0.2 * 0.5, abs=0.03) and y == pytest.approx(0.5, abs=1e-6)
+    assert seen["sim_final_speed"] == 0.0
+
+
+@pytest.mark.parametrize("args, message", [
+    (["ros", "map_server"], "needs a map"),
+    (["ros", "map_server", "--ros-args", "-p", "yaml_filename:=/nonexistent/map.yaml"], "nonexistent"),
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "dt:=fast"], "parameter dt must be float"),
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "x:=6", "-p", "y:=3.2"], "cannot start there"),
+    (["ros", "astar_pathplanner", "--ros-args", "-p", "algorithm:=astra"], "Did you mean 'astar'"),
+    (["ros", "demo", "--robot", "diff", "--map", "trap"], "plans on a map"),
+])
+def test_node_commands_refuse_bad_settings_in_one_line(args, message):
+    proc = run_isolated(navlab_cmd(*args), timeout=60)
+    assert proc.returncode == 2, proc.stderr
+    assert message in proc.stderr and "Traceback" not in proc.stderr
+
+
+def test_node_help_lists_parameters():
+    proc = run_isolated(navlab_cmd("ros", "sim", "--help"), timeout=60)
+    assert proc.returncode == 0
+    assert "real_time_factor (default 1.0)" in proc.stdout and "/cmd_vel" in proc.stdout

@@ -47,6 +47,7 @@ def test_goal_without_pose_waits_for_odometry():
     log = Logbook()
     planner = GoalPlanner(log)
     planner.set_map(room())
+    assert planner.set_pose((math.nan, 0.5, 0.0)) is None and log[-1][0] == "error" and planner.pose is None
     assert planner.set_goal((3.5, 0.5)) is None and "/odom" in log[-1][1]
     assert planner.set_pose((0.5, 0.5, 0.0)) is not None
 

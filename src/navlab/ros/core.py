@@ -68,7 +68,11 @@ class GoalPlanner:
         return self._plan_pending()
 
     def set_pose(self, pose) -> Optional[np.ndarray]:
-        self.pose = np.asarray(pose, float)[:2]
+        pose = np.asarray(pose, float)[:2]
+        if not np.all(np.isfinite(pose)):
+            self.log("error", f"pose {pose.tolist()} is not a finite position: ignored")
+            return None
+        self.pose = pose
         return self._plan_pending()
 
     def set_goal(self, goal) -> Optional[np.ndarray]:

@@ -28,7 +28,7 @@ from geometry_msgs.msg import PoseStamped, Twist
 from nav_msgs.msg import Odometry
 from nav_msgs.msg import Path as PathMsg
 from rcl_interfaces.msg import Log
-from rclpy.executors import SingleThreadedExecutor
+from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.parameter import Parameter
 
 from .base import DEFAULT_QOS, NavlabNode
@@ -137,7 +137,11 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
         wall0 = time.monotonic()
         with launcher or contextlib.nullcontext():
             while not mission.done:
-                executor.spin_once(timeout_sec=0.05)
+                try:
+                    executor.spin_once(timeout_sec=0.05)
+                except (KeyboardInterrupt, ExternalShutdownException):
+                    mission.finish("interrupted")
+                    break
                 wall = time.monotonic() - wall0
                 if launcher is not None and launcher.failed():
                     mission.finish("node exited: " + ", ".join(f"{n} (status {c})" for n, c in launcher.failed()))

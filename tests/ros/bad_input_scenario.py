@@ -14,6 +14,7 @@ from geometry_msgs.msg import PoseStamped, Twist
 from nav_msgs.msg import OccupancyGrid as GridMsg
 from nav_msgs.msg import Odometry, Path
 from rcl_interfaces.msg import Log
+from sensor_msgs.msg import LaserScan
 from rclpy.executors import SingleThreadedExecutor
 from rclpy.node import Node
 from rclpy.parameter import Parameter
@@ -23,6 +24,7 @@ from navlab.ros import convert as C
 from navlab.ros.astar_pathplanner import AStarPathPlanner
 from navlab.ros.base import MAP_QOS
 from navlab.ros.goto_waypoint import GotoWaypointNode
+from navlab.ros.potential_field_navigator import PotentialFieldNavigator
 from navlab.ros.sim import SimNode
 
 
@@ -39,6 +41,11 @@ class Probe(Node):
         self.odom_pub = self.create_publisher(Odometry, "odom", 10)
         self.plan_pub = self.create_publisher(Path, "plan", 10)
         self.cmd_pub = self.create_publisher(Twist, "sim_cmd_vel", 10)
+        self.nav_cmds = []
+        self.create_subscription(Twist, "nav_cmd_vel", self.nav_cmds.append, 10)
+        self.nav_goal_pub = self.create_publisher(PoseStamped, "nav_goal_pose", 10)
+        self.nav_odom_pub = self.create_publisher(Odometry, "nav_odom", 10)
+        self.nav_scan_pub = self.create_publisher(LaserScan, "nav_scan", 10)
 
     def goal(self, x, y):
         msg = PoseStamped()
@@ -56,6 +63,12 @@ def room():
     return OccupancyGrid(blocked, 0.1, (0.0, 0.0, 0.0))
 
 
+def navlab_lidar():
+    from navlab.sensors import Lidar
+
+    return Lidar()
+
+
 def main(workdir):
     rclpy.init()
     out = {}
@@ -69,8 +82,11 @@ def main(workdir):
                                        Parameter("publish_clock", value=False)],
                   cli_args=["--ros-args", "-r", "cmd_vel:=sim_cmd_vel", "-r", "odom:=sim_odom",
                             "-r", "ground_truth:=sim_truth"])
+    navigator = PotentialFieldNavigator(cli_args=["--ros-args", "-r", "goal_pose:=nav_goal_pose", "-r",
+                                                  "odom:=nav_odom", "-r", "scan:=nav_scan", "-r",
+                                                  "cmd_vel:=nav_cmd_vel"])
     probe = Probe()
-    for node in (planner, follower, sim, probe):
+    for node in (planner, follower, sim, navigator, probe):
         ex.add_node(node)
 
     def spin(seconds, until=None):
@@ -154,8 +170,33 @@ def main(workdir):
     last = probe.odoms[-1].pose.pose.position
     out["sim_moved_to"] = [last.x, last.y]
     out["sim_final_speed"] = probe.odoms[-1].twist.twist.linear.x
+    # 7. the navigator: with a goal but no scan it stands still; an empty scan is refused;
+    #    with a scan it drives; a goal at NaN is refused
+    connected(probe.nav_goal_pub)
+    connected(probe.nav_scan_pub)
+    n = len(probe.logs)
+    msg = PoseStamped()
+    msg.pose = C.pose_msg(3.0, 0.0, 0.0)
+    probe.nav_goal_pub.publish(msg)
+    spin(0.2)
+    for _ in range(3):
+        probe.nav_odom_pub.publish(odom)
+        spin(0.05)
+    out["nav_blind_commands"] = [[c.linear.x, c.linear.y, c.angular.z] for c in probe.nav_cmds]
+    probe.nav_scan_pub.publish(LaserScan())
+    spin(0.2)
+    probe.nav_scan_pub.publish(C.scan_to_msg(np.full(360, np.inf), navlab_lidar()))
+    spin(0.2)
+    probe.nav_odom_pub.publish(odom)
+    spin(0.3)
+    out["nav_seeing_command"] = [probe.nav_cmds[-1].linear.x, probe.nav_cmds[-1].linear.y]
+    nan_goal = PoseStamped()
+    nan_goal.pose.position.x = math.nan
+    probe.nav_goal_pub.publish(nan_goal)
+    spin(0.2)
+    out["nav_logs"] = probe.logs_since(n, "potential_field_navigator")
     print(json.dumps(out))
-    for node in (planner, follower, sim, probe):
+    for node in (planner, follower, sim, navigator, probe):
         node.destroy_node()
     rclpy.try_shutdown()
 

@@ -65,6 +65,15 @@ def test_sim_refuses_a_nan_command_and_times_out_a_stale_one(seen):
     assert seen["sim_final_speed"] == 0.0
 
 
+def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
+    assert seen["nav_blind_commands"] and all(c == [0.0, 0.0, 0.0] for c in seen["nav_blind_commands"])
+    warnings = texts(seen["nav_logs"], WARN)
+    assert "no recent /scan" in warnings and "empty /scan" in warnings
+    # nothing in sight: straight from (0.5, 0.5) at the goal (3, 0), at the 0.3 m/s limit
+    assert seen["nav_seeing_command"] == pytest.approx([0.3 * 2.5 / 6.5 ** 0.5, -0.3 * 0.5 / 6.5 ** 0.5], abs=1e-9)
+    assert "non-finite" in texts(seen["nav_logs"], ERROR)
+
+
 @pytest.mark.parametrize("args, message", [
     (["ros", "map_server"], "needs a map"),
     (["ros", "map_server", "--ros-args", "-p", "yaml_filename:=/nonexistent/map.yaml"], "nonexistent"),

@@ -180,7 +180,7 @@ class Mission(NavlabNode):
         self.sent_at: Optional[float] = None
         self.plans: List[np.ndarray] = []
         self.stopped = True
-        self.moved = False
+        self.commanded = False
         self.travelled = 0.0
         self.logs: List[str] = []
         self.done, self.reached, self.reason = False, False, ""
@@ -208,7 +208,7 @@ class Mission(NavlabNode):
         self.t = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
         if self.sent_at is None or self.done:
             return
-        if self.moved and self.stopped and self.error("odom") < self.tolerance:
+        if self.commanded and self.stopped and self.error("odom") < self.tolerance:
             self.finish("", reached=True)
         elif self.t - self.sent_at > self.max_time:
             self.finish(f"goal not reached in {self.max_time:g} s of simulated time")
@@ -224,7 +224,8 @@ class Mission(NavlabNode):
 
     def on_cmd(self, msg) -> None:
         self.stopped = msg.linear.x == 0 and msg.linear.y == 0 and msg.angular.z == 0
-        self.moved = self.moved or not self.stopped
+        # a driver has answered the goal (a goal at the start is answered by a stop alone)
+        self.commanded = self.commanded or self.sent_at is not None
 
     def on_log(self, msg) -> None:
         if msg.level >= Log.WARN and msg.name != self.get_name():

@@ -79,6 +79,8 @@ class NodeProcesses:
             cmd = [sys.executable, "-m", NODES[name][0], *ros_args(params)]
             self.procs.append((name, subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT if out else None,
                                                       env=os.environ.copy())))
+            if out is not None:
+                out.close()  # the child holds its own copy
         return self
 
     def failed(self) -> List[Tuple[str, int]]:

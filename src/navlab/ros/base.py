@@ -15,6 +15,8 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 
+from .convert import stamp_seconds
+
 #: /map is latched: late subscribers get the last map (as nav2's map_server).
 MAP_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE)
 #: /scan as drivers publish it (best effort, keep the latest few).
@@ -83,7 +85,7 @@ class NavlabNode(Node):
 
     def stamp_seconds(self, stamp) -> float:
         """A header stamp in seconds; the node's clock when the stamp is zero."""
-        t = stamp.sec + 1e-9 * stamp.nanosec
+        t = stamp_seconds(stamp)
         return t if t > 0 else self.get_clock().now().nanoseconds * 1e-9
 
 

@@ -176,5 +176,13 @@ def twist_from_msg(msg) -> Tuple[float, float, float]:
     return values
 
 
+def time_msg(t: float):
+    """builtin_interfaces/Time of ``t`` seconds."""
+    from builtin_interfaces.msg import Time
+
+    ns = int(round(t * 1e9))
+    return Time(sec=ns // 1_000_000_000, nanosec=ns % 1_000_000_000)
+
+
 def stamp_seconds(stamp) -> Optional[float]:
     return stamp.sec + 1e-9 * stamp.nanosec if stamp is not None else None

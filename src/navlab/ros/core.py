@@ -27,6 +27,14 @@ def _xy(p) -> str:
     return f"({p[0]:.3f}, {p[1]:.3f})"
 
 
+def finite(values, what: str, log: Log) -> bool:
+    """Whether every value is finite; if not, an error naming ``what``."""
+    if np.all(np.isfinite(np.asarray(values, float))):
+        return True
+    log("error", f"ignoring {what} with non-finite values: not a finite position")
+    return False
+
+
 class GoalPlanner:
     """Plans a path from the latest pose to each goal on the latest map
     (seed 002's A* path planner).
@@ -68,17 +76,14 @@ class GoalPlanner:
         return self._plan_pending()
 
     def set_pose(self, pose) -> Optional[np.ndarray]:
-        pose = np.asarray(pose, float)[:2]
-        if not np.all(np.isfinite(pose)):
-            self.log("error", f"pose {pose.tolist()} is not a finite position: ignored")
+        if not finite(pose, "a pose", self.log):
             return None
-        self.pose = pose
+        self.pose = np.asarray(pose, float)[:2]
         return self._plan_pending()
 
     def set_goal(self, goal) -> Optional[np.ndarray]:
         goal = np.asarray(goal, float)[:2]
-        if not np.all(np.isfinite(goal)):
-            self.log("error", f"goal {goal.tolist()} is not a finite position: ignored")
+        if not finite(goal, "a goal", self.log):
             return None
         if self.grid is None or self.pose is None:
             self.pending = goal
@@ -150,6 +155,8 @@ class Drive:
     def set_target(self, goal, path=None) -> Optional[Twist]:
         """Start driving to ``goal`` (along ``path`` for path followers). An
         empty path stops the robot."""
+        if not finite(goal if path is None else path, "a goal" if path is None else "a path", self.log):
+            return None
         if path is not None and len(path) == 0:
             was_active, self.active = self.active, False
             self.log("warn", "empty path: stopping")

@@ -32,7 +32,7 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.parameter import Parameter
 
 from .base import DEFAULT_QOS, NavlabNode
-from .convert import path_from_msg, pose_from_msg, pose_msg
+from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
 from .launch import NodeProcesses, node_class
 
 #: seed 002's maze geometry: 0.6 m cells, 0.1 m walls (0.5 m corridors)
@@ -205,7 +205,7 @@ class Mission(NavlabNode):
 
     def on_odom(self, msg) -> None:
         self.odom = np.array(pose_from_msg(msg.pose.pose))
-        self.t = msg.header.stamp.sec + 1e-9 * msg.header.stamp.nanosec
+        self.t = stamp_seconds(msg.header.stamp)
         if self.sent_at is None or self.done:
             return
         if self.commanded and self.stopped and self.error("odom") < self.tolerance:

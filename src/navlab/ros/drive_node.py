@@ -4,15 +4,13 @@ and a watchdog that stops the robot when odometry goes quiet."""
 
 from __future__ import annotations
 
-import math
-
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 
 from ..control import make_controller
 from .base import DEFAULT_QOS, NavlabNode, Param
 from .convert import pose_from_msg, twist_msg
-from .core import Drive
+from .core import Drive, finite
 
 ODOM_TIMEOUT = Param("odom_timeout", 0.5, "stop the robot when /odom is silent this long (wall-clock s)")
 
@@ -37,8 +35,7 @@ class DriveNode(NavlabNode):
 
     def on_odom(self, msg) -> None:
         pose = pose_from_msg(msg.pose.pose)
-        if not all(math.isfinite(v) for v in pose):
-            self.log("error", f"ignoring /odom with a non-finite pose {pose}")
+        if not finite(pose, "an /odom pose", self.log):
             return
         t = self.stamp_seconds(msg.header.stamp)
         points = self.points(pose) if self.drive.active else None

@@ -4,7 +4,6 @@ angular.z) until the last pose is reached, then zero velocity."""
 
 from __future__ import annotations
 
-import numpy as np
 from nav_msgs.msg import Path
 
 from .base import DEFAULT_QOS, Param, node_main
@@ -32,9 +31,6 @@ class GotoWaypointNode(DriveNode):
             path = path_from_msg(msg)
         except (ValueError, TypeError) as exc:
             self.log("error", f"ignoring a malformed /plan: {exc}")
-            return
-        if not np.isfinite(path).all():
-            self.log("error", "ignoring a /plan with non-finite positions")
             return
         self.send(self.drive.set_target(path[-1] if len(path) else None, path))
 

@@ -41,11 +41,7 @@ class PotentialFieldNavigator(DriveNode):
         scan_points_from_msg(LaserScan(angle_increment=0.1, range_max=1.0, ranges=[0.5, 0.5]), (0.0, 0.0, 0.0))
 
     def on_goal(self, msg) -> None:
-        goal = pose_from_msg(msg.pose)[:2]
-        if not all(math.isfinite(v) for v in goal):
-            self.log("error", f"ignoring a goal with a non-finite position {goal}")
-            return
-        self.send(self.drive.set_target(goal))
+        self.send(self.drive.set_target(pose_from_msg(msg.pose)[:2]))
 
     def on_scan(self, msg) -> None:
         if len(msg.ranges) == 0:

@@ -15,7 +15,6 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from builtin_interfaces.msg import Time
 from geometry_msgs.msg import Twist
 from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
@@ -27,18 +26,13 @@ from ..sensors import Lidar
 from ..sim.plant import Plant
 from ..sim.scene import Scene, load_scene_world
 from .base import DEFAULT_QOS, SCAN_QOS, NavlabNode, Param, node_main
-from .convert import odometry_msg, scan_to_msg, twist_from_msg
+from .convert import odometry_msg, scan_to_msg, time_msg, twist_from_msg, yaw_to_quaternion
 
 try:  # no PyPI wheel exists for tf2_msgs; a sourced ROS installation has it
     from geometry_msgs.msg import TransformStamped
     from tf2_msgs.msg import TFMessage
 except ImportError:  # pragma: no cover - depends on the installation
     TFMessage = None
-
-
-def time_msg(t: float) -> Time:
-    sec = math.floor(t)
-    return Time(sec=int(sec), nanosec=int(round((t - sec) * 1e9)) % 1_000_000_000)
 
 
 class SimNode(NavlabNode):
@@ -147,8 +141,8 @@ class SimNode(NavlabNode):
             tf = TransformStamped()
             tf.header.stamp, tf.header.frame_id, tf.child_frame_id = stamp, p["odom_frame"], p["base_frame"]
             tf.transform.translation.x, tf.transform.translation.y = float(odom[0]), float(odom[1])
-            msg = odometry_msg(odom, twist)
-            tf.transform.rotation = msg.pose.pose.orientation
+            r = tf.transform.rotation
+            r.x, r.y, r.z, r.w = yaw_to_quaternion(float(odom[2]))
             self.tf_pub.publish(TFMessage(transforms=[tf]))
 
 

@@ -63,3 +63,40 @@ def test_twists_and_odometry():
     odom = C.odometry_msg((1.0, 2.0, 0.5), (0.2, 0.0, 0.1))
     assert C.pose_from_msg(odom.pose.pose) == pytest.approx((1.0, 2.0, 0.5))
     assert odom.child_frame_id == "base_link"
+
+
+def test_transform_places_the_child_frame_at_the_pose():
+    msg = C.transform_msg((1.5, -2.0, 2.5), "odom", "base_link", C.time_msg(3.25))
+    t, r = msg.transform.translation, msg.transform.rotation
+    assert (msg.header.frame_id, msg.child_frame_id) == ("odom", "base_link")
+    assert (t.x, t.y, t.z) == (1.5, -2.0, 0.0) and C.stamp_seconds(msg.header.stamp) == 3.25
+    assert (r.x, r.y) == (0.0, 0.0) and (r.z, r.w) == pytest.approx((math.sin(1.25), math.cos(1.25)))
+
+
+def test_the_built_tf_message_is_kilted_tf2_msgs_on_the_wire():
+    """ros_interfaces/tf2_msgs must be the same type as ROS 2 Kilted's
+    tf2_msgs/TFMessage: the same type hash and the same CDR bytes, checked
+    against rosbags' own copy of the Kilted definitions."""
+    TFMessage = C.tf_message_type()
+    if TFMessage is None:
+        pytest.skip("tf2_msgs is not installed: pip install ./ros_interfaces/tf2_msgs")
+    import json
+    from pathlib import Path
+
+    import tf2_msgs
+    from rclpy.serialization import serialize_message
+    from rosbags.typesys import Stores, get_typestore
+
+    store = get_typestore(Stores.ROS2_KILTED)
+    prefix = Path(tf2_msgs.__file__).parents[4]  # <prefix>/lib/pythonX.Y/site-packages/tf2_msgs/__init__.py
+    description = json.loads((prefix / "share" / "tf2_msgs" / "msg" / "TFMessage.json").read_text())
+    built = {h["type_name"]: h["hash_string"] for h in description["type_hashes"]}
+    assert built["tf2_msgs/msg/TFMessage"] == store.hash_rihs01("tf2_msgs/msg/TFMessage")
+    msg = TFMessage(transforms=[C.transform_msg((1.0, 2.0, 0.5), "odom", "base_link", C.time_msg(7.5)),
+                                C.transform_msg((0.0, 0.0, 0.0), "map", "odom")])
+    back = store.deserialize_cdr(bytes(serialize_message(msg)), "tf2_msgs/msg/TFMessage")
+    assert [(t.header.frame_id, t.child_frame_id) for t in back.transforms] == [("odom", "base_link"), ("map", "odom")]
+    first = back.transforms[0]
+    assert (first.header.stamp.sec, first.header.stamp.nanosec) == (7, 500_000_000)
+    assert (first.transform.translation.x, first.transform.translation.y) == (1.0, 2.0)
+    assert first.transform.rotation.z == pytest.approx(math.sin(0.25))

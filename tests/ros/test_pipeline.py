@@ -36,7 +36,10 @@ def run_demo(args, timeout=240):
     return proc, summary
 
 
-def test_diff_drive_crosses_a_maze(tmp_path):
+@pytest.fixture(scope="module")
+def maze_run(tmp_path_factory):
+    """The diff-drive demo across a generated 5×5 maze, recorded to a bag."""
+    tmp_path = tmp_path_factory.mktemp("maze")
     size, cell, wall = 5, 0.6, 0.1
     grid = make_maze(size, size, seed=7, cell_size=cell, wall=wall, resolution=0.05)
     save_map(grid, tmp_path / "maze.yaml")
@@ -46,6 +49,11 @@ def test_diff_drive_crosses_a_maze(tmp_path):
     proc, s = run_demo(["--map", str(tmp_path / "maze.yaml"), "--start", *map(str, start), "--goal", *map(str, goal),
                         "--rtf", "10", "--max-time", "120", "--record", str(bag), "--log-dir", str(tmp_path / "logs")])
     logs = "\n".join(p.read_text() for p in (tmp_path / "logs").glob("*.log"))
+    return tmp_path, start, goal, bag, proc, s, logs
+
+
+def test_diff_drive_crosses_a_maze(maze_run):
+    tmp_path, start, goal, bag, proc, s, logs = maze_run
     assert s["status"] == "REACHED", f"{s}\n{logs[-4000:]}"
     assert proc.returncode == 0
     assert s["error_odom_m"] < 0.1 and s["error_true_m"] < 0.1
@@ -67,6 +75,38 @@ def test_diff_drive_crosses_a_maze(tmp_path):
     stamps = [t for t, _ in read_bag(bag, "/odom")]
     (sent, goal_msg), = read_bag(bag, "/goal_pose")
     assert stamps == sorted(stamps) and stamps[-1] - sent == pytest.approx(s["sim_time_s"], abs=0.5)
+    # nothing lost: once recording starts, every 20 ms step of /odom is in the bag
+    steps = [round(m.header.stamp.sec * 50 + m.header.stamp.nanosec / 2e7) for _, m in read_bag(bag, "/odom")]
+    assert steps == list(range(steps[0], steps[0] + len(steps)))
+
+
+def test_tf_carries_the_odometry_pose(maze_run):
+    """/tf holds odom → base_link at every /odom stamp, with /odom's pose;
+    /tf_static holds the identity map → odom once (read back from the bag)."""
+    from navlab.ros.convert import tf_message_type
+
+    if tf_message_type() is None:
+        pytest.skip("tf2_msgs is not installed: pip install ./ros_interfaces/tf2_msgs")
+    *_, bag, proc, s, logs = maze_run
+    assert s["status"] == "REACHED", f"{s}\n{logs[-4000:]}"
+    def key(stamp):
+        return stamp.sec, stamp.nanosec
+
+    odom = {key(m.header.stamp): m.pose.pose for _, m in read_bag(bag, "/odom")}
+    tf = {key(m.transforms[0].header.stamp): m.transforms for _, m in read_bag(bag, "/tf")}
+    # the two streams start and end within a step of each other in the bag
+    assert len(tf.keys() & odom.keys()) >= max(len(tf), len(odom)) - 2 > 100
+    for stamp in tf.keys() & odom.keys():
+        (transform,), pose = tf[stamp], odom[stamp]
+        assert (transform.header.frame_id, transform.child_frame_id) == ("odom", "base_link")
+        t = transform.transform.translation
+        assert (t.x, t.y, t.z) == (pose.position.x, pose.position.y, 0.0)
+        assert transform.transform.rotation == pose.orientation
+    (_, static), = read_bag(bag, "/tf_static")
+    (identity,) = static.transforms
+    assert (identity.header.frame_id, identity.child_frame_id) == ("map", "odom")
+    t, r = identity.transform.translation, identity.transform.rotation
+    assert (t.x, t.y, t.z, r.x, r.y, r.z, r.w) == (0, 0, 0, 0, 0, 0, 1)
 
 
 def test_omni_robot_passes_one_obstacle_on_the_potential_field(tmp_path):

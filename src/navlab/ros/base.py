@@ -23,6 +23,11 @@ MAP_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, relia
 SCAN_QOS = qos_profile_sensor_data
 #: /odom, /cmd_vel, /plan, /goal_pose
 DEFAULT_QOS = 10
+#: the sim's 50 Hz streams (/odom, /ground_truth, /tf, /clock) on the writer
+#: side: a reliable reader that falls behind for a moment (a bag recorder
+#: sharing the CPU with a sim at 10x real time) gets the missed samples
+#: resent from this history instead of losing them.
+STREAM_QOS = 200
 
 
 class Param(NamedTuple):

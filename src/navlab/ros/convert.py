@@ -161,6 +161,34 @@ def odometry_msg(pose, twist, frame_id: str = "odom", child_frame_id: str = "bas
     return msg
 
 
+def transform_msg(pose, frame_id: str = "odom", child_frame_id: str = "base_link", stamp=None):
+    """geometry_msgs/TransformStamped placing ``child_frame_id`` at the planar
+    pose (x, y, yaw) in ``frame_id``: the message tf2 reads from ``/tf``."""
+    from geometry_msgs.msg import TransformStamped
+
+    msg = TransformStamped()
+    msg.header.frame_id, msg.child_frame_id = frame_id, child_frame_id
+    if stamp is not None:
+        msg.header.stamp = stamp
+    msg.transform.translation.x, msg.transform.translation.y = float(pose[0]), float(pose[1])
+    r = msg.transform.rotation
+    r.x, r.y, r.z, r.w = yaw_to_quaternion(float(pose[2]))
+    return msg
+
+
+def tf_message_type():
+    """The tf2_msgs/TFMessage class, or None where tf2_msgs is not installed.
+
+    PyPI has no tf2_msgs wheel; ``pip install ./ros_interfaces/tf2_msgs`` (in
+    this repository) builds one against the pinned ROS 2 wheels.
+    """
+    try:
+        from tf2_msgs.msg import TFMessage
+    except ImportError:
+        return None
+    return TFMessage
+
+
 def twist_msg(vx: float, vy: float, omega: float):
     from geometry_msgs.msg import Twist
 

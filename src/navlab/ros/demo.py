@@ -151,7 +151,12 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
                     progress(mission)
         summary = mission.summary()
         summary["wall_time_s"] = time.monotonic() - wall0
+        for node in nodes:  # the node processes have stopped too: nothing more is published
+            executor.remove_node(node)
+            node.destroy_node()
+        nodes.clear()
         if recorder is not None:
+            _drain(executor, recorder)
             summary["recorded"] = {"path": str(recorder.path), "messages": dict(recorder.counts)}
         return summary
     finally:
@@ -160,6 +165,24 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
         for node in nodes:
             node.destroy_node()
         rclpy.try_shutdown()
+
+
+def _drain(executor, recorder, quiet: float = 0.3, limit: float = 10.0) -> None:
+    """Spin until the recorder has written the messages still queued for it
+    (it may lag behind a fast simulation): until nothing new arrives for
+    ``quiet`` seconds, or at most ``limit`` seconds."""
+    written, idle_since = sum(recorder.counts.values()), time.monotonic()
+    end = idle_since + limit
+    try:
+        while time.monotonic() < end:
+            executor.spin_once(timeout_sec=quiet / 5)
+            now, total = time.monotonic(), sum(recorder.counts.values())
+            if total != written:
+                written, idle_since = total, now
+            elif now - idle_since >= quiet:
+                return
+    except (KeyboardInterrupt, ExternalShutdownException):
+        return
 
 
 class Mission(NavlabNode):

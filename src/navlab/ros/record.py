@@ -3,6 +3,8 @@ for Foxglove Studio or ``ros2 bag play``/RViz."""
 
 from __future__ import annotations
 
+import copy
+
 from pathlib import Path
 from typing import Dict, Sequence, Tuple
 
@@ -13,6 +15,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
 from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, NavlabNode
+from .convert import tf_message_type
 
 #: the navlab pipeline's topics: message class and subscription QoS
 TOPICS: Dict[str, Tuple[type, object]] = {
@@ -25,6 +28,40 @@ TOPICS: Dict[str, Tuple[type, object]] = {
     "/scan": (LaserScan, SCAN_QOS),
     "/clock": (Clock, DEFAULT_QOS),
 }
+if tf_message_type() is not None:
+    TOPICS.update({"/tf": (tf_message_type(), DEFAULT_QOS), "/tf_static": (tf_message_type(), MAP_QOS)})
+
+
+def offered_qos(qos) -> tuple:
+    """The publisher QoS to store with a topic in the bag, so that ``ros2 bag
+    play`` replays latched topics (``/map``, ``/tf_static``) transient-local;
+    empty (the player's default) for a plain history depth."""
+    from rclpy.qos import QoSProfile
+    from rosbags.interfaces import Qos, QosDurability, QosHistory, QosLiveliness, QosReliability, QosTime
+
+    if not isinstance(qos, QoSProfile):
+        return ()
+    unset = QosTime(0, 0)
+    return (Qos(QosHistory[qos.history.name], qos.depth, QosReliability[qos.reliability.name],
+                QosDurability[qos.durability.name], unset, unset, QosLiveliness[qos.liveliness.name], unset,
+                False),)
+
+
+#: the recorder's history depth: room for the backlog of a recorder that
+#: shares the CPU with a simulator running many times faster than real time
+RECORD_DEPTH = 2000
+
+
+def recording_qos(qos):
+    """``qos`` (a profile or a depth) with the recorder's deep history, so
+    that a busy recorder falls behind instead of losing messages."""
+    from rclpy.qos import QoSProfile
+
+    if not isinstance(qos, QoSProfile):
+        return QoSProfile(depth=max(qos, RECORD_DEPTH))
+    deep = copy.copy(qos)
+    deep.depth = max(qos.depth, RECORD_DEPTH)
+    return deep
 
 
 def ros_type_name(msg_class: type) -> str:
@@ -53,9 +90,11 @@ class BagRecorder(NavlabNode):
         self.path, self.counts = Path(path), {}
         for topic in topics:
             msg_class, qos = TOPICS[topic]
-            connection = self.writer.add_connection(topic, ros_type_name(msg_class), typestore=typestore)
+            connection = self.writer.add_connection(topic, ros_type_name(msg_class), typestore=typestore,
+                                                    offered_qos_profiles=offered_qos(qos))
             self.counts[topic] = 0
-            self.create_subscription(msg_class, topic, self._writer_for(topic, connection), qos, raw=True)
+            self.create_subscription(msg_class, topic, self._writer_for(topic, connection), recording_qos(qos),
+                                     raw=True)
 
     def _writer_for(self, topic: str, connection):
         def write(data: bytes) -> None:

@@ -1,11 +1,11 @@
 """``sim``, the Gazebo stand-in: navlab's simulated robot in a map or world
 file, driven by ``/cmd_vel``; publishes ``/odom`` (encoder odometry),
-``/scan``, ``/clock``, ``/ground_truth`` (the true pose) and, when the
-``tf2_msgs`` package is available, the ``odom → base_link`` transform on
-``/tf``.
+``/scan``, ``/clock``, ``/ground_truth`` (the true pose) and, with
+``tf2_msgs`` installed, the ``odom → base_link`` transform on ``/tf``.
 
 The odometry frame starts at the robot's true start pose in the map frame,
-so ``map → odom`` is the identity. Steps run on a wall-clock timer at
+so ``map → odom`` is the identity; the node publishes it once on
+``/tf_static`` so that RViz can show the scan and the robot on the map. Steps run on a wall-clock timer at
 ``real_time_factor`` times real time; the other nodes follow ``/clock``
 with ``use_sim_time`` so that a run can go faster than real time.
 """
@@ -25,14 +25,8 @@ from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
 from ..sim.plant import Plant
 from ..sim.scene import Scene, load_scene_world
-from .base import DEFAULT_QOS, SCAN_QOS, NavlabNode, Param, node_main
-from .convert import odometry_msg, scan_to_msg, time_msg, twist_from_msg, yaw_to_quaternion
-
-try:  # no PyPI wheel exists for tf2_msgs; a sourced ROS installation has it
-    from geometry_msgs.msg import TransformStamped
-    from tf2_msgs.msg import TFMessage
-except ImportError:  # pragma: no cover - depends on the installation
-    TFMessage = None
+from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, STREAM_QOS, NavlabNode, Param, node_main
+from .convert import odometry_msg, scan_to_msg, tf_message_type, time_msg, transform_msg, twist_from_msg
 
 
 class SimNode(NavlabNode):
@@ -53,6 +47,8 @@ class SimNode(NavlabNode):
         Param("publish_clock", True, "publish /clock (the other nodes then use use_sim_time)"),
         Param("odom_frame", "odom", "frame of /odom"),
         Param("base_frame", "base_link", "the robot's frame (/odom child, /scan frame)"),
+        Param("static_map_odom", True, "publish the identity map → odom transform on /tf_static "
+                                       "(turn off when a localiser publishes map → odom)"),
     )
 
     def __init__(self, **kwargs) -> None:
@@ -85,14 +81,19 @@ class SimNode(NavlabNode):
         self.steps, self.t = 0, 0.0
         self.command, self.command_t = (0.0, 0.0, 0.0), -math.inf
         self.in_contact = False
-        self.odom_pub = self.create_publisher(Odometry, "odom", DEFAULT_QOS)
-        self.truth_pub = self.create_publisher(Odometry, "ground_truth", DEFAULT_QOS)
+        self.odom_pub = self.create_publisher(Odometry, "odom", STREAM_QOS)
+        self.truth_pub = self.create_publisher(Odometry, "ground_truth", STREAM_QOS)
         self.scan_pub = self.create_publisher(LaserScan, "scan", SCAN_QOS) if self.scan_every else None
-        self.clock_pub = self.create_publisher(Clock, "clock", DEFAULT_QOS) if p["publish_clock"] else None
-        self.tf_pub = self.create_publisher(TFMessage, "tf", DEFAULT_QOS) if TFMessage is not None else None
+        self.clock_pub = self.create_publisher(Clock, "clock", STREAM_QOS) if p["publish_clock"] else None
+        self.tf_type = tf_message_type()
+        self.tf_pub = self.create_publisher(self.tf_type, "tf", STREAM_QOS) if self.tf_type else None
         if self.tf_pub is None:
-            self.log("warn", "tf2_msgs is not installed (there is no PyPI wheel): odom → base_link is not "
-                             "published on /tf; /odom carries the same pose")
+            self.log("warn", "tf2_msgs is not installed (pip install ./ros_interfaces/tf2_msgs builds it): "
+                             "odom → base_link is not published on /tf; /odom carries the same pose")
+        elif p["static_map_odom"]:
+            self.tf_static_pub = self.create_publisher(self.tf_type, "tf_static", MAP_QOS)
+            self.tf_static_pub.publish(self.tf_type(transforms=[
+                transform_msg((0.0, 0.0, 0.0), "map", p["odom_frame"], time_msg(self.t))]))
         self.create_subscription(Twist, "cmd_vel", self.on_cmd_vel, DEFAULT_QOS)
         self.publish_state()
         self.steady_timer(self.dt / p["real_time_factor"], self.step)
@@ -137,13 +138,8 @@ class SimNode(NavlabNode):
             ranges = self.lidar.scan(self.scene.world, self.plant.pose, self.rng)
             self.scan_pub.publish(scan_to_msg(ranges, self.lidar, p["base_frame"], stamp,
                                               scan_time=self.scan_every * self.dt))
-        if self.tf_pub is not None:  # pragma: no cover - needs tf2_msgs
-            tf = TransformStamped()
-            tf.header.stamp, tf.header.frame_id, tf.child_frame_id = stamp, p["odom_frame"], p["base_frame"]
-            tf.transform.translation.x, tf.transform.translation.y = float(odom[0]), float(odom[1])
-            r = tf.transform.rotation
-            r.x, r.y, r.z, r.w = yaw_to_quaternion(float(odom[2]))
-            self.tf_pub.publish(TFMessage(transforms=[tf]))
+        if self.tf_pub is not None:
+            self.tf_pub.publish(self.tf_type(transforms=[transform_msg(odom, p["odom_frame"], p["base_frame"], stamp)]))
 
 
 main = node_main(SimNode)

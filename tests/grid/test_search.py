@@ -185,3 +185,20 @@ def test_large_grid_reuses_search_state():
     r2 = plan(grid, (4000, 4000), (4010, 4990), algorithm="jps")
     assert r1.success and r2.success and r2.stats["expanded"] < 100
     assert arrays == [id(a) for a in (grid._cache[("searcher", False)].g, grid._cache[("searcher", False)].mark)]
+
+def test_open_lists_grow_when_full_and_the_query_is_rerun():
+    """An open list or stack that fills up mid-query is grown and the query
+    rerun: the answer is the same optimum as with room to spare."""
+    from navlab.grid.planner import searcher_for
+
+    blocked = np.random.default_rng(3).random((60, 60)) < 0.3
+    blocked[30, :] = blocked[:, 2] = blocked[:, 57] = False
+    for algo in ("astar", "dijkstra", "jps", "theta_star"):
+        roomy = plan(OccupancyGrid(blocked), (2, 5), (57, 55), algorithm=algo)
+        cramped = OccupancyGrid(blocked)
+        s = searcher_for(cramped, False)
+        s.heap, s.stack = s.heap[:2], s.stack[:2]
+        s._pool(3)
+        r = plan(cramped, (2, 5), (57, 55), algorithm=algo)
+        assert roomy.status == r.status == Status.EXACT and np.array_equal(r.cells, roomy.cells)
+        assert s.key.size > 3 and s.stack.size > 2  # it did run out of room

@@ -24,6 +24,7 @@ optimality for fewer expansions), as does weighted A* (cost ≤ weight × optimu
 
 from __future__ import annotations
 
+import functools
 import math
 import time
 from typing import Any, Dict, Tuple
@@ -62,10 +63,20 @@ class GridSearcher:
         self.parent = np.empty(n, dtype=np.int32)
         self.mark = np.zeros(n, dtype=np.int32)
         self.gen = 0
-        # Open list and same-f stack; grown (and the query rerun) if one fills up.
-        self.heap = np.empty((min(n + 16, 1 << 16), 2))
-        self.stack = np.empty(min(n + 16, 1 << 16), dtype=np.int64)
+        # Open lists (A*'s radix-heap pool, JPS's heap) and the same-f stack;
+        # grown (and the query rerun) if one fills up.
+        room = min(n + 16, 1 << 16)
+        self.heap = np.empty((room, 2))
+        self.stack = np.empty(room, dtype=np.int64)
         self.dirs = np.zeros((8, 2), dtype=np.int64)
+        self._pool(room)
+
+    def _pool(self, room: int) -> None:
+        self.key = np.empty(room)
+        self.key_bits = self.key.view(np.uint64)
+        self.cell = np.empty(room, dtype=np.int64)
+        self.next = np.empty(room, dtype=np.int64)
+        self.head = np.empty(K.N_BUCKETS + 2, dtype=np.int64)
 
     def index(self, x: int, y: int) -> int:
         return (y + 1) * self.stride + (x + 1)
@@ -80,6 +91,13 @@ class GridSearcher:
     def grow(self) -> None:
         self.heap = np.empty((self.heap.shape[0] * 4, 2))
         self.stack = np.empty(self.stack.shape[0] * 4, dtype=np.int64)
+        self._pool(self.key.size * 4)
+
+
+@functools.lru_cache(maxsize=None)
+def astar_kernel(connectivity: int, hcode: int, any_angle: bool):
+    """The compiled A* variant for these settings (see ``kernels.make_astar``)."""
+    return K.make_astar(connectivity, hcode, any_angle)
 
 
 def searcher_for(grid: OccupancyGrid, allow_unknown: bool) -> GridSearcher:
@@ -195,9 +213,9 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
             status, expanded = K.jps(s.free, s.stride, a, b, s.g, s.parent, s.mark, gen, s.heap, s.stack, s.dirs)
         else:
             code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
-            status, expanded = K.astar(s.free, s.stride, a, b, connectivity, code,
-                                       float(weight) if algorithm == "astar" else 1.0,
-                                       s.g, s.parent, s.mark, gen, s.heap, s.stack, algorithm == "theta_star")
+            kernel = astar_kernel(connectivity, code, algorithm == "theta_star")
+            status, expanded = kernel(s.free, s.stride, a, b, float(weight) if algorithm == "astar" else 1.0,
+                                      s.g, s.parent, s.mark, gen, s.key, s.key_bits, s.cell, s.next, s.head, s.stack)
         if status != K.OVERFLOW:
             break
         s.grow()

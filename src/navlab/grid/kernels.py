@@ -503,46 +503,32 @@ def jps(free, S, start, goal, g, parent, mark, gen, heap, stack, dirs):
 
 
 @njit(cache=True)
-def unwind(parent, goal, S):
-    """Cells (x, y) from start to goal, filling the straight or diagonal runs
-    between jump points so consecutive cells are 8-neighbours."""
+def trace_path(parent, goal, S, fill_runs):
+    """Cells (x, y) from start to goal along the parent chain. With
+    ``fill_runs`` the straight or diagonal runs between jump points are filled
+    in, so consecutive cells are 8-neighbours (A*'s chains are already)."""
     count = 0
-    v = goal
-    while True:
-        count += 1
-        p = parent[v]
-        if p == v:
-            break
-        v = p
-    nodes = np.empty(count, dtype=np.int64)
-    v = goal
-    for k in range(count - 1, -1, -1):
-        nodes[k] = v
-        v = parent[v]
-    return nodes
-
-
-@njit(cache=True)
-def fill_runs(nodes, S):
-    """Expand jump-point chains into cell-by-cell (x, y) paths."""
     total = 1
-    for k in range(1, nodes.shape[0]):
-        a, b = nodes[k - 1], nodes[k]
-        total += max(abs(a % S - b % S), abs(a // S - b // S))
+    v = goal
+    while parent[v] != v:
+        p = parent[v]
+        count += 1
+        total += max(abs(v % S - p % S), abs(v // S - p // S)) if fill_runs else 1
+        v = p
     out = np.empty((total, 2), dtype=np.int64)
-    out[0, 0] = nodes[0] % S - 1
-    out[0, 1] = nodes[0] // S - 1
-    m = 1
-    for k in range(1, nodes.shape[0]):
-        ax, ay = nodes[k - 1] % S, nodes[k - 1] // S
-        bx, by = nodes[k] % S, nodes[k] // S
-        steps = max(abs(bx - ax), abs(by - ay))
-        sx = np.sign(bx - ax)
-        sy = np.sign(by - ay)
-        for s in range(1, steps + 1):
-            out[m, 0] = ax + s * sx - 1
-            out[m, 1] = ay + s * sy - 1
-            m += 1
+    m = total - 1
+    v = goal
+    out[m, 0] = v % S - 1
+    out[m, 1] = v // S - 1
+    for _ in range(count):
+        p = parent[v]
+        vx, vy, px, py = v % S, v // S, p % S, p // S
+        steps = max(abs(vx - px), abs(vy - py)) if fill_runs else 1
+        for k in range(steps - 1, -1, -1):  # the cells from just after p back to p, walking toward the start
+            m -= 1
+            out[m, 0] = px + (vx - px) * k // steps - 1
+            out[m, 1] = py + (vy - py) * k // steps - 1
+        v = p
     return out
 
 

@@ -225,11 +225,7 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         stats["time_s"] = time.perf_counter() - t0
         return Result(status=Status.FAILED, params=params, stats=stats, cells=np.empty((0, 2), dtype=np.int64),
                       reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
-    nodes = K.unwind(s.parent, b, s.stride)
-    if algorithm == "theta_star":
-        cells = np.column_stack((nodes % s.stride - 1, nodes // s.stride - 1))
-    else:
-        cells = K.fill_runs(nodes, s.stride)
+    cells = K.trace_path(s.parent, b, s.stride, algorithm == "jps")
     raw = None
     if smooth and len(cells) > 2:
         raw = cells

@@ -226,7 +226,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     n_moves = 8 if conn == 8 else 4
 
     @njit(cache=True)
-    def astar(free, S, start, goal, weight, g, parent, mark, gen, key, bits, cell, nxt, head, stack):
+    def astar(free, S, start, goal, weight, g, parent, mark, slot, gen, key, bits, cell, nxt, head, stack):
         gx = goal % S
         gy = goal // S
         opened = 2 * gen
@@ -259,20 +259,29 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                     b = 1
                     while head[b] < 0:
                         b += 1
-                    best = n = head[b]
+                    best = -1
+                    n = head[b]
                     while n >= 0:
-                        if key[n] < key[best]:
+                        if cell[n] >= 0 and (best < 0 or key[n] < key[best]):
                             best = n
                         n = nxt[n]
-                    key[0] = key[best]
+                    if best >= 0:
+                        key[0] = key[best]
                     n = head[b]
                     head[b] = -1
                     while n >= 0:
                         after = nxt[n]
-                        to = _bit_length(bits[n] ^ bits[0])
-                        nxt[n] = head[to]
-                        head[to] = n
+                        if cell[n] < 0:  # superseded by a better push: free it
+                            nxt[n] = head[HEAD_FREE]
+                            head[HEAD_FREE] = n
+                            size -= 1
+                        else:
+                            to = _bit_length(bits[n] ^ bits[0])
+                            nxt[n] = head[to]
+                            head[to] = n
                         n = after
+                    if best < 0:
+                        continue
                 n = head[0]
                 head[0] = nxt[n]
                 fcur = key[n]
@@ -280,6 +289,8 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 nxt[n] = head[HEAD_FREE]
                 head[HEAD_FREE] = n
                 size -= 1
+                if u < 0:
+                    continue
             if mark[u] == closed:
                 continue
             mark[u] = closed
@@ -331,15 +342,23 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                         ng = g[pu] + math.sqrt((ux + dx - pux) ** 2 + (uy + dy - puy) ** 2)
                         par = pu
                 if mv != opened or ng < g[v]:
-                    mark[v] = opened
                     g[v] = ng
                     parent[v] = par
                     f = ng + weight * heuristic(hcode, ux + dx, uy + dy, gx, gy)
+                    if mv == opened and slot[v] >= 0:
+                        n = slot[v]
+                        if f > fcur + TIE and _bit_length(bits[n] ^ bits[0]) == _bit_length(
+                                np.float64(f).view(np.uint64) ^ bits[0]):
+                            key[n] = f  # the same bucket: lower the key in place
+                            continue
+                        cell[n] = -1  # dropped when its bucket is next reached
+                    mark[v] = opened
                     if f <= fcur + TIE:
                         if top == cap_stack:
                             return OVERFLOW, expanded
                         stack[top] = v
                         top += 1
+                        slot[v] = -1
                         continue
                     n = head[HEAD_FREE]
                     if n >= 0:
@@ -351,6 +370,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                         return OVERFLOW, expanded
                     key[n] = f
                     cell[n] = v
+                    slot[v] = n
                     to = _bit_length(bits[n] ^ bits[0])
                     nxt[n] = head[to]
                     head[to] = n

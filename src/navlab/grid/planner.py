@@ -62,6 +62,7 @@ class GridSearcher:
         self.g = np.empty(n)
         self.parent = np.empty(n, dtype=np.int32)
         self.mark = np.zeros(n, dtype=np.int32)
+        self.slot = np.empty(n, dtype=np.int32)  # A*: a cell's open-list node
         self.gen = 0
         # Open lists (A*'s radix-heap pool, JPS's heap) and the same-f stack;
         # grown (and the query rerun) if one fills up.
@@ -87,6 +88,23 @@ class GridSearcher:
             self.mark[:] = 0
             self.gen = 1
         return self.gen
+
+    def search(self, algorithm: str, a: int, b: int, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
+        """One query from flat index ``a`` to ``b``, rerun with larger open
+        lists until they suffice: (status, expanded) as the kernels return."""
+        while True:
+            gen = self.next_generation()
+            if algorithm == "jps":
+                status, expanded = K.jps(self.free, self.stride, a, b, self.g, self.parent, self.mark, gen,
+                                         self.heap, self.stack, self.dirs)
+            else:
+                kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
+                status, expanded = kernel(self.free, self.stride, a, b, weight, self.g, self.parent, self.mark,
+                                          self.slot, gen, self.key, self.key_bits, self.cell, self.next, self.head,
+                                          self.stack)
+            if status != K.OVERFLOW:
+                return status, expanded
+            self.grow()
 
     def grow(self) -> None:
         self.heap = np.empty((self.heap.shape[0] * 4, 2))
@@ -206,19 +224,10 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
             kind = "unknown" if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
-    a, b = s.index(*s_cell), s.index(*g_cell)
-    while True:
-        gen = s.next_generation()
-        if algorithm == "jps":
-            status, expanded = K.jps(s.free, s.stride, a, b, s.g, s.parent, s.mark, gen, s.heap, s.stack, s.dirs)
-        else:
-            code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
-            kernel = astar_kernel(connectivity, code, algorithm == "theta_star")
-            status, expanded = kernel(s.free, s.stride, a, b, float(weight) if algorithm == "astar" else 1.0,
-                                      s.g, s.parent, s.mark, gen, s.key, s.key_bits, s.cell, s.next, s.head, s.stack)
-        if status != K.OVERFLOW:
-            break
-        s.grow()
+    code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
+    b = s.index(*g_cell)
+    status, expanded = s.search(algorithm, s.index(*s_cell), b, connectivity, code,
+                                float(weight) if algorithm == "astar" else 1.0)
     found = status == 1
     stats: Dict[str, Any] = {"expanded": int(expanded)}
     if not found:

@@ -191,6 +191,11 @@ def _bit_length(x):
     return 64 - np.int64(leading_zeros(x))
 
 
+#: the eight moves, orthogonal first (tuples: constants in the compiled code)
+MOVES_X = (1, -1, 0, 0, 1, -1, 1, -1)
+MOVES_Y = (0, 0, 1, -1, 1, 1, -1, -1)
+
+
 def make_astar(conn: int, hcode: int, any_angle: bool):
     """A* over padded flat indices, compiled for one connectivity, heuristic
     and any-angle setting (Dijkstra with ``hcode`` 0; Theta* with
@@ -232,8 +237,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
         expanded = 0
         cap_pool = key.shape[0]
         cap_stack = stack.shape[0]
-        DX = np.array([1, -1, 0, 0, 1, -1, 1, -1])
-        DY = np.array([0, 0, 1, -1, 1, 1, -1, -1])
         while size > 0 or top > 0:
             if top > 0:
                 top -= 1
@@ -309,8 +312,8 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                     ok = west and south
                 if not ok:
                     continue
-                dx = DX[k]
-                dy = DY[k]
+                dx = MOVES_X[k]
+                dy = MOVES_Y[k]
                 v = u + dx + dy * S
                 if k >= 4 and free[v] == 0:
                     continue

@@ -4,7 +4,6 @@ for Foxglove Studio or ``ros2 bag play``/RViz."""
 from __future__ import annotations
 
 import copy
-
 from pathlib import Path
 from typing import Dict, Sequence, Tuple
 

@@ -5,9 +5,10 @@ file, driven by ``/cmd_vel``; publishes ``/odom`` (encoder odometry),
 
 The odometry frame starts at the robot's true start pose in the map frame,
 so ``map → odom`` is the identity; the node publishes it once on
-``/tf_static`` so that RViz can show the scan and the robot on the map. Steps run on a wall-clock timer at
-``real_time_factor`` times real time; the other nodes follow ``/clock``
-with ``use_sim_time`` so that a run can go faster than real time.
+``/tf_static`` so that RViz can show the scan and the robot on the map.
+Steps run on a wall-clock timer at ``real_time_factor`` times real time; the
+other nodes follow ``/clock`` with ``use_sim_time`` so that a run can go
+faster than real time.
 """
 
 from __future__ import annotations

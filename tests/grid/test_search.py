@@ -186,6 +186,7 @@ def test_large_grid_reuses_search_state():
     assert r1.success and r2.success and r2.stats["expanded"] < 100
     assert arrays == [id(a) for a in (grid._cache[("searcher", False)].g, grid._cache[("searcher", False)].mark)]
 
+
 def test_open_lists_grow_when_full_and_the_query_is_rerun():
     """An open list or stack that fills up mid-query is grown and the query
     rerun: the answer is the same optimum as with room to spare."""

@@ -89,6 +89,7 @@ def test_tf_carries_the_odometry_pose(maze_run):
         pytest.skip("tf2_msgs is not installed: pip install ./ros_interfaces/tf2_msgs")
     *_, bag, proc, s, logs = maze_run
     assert s["status"] == "REACHED", f"{s}\n{logs[-4000:]}"
+
     def key(stamp):
         return stamp.sec, stamp.nanosec
 

@@ -179,7 +179,10 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 # singly linked lists of pool nodes. Popping from an empty bucket 0 finds the
 # minimum of the lowest non-empty bucket and redistributes that bucket into
 # lower ones. On maze512 this is ~15% faster than the 4-ary heap: a push is
-# O(1), and each node moves about five times before it is popped.
+# O(1), and each node moves about five times before it is popped. A better
+# path to an open cell lowers its node's key in place when the bucket stays
+# the same, and otherwise marks the node dead (freed when its bucket is next
+# reached), so stale entries are never popped.
 N_BUCKETS = 65
 HEAD_FREE, HEAD_BUMP = N_BUCKETS, N_BUCKETS + 1  # slots of ``head`` after the buckets
 
@@ -204,10 +207,12 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     variant on disk like any other kernel.
 
     The returned kernel ``astar(free, S, start, goal, weight, g, parent, mark,
-    gen, key, bits, cell, nxt, head, stack)`` uses ``key``/``bits`` (float64
-    and its uint64 view), ``cell`` and ``nxt`` as the open list's node pool
-    (node 0 holds the last minimum), and ``head`` (``N_BUCKETS + 2`` slots)
-    for the buckets and the pool's free list. ``mark[v]`` is ``2·gen`` while
+    slot, gen, key, bits, cell, nxt, head, stack)`` uses ``key``/``bits``
+    (float64 and its uint64 view), ``cell`` and ``nxt`` as the open list's node
+    pool (node 0 holds the last minimum; ``cell`` -1 marks a node superseded
+    by a better push), and ``head`` (``N_BUCKETS + 2`` slots) for the buckets
+    and the pool's free list. ``slot[v]`` is the pool node of open cell v
+    (-1 while v waits on the stack). ``mark[v]`` is ``2·gen`` while
     v is open and ``2·gen + 1`` once closed; anything else means unseen this
     query. Returns (status, expanded) with status 1 found, 0 no path,
     OVERFLOW when the pool or the stack ran out of room.

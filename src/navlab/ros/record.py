@@ -27,8 +27,9 @@ TOPICS: Dict[str, Tuple[type, object]] = {
     "/scan": (LaserScan, SCAN_QOS),
     "/clock": (Clock, DEFAULT_QOS),
 }
-if tf_message_type() is not None:
-    TOPICS.update({"/tf": (tf_message_type(), DEFAULT_QOS), "/tf_static": (tf_message_type(), MAP_QOS)})
+_TF = tf_message_type()
+if _TF is not None:
+    TOPICS.update({"/tf": (_TF, DEFAULT_QOS), "/tf_static": (_TF, MAP_QOS)})
 
 
 def offered_qos(qos) -> tuple:

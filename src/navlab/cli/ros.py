@@ -8,7 +8,7 @@ import sys
 
 import click
 
-from .ros.launch import NODES
+from ..ros.launch import NODES
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -49,8 +49,8 @@ class NodeCommand(click.Command):
     def format_help_text(self, ctx, formatter) -> None:
         super().format_help_text(ctx, formatter)
         try:
-            from .ros.base import parameter_help
-            from .ros.launch import node_class
+            from ..ros.base import parameter_help
+            from ..ros.launch import node_class
 
             cls = node_class(self.node)
             text = (sys.modules[cls.__module__].__doc__ or "").strip().replace("``", "")
@@ -67,8 +67,8 @@ class NodeCommand(click.Command):
 
     def run(self) -> None:
         _require_rclpy()
-        from .ros.base import run_node
-        from .ros.launch import node_class
+        from ..ros.base import run_node
+        from ..ros.launch import node_class
 
         ctx = click.get_current_context()
         sys.exit(run_node(node_class(self.node), [f"navlab-{self.node}", *ctx.args]))
@@ -110,7 +110,7 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
     Exit status 0 when the robot stopped within 0.1 m of the goal, 1 otherwise.
     """
     _require_rclpy()
-    from .ros.demo import run_demo
+    from ..ros.demo import run_demo
 
     summary = run_demo(world, robot, None if start is None else (*start, yaw), goal, maze_size=maze_size,
                        real_time_factor=real_time_factor, processes=processes, record=record,

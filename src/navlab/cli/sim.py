@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from .cli import parse_params
+from .common import parse_params
 
 
 @click.command("sim")
@@ -59,18 +59,18 @@ def sim_cmd(world, robot, controller, start, goal, planner, lidar, robot_params,
         return
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
-    from .sim.runner import simulate
+    from ..sim.runner import simulate
 
     result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
                                         planner=planner, lidar=lidar, robot_params=parse_params(robot_params),
                                         controller_params=parse_params(controller_params), dt=dt,
                                         max_time=max_time, seed=seed)
     if plot:
-        from .viz.sim_plot import plot_run
+        from ..viz.sim_plot import plot_run
 
         plot_run(scene_world, result, plot)
     if gif:
-        from .viz.sim_plot import animate_run
+        from ..viz.sim_plot import animate_run
 
         animate_run(scene_world, result, gif, sim.robot.radius)
     if as_json:
@@ -93,7 +93,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, lidar, robot_params,
 
 
 def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:
-    from .sim.experiments import EXPERIMENTS, seed002_table, seed004_table
+    from ..sim.experiments import EXPERIMENTS, seed002_table, seed004_table
 
     if name == "seed002" and plot_dir is None:
         plot_dir = "sim-results/seed002"

@@ -35,7 +35,7 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivity, weight, smooth, inflate,
               allow_unknown, as_json, plot) -> None:
     """Plan a path on MAP between two cells (x = column, y = row)."""
-    from .grid import load_map, plan, plan_world
+    from ..grid import load_map, plan, plan_world
 
     grid = load_map(map_path)
     if inflate:
@@ -50,7 +50,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
                 raise click.BadParameter(f"cells are integers; use --world for metres, got {v}", param_hint=label)
         result = plan(grid, (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), **kwargs)
     if plot:
-        from .viz.grid_plot import plot_grid_plan
+        from ..viz.grid_plot import plot_grid_plan
 
         raw = result.tree["raw_cells"] if result.tree else None
         plot_grid_plan(grid, result, plot, raw_cells=raw)
@@ -83,7 +83,7 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json) 
     1.414213562) to one unit in the last printed digit; exact lengths are in
     the JSON rows as exact_length.
     """
-    from .grid.scen_runner import run_scenarios
+    from ..grid.scen_runner import run_scenarios
 
     out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every)
     s = out["summary"]
@@ -115,7 +115,7 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json) 
 @click.option("--out", type=click.Path(dir_okay=False), required=True, help="Output map_server YAML (PGM beside it).")
 def grid_maze(cells, seed, cell_size, wall, resolution, out) -> None:
     """Generate a perfect maze as a ROS map_server map (YAML + PGM)."""
-    from .grid import make_maze, save_map
+    from ..grid import make_maze, save_map
 
     grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution)
     image = save_map(grid, out)

@@ -7,7 +7,7 @@ import sys
 import click
 import yaml
 
-from .cli import parse_params
+from .common import parse_params
 
 
 @click.command("bench")
@@ -48,8 +48,8 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
       navlab bench --world trap --planner rrt_star --sampler uniform --sampler gaussian --trials 10
       navlab bench my_study.yaml --executor dask --scheduler tcp://10.0.0.5:8786
     """
-    from .bench import load_experiment, run_experiment
-    from .bench.experiment import experiment_data
+    from ..bench import load_experiment, run_experiment
+    from ..bench.experiment import experiment_data
 
     if experiment and suite:
         raise click.UsageError("give an experiment file or --suite, not both")
@@ -101,7 +101,7 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
 
 
 def _overall(summary) -> list:
-    from .bench.analysis import overall_verdicts
+    from ..bench.analysis import overall_verdicts
 
     return [f"  claim: {k}: {v}" for k, v in overall_verdicts(summary.get("claims", [])).items()]
 

@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any, Dict, Tuple
+from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 
 import numpy as np
 
 from .shapes import Obstacle, _point
+
+if TYPE_CHECKING:  # the grid package imports nothing from world; keep it that way at run time
+    from ..grid.occupancy import OccupancyGrid
 
 
 @dataclass(frozen=True)
@@ -58,6 +61,12 @@ class World:
 
     Obstacles are inflated by ``robot_radius`` for every collision query, so a
     planner can treat the robot as a point.
+
+    A world may also carry an ``occupancy`` grid (a ROS or Moving AI map): its
+    occupied cells (and its unknown cells unless ``allow_unknown``) are square
+    obstacles for the same checker, so every planner sees shapes and maps
+    through one interface. ``bounds`` is then the map's extent
+    (:meth:`from_grid` fills it in).
     """
 
     name: str
@@ -68,6 +77,8 @@ class World:
     robot_radius: float = 0.0
     goal_tolerance: float = 0.0
     meta: Dict[str, Any] = field(default_factory=dict, compare=False)
+    occupancy: Optional["OccupancyGrid"] = None
+    allow_unknown: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "start", _point(self.start, "start"))
@@ -78,6 +89,31 @@ class World:
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
                 raise ValueError(f"{what} must be a non-negative number of metres, got {value!r}")
             object.__setattr__(self, what, float(value))
+
+    @classmethod
+    def from_grid(cls, grid: "OccupancyGrid", start, goal, robot_radius: float = 0.0,
+                  goal_tolerance: float = 0.0, allow_unknown: bool = False, name: Optional[str] = None) -> "World":
+        """A world whose obstacles are the occupied cells of ``grid``; bounds are its extent.
+
+        Parameters
+        ----------
+        grid : OccupancyGrid
+        start, goal : (x, y)
+            In metres, in the map frame.
+        robot_radius, goal_tolerance : float
+            Metres.
+        allow_unknown : bool
+            Treat unknown cells as free (default: as occupied).
+        """
+        ox, oy, yaw = grid.origin
+        c, s = math.cos(yaw), math.sin(yaw)
+        # the map's four outer corners, rotated about the origin by the map's yaw
+        local = np.array([[0.0, 0.0], [grid.width, 0.0], [0.0, grid.height], [grid.width, grid.height]]) * grid.resolution
+        corners = local @ np.array([[c, s], [-s, c]]) + (ox, oy)
+        bounds = Bounds(float(corners[:, 0].min()), float(corners[:, 0].max()),
+                        float(corners[:, 1].min()), float(corners[:, 1].max()))
+        return cls(name=name or grid.name, bounds=bounds, start=start, goal=goal, robot_radius=robot_radius,
+                   goal_tolerance=goal_tolerance, occupancy=grid, allow_unknown=allow_unknown)
 
     def checker(self):
         """A fresh :class:`~navlab.world.collision.CollisionChecker` (its own counters)."""

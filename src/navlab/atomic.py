@@ -1,0 +1,48 @@
+"""Files that appear whole or not at all.
+
+A plot, map or report written straight to its name leaves a truncated file
+behind when the disk fills or the process is killed mid-write. Writing to a
+temporary name in the same folder and renaming it (atomic on POSIX) means the
+name only ever holds a complete file.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import tempfile
+from pathlib import Path
+from typing import Iterator, Union
+
+
+@contextlib.contextmanager
+def atomic_path(target: Union[str, os.PathLike]) -> Iterator[Path]:
+    """Yield a temporary path beside ``target``; on success rename it to ``target``.
+
+    On any exception the temporary file is removed and ``target`` is left as it was.
+    The temporary name keeps ``target``'s suffix, so writers that pick a format
+    from the suffix (matplotlib, Pillow) still work.
+
+    Examples
+    --------
+    >>> with atomic_path("out.png") as tmp:          # doctest: +SKIP
+    ...     fig.savefig(tmp)
+    """
+    target = Path(target)
+    fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix or ".tmp",
+                                    dir=target.parent if str(target.parent) else ".")
+    os.close(fd)
+    tmp = Path(tmp_name)
+    try:
+        yield tmp
+        os.replace(tmp, target)
+    except BaseException:
+        with contextlib.suppress(OSError):
+            tmp.unlink()
+        raise
+
+
+def write_text_atomic(target: Union[str, os.PathLike], text: str) -> None:
+    """Write ``text`` to ``target`` through :func:`atomic_path`."""
+    with atomic_path(target) as tmp:
+        tmp.write_text(text)

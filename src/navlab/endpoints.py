@@ -83,8 +83,8 @@ def endpoint_problem(world, point, label: str, checker) -> Optional[str]:
                     f"{other} ({dist:.3g} m away)")
     if not checker.points_free(p)[0]:
         gap = float(checker.clearance(p)[0])
-        why = "inside an obstacle" if gap == 0 else \
-            f"within the robot radius {world.robot_radius:g} m of an obstacle ({gap:.4g} m away)"
+        why = "inside an obstacle (clearance 0 m)" if gap == 0 else \
+            f"within the robot radius {world.robot_radius:g} m of an obstacle (clearance {gap:.4g} m)"
         return f"{where} is in collision: {why}"
     return None
 

@@ -13,9 +13,9 @@ import time
 
 @functools.lru_cache(maxsize=None)
 def _warm(planner: str, sampler: str) -> None:
-    from .planning import plan
+    from .planning import warm_query
 
-    plan("trap", planner=planner, sampler=sampler, seed=0, max_iter=64)
+    warm_query(planner, sampler)  # a tiny query of either kind, itself not warmed (no recursion)
 
 
 def warm_up(planner: str = "rrt_star", sampler: str = "uniform") -> float:

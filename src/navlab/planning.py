@@ -160,23 +160,11 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
 
 
 @functools.lru_cache(maxsize=None)
-def warm_query(planner: str, sampler: Optional[str] = "uniform") -> None:
-    """Run a tiny query of ``planner`` (with ``sampler``) once per process so
-    its compiled kernels are loaded; the query itself is thrown away."""
-    from .world.scenes import SCENES
-
-    world = SCENES.get("trap")()
-    if is_grid_planner(planner):
-        grid_query(world, planner, {"resolution": world.bounds.diagonal / 20})
-    else:
-        tree_query(world, planner, sampler or "uniform", 0, {"max_iter": 64})
-
-
-def _warm(planner: str, sampler: Optional[str], grid_settings: dict) -> float:
+def _warm(planner: str, sampler: Optional[str], grid_settings: dict, on_map: bool) -> float:
     """Seconds spent warming this query's kernels (0 once they are loaded)."""
     from .warmup import warm_up
 
-    seconds = warm_up(planner, sampler or "uniform")
+    seconds = warm_up(planner, sampler or "uniform", on_map=on_map)
     if grid_settings:
         # A* is compiled per connectivity and heuristic: warm the variant asked for.
         t0 = time.perf_counter()
@@ -275,7 +263,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
             result.params.update(common)
             return result
 
-    warmup_s = _warm(planner, sampler, settings if grid else {})
+    warmup_s = _warm(planner, sampler, settings if grid else {}, on_map=world.occupancy is not None)
     result = grid_query(world, planner, settings) if grid else tree_query(world, planner, sampler, seed, params)
     result.stats["warmup_s"] = warmup_s
     result.params.update(common)

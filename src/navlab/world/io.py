@@ -23,6 +23,7 @@ from typing import Any, Callable, Dict, Union
 import yaml
 
 from ..registry import suggest
+from .motion import MotionFormatError, with_motion
 from .shapes import Circle, Polygon, Rectangle
 from .world import Bounds, World
 
@@ -75,13 +76,15 @@ def world_from_dict(data: Any, source: str = "<dict>") -> World:
         kind = item["type"]
         if kind not in _SHAPES:
             raise fail(where + ".type", f"unknown shape '{kind}'; valid: circle, polygon, rectangle." + suggest(str(kind), list(_SHAPES)))
-        extra = set(item) - _SHAPE_KEYS[kind] - {"type"}
+        extra = set(item) - _SHAPE_KEYS[kind] - {"type", "motion"}
         missing = _SHAPE_KEYS[kind] - set(item)
         if missing or extra:
             bad = sorted(missing or extra)[0]
             raise fail(f"{where}.{bad}", "missing" if missing else f"not a field of a {kind}")
         try:
-            obstacles.append(_SHAPES[kind](item))
+            obstacles.append(with_motion(_SHAPES[kind](item), item.get("motion")))
+        except MotionFormatError as exc:  # moving obstacles: world/motion.py
+            raise fail(f"{where}.{exc.field}", str(exc)) from None
         except (ValueError, TypeError) as exc:
             raise fail(where, str(exc)) from None
 

@@ -33,6 +33,7 @@ import yaml
 from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
+from .motion import MotionFormatError, with_motion
 from .shapes import Circle, Obstacle, Point, Polygon, Rectangle
 from .world import Bounds, World
 
@@ -164,8 +165,11 @@ def _obstacle(where: str, item: Any) -> Obstacle:
         raise _FieldError(f"{where}.type", f"unknown shape {_show(kind)}; valid: {', '.join(shapes)}."
                           + suggest(str(kind), shapes))
     parse, fields = OBSTACLE_PARSERS[kind]
-    _mapping(where, item, {"type": True, **fields})
-    return parse(where, item)
+    _mapping(where, item, {"type": True, "motion": False, **fields})
+    try:
+        return with_motion(parse(where, item), item.get("motion"))  # moving obstacles: world/motion.py
+    except MotionFormatError as exc:
+        raise _FieldError(f"{where}.{exc.field}", _short(exc)) from None
 
 
 # --- the whole document ---------------------------------------------------------------------------

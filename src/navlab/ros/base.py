@@ -65,8 +65,9 @@ class NavlabNode(Node):
         self.params: Dict[str, Any] = {}
         for p in self.PARAMETERS:
             # dynamic typing, then our own check: `-p x:=1` for a float must work
-            self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
-                                                                         dynamic_typing=True))
+            if not self.has_parameter(p.name):  # a node that declares every override has it already
+                self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
+                                                                             dynamic_typing=True))
             self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
 
     def log(self, level: str, text: str) -> None:

@@ -15,7 +15,8 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 NODES: Dict[str, Tuple[str, str]] = {
     "map_server": ("navlab.ros.map_server", "MapServer"),
     "sim": ("navlab.ros.sim", "SimNode"),
-    "astar_pathplanner": ("navlab.ros.astar_pathplanner", "AStarPathPlanner"),
+    "pathplanner": ("navlab.ros.pathplanner", "PathPlanner"),
+    "astar_pathplanner": ("navlab.ros.astar_pathplanner", "AStarPathPlanner"),  # its first name
     "goto_waypoint": ("navlab.ros.goto_waypoint", "GotoWaypointNode"),
     "potential_field_navigator": ("navlab.ros.potential_field_navigator", "PotentialFieldNavigator"),
 }

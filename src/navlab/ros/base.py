@@ -4,6 +4,7 @@ that turns bad settings into one error line."""
 
 from __future__ import annotations
 
+import signal
 import sys
 import time
 from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence
@@ -108,11 +109,17 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
         except (ValueError, FileNotFoundError, KeyError) as exc:
             print(f"Error: {exc}", file=sys.stderr)
             return 2
+        except Exception:
+            if rclpy.ok():
+                raise
+            return 0  # Ctrl-C while the node was being built: rclpy has shut down under it
         try:
             rclpy.spin(node)
         except (KeyboardInterrupt, ExternalShutdownException):
             pass
         finally:
+            # a second Ctrl-C must not break the teardown with a traceback
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
             node.destroy_node()
     finally:
         rclpy.try_shutdown()

@@ -159,7 +159,6 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
 
 
-@functools.lru_cache(maxsize=None)
 def _warm(planner: str, sampler: Optional[str], grid_settings: dict, on_map: bool) -> float:
     """Seconds spent warming this query's kernels (0 once they are loaded)."""
     from .warmup import warm_up

@@ -28,7 +28,7 @@ from .analysis import by_world, judge_claims, summarize, timed
 from .executors import EXECUTORS, check_executor
 from .experiment import OMPL_PREFIX, Experiment
 from .report import build, to_html, to_markdown
-from .store import ResultStore, write_error
+from .store import ResultStore, read_rows, write_error
 from .trial import execute, machine
 
 
@@ -106,7 +106,9 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                     bar.update(1)
             except KeyboardInterrupt:
                 bar.close()
-                raise Interrupted(store.folder, len(store.current_rows(specs)), len(specs)) from None
+                store.close()
+                kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
+                raise Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs)) from None
             bar.close()
         elapsed = time.perf_counter() - t0
         phases["trials"] = elapsed

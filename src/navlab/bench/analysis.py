@@ -35,8 +35,8 @@ import numpy as np
 
 from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
 
-#: a time ratio within 20% of 1 is never a verdict: below what a shared machine keeps stable
-MIN_TIME_EFFECT = math.log(1.2)
+#: a time ratio within 30% of 1 is never a verdict: below what a shared machine keeps stable
+MIN_TIME_EFFECT = math.log(1.3)
 #: a time ratio must exceed this many times the measured timing noise ε
 NOISE_FACTOR = 2.0
 #: row fields behind ``--time``

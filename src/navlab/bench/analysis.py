@@ -54,15 +54,32 @@ def group_of(row: Dict[str, Any]) -> str:
     return " / ".join([row["planner"], row["sampler"]] + [f"{k}={v}" for k, v in sorted(swept.items())])
 
 
+#: the any-angle reference path of map queries
+REFERENCE_PLANNER = "theta_star"
+
+
 def timed(rows: List[Dict[str, Any]], time: str = "cpu") -> List[Dict[str, Any]]:
     """Copies of ``rows`` with ``row["time"]``: the trial's CPU or wall time
-    (the planner's own ``time_s`` for rows that have neither)."""
+    (the planner's own ``time_s`` for rows that have neither); and, for map
+    queries, ``row["vs_theta"]``: the path's length over the Theta* path's on
+    the same query (when the experiment runs ``theta_star``)."""
     field = TIME_FIELDS[time]
+    reference = {_query_key(r): r["cost"] for r in rows
+                 if r.get("planner_name") == REFERENCE_PLANNER and r.get("success") and r.get("query") is not None
+                 and not r.get("repeat") and r.get("cost")}
     out = []
     for row in rows:
         value = row.get(field)
-        out.append({**row, "time": value if value is not None else row.get("time_s")})
+        new = {**row, "time": value if value is not None else row.get("time_s")}
+        ref = reference.get(_query_key(row)) if row.get("query") is not None else None
+        if ref and row.get("success") and row.get("cost") is not None:
+            new["vs_theta"] = row["cost"] / ref
+        out.append(new)
     return out
+
+
+def _query_key(row: Dict[str, Any]) -> tuple:
+    return row["world"], row.get("query"), tuple(sorted((row.get("swept") or {}).items()))
 
 
 def by_world(rows: List[Dict[str, Any]]) -> Dict[str, Dict[str, List[Dict[str, Any]]]]:

@@ -160,3 +160,19 @@ def test_same_seed_same_result_on_a_map():
     a = navlab.plan(small_map(), planner="rrt_star", seed=4, max_iter=800, **MAP_QUERY)
     b = navlab.plan(small_map(), planner="rrt_star", seed=4, max_iter=800, **MAP_QUERY)
     np.testing.assert_array_equal(a.path, b.path)
+
+
+def test_warm_up_runs_before_the_timed_query_and_is_reported_apart(monkeypatch):
+    import time
+
+    import navlab.warmup
+
+    def slow_warm_up(planner, sampler):
+        time.sleep(0.3)  # a compile longer than the whole time budget
+        return 0.3
+
+    monkeypatch.setattr(navlab.warmup, "warm_up", slow_warm_up)
+    r = navlab.plan("trap", planner="rrt", max_time=0.2, max_iter=100000)
+    # had the budget started before the warm-up, no iteration would have run
+    assert r.success and r.stats["iterations"] > 0
+    assert r.stats["warmup_s"] == 0.3

@@ -234,7 +234,8 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         (``heuristic``, ``connectivity``, ``smooth``, ``weight``,
         ``resolution`` in metres per cell for geometric worlds, default 1/200 of
         the bounds' longer side); ``allow_unknown`` (maps: unknown cells are
-        free). Routed by name; an unknown name is an error listing the valid
+        free); ``goal_tolerance`` (m, overrides the source's; maps: 0; grid
+        planners always end exactly at the goal). Routed by name; an unknown name is an error listing the valid
         ones for that planner.
 
     Returns
@@ -258,6 +259,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
 
     grid = is_grid_planner(planner)
     params = dict(params)
+    goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
     if grid:
         if sampler not in (None, "uniform"):
@@ -268,7 +270,8 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     else:
         SAMPLERS.get(sampler)
         split_params(planner, sampler, params)  # unknown names fail before any file is read
-    world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
+    world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, goal_tolerance=goal_tolerance,
+                        allow_unknown=allow_unknown)
     if allow_unknown is not None and world.occupancy is None and not grid:
         raise ValueError("allow_unknown applies to maps; this source is a geometric world")
     common = {"planner": planner, "sampler": None if grid else sampler,

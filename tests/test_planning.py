@@ -167,7 +167,7 @@ def test_warm_up_runs_before_the_timed_query_and_is_reported_apart(monkeypatch):
 
     import navlab.warmup
 
-    def slow_warm_up(planner, sampler):
+    def slow_warm_up(planner, sampler, **kwargs):
         time.sleep(0.3)  # a compile longer than the whole time budget
         return 0.3
 

@@ -159,34 +159,16 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
 
 
-@functools.lru_cache(maxsize=None)
-def warm_query(planner: str, sampler: Optional[str] = "uniform") -> None:
-    """Run a tiny query of ``planner`` (with ``sampler``) once per process so
-    its compiled kernels are loaded; the query itself is thrown away."""
-    from .world.scenes import SCENES
+def _warm(planner: str, sampler: Optional[str], grid_settings: Optional[dict], on_map: bool) -> float:
+    """Seconds spent warming this query's kernels (0 once they are loaded).
 
-    world = SCENES.get("trap")()
-    if is_grid_planner(planner):
-        grid_query(world, planner, {"resolution": world.bounds.diagonal / 20})
-        # and a map with a robot radius: loads what inflating and joining map cells use
-        from .grid.occupancy import OccupancyGrid
-        from .world import World
-
-        blocked = np.zeros((8, 8), dtype=bool)
-        blocked[2:6, 4] = True
-        tiny = World.from_grid(OccupancyGrid(blocked, 1.0), (1.5, 3.5), (6.5, 3.5), robot_radius=0.25)
-        grid_query(tiny, planner, {})
-    else:
-        tree_query(world, planner, sampler or "uniform", 0, {"max_iter": 64})
-
-
-def _warm(planner: str, sampler: Optional[str], grid_settings: dict) -> float:
-    """Seconds spent warming this query's kernels (0 once they are loaded)."""
+    ``grid_settings`` is None for tree planners; for grid planners it picks
+    the A* variant (compiled per connectivity and heuristic) to warm.
+    """
     from .warmup import warm_up
 
-    seconds = warm_up(planner, sampler or "uniform")
-    if grid_settings:
-        # A* is compiled per connectivity and heuristic: warm the variant asked for.
+    seconds = warm_up(planner, sampler or "uniform", on_map=on_map)
+    if grid_settings is not None:
         t0 = time.perf_counter()
         _warm_grid_variant(planner, int(grid_settings.get("connectivity", 8)),
                            str(grid_settings.get("heuristic", "octile")), bool(grid_settings.get("smooth", False)))
@@ -196,12 +178,20 @@ def _warm(planner: str, sampler: Optional[str], grid_settings: dict) -> float:
 
 @functools.lru_cache(maxsize=None)
 def _warm_grid_variant(planner: str, connectivity: int, heuristic: str, smooth: bool) -> None:
+    """This variant through the whole grid_query path: a geometric world's
+    raster, and a map with a robot radius (inflation, exact end legs)."""
+    from .grid.occupancy import OccupancyGrid
+    from .world import World
     from .world.scenes import SCENES
 
+    settings = {"connectivity": connectivity, "heuristic": heuristic, "smooth": smooth}
     world = SCENES.get("trap")()
+    blocked = np.zeros((8, 8), dtype=bool)
+    blocked[2:6, 4] = True
+    tiny_map = World.from_grid(OccupancyGrid(blocked, 1.0), (1.5, 3.5), (6.5, 3.5), robot_radius=0.25)
     try:
-        grid_query(world, planner, {"resolution": world.bounds.diagonal / 20, "connectivity": connectivity,
-                                    "heuristic": heuristic, "smooth": smooth})
+        grid_query(world, planner, {"resolution": world.bounds.diagonal / 20, **settings})
+        grid_query(tiny_map, planner, settings)
     except ValueError:
         pass  # an invalid combination: the real query reports it
 
@@ -286,7 +276,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
             result.params.update(common)
             return result
 
-    warmup_s = _warm(planner, sampler, settings if grid else {})
+    warmup_s = _warm(planner, sampler, settings if grid else None, on_map=world.occupancy is not None)
     result = grid_query(world, planner, settings) if grid else tree_query(world, planner, sampler, seed, params)
     result.stats["warmup_s"] = warmup_s
     result.params.update(common)

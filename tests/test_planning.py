@@ -4,12 +4,15 @@ import math
 
 import numpy as np
 import pytest
+import shapely
 
 import navlab
 from navlab.grid import OccupancyGrid, save_map
 from navlab.result import Status
 from navlab.world import Bounds, Circle, World, WorldFormatError
 from navlab.world.sources import MissingQueryError, load_source, source_kind
+
+from .helpers import true_clearance
 
 PLANNERS = navlab.planner_names()
 TREE_BUDGET = {"max_iter": 1500}
@@ -24,7 +27,7 @@ def small_map() -> OccupancyGrid:
     return OccupancyGrid(blocked, 0.1, (-1.0, -1.0, 0.0), unknown, name="small")
 
 
-MAP_QUERY = {"start": (-0.75, -0.75), "goal": (1.75, 1.75)}
+MAP_QUERY = {"start": (-0.75, -0.75), "goal": (1.75, 1.75), "robot_radius": 0.05}
 
 
 @pytest.fixture(scope="module")
@@ -79,7 +82,24 @@ def test_every_planner_on_every_source(sources, kind, planner):
     if grid:
         # the cell-level cost is kept, in cells, next to the metres
         assert r.stats["cost_cells"] > 0
-        assert world.checker().path_free(r.path)
+    assert world.checker().path_free(r.path)
+    assert independent_clearance(world, r.path) >= world.robot_radius - 1e-9
+
+
+def independent_clearance(world, path) -> float:
+    """Smallest distance (shapely) from the path to an obstacle or a non-free map cell's square."""
+    legs = [shapely.LineString(path[i:i + 2]) for i in range(len(path) - 1)]
+    best = min(true_clearance(world, leg) for leg in legs)
+    grid = world.occupancy
+    if grid is not None:
+        assert grid.origin[2] == 0.0
+        jj, ii = np.nonzero(~grid.passable(world.allow_unknown))
+        x0, y0 = grid.origin[0] + ii * grid.resolution, grid.origin[1] + jj * grid.resolution
+        squares = shapely.box(x0, y0, x0 + grid.resolution, y0 + grid.resolution)
+        best = min(best, min(shapely.distance(squares, leg).min() for leg in legs))
+    if world.robot_radius == 0:
+        assert best > 0  # touching counts as collision
+    return best
 
 
 @pytest.mark.parametrize("planner", ["rrt", "astar"])

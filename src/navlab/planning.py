@@ -209,8 +209,9 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         A tree planner (``rrt``, ``rrt_star``, ``informed_rrt_star``,
         ``growth_ratio_rrt``) or a grid algorithm (``astar``, ``dijkstra``,
         ``jps``, ``theta_star``); see :func:`planner_names`.
-    sampler : str
-        A registered sampler (tree planners only; grid planners take none).
+    sampler : str or None
+        A registered sampler for tree planners (None: ``uniform``); grid
+        planners take none.
     start, goal : (x, y), optional
         Metres; override the source's own. Required for maps (they have none).
     seed : int or numpy.random.Generator
@@ -258,6 +259,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
                              f"(got '{sampler}')")
         settings = split_grid_params(planner, params)
     else:
+        sampler = sampler or "uniform"
         SAMPLERS.get(sampler)
         split_params(planner, sampler, params)  # unknown names fail before any file is read
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, goal_tolerance=goal_tolerance,

@@ -16,7 +16,6 @@ from scipy.sparse.csgraph import dijkstra
 import navlab
 from navlab.grid import OccupancyGrid
 from navlab.grid.rasterize import MAX_CELLS, grid_shape, rasterize
-from navlab.result import Status
 from navlab.world import Bounds, Circle, Polygon, Rectangle, World
 
 from .helpers import shapely_of, true_clearance

@@ -124,7 +124,7 @@ def test_start_and_goal_override_a_world_and_robot_radius_applies_everywhere(sou
 
 @pytest.mark.parametrize("planner", ["rrt_star", "theta_star"])
 @pytest.mark.parametrize("start, goal, status, text", [
-    ((-1.5, 0.0), (1.5, 1.5), Status.INVALID_START, "outside the bounds"),
+    ((-1.5, 0.0), (1.5, 1.5), Status.INVALID_START, "outside the bounds x=[-1, 2] y=[-1, 2] (cell (-5, 10), outside the 30x30 map)"),
     ((0.55, 0.55), (1.5, 1.5), Status.INVALID_START, "in occupied cell (15, 15)"),
     ((-0.75, -0.75), (1.65, -0.65), Status.INVALID_GOAL, "in unknown cell (26, 3)"),
     ((-0.75, -0.75), (0.55, 0.86), Status.INVALID_GOAL, "within the robot radius 0.1 m of occupied cell (15, 17)"),

@@ -158,7 +158,7 @@ class TreePlanner:
                 break
             batch = min(self.batch_size, max_iter - it)
             samples = np.ascontiguousarray(
-                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box)))
+                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box), deadline=None if self.max_time is None else t0 + self.max_time))
             used = K.grow(samples, it, geom, tree.xy, tree.parent, tree.cost, tree.child, tree.sibling,
                           tree.goal_node, tree.goal_extra, tree.trace, tree.istate, tree.best_cost,
                           fparams, self.mode, tree.scratch_idx, tree.scratch_val, tree.scratch_dist,

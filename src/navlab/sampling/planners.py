@@ -169,7 +169,8 @@ class TreePlanner:
                 break
             batch = min(self.batch_size, max_iter - it)
             samples = np.ascontiguousarray(
-                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box)))
+                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box),
+                               deadline=None if self.max_time is None else t0 + self.max_time))
             used = tree.grow(samples, it, geom, fparams, self.mode)
             it += used
             if first_time is None and tree.istate[K.S_FIRST_ITER] >= 0:

@@ -22,7 +22,7 @@ def test_maze_then_plan(tmp_path):
     res = run("grid", "plan", out, "--world", "--start", 0.3, 0.3, "--goal", 4.8, 4.8, "--smooth",
               "--inflate", 0.02, "--json", "--plot", tmp_path / "p.png")
     data = json.loads(res.output)
-    assert res.exit_code == 0 and data["status"] == "EXACT" and data["stats"]["raw_cost"] >= data["cost"]
+    assert res.exit_code == 0 and data["status"] == "EXACT" and data["stats"]["raw_cost_cells"] >= data["stats"]["cost_cells"]
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
 
 

@@ -61,7 +61,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     else:
         click.echo(f"{grid.name}: {algorithm}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
         if result.success:
-            click.echo(f"  {len(result.cells)} cells, length {result.cost:.6f} cells = {result.stats['length_m']:.4f} m, "
+            click.echo(f"  {len(result.cells)} cells, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
         if plot:
             click.echo(f"  plot written to {plot}")

@@ -60,7 +60,8 @@ def run_scenarios(scen_path, map_path: Optional[str] = None, algorithm: str = "a
         length = benchmark_length(r.cells) if r.success else math.inf
         ok = r.success and abs(length - sc.optimal) <= sc.tolerance() * (1 + 1e-9)
         rows.append({"index": i, "start": list(sc.start), "goal": list(sc.goal), "optimal": sc.optimal,
-                     "length": length if r.success else None, "exact_length": r.cost if r.success else None,
+                     "length": length if r.success else None,
+                     "exact_length": r.stats["cost_cells"] if r.success else None,
                      "status": r.status.name, "match": bool(ok), "expanded": r.stats.get("expanded"),
                      "time_s": r.stats["time_s"]})
     times = np.array([row["time_s"] for row in rows])

@@ -78,30 +78,60 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
 @click.option("--limit", type=click.IntRange(min=1), default=None, help="Only the first N scenarios.")
 @click.option("--every", type=click.IntRange(min=1), default=1, show_default=True, help="Only every k-th scenario.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary and every scenario as JSON.")
-def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json) -> None:
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, quiet) -> None:
     """Run a Moving AI scenario file; compare lengths with the stored optima.
 
     Lengths are compared as the benchmark computes them (a diagonal costs
     1.414213562) to one unit in the last printed digit; exact lengths are in
-    the JSON rows as exact_length.
+    the JSON rows as exact_length. theta_star (any-angle) matches when its
+    path is at most the stored octile optimum. Prints a summary with the five
+    worst scenarios; exit status 1 when any scenario mismatches or is invalid
+    (start or goal blocked or outside the map).
     """
+    from ..grid.scen import read_scen
     from ..grid.scen_runner import run_scenarios
 
-    out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every)
+    total = len(read_scen(scen_path)[::every][:limit])
+    with progress_bar(total, "scenarios", quiet) as bar:
+        out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every,
+                            progress=lambda done: bar.update(done - bar.n))
     s = out["summary"]
     if as_json:
         click.echo(json.dumps(out))
     else:
-        click.echo(f"{s['map']}: {s['scenarios']} scenarios, {algorithm} ({heuristic}): "
-                   f"{s['scenarios'] - s['mismatches']} match the stored optimum, {s['mismatches']} do not")
-        click.echo(f"  time per query: median {s['time_median_ms']:.3f} ms, p95 {s['time_p95_ms']:.3f} ms, "
-                   f"total {s['time_total_s']:.3f} s")
-        for row in out["rows"]:
-            if not row["match"]:
-                click.echo(f"  mismatch #{row['index']}: {row['start']} -> {row['goal']}: stored {row['optimal']}, "
-                           f"got {row['length']} ({row['status']})")
-    if s["mismatches"]:
+        click.echo(scen_report(s))
+    if s["mismatches"] or s["invalid"]:
         sys.exit(1)
+
+
+def scen_report(s) -> str:
+    """The summary of ``navlab grid scen`` as text: counts, times, the worst five."""
+    fmt = lambda v: "-" if v is None else f"{v:.8g}"  # noqa: E731
+    lines = [f"{s['map']}: {s['scenarios']} scenarios, {s['algorithm']} ({s['heuristic']}), "
+             f"length {s['comparison']}: {s['matches']} match, {s['mismatches']} do not"
+             + (f", {s['invalid']} invalid (start or goal blocked or outside the map)" if s["invalid"] else "")]
+    lines.append("  statuses: " + ", ".join(f"{k} {v}" for k, v in sorted(s["statuses"].items())))
+    if s.get("length_over_optimal_median") is not None:
+        lines.append(f"  any-angle length / octile optimum: median {s['length_over_optimal_median']:.4f}")
+    lines.append(f"  time per query: median {s['time_median_ms']:.3f} ms, p95 {s['time_p95_ms']:.3f} ms, "
+                 f"total {s['time_total_s']:.3f} s")
+    if s["worst"]:
+        lines.append(f"  worst {len(s['worst'])} (length - optimum):")
+        for w in s["worst"]:
+            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {fmt(w['optimal'])}, "
+                         f"got {fmt(w['length'])} ({w['status']}, {'match' if w['match'] else 'MISMATCH'}, "
+                         f"excess {fmt(w['excess'])})")
+    return "\n".join(lines)
+
+
+def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0):
+    """A tqdm bar on stderr, off with ``quiet``, when stderr is not a terminal, or for
+    fewer than ``threshold`` items."""
+    from tqdm import tqdm
+
+    disable = True if quiet or total < threshold else None  # None: off when not a TTY
+    return tqdm(total=total, unit=f" {unit}", file=sys.stderr, disable=disable, leave=False, dynamic_ncols=True)
 
 
 @grid_group.command("maze")

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 import click
+import numpy as np
 
 
 @click.group("grid")
@@ -19,7 +21,8 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 
 @grid_group.command("plan")
 @click.argument("map_path", metavar="MAP", type=click.Path(dir_okay=False))
-@click.option("--start", nargs=2, type=float, required=True, metavar="X Y", help="Start cell (or metres with --world).")
+@click.option("--start", nargs=2, type=float, required=True, metavar="X Y",
+              help="Start cell (or metres with --world).")
 @click.option("--goal", nargs=2, type=float, required=True, metavar="X Y", help="Goal cell (or metres with --world).")
 @click.option("--world", "in_world", is_flag=True, help="Start and goal are world coordinates in metres.")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
@@ -39,6 +42,11 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     """Plan a path on MAP between two cells (x = column, y = row)."""
     from ..grid import load_map, plan, plan_world
 
+    for label, v in (("--start", start), ("--goal", goal)):
+        if not all(math.isfinite(c) for c in v):
+            raise ValueError(f"{label} must be finite numbers, got {v[0]:g} {v[1]:g}")
+        if not in_world and any(c != int(c) for c in v):
+            raise ValueError(f"{label}: cells are integers; use --world for metres, got {v[0]:g} {v[1]:g}")
     grid = load_map(map_path, rule=map_rule)
     if inflate:
         grid = grid.inflate(inflate)
@@ -46,16 +54,19 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
                   weight=weight, allow_unknown=allow_unknown)
     if in_world:
         result = plan_world(grid, start, goal, **kwargs)
+        ends = np.array([start, goal], dtype=float)
     else:
-        for label, v in (("--start", start), ("--goal", goal)):
-            if any(c != int(c) for c in v):
-                raise click.BadParameter(f"cells are integers; use --world for metres, got {v}", param_hint=label)
-        result = plan(grid, (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), **kwargs)
+        cells = ((int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])))
+        result = plan(grid, *cells, **kwargs)
+        ends = grid.cell_to_world(np.array(cells, dtype=float))
     if plot:
         from ..viz.grid_plot import plot_grid_plan
 
         raw = result.tree["raw_cells"] if result.tree else None
-        plot_grid_plan(grid, result, plot, raw_cells=raw)
+        try:
+            plot_grid_plan(grid, result, plot, raw_cells=raw, start=ends[0], goal=ends[1])
+        except OSError as exc:
+            fail(f"cannot write {plot}: {exc.strerror or exc}")
     if as_json:
         click.echo(json.dumps(result.to_dict()))
     else:
@@ -67,6 +78,12 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
             click.echo(f"  plot written to {plot}")
     if not result.success:
         sys.exit(1)
+
+
+def fail(message: str) -> None:
+    """One line on stderr and exit status 2 (an input or file error, not a traceback)."""
+    click.echo(f"Error: {message}", err=True)
+    sys.exit(2)
 
 
 @grid_group.command("scen")
@@ -145,11 +162,25 @@ def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0)
 @click.option("--resolution", type=click.FloatRange(min=0, min_open=True), default=0.05, show_default=True,
               help="Map resolution, m per pixel.")
 @click.option("--out", type=click.Path(dir_okay=False), required=True, help="Output map_server YAML (PGM beside it).")
-def grid_maze(cells, seed, cell_size, wall, resolution, out) -> None:
-    """Generate a perfect maze as a ROS map_server map (YAML + PGM)."""
-    from ..grid import make_maze, save_map
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
+    """Generate a perfect maze as a ROS map_server map (YAML + PGM).
 
-    grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution)
-    image = save_map(grid, out)
+    The resolution must be at most the wall thickness and the corridor width
+    (cell size - wall), so neither vanishes; mazes whose map would exceed
+    navlab's 1e8-cell limit or the memory available are refused before
+    anything is built. Mazes of more than 1000 cells show a progress bar.
+    """
+    from ..grid import make_maze, save_map
+    from ..grid.maze import maze_size
+
+    maze_size(cells[0], cells[1], cell_size, wall, resolution)  # refuse before the bar and the carving
+    with progress_bar(cells[0] * cells[1], "cells", quiet, threshold=1000) as bar:
+        grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution,
+                         progress=lambda done: bar.update(done - bar.n))
+    try:
+        image = save_map(grid, out)
+    except OSError as exc:
+        fail(str(exc.strerror or exc))
     click.echo(f"wrote {out} and {image}: {cells[0]}x{cells[1]} cells, {grid.width}x{grid.height} pixels "
                f"at {resolution} m")

@@ -84,3 +84,16 @@ def test_scen_theta_star_is_bounded_by_the_octile_optimum(tmp_path):
     assert res.exit_code == 0 and row["match"] and row["exact_length"] < 6.24 and row["excess"] < 0
     res = run("grid", "scen", DATA / "arena.map.scen", "--algorithm", "theta_star")
     assert res.exit_code == 0 and "160 match, 0 do not" in res.output and "any-angle length" in res.output
+
+
+def test_progress_is_reported_per_scenario_and_per_carved_cell(tmp_path):
+    from navlab.grid import make_maze
+    from navlab.grid.scen_runner import run_scenarios
+
+    scen = write_scen(tmp_path, [((0, 0), (5, 0), 5)] * 3)
+    done = []
+    run_scenarios(scen, progress=done.append)
+    assert done == [1, 2, 3]
+    carved = []
+    make_maze(40, 30, progress=carved.append)
+    assert carved == [1024, 1200]  # every 1024 cells and at the end

@@ -157,7 +157,8 @@ class TreePlanner:
         tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid")
         fparams = self._fparams(world, params)
         geom = checker.geometry
-        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.istate, fparams, self.mode):
+        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.goal_slot, tree.istate,
+                                fparams, self.mode):
             tree.best_cost[0] = tree.goal_extra[0]
             tree.istate[K.S_BEST] = 0
             tree.record_cost(0)
@@ -178,9 +179,6 @@ class TreePlanner:
             if tree.istate[K.S_DONE]:
                 break
         checker.add_counts(segments=int(tree.istate[K.S_EDGE_CHECKS]))
-        if tree.istate[K.S_GOALS] > 0 and self.mode == K.MODE_RRT_STAR:
-            # Rewiring may have lowered a goal node's cost after it was found.
-            K._refresh_best(tree.cost, tree.goal_node, tree.goal_extra, tree.istate, tree.best_cost)
         return self._result(world, tree, it, checker, params, time.perf_counter() - t0, first_time)
 
     def _result(self, world, tree, iterations, checker, params, elapsed, first_time) -> Result:

@@ -99,6 +99,8 @@ def check_grid_result(passable: np.ndarray, start, goal, result, algorithm: str)
     cells = np.asarray(result.cells, dtype=np.int64)
     assert tuple(cells[0]) == tuple(start) and tuple(cells[-1]) == tuple(goal)
     assert passable[cells[:, 1], cells[:, 0]].all()
+    length = float(np.hypot(*np.diff(cells, axis=0).T).sum())
+    assert math.isclose(result.cost, length, rel_tol=1e-9, abs_tol=1e-12), (result.cost, length)
     if algorithm != "theta_star":
         steps = np.diff(cells, axis=0)
         assert (np.abs(steps) <= 1).all(), "a step jumps over cells"

@@ -30,21 +30,26 @@ def test_world_check_rejects_wrong_answers(result):
         check_world_result(WORLD, result)
 
 
-PASSABLE = np.array([[1, 1, 1], [0, 0, 1], [1, 1, 1]], bool)  # [y, x]
+PASSABLE = np.array([[1, 1, 1], [0, 0, 1], [1, 1, 1]], bool)  # [y, x]; diagonals round the wall cut corners
+OPEN = np.ones((3, 3), bool)
 
 
 def test_grid_check_accepts_the_optimum():
-    cells = np.array([[0, 0], [1, 0], [2, 1], [1, 2], [0, 2]])
-    check_grid_result(PASSABLE, (0, 0), (0, 2), Result(Status.EXACT, cost=2 + 2 * 2 ** 0.5, cells=cells), "astar")
+    cells = np.array([[0, 0], [1, 0], [2, 0], [2, 1], [2, 2], [1, 2], [0, 2]])
+    check_grid_result(PASSABLE, (0, 0), (0, 2), Result(Status.EXACT, cost=6.0, cells=cells), "astar")
+    check_grid_result(OPEN, (0, 0), (2, 2), Result(Status.EXACT, cost=2 * 2 ** 0.5, cells=np.array([[0, 0], [1, 1], [2, 2]])),
+                      "astar")
 
 
-@pytest.mark.parametrize("cells, cost, status", [
-    ([[0, 0], [0, 1], [0, 2]], 2.0, Status.EXACT),  # through a blocked cell
-    ([[0, 0], [1, 0], [2, 0], [2, 1], [2, 2], [1, 2], [0, 2]], 6.0, Status.EXACT),  # not optimal
-    ([[0, 0], [2, 1], [0, 2]], 2 * 5 ** 0.5, Status.EXACT),  # jumps
-    (None, float("inf"), Status.FAILED),  # a path exists
+@pytest.mark.parametrize("grid, cells, cost, status", [
+    (PASSABLE, [[0, 0], [0, 1], [0, 2]], 2.0, Status.EXACT),  # through a blocked cell
+    (PASSABLE, [[0, 0], [1, 0], [2, 1], [1, 2], [0, 2]], 2 + 2 * 2 ** 0.5, Status.EXACT),  # cuts corners
+    (OPEN, [[0, 0], [1, 0], [2, 0], [2, 1], [2, 2]], 4.0, Status.EXACT),  # not optimal
+    (OPEN, [[0, 0], [1, 1], [2, 2]], 2.0, Status.EXACT),  # cost is not the path's length
+    (OPEN, [[0, 0], [2, 2]], 2 * 2 ** 0.5, Status.EXACT),  # jumps
+    (PASSABLE, None, float("inf"), Status.FAILED),  # a path exists
 ])
-def test_grid_check_rejects_wrong_answers(cells, cost, status):
+def test_grid_check_rejects_wrong_answers(grid, cells, cost, status):
     result = Result(status, cost=cost, cells=None if cells is None else np.array(cells))
     with pytest.raises(AssertionError):
-        check_grid_result(PASSABLE, (0, 0), (0, 2), result, "astar")
+        check_grid_result(grid, (0, 0), (0, 2) if grid is PASSABLE else (2, 2), result, "astar")

@@ -5,7 +5,10 @@ from click.testing import CliRunner
 
 from navlab.cli import main
 
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "movingai"
+# shared/data/movingai beside the checkout (main and helpers' worktrees sit at different depths)
+DATA = next((p / "shared" / "data" / "movingai" for p in Path(__file__).resolve().parents
+             if (p / "shared" / "data" / "movingai").is_dir()), Path("shared/data/movingai"))
+
 
 
 def run(*args):

@@ -70,8 +70,9 @@ def test_bad_goals_give_an_error_and_no_path(goal, why):
 
 
 def test_unreachable_goal_and_unknown_space():
-    grid = room()
-    grid.blocked[20:30, 20] = True  # close the gap
+    wall = np.zeros((30, 40), bool)
+    wall[20:30, 20] = True  # close the gap (grids are immutable: a new one)
+    grid = room().with_blocked(room().blocked | wall)
     log = Logbook()
     planner = GoalPlanner(log, inflation_radius=0.0)
     planner.set_map(grid)

@@ -1,6 +1,13 @@
 """One trial: run a cell's planner with the trial's seed and turn the Result
 into a flat, JSON-ready row. Runs in worker processes, so it takes and
-returns plain data only."""
+returns plain data only.
+
+Timing: before a process's first trial of a planner and sampler, the kernels
+are warmed (:func:`navlab.warmup.warm_up`) and that time is recorded apart
+(``warmup_s``), so neither the trial's time nor its ``max_time`` budget pays
+for compilation. Each trial records its wall time (``wall_s``) and the CPU
+time of the thread that ran it (``cpu_s``), which a busy machine disturbs far
+less (time spent waiting for a core is not counted)."""
 
 from __future__ import annotations
 
@@ -8,6 +15,7 @@ import functools
 import os
 import platform
 import socket
+import time
 import traceback
 from typing import Any, Callable, Dict
 
@@ -62,6 +70,17 @@ def execute(spec: Dict[str, Any], keep_tree: bool = False) -> Result:
     return plan(world, planner=name, sampler=cell["sampler"]["name"], seed=spec["seed"], **kwargs)
 
 
+def warm_trial(spec: Dict[str, Any]) -> float:
+    """Load the trial's world and warm its planner's kernels in this process;
+    the seconds spent (about 0 once this process has run the same kind)."""
+    from ..warmup import warm_up
+
+    cell = spec["cell"]
+    world = _world(cell["world"])
+    sampler = cell["sampler"]["name"] if cell["sampler"] else "uniform"
+    return warm_up(cell["planner"]["name"], sampler, on_map=getattr(world, "occupancy", None) is not None)
+
+
 def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
     """What every row says about its trial, whatever became of it."""
     from .. import __version__
@@ -70,23 +89,39 @@ def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
     row = {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")}
     row.update(world=cell["world"], planner=cell["planner"]["label"],
                sampler=cell["sampler"]["label"] if cell["sampler"] else "-",
-               params=_jsonable(cell_kwargs(cell, spec["budget"])), version=__version__, machine=machine())
+               params=_jsonable(cell_kwargs(cell, spec["budget"])), swept=dict(spec.get("swept") or {}),
+               version=__version__, machine=machine())
+    if spec.get("repeat"):
+        row["repeat"] = spec["repeat"]
     return row
 
 
-def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute) -> Dict[str, Any]:
-    """Run one trial with ``runner``; an exception becomes an ``ERROR`` row
-    with its traceback."""
+def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute,
+              warm: Callable[[Dict[str, Any]], float] = warm_trial) -> Dict[str, Any]:
+    """Warm up (timed apart), then run one trial with ``runner`` and time it
+    (wall and thread CPU time); an exception becomes an ``ERROR`` row with
+    its traceback. With ``spec["keep_tree"]`` the row carries the tree under
+    ``"tree"`` (numpy arrays: for the example plot, not for results.jsonl)."""
     row = identity_fields(spec)
     try:
-        row.update(result_fields(runner(spec)))
+        row["warmup_s"] = warm(spec)
+        wall0, cpu0 = time.perf_counter(), time.thread_time()
+        result = runner(spec, keep_tree=True) if spec.get("keep_tree") else runner(spec)
+        row["cpu_s"], row["wall_s"] = time.thread_time() - cpu0, time.perf_counter() - wall0
+        row.update(result_fields(result))
+        if spec.get("keep_tree") and result.tree is not None and "nodes" in result.tree:
+            row["tree"] = {"nodes": np.asarray(result.tree["nodes"]), "parent": np.asarray(result.tree["parent"]),
+                           "path": np.asarray(result.path, dtype=float)}
     except Exception:  # noqa: BLE001 - any failure of one trial is data, not the end of the run
         row.update(error_fields(traceback.format_exc()))
     return row
 
 
 def error_fields(message: str) -> Dict[str, Any]:
-    return {"status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message}
+    """The fields of a trial that raised; ``reason`` is the exception's last line."""
+    lines = [line for line in message.strip().splitlines() if line.strip()]
+    return {"status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message,
+            "reason": lines[-1].strip() if lines else "unknown error"}
 
 
 def result_fields(result: Result) -> Dict[str, Any]:

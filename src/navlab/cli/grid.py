@@ -30,14 +30,16 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
 @click.option("--inflate", type=float, default=0.0, show_default=True, help="Inflate obstacles by this radius, m.")
 @click.option("--allow-unknown", is_flag=True, help="Let the path cross cells of unknown occupancy.")
+@click.option("--map-rule", type=click.Choice(["nav2", "ros1"]), default="nav2", show_default=True,
+              help="How a map_server image is read: Nav2's map_io (inclusive thresholds) or ROS 1's map_server.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG of grid and path.")
 def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivity, weight, smooth, inflate,
-              allow_unknown, as_json, plot) -> None:
+              allow_unknown, map_rule, as_json, plot) -> None:
     """Plan a path on MAP between two cells (x = column, y = row)."""
     from ..grid import load_map, plan, plan_world
 
-    grid = load_map(map_path)
+    grid = load_map(map_path, rule=map_rule)
     if inflate:
         grid = grid.inflate(inflate)
     kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,

@@ -93,17 +93,18 @@ def warm_trial(spec: Dict[str, Any]) -> float:
     """Warm this process for the trial's kind of query before it is timed; the
     seconds spent (about 0 once this process has run the same kind).
 
-    Tree planners: :func:`navlab.warmup.warm_up` (the kernels), then the cell's
-    own query with a tiny iteration budget, which also loads the world and
-    reaches whatever ``navlab.plan`` warms by itself (a map's kernels, a grid
-    algorithm's variant). Grid planners: the cell's query once, whole (it has no
-    budget to shrink). OMPL: :func:`navlab.warmup.warm_up`.
+    Tree planners: the cell's own query with a tiny iteration budget, so
+    ``navlab.plan`` warms its kernels (:func:`navlab.warmup.warm_up`, a map's
+    too) and the world is loaded. Grid planners: the cell's query once, whole
+    (there is no budget to shrink), which warms the algorithm's variant. OMPL:
+    :func:`navlab.warmup.warm_up`. One kind is a world (all queries of a map
+    together), a planner, a sampler and their settings.
     """
     import json
 
     cell = spec["cell"]
     key = json.dumps({"world": cell["world"], "planner": cell["planner"], "sampler": cell["sampler"],
-                      "params": cell["params"], "query": spec.get("query")}, sort_keys=True, default=str)
+                      "params": cell["params"]}, sort_keys=True, default=str)
     if key in _WARMED:
         return 0.0
     t0 = time.perf_counter()
@@ -111,6 +112,7 @@ def warm_trial(spec: Dict[str, Any]) -> float:
     return time.perf_counter() - t0
 
 
+#: kinds of query this process has warmed (a process-lifetime cache, like an lru_cache)
 _WARMED: set = set()
 
 

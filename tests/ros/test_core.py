@@ -157,8 +157,13 @@ def test_a_tree_planner_that_fails_still_reports_its_tree():
     (dict(algorithm="rrt_star", heuristic="octile"), "unknown parameter 'heuristic'"),
     (dict(algorithm="astar", sampler="gaussian"), "is a grid search"),
     (dict(algorithm="rrt_str"), "Did you mean 'rrt_star'"),
+    # values of the wrong kind (ROS parameters are loosely typed) are refused at start-up too
+    (dict(algorithm="rrt_star", max_iter="abc"), "max_iter"),
+    (dict(algorithm="rrt_star", max_time=-1.0), "max_time"),
+    (dict(algorithm="rrt_star", seed="x"), "bad setting for rrt_star"),
+    (dict(algorithm="rrt_star", sampler="integration", weights=5), "bad setting for rrt_star"),
 ])
-def test_unknown_names_are_refused_with_a_suggestion(settings, message):
+def test_unknown_names_and_bad_values_are_refused_at_start_up(settings, message):
     with pytest.raises(ValueError, match=message):
         GoalPlanner(Logbook(), **settings)
 

@@ -4,6 +4,7 @@ pure pursuit, optionally replanning when the path ahead is blocked."""
 from __future__ import annotations
 
 import math
+from typing import Optional
 
 import numpy as np
 
@@ -34,6 +35,7 @@ class _Follower(Controller):
         self.replan, self.replan_interval, self.check_ahead = replan, replan_interval, check_ahead
         self.needs_scan = replan
         self.replanner = None  #: set by the simulator when ``replan`` is on
+        self.evade_speed = 0.22  #: [m/s] speed at which the robot gets out of a moving obstacle's way
         self._last_replan = -math.inf
 
     def _ahead(self, pose) -> np.ndarray:
@@ -49,9 +51,27 @@ class _Follower(Controller):
             left -= step
         return np.asarray(pts)
 
+    def _evade(self, pose) -> Optional[Command]:
+        """Back away from (or drive on ahead of) a moving obstacle whose
+        predicted sweep covers the robot, keeping the heading."""
+        threat = getattr(self.replanner, "threat", None)
+        if threat is None:
+            return None
+        centre, v = threat
+        away = np.asarray(pose[:2], float) - centre
+        speed = float(np.hypot(*v))
+        if speed > 0:  # leave the obstacle's line of travel rather than run ahead of it
+            u = v / speed
+            away = away - (away @ u) * u
+        forward = math.cos(pose[2]) * away[0] + math.sin(pose[2]) * away[1] >= 0
+        return Command(self.evade_speed if forward else -self.evade_speed, 0.0, 0.0)
+
     def _wait_or_replan(self, t: float, pose, points) -> bool:
         """True when the robot should hold still this step (path ahead blocked)."""
-        if not self.replan or self.replanner is None or not self.replanner.blocked(pose, self._ahead(pose), points):
+        if not self.replan or self.replanner is None:
+            return False
+        self.replanner.observe(t, pose, points)
+        if not self.replanner.blocked(pose, self._ahead(pose), points):
             return False
         if t - self._last_replan >= self.replan_interval:
             self._last_replan = t
@@ -127,7 +147,7 @@ class GotoWaypoint(_Follower):
         if self._stalled(t, pose):
             return Command(status=STALLED)
         if self._wait_or_replan(t, pose, points):
-            return Command()
+            return self._evade(pose) or Command()
         dx, dy = self.path[self.index] - pose[:2]
         dist = math.hypot(dx, dy)
         error = _wrap(math.atan2(dy, dx) - pose[2])
@@ -188,7 +208,7 @@ class PurePursuit(_Follower):
         if self._stalled(t, pose):
             return Command(status=STALLED)
         if self._wait_or_replan(t, pose, points):
-            return Command()
+            return self._evade(pose) or Command()
         tx, ty = self._target(pose) - pose[:2]
         alpha = _wrap(math.atan2(ty, tx) - pose[2])
         ld = max(math.hypot(tx, ty), 1e-9)

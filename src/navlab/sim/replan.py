@@ -26,6 +26,14 @@ PLAN_MARGIN = 0.07
 UNEXPLAINED = 0.05
 #: [m] radius of the obstacle a sensed point stands for in a replan
 POINT_RADIUS = 0.05
+#: [m] neighbouring unexplained points (in scan order) farther apart start a new cluster
+CLUSTER_GAP = 0.15
+#: [m] a cluster's centre moving less than this between scans is the same obstacle
+MATCH_RADIUS = 0.5
+#: [s] how far ahead the follower predicts a sensed obstacle's motion
+HORIZON = 3.0
+#: [m/s] slower clusters count as standing still
+STILL = 0.05
 
 
 def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[str] = None,
@@ -78,6 +86,9 @@ class Replanner:
         self.planner, self.sampler, self.params = planner, sampler, params
         self.sense_range = sense_range
         self.count = 0  #: replans made
+        self._tracks: list = []  # (centre, velocity, points) per cluster of the last scan
+        self.threat: Optional[tuple] = None  #: (centre, velocity) of an obstacle about to run into the robot
+        self._t_last = -np.inf
 
     def news(self, pose, points) -> np.ndarray:
         """The sensed points near the robot that the static world does not explain."""
@@ -89,15 +100,51 @@ class Replanner:
             return near
         return near[clearance_batch(np.ascontiguousarray(near), self._static) > UNEXPLAINED]
 
-    def blocked(self, pose, ahead: np.ndarray, points) -> bool:
-        """Whether a sensed point lies within the robot's footprint (plus half
-        the planning margin) of the polyline ``ahead``."""
+    def observe(self, t: float, pose, points) -> None:
+        """Track what the map does not explain: the unexplained points split
+        into clusters (neighbours in scan order closer than
+        :data:`CLUSTER_GAP`), each matched to the nearest cluster of the last
+        scan to estimate its velocity."""
         news = self.news(pose, points)
-        if len(news) == 0 or len(ahead) < 2:
+        clusters = []
+        if len(news):
+            cut = np.flatnonzero(np.hypot(*np.diff(news, axis=0).T) > CLUSTER_GAP) + 1
+            clusters = [c for c in np.split(news, cut) if len(c)]
+        tracked = []
+        for c in clusters:
+            centre = c.mean(axis=0)
+            v = np.zeros(2)
+            if self._tracks and t > self._t_last:
+                prev = min(self._tracks, key=lambda tr: float(np.hypot(*(tr[0] - centre))))
+                if np.hypot(*(prev[0] - centre)) < MATCH_RADIUS:
+                    v = 0.5 * prev[1] + 0.5 * (centre - prev[0]) / (t - self._t_last)
+            tracked.append((centre, v, c))
+        self._tracks, self._t_last = tracked, t
+
+    def blocked(self, pose, ahead: np.ndarray, points=None) -> bool:
+        """Whether what the LiDAR sees, moved on at its estimated velocity
+        over the next :data:`HORIZON` seconds, comes within the robot's
+        footprint (plus half the planning margin) of the polyline ``ahead``.
+        A moving obstacle whose sweep covers the robot itself sets
+        :attr:`threat` to its centre and velocity: stopping there would let it run into
+        the robot, so the follower gets out of its way instead."""
+        self.threat = None
+        if len(ahead) < 2 or not self._tracks:
             return False
         from .simulation import distance_to_polyline
 
-        return bool(np.min(distance_to_polyline(news, ahead)) < self.radius + 0.5 * PLAN_MARGIN)
+        reach = self.radius + 0.5 * PLAN_MARGIN
+        here = np.asarray(pose[:2], float)
+        blocked = False
+        for centre, v, pts in self._tracks:
+            moving = float(np.hypot(*v)) > STILL
+            taus = np.linspace(0.0, HORIZON, 7) if moving else np.zeros(1)
+            sweep = (pts[None, :, :] + taus[:, None, None] * v[None, None, :]).reshape(-1, 2)
+            if moving and np.min(np.hypot(sweep[:, 0] - here[0], sweep[:, 1] - here[1])) < reach:
+                self.threat = (centre, v)
+                return True
+            blocked = blocked or bool(np.min(distance_to_polyline(sweep, ahead)) < reach)
+        return blocked
 
     def plan(self, pose, points, seed: Any = 0) -> Optional[np.ndarray]:
         """A new path from ``pose`` around the unexplained points, or None."""

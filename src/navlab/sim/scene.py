@@ -12,7 +12,7 @@ from numba import njit
 
 from ..grid.occupancy import OccupancyGrid
 from ..world import World
-from ..world.geometry import (pack_geometry, point_segment_dist2, segment_free, segment_polygon_dist2,
+from ..world.geometry import (clearance_batch, pack_geometry, point_segment_dist2, segment_free, segment_polygon_dist2,
                               segment_rect_dist2)
 from ..world.motion import track, translated
 
@@ -193,17 +193,19 @@ class Scene:
             shapes[i] = translated(shapes[i], *off)
         return shapes
 
-    def clearance(self, p, t: float) -> float:
-        """Distance (m) from the robot's disc at ``p`` to the nearest obstacle
-        at time ``t`` (negative when they overlap; grids: not computed, nan)."""
+    def clearances(self, points, times) -> np.ndarray:
+        """Distance (m) from the robot's disc at each point to the nearest
+        obstacle where it is at the matching time (negative when they
+        overlap; bounds do not count; grids: nan)."""
+        p = np.ascontiguousarray(np.asarray(points, float)[:, :2])
         if self.is_grid:
-            return math.nan
-        import shapely
-
-        point = shapely.Point(p[0], p[1])
-        best = math.inf
-        for shape in self.obstacles_at(t):
-            best = min(best, _as_shapely(shape).distance(point))
+            return np.full(len(p), math.nan)
+        best = clearance_batch(p, self._geom)
+        bounds = self.world.bounds.as_array()
+        for j, index in enumerate(self.moving):
+            single = pack_geometry((self.world.obstacles[index],), self.radius, bounds)
+            off = np.array([self.offsets_at(float(t))[j] for t in times])
+            best = np.minimum(best, clearance_batch(np.ascontiguousarray(p - off), single))
         return best - self.radius
 
     def _who_hit(self, j: int, a, b, off0, off1, t1: float) -> str:

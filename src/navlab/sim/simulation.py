@@ -230,4 +230,4 @@ class Simulation:
         each was, over a run (negative after a collision; nan on maps)."""
         if self.scene.is_grid:
             return math.nan
-        return float(min(self.scene.clearance(p, t) for p, t in zip(result.true_poses, result.t)))
+        return float(np.min(self.scene.clearances(result.true_poses, result.t)))

@@ -114,7 +114,7 @@ def clearance(grid, path):
 
 
 @pytest.mark.parametrize("algorithm, sampler", [("rrt_star", "uniform"), ("rrt_star", "integration"),
-                                                ("informed_rrt_star", "gaussian"), ("rrt", "boundary")])
+                                                ("informed_rrt_star", "gaussian"), ("rrt", "goal_bias")])
 def test_tree_planners_plan_round_the_wall_and_report_their_tree(algorithm, sampler):
     log, trees = Logbook(), []
     planner = GoalPlanner(log, algorithm, sampler=sampler, seed=5, inflation_radius=0.2, max_iter=3000,
@@ -161,7 +161,7 @@ def test_a_tree_planner_that_fails_still_reports_its_tree():
     (dict(algorithm="rrt_star", max_iter="abc"), "max_iter"),
     (dict(algorithm="rrt_star", max_time=-1.0), "max_time"),
     (dict(algorithm="rrt_star", seed="x"), "bad setting for rrt_star"),
-    (dict(algorithm="rrt_star", sampler="integration", weights=5), "bad setting for rrt_star"),
+    (dict(algorithm="rrt_star", sampler="integration", weights=5), "weights"),
 ])
 def test_unknown_names_and_bad_values_are_refused_at_start_up(settings, message):
     with pytest.raises(ValueError, match=message):

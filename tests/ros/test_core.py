@@ -213,3 +213,19 @@ def test_drive_reports_a_stall():
 def test_bad_drive_settings():
     with pytest.raises(ValueError, match="odom_timeout"):
         Drive(GotoWaypoint(), Logbook(), odom_timeout=0.0)
+
+
+@pytest.mark.parametrize("value", ["astar", "/tmp/a map.yaml", "{goal: 0.2}", "1.5", "true", "it's", 'say "hi"',
+                                   {"goal": 0.1, "uniform": 0.9}, 3, 0.5, True])
+def test_node_parameters_reach_ros_as_the_value_given(value):
+    """``-p name:=VALUE`` is read as YAML: strings stay strings (a path, a
+    number-like text, YAML mapping text), a mapping arrives as its YAML text."""
+    import yaml
+
+    from navlab.ros.launch import ros_value
+
+    read = yaml.safe_load(ros_value(value))
+    if isinstance(value, dict):
+        assert isinstance(read, str) and yaml.safe_load(read) == value
+    else:
+        assert read == value and type(read) is type(value)

@@ -35,7 +35,7 @@ from rclpy.parameter import Parameter
 
 from .base import DEFAULT_QOS, NavlabNode
 from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
-from .launch import NodeProcesses, node_class
+from .launch import NodeProcesses, mapping_text, node_class
 
 #: seed 002's maze geometry: 0.6 m cells, 0.1 m walls (0.5 m corridors)
 MAZE_CELL, MAZE_WALL = 0.6, 0.1
@@ -70,7 +70,8 @@ def pipeline(world: str, robot: str, start: Sequence[float], real_time_factor: f
     radius = make_robot(robot).radius
     return [("map_server", {"yaml_filename": world}), sim,
             ("pathplanner", {"use_sim_time": True, "inflation_radius": radius + PLAN_MARGIN, "algorithm": planner,
-                             **(planner_params or {})}),
+                             **{k: mapping_text(v) if isinstance(v, dict) else v
+                                for k, v in (planner_params or {}).items()}}),
             ("goto_waypoint", {"use_sim_time": True})]
 
 

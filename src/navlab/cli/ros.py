@@ -25,7 +25,7 @@ def _require_rclpy() -> None:
 
 @click.group("ros")
 def ros_group() -> None:
-    """ROS 2 nodes: map_server, sim, astar_pathplanner, goto_waypoint,
+    """ROS 2 nodes: map_server, sim, pathplanner (alias astar_pathplanner), goto_waypoint,
     potential_field_navigator; `navlab ros demo` runs a whole pipeline.
 
     Run a node with ROS arguments, e.g.
@@ -86,7 +86,7 @@ for _node in NODES:
               help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "
                    "diff, the one_obstacle scene for omni3.")
 @click.option("--robot", type=click.Choice(["diff", "omni3"]), default="diff", show_default=True,
-              help="diff: map_server + sim + astar_pathplanner + goto_waypoint; omni3: sim + "
+              help="diff: map_server + sim + pathplanner + goto_waypoint; omni3: sim + "
                    "potential_field_navigator.")
 @click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")
 @click.option("--yaw", type=float, default=0.0, show_default=True, help="Start heading (rad).")

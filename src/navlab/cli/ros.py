@@ -9,7 +9,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import parse_params
+from .common import EXIT_INTERRUPTED, parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -113,7 +113,8 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
     """Drive a simulated robot to a goal through the ROS 2 nodes, in one
     command, and judge the run from /odom.
 
-    Exit status 0 when the robot stopped within 0.1 m of the goal, 1 otherwise.
+    Exit status 0 when the robot stopped within 0.1 m of the goal, 130 after
+    Ctrl-C, 1 otherwise.
     """
     _require_rclpy()
     from ..ros.demo import run_demo
@@ -135,4 +136,4 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
             click.echo(f"  {line}")
         if "recorded" in summary:
             click.echo(f"  recorded to {summary['recorded']['path']}: {summary['recorded']['messages']}")
-    sys.exit(0 if summary["status"] == "REACHED" else 1)
+    sys.exit({"REACHED": 0, "INTERRUPTED": EXIT_INTERRUPTED}.get(summary["status"], 1))

@@ -185,6 +185,7 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
                     executor.spin_once(timeout_sec=0.05)
                 except (KeyboardInterrupt, ExternalShutdownException):
                     mission.finish("interrupted")
+                    mission.interrupted = True
                     break
                 wall = time.monotonic() - wall0
                 if launcher is not None and launcher.failed():
@@ -251,6 +252,7 @@ class Mission(NavlabNode):
         self.travelled = 0.0
         self.logs: List[str] = []
         self.done, self.reached, self.reason = False, False, ""
+        self.interrupted = False  # by Ctrl-C
         self.steady_timer(0.05, self.send_goal_when_heard)
 
     def send_goal_when_heard(self) -> None:
@@ -310,7 +312,8 @@ class Mission(NavlabNode):
     def summary(self) -> Dict[str, Any]:
         plan = self.plans[-1] if self.plans else None
         return {
-            "status": "REACHED" if self.reached else "FAILED", "reason": self.reason,
+            "status": "REACHED" if self.reached else "INTERRUPTED" if self.interrupted else "FAILED",
+            "reason": self.reason,
             "goal": self.goal.tolist(), "sim_time_s": self.t - (self.sent_at or 0.0),
             "final_odom": None if self.odom is None else self.odom.tolist(),
             "final_true": None if self.truth is None else self.truth.tolist(),

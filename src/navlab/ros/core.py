@@ -16,8 +16,9 @@ import numpy as np
 
 from ..control.base import REACHED, STALLED, Controller
 from ..grid.occupancy import OccupancyGrid
-from ..planning import is_grid_planner
+from ..planning import is_grid_planner, plan
 from ..result import Result
+from ..world.world import World
 
 Log = Callable[[str, str], None]
 Twist = Tuple[float, float, float]
@@ -47,9 +48,6 @@ def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, 
     ``allow_unknown``, unknown) cells are the obstacles, kept
     ``robot_radius`` away from the path. ``sampler`` goes to the tree
     planners only."""
-    from ..planning import plan
-    from ..world.world import World
-
     world = World.from_grid(grid, start, goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
     extra = {"sampler": None} if is_grid_planner(algorithm) else {"sampler": sampler}
     return plan(world, planner=algorithm, seed=seed, **extra, **params)

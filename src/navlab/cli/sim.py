@@ -38,11 +38,11 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.option("--dt", type=float, default=0.05, show_default=True, help="Time step [s].")
 @click.option("--max-time", type=float, default=None,
               help="Simulated time limit [s] (default: 60 s + 4× the path's length at the robot's speed).")
-@click.option("--lidar-timing", "lidar_timing", multiple=True, metavar="KEY=VALUE",
-              help="LiDAR rate [Hz], latency [s] and jitter [s], e.g. rate=10 latency=0.5 (default: every step, "
-                   "no delay).")
-@click.option("--odom-timing", "odom_timing", multiple=True, metavar="KEY=VALUE",
-              help="Odometry rate [Hz], latency [s] and jitter [s], e.g. rate=50 latency=0.08.")
+@click.option("--lidar-timing", "lidar_timing", multiple=True, metavar="KEY=VALUE[,...]",
+              help="LiDAR rate [Hz], latency [s] and jitter [s], e.g. rate=10,latency=0.5,jitter=0.12 (default: "
+                   "every step, no delay).")
+@click.option("--odom-timing", "odom_timing", multiple=True, metavar="KEY=VALUE[,...]",
+              help="Odometry rate [Hz], latency [s] and jitter [s], e.g. rate=50,latency=0.08.")
 @click.option("--seed", type=int, default=0, show_default=True)
 @click.option("--experiment", type=click.Choice(EXPERIMENT_NAMES), default=None,
               help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
@@ -71,7 +71,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
       navlab sim clutter --robot diff --planner rrt_star --controller-param replan=true --plot run.png
       navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --gif run.gif
       navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --planner rrt_star --sampler integration
-      navlab sim one_obstacle --controller potential_field --lidar-timing rate=10 latency=0.5
+      navlab sim one_obstacle --controller potential_field --lidar-timing rate=10,latency=0.5
     """
     if experiment:
         if world:
@@ -87,8 +87,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
                                         robot_params=parse_params(robot_params),
                                         controller_params=parse_params(controller_params), dt=dt,
                                         max_time=max_time, seed=seed,
-                                        lidar_timing=parse_params(lidar_timing) if lidar_timing else None,
-                                        odometry_timing=parse_params(odom_timing) if odom_timing else None)
+                                        lidar_timing=_timing(lidar_timing), odometry_timing=_timing(odom_timing))
     if plot:
         from ..viz.sim_plot import plot_run
 
@@ -114,6 +113,13 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
                 click.echo(f"  {what} written to {name}")
     if result.status.name != "REACHED":
         sys.exit(1)
+
+
+def _timing(items):
+    """``rate=10,latency=0.5`` (or the flag repeated) as a mapping; None when not given."""
+    if not items:
+        return None
+    return parse_params(tuple(part for item in items for part in item.split(",") if part.strip()))
 
 
 def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:

@@ -131,10 +131,11 @@ def crossing(y0: float, speed: float):
                        "motion": {"waypoints": [[5, 3.5], [5, 0.5]], "speed": speed}})
 
 
-def test_diff_drive_with_replan_survives_an_obstacle_crossing_its_path():
+@pytest.mark.parametrize("planner", ["rrt_star", "astar"])
+def test_diff_drive_with_replan_survives_an_obstacle_crossing_its_path(planner):
     world = crossing(0.6, 0.2)  # without replanning the obstacle runs into the robot at x ≈ 5
-    plain, _, _ = simulate(world, robot="diff")
+    plain, _, _ = simulate(world, robot="diff", planner=planner)
     assert plain.status is SimStatus.COLLIDED and "hit the robot" in plain.reason
-    replanned, _, sim = simulate(world, robot="diff", controller_params={"replan": True})
+    replanned, _, sim = simulate(world, robot="diff", planner=planner, controller_params={"replan": True})
     assert replanned.status is SimStatus.REACHED
     assert sim.min_clearance(replanned) > 0

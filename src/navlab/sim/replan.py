@@ -58,7 +58,10 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
         world = replace(scene_world, start=tuple(start[:2]), goal=tuple(goal),
                         obstacles=tuple(scene_world.obstacles) + tuple(extra),
                         robot_radius=robot_radius + PLAN_MARGIN, goal_tolerance=0.0)
-        result = plan(world, planner=planner or "rrt_star", sampler=sampler, seed=seed, **(params or {}))
+        settings = dict(params or {})
+        if is_grid_planner(planner or "rrt_star"):
+            settings.setdefault("smooth", True)  # as on maps: a follower wants few waypoints, not every cell
+        result = plan(world, planner=planner or "rrt_star", sampler=sampler, seed=seed, **settings)
     if not result.success:
         return result
     path = np.asarray(result.path, float)

@@ -4,12 +4,15 @@ import math
 
 import numpy as np
 import pytest
+import shapely
 
 import navlab
 from navlab.grid import OccupancyGrid, save_map
 from navlab.result import Status
 from navlab.world import Bounds, Circle, World, WorldFormatError
 from navlab.world.sources import MissingQueryError, load_source, source_kind
+
+from .helpers import true_clearance
 
 PLANNERS = navlab.planner_names()
 TREE_BUDGET = {"max_iter": 1500}
@@ -24,7 +27,7 @@ def small_map() -> OccupancyGrid:
     return OccupancyGrid(blocked, 0.1, (-1.0, -1.0, 0.0), unknown, name="small")
 
 
-MAP_QUERY = {"start": (-0.75, -0.75), "goal": (1.75, 1.75)}
+MAP_QUERY = {"start": (-0.75, -0.75), "goal": (1.75, 1.75), "robot_radius": 0.05}
 
 
 @pytest.fixture(scope="module")
@@ -79,7 +82,24 @@ def test_every_planner_on_every_source(sources, kind, planner):
     if grid:
         # the cell-level cost is kept, in cells, next to the metres
         assert r.stats["cost_cells"] > 0
-        assert world.checker().path_free(r.path)
+    assert world.checker().path_free(r.path)
+    assert independent_clearance(world, r.path) >= world.robot_radius - 1e-9
+
+
+def independent_clearance(world, path) -> float:
+    """Smallest distance (shapely) from the path to an obstacle or a non-free map cell's square."""
+    legs = [shapely.LineString(path[i:i + 2]) for i in range(len(path) - 1)]
+    best = min(true_clearance(world, leg) for leg in legs)
+    grid = world.occupancy
+    if grid is not None:
+        assert grid.origin[2] == 0.0
+        jj, ii = np.nonzero(~grid.passable(world.allow_unknown))
+        x0, y0 = grid.origin[0] + ii * grid.resolution, grid.origin[1] + jj * grid.resolution
+        squares = shapely.box(x0, y0, x0 + grid.resolution, y0 + grid.resolution)
+        best = min(best, min(shapely.distance(squares, leg).min() for leg in legs))
+    if world.robot_radius == 0:
+        assert best > 0  # touching counts as collision
+    return best
 
 
 @pytest.mark.parametrize("planner", ["rrt", "astar"])
@@ -104,7 +124,7 @@ def test_start_and_goal_override_a_world_and_robot_radius_applies_everywhere(sou
 
 @pytest.mark.parametrize("planner", ["rrt_star", "theta_star"])
 @pytest.mark.parametrize("start, goal, status, text", [
-    ((-1.5, 0.0), (1.5, 1.5), Status.INVALID_START, "outside the bounds"),
+    ((-1.5, 0.0), (1.5, 1.5), Status.INVALID_START, "outside the bounds x=[-1, 2] y=[-1, 2] (cell (-5, 10), outside the 30x30 map)"),
     ((0.55, 0.55), (1.5, 1.5), Status.INVALID_START, "in occupied cell (15, 15)"),
     ((-0.75, -0.75), (1.65, -0.65), Status.INVALID_GOAL, "in unknown cell (26, 3)"),
     ((-0.75, -0.75), (0.55, 0.86), Status.INVALID_GOAL, "within the robot radius 0.1 m of occupied cell (15, 17)"),
@@ -160,3 +180,19 @@ def test_same_seed_same_result_on_a_map():
     a = navlab.plan(small_map(), planner="rrt_star", seed=4, max_iter=800, **MAP_QUERY)
     b = navlab.plan(small_map(), planner="rrt_star", seed=4, max_iter=800, **MAP_QUERY)
     np.testing.assert_array_equal(a.path, b.path)
+
+
+def test_warm_up_runs_before_the_timed_query_and_is_reported_apart(monkeypatch):
+    import time
+
+    import navlab.warmup
+
+    def slow_warm_up(planner, sampler, **kwargs):
+        time.sleep(0.3)  # a compile longer than the whole time budget
+        return 0.3
+
+    monkeypatch.setattr(navlab.warmup, "warm_up", slow_warm_up)
+    r = navlab.plan("trap", planner="rrt", max_time=0.2, max_iter=100000)
+    # had the budget started before the warm-up, no iteration would have run
+    assert r.success and r.stats["iterations"] > 0
+    assert r.stats["warmup_s"] == 0.3

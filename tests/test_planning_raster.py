@@ -16,7 +16,6 @@ from scipy.sparse.csgraph import dijkstra
 import navlab
 from navlab.grid import OccupancyGrid
 from navlab.grid.rasterize import MAX_CELLS, grid_shape, rasterize
-from navlab.result import Status
 from navlab.world import Bounds, Circle, Polygon, Rectangle, World
 
 from .helpers import shapely_of, true_clearance
@@ -163,3 +162,36 @@ def test_start_beside_a_wall_joins_the_grid_through_a_free_leg():
     assert r.success, r.reason
     np.testing.assert_array_equal(r.path[0], world.start)
     assert world.checker().path_free(r.path)
+
+
+def test_rotated_map_paths_keep_the_robot_radius():
+    blocked = np.zeros((30, 30), bool)
+    blocked[10:20, 5:25] = True
+    yaw = 0.3
+    grid = OccupancyGrid(blocked, 0.1, (1.0, 2.0, yaw))
+    start, goal = grid.cell_to_world([[2, 2], [27, 27]])
+    jj, ii = np.nonzero(blocked)
+    corners = np.stack([np.stack([ii + dx, jj + dy], -1) for dx, dy in ((0, 0), (1, 0), (1, 1), (0, 1))], 1) * 0.1
+    c, s = math.cos(yaw), math.sin(yaw)
+    squares = shapely.polygons(corners @ np.array([[c, s], [-s, c]]) + (1.0, 2.0))  # independent transform
+    for algorithm in ("astar", "theta_star"):
+        r = navlab.plan(grid, planner=algorithm, start=start, goal=goal, robot_radius=0.05)
+        assert r.success, r.reason
+        assert min(shapely.distance(squares, shapely.LineString(r.path[i:i + 2])).min()
+                   for i in range(len(r.path) - 1)) >= 0.05
+
+
+def test_a_grid_edited_after_a_plan_gives_the_new_answer():
+    grid = OccupancyGrid(np.zeros((20, 20), bool), 0.5)
+    query = {"start": (0.25, 5.25), "goal": (9.75, 5.25)}
+    straight = navlab.plan(grid, planner="astar", **query)
+    assert straight.cost == pytest.approx(9.5)
+    wall = np.zeros((20, 20), bool)
+    wall[2:, 10] = True
+    try:
+        grid.blocked[wall] = True  # a mutable grid, edited in place
+    except ValueError:
+        grid = grid.with_blocked(grid.blocked | wall)  # an immutable grid: a changed copy
+    detour = navlab.plan(grid, planner="astar", **query)
+    assert detour.success and detour.cost > 12
+    assert not np.any(np.all(np.isclose(detour.path, (5.25, 5.25)), axis=1))

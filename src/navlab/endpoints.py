@@ -65,11 +65,12 @@ def endpoint_problem(world, point, label: str, checker) -> Optional[str]:
     p = np.asarray(point, dtype=float)
     where = f"{label} {_fmt(p)}"
     b = world.bounds
-    if not b.contains(p)[0]:
-        return f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]"
     grid = world.occupancy
+    cell = tuple(int(v) for v in grid.world_to_cell(p)) if grid is not None else None
+    if not b.contains(p)[0]:
+        return f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]" + \
+            (f" (cell {cell}, outside the {grid.width}x{grid.height} map)" if grid is not None else "")
     if grid is not None:
-        cell = tuple(int(v) for v in grid.world_to_cell(p))
         if not grid.contains([cell])[0]:
             return f"{where} is in cell {cell}, outside the {grid.width}x{grid.height} map"
         if grid.blocked[cell[1], cell[0]]:

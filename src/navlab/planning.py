@@ -107,7 +107,7 @@ def tree_query(world, planner: str, sampler: str, seed: Any, params: dict) -> Re
 def grid_query(world, algorithm: str, params: dict) -> Result:
     """A grid algorithm on ``world``'s conservative raster (a map: its own
     cells), joined to the exact start and goal by checked straight legs."""
-    from .endpoints import attach, leg_free
+    from .endpoints import attach
     from .grid.planner import plan as grid_plan
     from .grid.rasterize import rasterize
 
@@ -133,6 +133,7 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
                                  "(cells within the robot radius of an obstacle are blocked); try a finer resolution")
     r = grid_plan(grid, cells["start"], cells["goal"], algorithm=algorithm, smooth_method="supercover", **settings)
     stats.update(r.stats)
+    stats.pop("length_m", None)  # the centre-to-centre part only; cost is the whole path's length
     stats["rasterize_s"] = rasterize_s
     if not r.success:
         stats["time_s"] = time.perf_counter() - t0
@@ -143,13 +144,13 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     keep[1:] = np.any(np.diff(path, axis=0) != 0, axis=1)  # a point that is its cell's centre
     path = path[keep]
     # The raster is conservative, so the cell-to-cell legs are free by
-    # construction; the exact check of the whole path guards that promise.
-    bad = [i for i in range(len(path) - 1) if not leg_free(world, checker, path[i], path[i + 1])] \
-        if len(path) > 1 else []
+    # construction (and attach() checked the two end legs against the map's
+    # squares); one exact check of the whole path guards that promise.
+    bad = np.flatnonzero(~checker.segments_free(path[:-1], path[1:])) if len(path) > 1 else []
     stats["collision_checks"] = checker.checks
     stats["time_s"] = time.perf_counter() - t0
-    if bad:
-        i = bad[0]
+    if len(bad):
+        i = int(bad[0])
         return Result(status=Status.FAILED, params=out_params, stats=stats, cells=r.cells,
                       reason=f"the grid path's leg {i} from {tuple(np.round(path[i], 6))} to "
                              f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
@@ -159,13 +160,16 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
 
 
-def _warm(planner: str, sampler: Optional[str], grid_settings: dict, on_map: bool) -> float:
-    """Seconds spent warming this query's kernels (0 once they are loaded)."""
+def _warm(planner: str, sampler: Optional[str], grid_settings: Optional[dict], on_map: bool) -> float:
+    """Seconds spent warming this query's kernels (0 once they are loaded).
+
+    ``grid_settings`` is None for tree planners; for grid planners it picks
+    the A* variant (compiled per connectivity and heuristic) to warm.
+    """
     from .warmup import warm_up
 
     seconds = warm_up(planner, sampler or "uniform", on_map=on_map)
-    if grid_settings:
-        # A* is compiled per connectivity and heuristic: warm the variant asked for.
+    if grid_settings is not None:
         t0 = time.perf_counter()
         _warm_grid_variant(planner, int(grid_settings.get("connectivity", 8)),
                            str(grid_settings.get("heuristic", "octile")), bool(grid_settings.get("smooth", False)))
@@ -175,12 +179,20 @@ def _warm(planner: str, sampler: Optional[str], grid_settings: dict, on_map: boo
 
 @functools.lru_cache(maxsize=None)
 def _warm_grid_variant(planner: str, connectivity: int, heuristic: str, smooth: bool) -> None:
+    """This variant through the whole grid_query path: a geometric world's
+    raster, and a map with a robot radius (inflation, exact end legs)."""
+    from .grid.occupancy import OccupancyGrid
+    from .world import World
     from .world.scenes import SCENES
 
+    settings = {"connectivity": connectivity, "heuristic": heuristic, "smooth": smooth}
     world = SCENES.get("trap")()
+    blocked = np.zeros((8, 8), dtype=bool)
+    blocked[2:6, 4] = True
+    tiny_map = World.from_grid(OccupancyGrid(blocked, 1.0), (1.5, 3.5), (6.5, 3.5), robot_radius=0.25)
     try:
-        grid_query(world, planner, {"resolution": world.bounds.diagonal / 20, "connectivity": connectivity,
-                                    "heuristic": heuristic, "smooth": smooth})
+        grid_query(world, planner, {"resolution": world.bounds.diagonal / 20, **settings})
+        grid_query(tiny_map, planner, settings)
     except ValueError:
         pass  # an invalid combination: the real query reports it
 
@@ -198,8 +210,9 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         A tree planner (``rrt``, ``rrt_star``, ``informed_rrt_star``,
         ``growth_ratio_rrt``) or a grid algorithm (``astar``, ``dijkstra``,
         ``jps``, ``theta_star``); see :func:`planner_names`.
-    sampler : str
-        A registered sampler (tree planners only; grid planners take none).
+    sampler : str or None
+        A registered sampler for tree planners (None: ``uniform``); grid
+        planners take none.
     start, goal : (x, y), optional
         Metres; override the source's own. Required for maps (they have none).
     seed : int or numpy.random.Generator
@@ -213,7 +226,8 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         (``heuristic``, ``connectivity``, ``smooth``, ``weight``,
         ``resolution`` in metres per cell for geometric worlds, default 1/200 of
         the bounds' longer side); ``allow_unknown`` (maps: unknown cells are
-        free). Routed by name; an unknown name is an error listing the valid
+        free); ``goal_tolerance`` (m, overrides the source's; maps: 0; grid
+        planners always end exactly at the goal). Routed by name; an unknown name is an error listing the valid
         ones for that planner.
 
     Returns
@@ -237,6 +251,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
 
     grid = is_grid_planner(planner)
     params = dict(params)
+    goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
     if grid:
         if sampler not in (None, "uniform"):
@@ -245,9 +260,11 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
                              f"(got '{sampler}')")
         settings = split_grid_params(planner, params)
     else:
+        sampler = sampler or "uniform"
         SAMPLERS.get(sampler)
         split_params(planner, sampler, params)  # unknown names fail before any file is read
-    world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
+    world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, goal_tolerance=goal_tolerance,
+                        allow_unknown=allow_unknown)
     if allow_unknown is not None and world.occupancy is None and not grid:
         raise ValueError("allow_unknown applies to maps; this source is a geometric world")
     common = {"planner": planner, "sampler": None if grid else sampler,
@@ -262,7 +279,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
             result.params.update(common)
             return result
 
-    warmup_s = _warm(planner, sampler, settings if grid else {}, on_map=world.occupancy is not None)
+    warmup_s = _warm(planner, sampler, settings if grid else None, on_map=world.occupancy is not None)
     result = grid_query(world, planner, settings) if grid else tree_query(world, planner, sampler, seed, params)
     result.stats["warmup_s"] = warmup_s
     result.params.update(common)

@@ -97,7 +97,7 @@ def test_bad_planner_settings_are_refused():
         GoalPlanner(Logbook(), connectivity=6)
     with pytest.raises(ValueError, match="inflation_radius"):
         GoalPlanner(Logbook(), inflation_radius=-1.0)
-    with pytest.raises(Exception, match="unknown algorithm .astra.*Did you mean .astar."):
+    with pytest.raises(Exception, match="unknown planner .astra.*Did you mean .astar."):
         GoalPlanner(Logbook(), algorithm="astra")
 
 

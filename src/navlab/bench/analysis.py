@@ -35,10 +35,10 @@ import numpy as np
 
 from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
 
-#: a time ratio within 20% of 1 is never a verdict: below what a shared machine keeps stable
-MIN_TIME_EFFECT = math.log(1.2)
+#: a time ratio within 30% of 1 is never a verdict: below what a shared machine keeps stable
+MIN_TIME_EFFECT = math.log(1.3)
 #: a time ratio must exceed this many times the measured timing noise ε
-NOISE_FACTOR = 3.0
+NOISE_FACTOR = 2.0
 #: row fields behind ``--time``
 TIME_FIELDS = {"cpu": "cpu_s", "wall": "wall_s"}
 TIME_LABELS = {"cpu": "thread CPU time", "wall": "wall-clock time"}
@@ -111,7 +111,9 @@ def time_decision(test: Dict[str, Any], p: Optional[float], limit: Dict[str, Any
     ``direction`` -1 (a lower), +1 (a higher) or 0 (not shown), and why."""
     ma, mb = test.get("median_a"), test.get("median_b")
     ratio = ma / mb if ma and mb and mb > 0 else None
-    significant = p is not None and p < ALPHA and test.get("delta") is not None
+    if p is None:
+        return {"direction": 0, "ratio": ratio, "why": _too_few(test)}
+    significant = p < ALPHA and test.get("delta") is not None
     big = ratio is not None and ratio > 0 and abs(math.log(ratio)) > limit["threshold"]
     if significant and big:
         return {"direction": -1 if ratio < 1 else 1, "ratio": ratio, "why": ""}
@@ -122,9 +124,15 @@ def time_decision(test: Dict[str, Any], p: Optional[float], limit: Dict[str, Any
 def plain_decision(test: Dict[str, Any], p: Optional[float]) -> Dict[str, Any]:
     """Verdict on a metric without timing noise (cost, iterations)."""
     delta = test.get("delta")
-    if p is not None and p < ALPHA and delta is not None and delta != 0:
+    if p is None:
+        return {"direction": 0, "ratio": None, "why": _too_few(test)}
+    if p < ALPHA and delta is not None and delta != 0:
         return {"direction": -1 if delta < 0 else 1, "ratio": None, "why": ""}
     return {"direction": 0, "ratio": None, "why": "not significant"}
+
+
+def _too_few(test: Dict[str, Any]) -> str:
+    return f"too few trials to compare ({test.get('n_a', 0)} and {test.get('n_b', 0)} with a value)"
 
 
 def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:

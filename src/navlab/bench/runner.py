@@ -28,7 +28,7 @@ from .analysis import by_world, judge_claims, summarize, timed
 from .executors import EXECUTORS, check_executor
 from .experiment import OMPL_PREFIX, Experiment
 from .report import build, to_html, to_markdown
-from .store import ResultStore, write_error
+from .store import OutputError, ResultStore, read_rows, write_error
 from .trial import execute, machine
 
 
@@ -106,7 +106,9 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                     bar.update(1)
             except KeyboardInterrupt:
                 bar.close()
-                raise Interrupted(store.folder, len(store.current_rows(specs)), len(specs)) from None
+                store.close()
+                kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
+                raise Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs)) from None
             bar.close()
         elapsed = time.perf_counter() - t0
         phases["trials"] = elapsed
@@ -117,7 +119,8 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         rows = store.current_rows(specs)
         repeats = [store.rows[s["trial_id"]] for s in experiment.noise_specs() if s["trial_id"] in store.rows]
         summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
-                               time_kind=time_kind, trees=trees, torn=store.torn, phases=phases)
+                               time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
+                               plot_jobs=1 if executor == "serial" else min(phases["workers"], os.cpu_count() or 1))
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 
@@ -130,9 +133,10 @@ def _progress(total: int, desc: str, enabled: bool):
 def write_report(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
                  elapsed_s: Optional[float] = None, plots: bool = True, time_kind: str = "cpu",
                  trees: Optional[Dict[str, Dict[str, Any]]] = None, torn: int = 0,
-                 phases: Optional[Dict[str, Any]] = None) -> Dict[str, Any]:
-    """summary.json, report.md, report.html and (with ``plots``) the figures.
-    ``rows`` may include the noise repeats; ``phases`` gets the seconds spent here."""
+                 phases: Optional[Dict[str, Any]] = None, plot_jobs: int = 1) -> Dict[str, Any]:
+    """summary.json, report.md, report.html and (with ``plots``) the figures,
+    drawn by ``plot_jobs`` processes. ``rows`` may include the noise repeats;
+    ``phases`` gets the seconds spent here."""
     phases = phases if phases is not None else {}
     t0 = time.perf_counter()
     summary = summarize(rows, time_kind)
@@ -142,7 +146,8 @@ def write_report(experiment: Experiment, rows: List[Dict[str, Any]], folder: Pat
     _write(folder / "summary.json", json.dumps(summary, indent=1))
     t1 = time.perf_counter()
     trials = [r for r in timed(rows, time_kind) if not r.get("repeat")]
-    images = make_plots(experiment, trials, folder, trees or {}) if plots else {}
+    images = make_plots(experiment, trials, folder, trees or {}, jobs=plot_jobs,
+                        time_label=summary["time_label"]) if plots else {}
     t2 = time.perf_counter()
     from .. import __version__
 
@@ -163,45 +168,72 @@ def _write(path: Path, text: str) -> None:
 
 
 def make_plots(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
-               trees: Dict[str, Dict[str, Any]]) -> Dict[str, List[str]]:
-    """Figures per world. The example tree of each cell is trial 0's, kept by
-    the worker that ran it; when trial 0 ran in an earlier (resumed) run, it
-    is rerun here with its recorded seed (same seed, same tree)."""
-    from ..viz.bench_plot import box_plots, convergence_plot, example_trees
-    from .trial import _world
-
+               trees: Dict[str, Dict[str, Any]], jobs: int = 1, time_label: str = "time") -> Dict[str, List[str]]:
+    """Figures per world, drawn by up to ``jobs`` processes (one world each).
+    The example tree of each cell is trial 0's, kept by the worker that ran
+    it; when trial 0 ran in an earlier (resumed) run, it is rerun with its
+    recorded seed (same seed, same tree)."""
     plot_dir = folder / "plots"
     try:
         plot_dir.mkdir(exist_ok=True)
     except OSError as exc:
         raise write_error(plot_dir, exc) from None
-    images: Dict[str, List[str]] = {}
-    specs = {s["trial_id"]: s for s in experiment.trial_specs()}
+    specs = {s["trial_id"]: s for s in experiment.trial_specs() if s["trial"] == 0}
+    tasks = []
     for world, groups in by_world(rows).items():
-        slug = _slug(world)
-        names = [f"plots/box_{slug}.png"]
-        try:
-            box_plots(world, groups, str(folder / names[0]))
-            if convergence_plot(world, groups, str(folder / f"plots/convergence_{slug}.png")):
-                names.append(f"plots/convergence_{slug}.png")
-            examples = []
-            for group, members in groups.items():
-                first = min(members, key=lambda r: r["trial"])
-                tree = trees.get(first["cell_id"]) if first["trial"] == 0 else None
-                if tree is None:
-                    tree = _rerun_tree(specs.get(first["trial_id"]))
-                if tree is None:
-                    continue
-                label = f"{first['cost']:.2f} m" if first.get("success") and first.get("cost") is not None \
-                    else first.get("status", "?")
-                examples.append((f"{group} (trial {first['trial']})\n{label}", tree))
-            if examples:
-                names.append(f"plots/trees_{slug}.png")
-                example_trees(_world(world), examples, str(folder / names[-1]))
-        except OSError as exc:
-            raise write_error(plot_dir, exc) from None
-        images[world] = names
-    return images
+        firsts = {g: min(m, key=lambda r: r["trial"]) for g, m in groups.items()}
+        tasks.append((world, {g: [_plot_fields(r) for r in m] for g, m in groups.items()},
+                      {g: trees.get(r["cell_id"]) if r["trial"] == 0 else None for g, r in firsts.items()},
+                      {g: specs.get(r["trial_id"]) for g, r in firsts.items()}, str(folder), time_label))
+    if jobs > 1 and len(tasks) > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(min(jobs, len(tasks))) as pool:
+            done = list(pool.map(_plot_world, tasks))
+    else:
+        done = [_plot_world(t) for t in tasks]
+    for error in (d for d in done if isinstance(d, str)):
+        raise OutputError(error)
+    return {world: names for world, names in done}
+
+
+#: what the figures read from a row
+_PLOT_FIELDS = ("cell_id", "trial", "status", "success", "cost", "time", "time_s", "trace")
+
+
+def _plot_fields(row: Dict[str, Any]) -> Dict[str, Any]:
+    return {k: row.get(k) for k in _PLOT_FIELDS}
+
+
+def _plot_world(task):
+    """One world's figures: box plots, convergence, example trees. Returns
+    (world, image names), or the one-line message of a failed write."""
+    from ..viz.bench_plot import box_plots, convergence_plot, example_trees
+    from .trial import _world
+
+    world, groups, trees, specs, folder, time_label = task
+    folder = Path(folder)
+    slug = _slug(world)
+    names = [f"plots/box_{slug}.png"]
+    try:
+        box_plots(world, groups, str(folder / names[0]), time_label=f"{time_label} [s]")
+        if convergence_plot(world, groups, str(folder / f"plots/convergence_{slug}.png")):
+            names.append(f"plots/convergence_{slug}.png")
+        examples = []
+        for group, members in groups.items():
+            first = min(members, key=lambda r: r["trial"])
+            tree = trees.get(group) or _rerun_tree(specs.get(group))
+            if tree is None:
+                continue
+            label = f"{first['cost']:.2f} m" if first.get("success") and first.get("cost") is not None \
+                else first.get("status", "?")
+            examples.append((f"{group} (trial {first['trial']})\n{label}", tree))
+        if examples:
+            names.append(f"plots/trees_{slug}.png")
+            example_trees(_world(world), examples, str(folder / names[-1]))
+    except OSError as exc:
+        return str(write_error(folder / "plots", exc))
+    return world, names
 
 
 def _rerun_tree(spec: Optional[Dict[str, Any]]) -> Optional[Dict[str, Any]]:

@@ -248,6 +248,12 @@ def _number(meta: Dict[str, Any], key: str, source: Path, default: Any = None) -
     value = meta.get(key, default)
     if value is None:
         raise MapFormatError(f"{source}: field '{key}' is missing")
+    if isinstance(value, str):
+        # PyYAML reads YAML 1.1, where 5e-2 (no dot) is a string; yaml-cpp (Nav2) reads it as a number
+        try:
+            value = float(value)
+        except ValueError:
+            pass
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise MapFormatError(f"{source}: field '{key}' must be a number, got {value!r}")
     try:
@@ -265,6 +271,11 @@ def _origin(meta: Dict[str, Any], source: Path) -> Tuple[float, float, float]:
         raise MapFormatError(f"{source}: field 'origin' must be [x, y, yaw], got {origin!r}")
     out = []
     for label, v in zip(("x", "y", "yaw"), origin):
+        if isinstance(v, str):  # 5e-2: a string to YAML 1.1, a number to Nav2
+            try:
+                v = float(v)
+            except ValueError:
+                pass
         try:
             ok = not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(float(v))
         except OverflowError:

@@ -26,13 +26,14 @@ MAX_CELLS = 100_000_000
 
 
 def _read_only(values: Any, dtype, name: str) -> np.ndarray:
-    """A C-contiguous read-only copy (a caller's later edits cannot reach it)."""
+    """A C-contiguous read-only copy (a caller's later edits cannot reach it,
+    and ``flags.writeable = True`` on it raises)."""
     try:
         out = np.array(values, dtype=dtype, order="C", copy=True)
     except (TypeError, ValueError) as exc:
         raise ValueError(f"{name} must be an array of {np.dtype(dtype).name}: {exc}") from None
     out.flags.writeable = False
-    return out
+    return out.view()  # a view of a read-only base can never be made writeable again
 
 
 def _finite_number(name: str, value: Any) -> float:

@@ -156,13 +156,25 @@ def rasterize(world, resolution: Optional[float] = None) -> OccupancyGrid:
         if resolution is not None:
             raise ValueError(f"resolution: a map is planned on its own cells ({grid.resolution:g} m); "
                              "leave resolution out")
+        # Many queries on one map (a benchmark, a ROS node) share its raster and
+        # so its search buffers. A grid is immutable (read-only arrays, frozen
+        # fields), so a raster hung on it can never go stale.
+        cache = getattr(grid, "_cache", None)
+        key = ("navlab.plan raster", r, bool(world.allow_unknown), tuple(world.obstacles))
+        if isinstance(cache, dict) and key in cache:
+            return cache[key]
         blocked = ~grid.passable(world.allow_unknown)
         blocked = inflate_cells(blocked, grid.resolution, r, margin)
         if world.obstacles:
             if grid.origin[2] != 0.0:
                 raise ValueError("obstacles on a rotated map (origin yaw != 0) cannot be rasterised onto its cells")
             block_obstacles(blocked, grid.origin[:2], grid.resolution, world.obstacles, r, margin)
-        return OccupancyGrid(blocked, grid.resolution, grid.origin, name=grid.name)
+        raster = OccupancyGrid(blocked, grid.resolution, grid.origin, name=grid.name)
+        if isinstance(cache, dict):
+            for old in [k for k in cache if isinstance(k, tuple) and k and k[0] == "navlab.plan raster"]:
+                del cache[old]  # one raster per map: a new radius replaces the old one
+            cache[key] = raster
+        return raster
     if resolution is None:
         resolution = default_resolution(world.bounds)
     nx, ny = grid_shape(world.bounds, resolution)

@@ -117,6 +117,10 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
             rclpy.spin(node)
         except (KeyboardInterrupt, ExternalShutdownException):
             pass
+        except Exception:
+            if rclpy.ok():
+                raise
+            # SIGINT/SIGTERM shut rclpy down while a callback was publishing
         finally:
             # a second Ctrl-C must not break the teardown with a traceback
             signal.signal(signal.SIGINT, signal.SIG_IGN)

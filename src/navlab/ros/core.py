@@ -16,10 +16,8 @@ import numpy as np
 
 from ..control.base import REACHED, STALLED, Controller
 from ..grid.occupancy import OccupancyGrid
-from ..grid.planner import GRID_ALGORITHMS, plan as grid_plan, plan_world
-from ..registry import UnknownNameError, parameters_of, suggest
+from ..planning import is_grid_planner
 from ..result import Result
-from ..sampling.planners import PLANNERS
 
 Log = Callable[[str, str], None]
 Twist = Tuple[float, float, float]
@@ -43,11 +41,6 @@ def finite(values, what: str, log: Log) -> bool:
 GRID_DEFAULTS = {"smooth": True}
 
 
-def is_tree_planner(algorithm: str) -> bool:
-    """Whether ``algorithm`` grows a search tree (the RRT family)."""
-    return algorithm in PLANNERS
-
-
 def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, seed: int,
                 robot_radius: float, allow_unknown: bool, params: Dict[str, Any]) -> Result:
     """:func:`navlab.plan` on a map: the occupied (and, unless
@@ -58,25 +51,8 @@ def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, 
     from ..world.world import World
 
     world = World.from_grid(grid, start, goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
-    extra = {"sampler": sampler} if is_tree_planner(algorithm) else {}
-    try:
-        return plan(world, planner=algorithm, seed=seed, **extra, **params)
-    except UnknownNameError:
-        if algorithm not in GRID_ALGORITHMS or algorithm in PLANNERS:
-            raise
-    # navlab.plan that does not route grid searches yet (issue 15): the same
-    # search on the map grown by the robot's radius, as navlab.plan does it
-    valid = sorted(set(parameters_of(grid_plan)) - {"grid", "start", "goal", "algorithm", "allow_unknown"})
-    for key in params:
-        if key not in valid:
-            raise ValueError(f"unknown parameter '{key}' for planner '{algorithm}'; valid: {', '.join(valid)}."
-                             + suggest(key, valid))
-    result = plan_world(grid.inflate(robot_radius), start, goal, algorithm=algorithm,
-                        allow_unknown=allow_unknown, **params)
-    if result.success:
-        result.path = np.array(result.path, float)
-        result.path[0], result.path[-1] = start, goal  # cell centres → the exact endpoints
-    return result
+    extra = {"sampler": None} if is_grid_planner(algorithm) else {"sampler": sampler}
+    return plan(world, planner=algorithm, seed=seed, **extra, **params)
 
 
 class GoalPlanner:
@@ -124,13 +100,9 @@ class GoalPlanner:
     def __init__(self, log: Log, algorithm: str = "astar", sampler: str = "uniform", seed: int = 0,
                  inflation_radius: float = 0.175, allow_unknown: bool = False,
                  on_tree: Optional[Callable[[np.ndarray, np.ndarray], None]] = None, **params: Any) -> None:
-        if algorithm not in PLANNERS and algorithm not in GRID_ALGORITHMS:
-            valid = sorted(set(PLANNERS.names()) | set(GRID_ALGORITHMS.names()))
-            raise UnknownNameError(f"unknown algorithm '{algorithm}'; valid: {', '.join(valid)}."
-                                   + suggest(algorithm, valid))
         if not (inflation_radius >= 0 and math.isfinite(inflation_radius)):
             raise ValueError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
-        self.tree_planner = is_tree_planner(algorithm)
+        self.tree_planner = not is_grid_planner(algorithm)  # unknown names: "did you mean"
         if not self.tree_planner:
             if sampler != "uniform":
                 raise ValueError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")

@@ -59,13 +59,15 @@ def ros_args(params: Dict[str, Any]) -> List[str]:
 
 
 class NodeProcesses:
-    """Child processes running nodes; a context manager that interrupts
-    them (as Ctrl-C would) on exit, and kills those that hang.
+    """Child processes running nodes; a context manager that stops them on
+    exit (SIGTERM, on which rclpy shuts a node down cleanly) and kills those
+    that hang.
 
     Each node runs in a process group of its own, so a terminal's Ctrl-C
-    reaches only the launcher, which then interrupts each node once (two
-    interrupts would break a node's shutdown with a traceback). Each node
-    dies with the launcher, even a SIGKILLed one
+    reaches only the launcher, which then stops each node once: a SIGINT
+    would raise KeyboardInterrupt in a node still starting Python, and a
+    second one would break a node's shutdown, each with a traceback. Each
+    node dies with the launcher, even a SIGKILLed one
     (:func:`navlab.ros.entry.die_with_parent`).
 
     Parameters
@@ -112,7 +114,7 @@ class NodeProcesses:
     def __exit__(self, *exc) -> None:
         for _, p in self.procs:
             if p.poll() is None:
-                p.send_signal(signal.SIGINT)
+                p.send_signal(signal.SIGTERM)
         for _, p in self.procs:
             try:
                 p.wait(timeout=10)

@@ -150,13 +150,15 @@ class TreePlanner:
         invalid = _check_query(world, checker)
         if invalid is not None:
             invalid.params = params
+            invalid.stats = _stats(checker=checker, elapsed=time.perf_counter() - t0)
             return invalid
 
         max_iter = params["max_iter"]
         tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid")
         fparams = self._fparams(world, params)
         geom = checker.geometry
-        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.istate, fparams, self.mode):
+        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.goal_slot, tree.istate,
+                                fparams, self.mode):
             tree.best_cost[0] = tree.goal_extra[0]
             tree.istate[K.S_BEST] = 0
             tree.record_cost(0)
@@ -169,7 +171,8 @@ class TreePlanner:
                 break
             batch = min(self.batch_size, max_iter - it)
             samples = np.ascontiguousarray(
-                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box)))
+                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box),
+                               deadline=None if self.max_time is None else t0 + self.max_time))
             used = tree.grow(samples, it, geom, fparams, self.mode)
             it += used
             if first_time is None and tree.istate[K.S_FIRST_ITER] >= 0:
@@ -177,23 +180,14 @@ class TreePlanner:
             if tree.istate[K.S_DONE]:
                 break
         checker.add_counts(segments=int(tree.istate[K.S_EDGE_CHECKS]))
-        if tree.istate[K.S_GOALS] > 0 and self.mode == K.MODE_RRT_STAR:
-            # Rewiring may have lowered a goal node's cost after it was found.
-            K._refresh_best(tree.cost, tree.goal_node, tree.goal_extra, tree.istate, tree.best_cost)
         return self._result(world, tree, it, checker, params, time.perf_counter() - t0, first_time)
 
     def _result(self, world, tree, iterations, checker, params, elapsed, first_time) -> Result:
-        stats: Dict[str, Any] = {
-            "iterations": int(iterations),
-            "nodes": tree.size,
-            "collision_checks": checker.checks,
-            "edge_checks": int(tree.istate[K.S_EDGE_CHECKS]),
-            "time_s": elapsed,
-            "first_solution_iteration": int(tree.istate[K.S_FIRST_ITER]) if tree.istate[K.S_FIRST_ITER] >= 0 else None,
-            "first_solution_time_s": first_time,
-            "rewires": int(tree.istate[K.S_REWIRES]),
-            "cost_trace": tree.cost_trace(iterations),
-        }
+        first = int(tree.istate[K.S_FIRST_ITER])
+        stats = _stats(checker=checker, elapsed=elapsed, iterations=iterations, nodes=tree.size,
+                       edge_checks=int(tree.istate[K.S_EDGE_CHECKS]), rewires=int(tree.istate[K.S_REWIRES]),
+                       first_iteration=first if first >= 0 else None, first_time=first_time,
+                       cost_trace=tree.cost_trace(iterations))
         best = int(tree.istate[K.S_BEST])
         goal = np.asarray(world.goal)
         if best >= 0:
@@ -213,6 +207,24 @@ class TreePlanner:
         treedata = {"nodes": tree.nodes(), "parent": tree.parents()} if self.keep_tree else None
         return Result(status=status, path=path, cost=cost, stats=stats, reason=reason,
                       tree=treedata, params=params)
+
+
+def _stats(checker, elapsed: float, iterations: int = 0, nodes: int = 0, edge_checks: int = 0,
+           rewires: int = 0, first_iteration: Optional[int] = None, first_time: Optional[float] = None,
+           cost_trace: Optional[np.ndarray] = None) -> Dict[str, Any]:
+    """The statistics every tree-planner result carries, whatever its status
+    (a query rejected before planning has them too, as zeros)."""
+    return {
+        "iterations": int(iterations),
+        "nodes": int(nodes),
+        "collision_checks": checker.checks,
+        "edge_checks": int(edge_checks),
+        "time_s": elapsed,
+        "first_solution_iteration": first_iteration,
+        "first_solution_time_s": first_time,
+        "rewires": int(rewires),
+        "cost_trace": np.zeros(0) if cost_trace is None else cost_trace,
+    }
 
 
 def _check_query(world, checker) -> Optional[Result]:

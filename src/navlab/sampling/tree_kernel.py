@@ -62,10 +62,10 @@ class Tree:
 
     #: per-node arrays and their fill value
     _NODE_ARRAYS = (("xy", 0.0), ("parent", -1), ("cost", 0.0), ("child", -1), ("sibling", -1),
-                    ("goal_node", -1), ("goal_extra", 0.0), ("next_in_cell", -1),
+                    ("goal_node", -1), ("goal_extra", 0.0), ("goal_slot", -1), ("next_in_cell", -1),
                     ("scratch_idx", 0), ("scratch_val", 0.0), ("scratch_dist", 0.0),
                     ("scratch_state", 0), ("scratch_cand", 0), ("scratch_stack", 0))
-    _DTYPES = {"parent": np.int64, "child": np.int64, "sibling": np.int64, "goal_node": np.int64,
+    _DTYPES = {"parent": np.int64, "child": np.int64, "sibling": np.int64, "goal_node": np.int64, "goal_slot": np.int64,
                "next_in_cell": np.int64, "scratch_idx": np.int64, "scratch_state": np.int8, "scratch_cand": np.int64,
                "scratch_stack": np.int64}
 
@@ -145,7 +145,7 @@ class Tree:
         """Consume ``samples`` as iterations ``it0, it0 + 1, ...`` (see :func:`grow`)."""
         self.reserve(len(samples), len(samples))
         return grow(samples, it0, geom, self.xy, self.parent, self.cost, self.child, self.sibling,
-                    self.goal_node, self.goal_extra, self.trace_iter, self.trace_cost, self.istate,
+                    self.goal_node, self.goal_extra, self.goal_slot, self.trace_iter, self.trace_cost, self.istate,
                     self.best_cost, fparams, mode, self.scratch_idx, self.scratch_val, self.scratch_dist,
                     self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid, self.grid_head,
                     self.next_in_cell, self.grid_params)
@@ -190,7 +190,9 @@ def _remove_child(child, sibling, p, k):
 
 
 @njit(cache=True)
-def _shift_subtree(child, sibling, cost, root, delta, stack):
+def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_extra, istate, best_cost):
+    """Add delta (< 0) to the cost of root's subtree; goal candidates in it
+    are offered as the new best (costs only fall, so no other can become it)."""
     top = 0
     stack[top] = root
     top += 1
@@ -198,6 +200,8 @@ def _shift_subtree(child, sibling, cost, root, delta, stack):
         top -= 1
         u = stack[top]
         cost[u] += delta
+        if goal_slot[u] >= 0:
+            _offer_goal(goal_slot[u], cost[u] + goal_extra[goal_slot[u]], istate, best_cost)
         c = child[u]
         while c >= 0:
             stack[top] = c
@@ -205,17 +209,13 @@ def _shift_subtree(child, sibling, cost, root, delta, stack):
             c = sibling[c]
 
 
-@njit(cache=True)
-def _refresh_best(cost, goal_node, goal_extra, istate, best_cost):
-    best = np.inf
-    arg = -1
-    for g in range(istate[S_GOALS]):
-        c = cost[goal_node[g]] + goal_extra[g]
-        if c < best:
-            best = c
-            arg = g
-    best_cost[0] = best
-    istate[S_BEST] = arg
+@njit(cache=True, inline="always")
+def _offer_goal(g, value, istate, best_cost):
+    """Keep (best cost, goal index) the lexicographic minimum over the goal
+    candidates, as a forward scan with a strict ``<`` finds it."""
+    if value < best_cost[0] or (value == best_cost[0] and g < istate[S_BEST]):
+        best_cost[0] = value
+        istate[S_BEST] = g
 
 
 @njit(cache=True)
@@ -230,7 +230,7 @@ def growth_step(inside, n_in, n_out, d, cap):
 
 
 @njit(cache=True)
-def add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode):
+def add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fparams, mode):
     """Record node k as reaching the goal if it does (returns True then)."""
     gx, gy = fparams[P_GX], fparams[P_GY]
     dg = math.hypot(gx - xy[k, 0], gy - xy[k, 1])
@@ -250,6 +250,7 @@ def add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode
     g = istate[S_GOALS]
     goal_node[g] = k
     goal_extra[g] = extra
+    goal_slot[k] = g
     istate[S_GOALS] = g + 1
     return True
 
@@ -316,7 +317,7 @@ def _near_scan(qx, qy, r2, xy, n, out):
 
 @njit(cache=True)
 def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_extra,
-         trace_iter, trace_cost, istate, best_cost, fparams, mode, near_idx, near_val, near_dist,
+         goal_slot, trace_iter, trace_cost, istate, best_cost, fparams, mode, near_idx, near_val, near_dist,
          near_state, cand, stack, use_grid, grid_head, next_in_cell, grid_params):
     """Consume ``samples`` as iterations ``it0, it0 + 1, ...``.
 
@@ -366,7 +367,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         best_parent = nearest
         best_c = cost[nearest] + step
         n_near = 0
-        rewired = False
+        best_before = best_cost[0]
         if mode == MODE_RRT_STAR:
             radius = min(gamma * math.sqrt(math.log(n + 1) / (n + 1)), step_max)
             r2 = radius * radius
@@ -433,14 +434,15 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 parent[j] = k
                 sibling[j] = child[k]
                 child[k] = j
-                _shift_subtree(child, sibling, cost, j, new_c - cost[j], stack)
+                _shift_subtree(child, sibling, cost, j, new_c - cost[j], stack, goal_slot, goal_extra,
+                               istate, best_cost)
                 istate[S_REWIRES] += 1
-                rewired = True
-        found = add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode)
-        if found or (rewired and istate[S_GOALS] > 0):
-            _refresh_best(cost, goal_node, goal_extra, istate, best_cost)
+        if add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fparams, mode):
+            g = istate[S_GOALS] - 1
+            _offer_goal(g, cost[k] + goal_extra[g], istate, best_cost)
+        if best_cost[0] != best_before:
             _record_cost(it, best_cost[0], trace_iter, trace_cost, istate)
-            if istate[S_FIRST_ITER] < 0 and best_cost[0] < np.inf:
+            if istate[S_FIRST_ITER] < 0:
                 istate[S_FIRST_ITER] = it
         if mode != MODE_RRT_STAR and istate[S_GOALS] > 0:
             istate[S_DONE] = 1

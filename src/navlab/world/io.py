@@ -228,14 +228,14 @@ def world_from_dict(data: Any, source: str = "<dict>") -> World:
         raise WorldFormatError(f"{source}: nested too deeply to be a world file") from None
 
 
-def read_world_file(path: Union[str, os.PathLike]) -> World:
-    """Read a YAML world file (UTF-8, at most :data:`MAX_FILE_BYTES`).
+def read_yaml_document(path: Union[str, os.PathLike]) -> Any:
+    """The YAML document in ``path`` (UTF-8, at most :data:`MAX_FILE_BYTES`), or None when empty.
 
     Raises
     ------
     WorldFormatError
-        The file cannot be read (missing, a directory, no permission), is not
-        UTF-8 YAML, is empty, or is malformed; the message names the file.
+        The file cannot be read (missing, a directory, no permission), is too
+        large, is not UTF-8 or is not YAML; the message names the file.
     """
     p = Path(path)
     try:
@@ -250,14 +250,26 @@ def read_world_file(path: Union[str, os.PathLike]) -> World:
     except UnicodeDecodeError as exc:
         raise WorldFormatError(f"{p}: not a UTF-8 text file (byte {exc.start}); a world file is YAML text") from None
     try:
-        data = yaml.safe_load(text)
+        return yaml.safe_load(text)
     except yaml.YAMLError as exc:
         raise WorldFormatError(f"{p}: not valid YAML: {_short(exc)}") from None
     except RecursionError:
         raise WorldFormatError(f"{p}: nested too deeply to be a world file") from None
+
+
+def read_world_file(path: Union[str, os.PathLike]) -> World:
+    """Read a YAML world file (see :func:`read_yaml_document`).
+
+    Raises
+    ------
+    WorldFormatError
+        The file cannot be read, is not UTF-8 YAML, is empty, or is malformed;
+        the message names the file.
+    """
+    data = read_yaml_document(path)
     if data is None:
-        raise WorldFormatError(f"{p}: empty; expected the world fields (bounds, start, goal, ...)")
-    return world_from_dict(data, str(p))
+        raise WorldFormatError(f"{path}: empty; expected the world fields (bounds, start, goal, ...)")
+    return world_from_dict(data, str(path))
 
 
 def save_world(world: World, path: Union[str, os.PathLike]) -> None:

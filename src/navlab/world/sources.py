@@ -17,10 +17,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any, Optional, Tuple
 
-import yaml
-
 from ..limits import check_coordinate, check_length
-from .io import WorldFormatError, load_world
+from .io import WorldFormatError, load_world, read_yaml_document
 from .world import World
 
 
@@ -77,12 +75,7 @@ def source_kind(source: Any) -> str:
     if suffix not in (".yaml", ".yml"):
         raise WorldFormatError(f"{path}: unknown source format '{suffix}' (expected a world or map_server "
                                ".yaml, or a Moving AI .map)")
-    try:
-        data = yaml.safe_load(path.read_text())
-    except OSError as exc:
-        raise WorldFormatError(f"{path}: cannot read: {exc.strerror}") from None
-    except yaml.YAMLError as exc:
-        raise WorldFormatError(f"{path}: not valid YAML: {exc}") from None
+    data = read_yaml_document(path)
     if isinstance(data, dict) and "image" in data:
         return "ros_map"
     if isinstance(data, dict) and ("bounds" in data or "obstacles" in data):

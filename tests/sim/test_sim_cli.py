@@ -41,6 +41,7 @@ def test_disk_full_while_writing_a_gif_is_one_line_and_leaves_no_file(tmp_path, 
     from matplotlib.animation import FuncAnimation
 
     def full(self, filename, *args, **kwargs):
+        self._draw_was_started = True  # no "deleted without rendering" warning later, in another test
         with open(filename, "wb") as f:
             f.write(b"GIF89a")  # a torn start
         raise OSError(errno.ENOSPC, "No space left on device")

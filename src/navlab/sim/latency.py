@@ -50,7 +50,8 @@ def _simulation(target, obstacle: str, timing: Dict[str, SensorTiming], max_spee
     # the attraction saturates at α·s (0.3 m/s with the defaults): raise α for higher top speeds so the
     # robot really goes that fast (a lower α would let the repulsion win and stall)
     field = PotentialField(alpha=max(1.0, max_speed / 0.3), max_speed=max_speed)
-    return Simulation(world, Omni3(max_speed=max(0.35, max_speed)), field, (0.0, 0.0, 0.0), target, lidar=Lidar(noise="rplidar_a1"),
+    return Simulation(world, Omni3(max_speed=max(0.35, max_speed)), field, (0.0, 0.0, 0.0), target,
+                      lidar=Lidar(noise="rplidar_a1"),
                       encoders=WheelEncoders(ticks_per_rev=1440, noise=0.02, slip=0.01),
                       compass=Compass(noise_deg=1.0, offset_deg=5.0), dt=0.02, max_time=60.0,
                       lidar_timing=timing["lidar"], odometry_timing=timing["odometry"])
@@ -110,7 +111,8 @@ def latency_table(rows: List[Dict[str, Any]]) -> str:
             time = np.mean([r["time_s"] for r in reached]) if reached else float("nan")
             clearance = min(r["min_clearance_mm"] for r in g)
             lines.append(f"{obstacle:>9} {delays:>9} {speed:>7.2f} | {len(reached):>3}/{len(g):<3} {close:>6} "
-                         f"{collided:>8} | {np.mean(err):>8.1f}/{np.max(err):<8.1f} | {time:>6.1f} | {clearance:>16.0f}")
+                         f"{collided:>8} | {np.mean(err):>8.1f}/{np.max(err):<8.1f} | {time:>6.1f} | "
+                         f"{clearance:>16.0f}")
 
     block("table", lambda r: (r["obstacle"], r["delays"], r["max_speed"]))
     lines.append("top speed, static cylinder, without and with the measured delays (scan 0.5 s, odometry 0.08 s):")

@@ -108,6 +108,10 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
         if result.path is not None:
             click.echo(f"  followed a {len(result.path)}-waypoint path, max tracking error "
                        f"{result.tracking_error():.3f} m")
+        if sim.scene.dynamic:
+            replans = getattr(getattr(sim.controller, "replanner", None), "count", 0)
+            click.echo(f"  {len(sim.scene.moving)} moving obstacle(s); closest approach "
+                       f"{1000 * sim.min_clearance(result):.0f} mm; {replans} replan(s)")
         for what, name in (("plot", plot), ("animation", gif)):
             if name:
                 click.echo(f"  {what} written to {name}")

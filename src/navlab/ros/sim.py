@@ -10,6 +10,10 @@ Steps run on a wall-clock timer at ``real_time_factor`` times real time; the
 other nodes follow ``/clock`` with ``use_sim_time`` so that a run can go
 faster than real time.
 
+Obstacles with a ``motion`` (world files) move with simulated time: the
+scans see them where they are, and a robot they run into stops there (the
+log says who hit whom).
+
 ``scan_latency`` / ``odom_latency`` (with optional seeded jitter) hold each
 ``/scan`` / ``/odom`` message back that many simulated seconds while its
 stamp stays the time it was measured, as seed 004 measured on its robot

@@ -76,7 +76,8 @@ def table(summaries: Sequence[Dict[str, Any]], clock: str) -> str:
         lines.append(f"{s['topic']:<24} {s['count']:>6} {f(s['delay_mean_s'])} {f(s['delay_min_s'])} "
                      f"{f(s['delay_max_s'])} {f(s['rate_hz'])}")
         if s["count"] == 0:
-            notes.append(f"{s['topic']}: no message received" + ("" if s["type"] else " (no publisher seen)"))
+            notes.append(f"{s['topic']}: no message received" + (f" ({s['type']})" if s["type"]
+                                                                   else " (no publisher seen)"))
         elif s["has_stamp"] is False:
             notes.append(f"{s['topic']}: {s['type']} has no header stamp: no delay, rate only")
     return "\n".join(lines + notes)
@@ -126,8 +127,12 @@ def measure(topics: Sequence[str], duration: float, clock: str = "auto", discove
                     continue
                 type_name = graph[t][0]
                 stats[t].type_name = type_name
-                cls = message_class(type_name)
                 subscribed.add(t)
+                try:
+                    cls = message_class(type_name)
+                except (ImportError, AttributeError, ValueError):
+                    stats[t].type_name = f"{type_name} (its Python message package is not installed)"
+                    continue
 
                 def callback(msg, t=t) -> None:
                     now = node.get_clock().now().nanoseconds * 1e-9

@@ -6,6 +6,7 @@ alpha < 255 unknown, raw 0–100 kept; ROS 1: channel mean, strict thresholds,
 99·ratio truncated).
 """
 
+import warnings
 from pathlib import Path
 
 import numpy as np
@@ -125,3 +126,14 @@ def test_nav2s_depot_speed_mask_loads_with_its_walls_occupied():
 def test_unknown_rule_is_refused(tmp_path):
     with pytest.raises(ValueError, match="rule"):
         load_map(write_map(tmp_path, [[0]]), rule="ros3")
+
+
+@pytest.mark.parametrize("rule", ["nav2", "ros1"])
+def test_equal_thresholds_in_scale_mode(tmp_path, rule):
+    # g = 102: occ = 0.6 (to float precision) on both thresholds
+    t = float(np.float32(1.0) - np.float32(102) / np.float32(255)) if rule == "nav2" else (255 - 102) / 255
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        grid = load_map(write_map(tmp_path, [[0, 102, 255]], mode="scale", occupied_thresh=t, free_thresh=t), rule=rule)
+    assert grid.blocked[0, 0] and not grid.blocked[0, 2] and not grid.unknown[0, 2]
+    assert np.all(np.isfinite(grid.probability[0, [0, 2]]))

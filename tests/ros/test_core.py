@@ -114,7 +114,7 @@ def clearance(grid, path):
 
 
 @pytest.mark.parametrize("algorithm, sampler", [("rrt_star", "uniform"), ("rrt_star", "integration"),
-                                                ("informed_rrt_star", "gaussian"), ("rrt", "boundary")])
+                                                ("informed_rrt_star", "gaussian"), ("rrt", "goal_bias")])
 def test_tree_planners_plan_round_the_wall_and_report_their_tree(algorithm, sampler):
     log, trees = Logbook(), []
     planner = GoalPlanner(log, algorithm, sampler=sampler, seed=5, inflation_radius=0.2, max_iter=3000,
@@ -157,8 +157,13 @@ def test_a_tree_planner_that_fails_still_reports_its_tree():
     (dict(algorithm="rrt_star", heuristic="octile"), "unknown parameter 'heuristic'"),
     (dict(algorithm="astar", sampler="gaussian"), "is a grid search"),
     (dict(algorithm="rrt_str"), "Did you mean 'rrt_star'"),
+    # values of the wrong kind (ROS parameters are loosely typed) are refused at start-up too
+    (dict(algorithm="rrt_star", max_iter="abc"), "max_iter"),
+    (dict(algorithm="rrt_star", max_time=-1.0), "max_time"),
+    (dict(algorithm="rrt_star", seed="x"), "bad setting for rrt_star"),
+    (dict(algorithm="rrt_star", sampler="integration", weights=5), "weights"),
 ])
-def test_unknown_names_are_refused_with_a_suggestion(settings, message):
+def test_unknown_names_and_bad_values_are_refused_at_start_up(settings, message):
     with pytest.raises(ValueError, match=message):
         GoalPlanner(Logbook(), **settings)
 
@@ -208,3 +213,19 @@ def test_drive_reports_a_stall():
 def test_bad_drive_settings():
     with pytest.raises(ValueError, match="odom_timeout"):
         Drive(GotoWaypoint(), Logbook(), odom_timeout=0.0)
+
+
+@pytest.mark.parametrize("value", ["astar", "/tmp/a map.yaml", "{goal: 0.2}", "1.5", "true", "it's", 'say "hi"',
+                                   {"goal": 0.1, "uniform": 0.9}, 3, 0.5, True])
+def test_node_parameters_reach_ros_as_the_value_given(value):
+    """``-p name:=VALUE`` is read as YAML: strings stay strings (a path, a
+    number-like text, YAML mapping text), a mapping arrives as its YAML text."""
+    import yaml
+
+    from navlab.ros.launch import ros_value
+
+    read = yaml.safe_load(ros_value(value))
+    if isinstance(value, dict):
+        assert isinstance(read, str) and yaml.safe_load(read) == value
+    else:
+        assert read == value and type(read) is type(value)

@@ -18,7 +18,7 @@ EXIT_INTERRUPTED = 130
 #: optional packages and the extra that installs them
 _EXTRAS = {"dask": "dask", "distributed": "dask", "ompl": "ompl", "pyastar2d": "bench",
            "rclpy": "ros2", "rosbags": "ros2", "nav_msgs": "ros2", "geometry_msgs": "ros2",
-           "sensor_msgs": "ros2", "std_msgs": "ros2", "tf2_msgs": "ros2"}
+           "sensor_msgs": "ros2", "std_msgs": "ros2", "tf2_msgs": "ros2", "visualization_msgs": "ros2"}
 
 
 def debug_enabled() -> bool:

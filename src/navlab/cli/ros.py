@@ -9,7 +9,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import parse_params
+from .common import EXIT_INTERRUPTED, parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -25,7 +25,7 @@ def _require_rclpy() -> None:
 
 @click.group("ros")
 def ros_group() -> None:
-    """ROS 2 nodes: map_server, sim, astar_pathplanner, goto_waypoint,
+    """ROS 2 nodes: map_server, sim, pathplanner (alias astar_pathplanner), goto_waypoint,
     potential_field_navigator; `navlab ros demo` runs a whole pipeline.
 
     Run a node with ROS arguments, e.g.
@@ -117,7 +117,7 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
               help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "
                    "diff, the one_obstacle scene for omni3.")
 @click.option("--robot", type=click.Choice(["diff", "omni3"]), default="diff", show_default=True,
-              help="diff: map_server + sim + astar_pathplanner + goto_waypoint; omni3: sim + "
+              help="diff: map_server + sim + pathplanner + goto_waypoint; omni3: sim + "
                    "potential_field_navigator.")
 @click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")
 @click.option("--yaw", type=float, default=0.0, show_default=True, help="Start heading (rad).")
@@ -144,7 +144,8 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
     """Drive a simulated robot to a goal through the ROS 2 nodes, in one
     command, and judge the run from /odom.
 
-    Exit status 0 when the robot stopped within 0.1 m of the goal, 1 otherwise.
+    Exit status 0 when the robot stopped within 0.1 m of the goal, 130 after
+    Ctrl-C, 1 otherwise.
     """
     _require_rclpy()
     from ..ros.demo import run_demo
@@ -166,4 +167,4 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
             click.echo(f"  {line}")
         if "recorded" in summary:
             click.echo(f"  recorded to {summary['recorded']['path']}: {summary['recorded']['messages']}")
-    sys.exit(0 if summary["status"] == "REACHED" else 1)
+    sys.exit({"REACHED": 0, "INTERRUPTED": EXIT_INTERRUPTED}.get(summary["status"], 1))

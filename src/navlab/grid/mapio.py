@@ -220,7 +220,7 @@ def ros1_cell_values(colour_sum: np.ndarray, channels: int, alpha: Optional[np.n
     occ = (255.0 - mean) / 255.0
     lut = np.full(sums.size, UNKNOWN, dtype=np.int64)
     between = (occ <= occupied_thresh) & (occ >= free_thresh)
-    if mode == "scale":
+    if mode == "scale" and occupied_thresh > free_thresh:  # equal thresholds: ROS 1 divided 0 by 0; unknown here
         lut[between] = np.trunc(99.0 * (occ[between] - free_thresh) / (occupied_thresh - free_thresh))
     lut[occ > occupied_thresh] = OCCUPIED
     lut[occ < free_thresh] = FREE

@@ -102,7 +102,11 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
     Returns the process exit status: 2 when the node refuses its settings
     (the reason printed on one line), 0 otherwise.
     """
-    rclpy.init(args=args)
+    try:
+        rclpy.init(args=args)
+    except RuntimeError as exc:  # rcl's RCLError: ROS arguments it cannot parse (`-p x:={a: 1}`)
+        print(f"Error: bad ROS arguments: {exc}", file=sys.stderr)
+        return 2
     try:
         try:
             node = factory()

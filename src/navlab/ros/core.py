@@ -16,8 +16,9 @@ import numpy as np
 
 from ..control.base import REACHED, STALLED, Controller
 from ..grid.occupancy import OccupancyGrid
-from ..planning import is_grid_planner
+from ..planning import is_grid_planner, plan
 from ..result import Result
+from ..world.world import World
 
 Log = Callable[[str, str], None]
 Twist = Tuple[float, float, float]
@@ -47,9 +48,6 @@ def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, 
     ``allow_unknown``, unknown) cells are the obstacles, kept
     ``robot_radius`` away from the path. ``sampler`` goes to the tree
     planners only."""
-    from ..planning import plan
-    from ..world.world import World
-
     world = World.from_grid(grid, start, goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
     extra = {"sampler": None} if is_grid_planner(algorithm) else {"sampler": sampler}
     return plan(world, planner=algorithm, seed=seed, **extra, **params)
@@ -124,11 +122,14 @@ class GoalPlanner:
         here, at start-up, and the kernels are compiled before the first goal."""
         q = dict(self.query)
         params = dict(q.pop("params"))
-        if self.tree_planner:
-            params["max_iter"] = 64
-            params.pop("max_time", None)
+        limit = params.get("max_iter")
+        if self.tree_planner and (limit is None or (type(limit) is int and limit > 64)):
+            params["max_iter"] = 64  # a short run (a bad value stays, for the planner to refuse)
         empty = OccupancyGrid(np.zeros((20, 20), bool), 0.1, (0.0, 0.0, 0.0))
-        plan_on_map(empty, (0.5, 0.5), (1.5, 1.5), robot_radius=0.0, params=params, **q)
+        try:
+            plan_on_map(empty, (0.5, 0.5), (1.5, 1.5), robot_radius=0.0, params=params, **q)
+        except (TypeError, OverflowError) as exc:  # a parameter of the wrong kind (ROS parameters are typed loosely)
+            raise ValueError(f"bad setting for {q['algorithm']}: {exc}") from None
 
     def set_map(self, grid: OccupancyGrid) -> Optional[np.ndarray]:
         self.grid, self.inflated = grid, grid.inflate(self.inflation_radius)
@@ -187,8 +188,8 @@ class GoalPlanner:
         start, goal = tuple(map(float, start)), tuple(map(float, goal))
         try:
             result = plan_on_map(self.grid, start, goal, robot_radius=self.inflation_radius, **self.query)
-        except ValueError as exc:  # a setting this map cannot take (e.g. a sampler parameter)
-            self.log("error", f"no path from {_xy(start)} to {_xy(goal)}: {exc}")
+        except (ValueError, TypeError, OverflowError, MemoryError) as exc:  # a setting this map cannot take
+            self.log("error", f"no path from {_xy(start)} to {_xy(goal)}: {type(exc).__name__}: {exc}")
             return None
         if self.on_tree is not None and self.tree_planner and result.tree is not None:
             self.on_tree(result.tree["nodes"], result.tree["parent"])

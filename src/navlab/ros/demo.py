@@ -35,7 +35,7 @@ from rclpy.parameter import Parameter
 
 from .base import DEFAULT_QOS, NavlabNode
 from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
-from .launch import NodeProcesses, node_class
+from .launch import NodeProcesses, mapping_text, node_class
 
 #: seed 002's maze geometry: 0.6 m cells, 0.1 m walls (0.5 m corridors)
 MAZE_CELL, MAZE_WALL = 0.6, 0.1
@@ -70,7 +70,8 @@ def pipeline(world: str, robot: str, start: Sequence[float], real_time_factor: f
     radius = make_robot(robot).radius
     return [("map_server", {"yaml_filename": world}), sim,
             ("pathplanner", {"use_sim_time": True, "inflation_radius": radius + PLAN_MARGIN, "algorithm": planner,
-                             **(planner_params or {})}),
+                             **{k: mapping_text(v) if isinstance(v, dict) else v
+                                for k, v in (planner_params or {}).items()}}),
             ("goto_waypoint", {"use_sim_time": True})]
 
 
@@ -184,6 +185,7 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
                     executor.spin_once(timeout_sec=0.05)
                 except (KeyboardInterrupt, ExternalShutdownException):
                     mission.finish("interrupted")
+                    mission.interrupted = True
                     break
                 wall = time.monotonic() - wall0
                 if launcher is not None and launcher.failed():
@@ -250,6 +252,7 @@ class Mission(NavlabNode):
         self.travelled = 0.0
         self.logs: List[str] = []
         self.done, self.reached, self.reason = False, False, ""
+        self.interrupted = False  # by Ctrl-C
         self.steady_timer(0.05, self.send_goal_when_heard)
 
     def send_goal_when_heard(self) -> None:
@@ -309,7 +312,8 @@ class Mission(NavlabNode):
     def summary(self) -> Dict[str, Any]:
         plan = self.plans[-1] if self.plans else None
         return {
-            "status": "REACHED" if self.reached else "FAILED", "reason": self.reason,
+            "status": "REACHED" if self.reached else "INTERRUPTED" if self.interrupted else "FAILED",
+            "reason": self.reason,
             "goal": self.goal.tolist(), "sim_time_s": self.t - (self.sent_at or 0.0),
             "final_odom": None if self.odom is None else self.odom.tolist(),
             "final_true": None if self.truth is None else self.truth.tolist(),

@@ -4,6 +4,7 @@ own Python, as a real system runs them) or as node objects in one process."""
 from __future__ import annotations
 
 import importlib
+import json
 import os
 import signal
 import subprocess
@@ -43,12 +44,26 @@ def node_class(name: str) -> type:
 
 
 def ros_value(value: Any) -> str:
-    """A parameter value as ``-p name:=value`` reads it (YAML)."""
+    """A parameter value as ``-p name:=value`` reads it (YAML). Strings are
+    quoted (a path or a YAML mapping stays a string); a mapping, which ROS
+    parameters cannot hold, becomes its YAML text (see
+    :func:`navlab.ros.pathplanner.PathPlanner.planner_params`)."""
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):
         return repr(value)
+    if isinstance(value, dict):
+        value = mapping_text(value)
+    if isinstance(value, str):
+        return json.dumps(value)  # a double-quoted YAML scalar
     return str(value)
+
+
+def mapping_text(value: Dict[str, Any]) -> str:
+    """A mapping as one line of YAML (the form a string parameter carries it in)."""
+    import yaml
+
+    return yaml.safe_dump(value, default_flow_style=True, width=10**9).strip()
 
 
 def ros_args(params: Dict[str, Any]) -> List[str]:

@@ -62,8 +62,25 @@ class PathPlanner(NavlabNode):
             if name in own or name.startswith("qos_overrides."):
                 continue
             value = param.value
+            if isinstance(value, str) and value.lstrip().startswith("{"):
+                value = self.mapping(name, value)
             out[name] = list(value) if isinstance(value, (list, tuple)) or hasattr(value, "tolist") else value
         return out
+
+    @staticmethod
+    def mapping(name: str, text: str) -> dict:
+        """A mapping setting (integration's ``weights``) from its YAML text:
+        ROS parameters hold no mappings, so it comes as a string,
+        ``-p 'weights:="{goal: 0.1, uniform: 0.9}"'``."""
+        import yaml
+
+        try:
+            value = yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            raise ValueError(f"parameter {name}: cannot read {text!r} as a YAML mapping ({exc})") from None
+        if not isinstance(value, dict):
+            raise ValueError(f"parameter {name}: {text!r} is not a YAML mapping")
+        return value
 
     def keep_tree(self, nodes, parent) -> None:
         self.tree = (nodes, parent)

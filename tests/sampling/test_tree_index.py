@@ -13,12 +13,15 @@ from navlab.world import Bounds, Circle, Rectangle, World
 
 
 def _grid(xy, bounds, expected):
-    h, nx, ny = G.grid_shape(bounds, expected)
-    params = G.grid_params(bounds, h)
-    head = np.full(nx * ny, -1, dtype=np.int64)
+    grid = G.BucketGrid(bounds)
     nxt = np.full(len(xy), -1, dtype=np.int64)
-    G.rebuild(len(xy), xy, head, nxt, params, nx, ny)
-    return head, nxt, params, nx, ny
+    # Index the first half, add the rest one by one: blocks fill up and the
+    # later nodes of crowded cells go to the overflow lists.
+    cost = np.arange(len(xy), dtype=float)
+    grid.rebuild(xy, cost, nxt, np.full(len(xy), -1, dtype=np.int64), len(xy) // 2, expected)
+    for k in range(len(xy) // 2, len(xy)):
+        G.insert(k, xy, cost, grid.arrays)
+    return grid.arrays
 
 
 def _brute_nearest(xy, q):
@@ -28,7 +31,7 @@ def _brute_nearest(xy, q):
 
 
 @pytest.mark.parametrize("seed", range(6))
-@pytest.mark.parametrize("expected", [1, 50, 5000])
+@pytest.mark.parametrize("expected", [200, 400, 5000])
 def test_queries_match_brute_force_with_ties_and_outside_points(seed, expected):
     rng = np.random.default_rng(seed)
     bounds = Bounds(-2.0, 15.0, -2.0, 15.0)
@@ -40,15 +43,19 @@ def test_queries_match_brute_force_with_ties_and_outside_points(seed, expected):
     xy[::37] = xy[1]
     queries = np.vstack((rng.integers(-6, 20, (150, 2)).astype(float) + 0.5 * rng.integers(0, 2, (150, 2)),
                          rng.uniform(-5.0, 20.0, (150, 2))))
-    head, nxt, params, nx, ny = _grid(xy, bounds, expected)
+    grid = _grid(xy, bounds, expected)
+    assert expected > 200 or np.any(grid[0][:, G.M_HEAD] >= 0)  # some overflow lists are in use
     for q in queries:
-        j, d2 = G.nearest(q[0], q[1], xy, head, nxt, params, nx, ny)
+        j, d2 = G.nearest(q[0], q[1], xy, grid)
         assert (j, d2) == _brute_nearest(xy, q)
         for r in (0.0, 1.0, math.sqrt(2.0), 3.7, 40.0):
-            out = np.zeros(n, dtype=np.int64)
-            m = G.near(q[0], q[1], r * r, xy, head, nxt, params, nx, ny, out)
+            idx, d2, cost = np.zeros(n, dtype=np.int64), np.zeros(n), np.zeros(n)
+            m = G.near(q[0], q[1], r * r, xy, np.arange(n, dtype=float), grid, idx, d2, cost)
             d2_all = (xy[:, 0] - q[0]) ** 2 + (xy[:, 1] - q[1]) ** 2
-            assert sorted(out[:m]) == list(np.flatnonzero(d2_all <= r * r))
+            order = np.argsort(idx[:m])
+            assert list(idx[:m][order]) == list(np.flatnonzero(d2_all <= r * r))
+            np.testing.assert_array_equal(d2[:m][order], d2_all[idx[:m][order]])
+            np.testing.assert_array_equal(cost[:m][order], idx[:m][order])
 
 
 def test_ranking_is_cost_then_index():

@@ -31,9 +31,8 @@ from . import bucket_grid as G
 MODE_RRT, MODE_RRT_STAR, MODE_GROWTH = 0, 1, 2
 
 # Integer state slots.
-(S_NODES, S_EDGE_CHECKS, S_GOALS, S_FIRST_ITER, S_DONE, S_IN, S_OUT, S_REWIRES, S_BEST,
- S_TRACE, S_GRID_NX, S_GRID_NY) = range(12)
-N_ISTATE = 12
+S_NODES, S_EDGE_CHECKS, S_GOALS, S_FIRST_ITER, S_DONE, S_IN, S_OUT, S_REWIRES, S_BEST, S_TRACE = range(10)
+N_ISTATE = 10
 # Float parameter slots.
 P_STEP, P_GAMMA, P_GX, P_GY, P_GTOL, P_CONNECT, P_CAP, P_SX, P_SY = range(9)
 N_FPARAMS = 9
@@ -60,37 +59,45 @@ class Tree:
         Answer nearest / near-set queries with the bucket grid (else by scan).
     """
 
-    #: per-node arrays and their fill value
-    _NODE_ARRAYS = (("xy", 0.0), ("parent", -1), ("cost", 0.0), ("child", -1), ("sibling", -1),
-                    ("goal_node", -1), ("goal_extra", 0.0), ("goal_slot", -1), ("next_in_cell", -1),
-                    ("scratch_idx", 0), ("scratch_val", 0.0), ("scratch_dist", 0.0),
-                    ("scratch_state", 0), ("scratch_cand", 0), ("scratch_stack", 0))
-    _DTYPES = {"parent": np.int64, "child": np.int64, "sibling": np.int64, "goal_node": np.int64, "goal_slot": np.int64,
-               "next_in_cell": np.int64, "scratch_idx": np.int64, "scratch_state": np.int8, "scratch_cand": np.int64,
-               "scratch_stack": np.int64}
+    #: The fields the loop touches together for one node share a record (a
+    #: row of one array; the names are column views): rewiring walks
+    #: subtrees in random index order, and at 10⁶ nodes each separate array
+    #: would cost its own cache miss per node visited.
+    _RECORDS = (("node_f", np.float64, 0.0, 3, (("xy", slice(0, 2)), ("cost", 2))),
+                ("node_i", np.int64, -1, 5, (("parent", 0), ("child", 1), ("sibling", 2), ("goal_slot", 3),
+                                             ("grid_slot", 4))))
+    #: other per-node arrays and their fill value
+    _NODE_ARRAYS = (("goal_node", -1), ("goal_extra", 0.0), ("next_in_cell", -1), ("scratch_idx", 0),
+                    ("scratch_val", 0.0), ("scratch_dist", 0.0), ("scratch_cost", 0.0), ("scratch_state", 0),
+                    ("scratch_cand", 0), ("scratch_stack", 0))
+    _DTYPES = {"goal_node": np.int64, "next_in_cell": np.int64, "scratch_idx": np.int64, "scratch_state": np.int8,
+               "scratch_cand": np.int64, "scratch_stack": np.int64}
 
     def __init__(self, start, bounds, max_nodes: int, use_grid: bool = True) -> None:
         self.bounds = bounds
         self.max_nodes = int(max_nodes)
         self.use_grid = bool(use_grid)
         self.capacity = 0
+        for name, dtype, fill, width, _ in self._RECORDS:
+            self._set_record(name, np.full((0, width), fill, dtype=dtype))
         for name, fill in self._NODE_ARRAYS:
-            shape = (0, 2) if name == "xy" else (0,)
-            setattr(self, name, np.full(shape, fill, dtype=self._DTYPES.get(name, np.float64)))
+            setattr(self, name, np.full(0, fill, dtype=self._DTYPES.get(name, np.float64)))
         self.trace_iter = np.zeros(0, dtype=np.int64)
         self.trace_cost = np.zeros(0)
         self.istate = np.zeros(N_ISTATE, dtype=np.int64)
         self.istate[S_FIRST_ITER] = -1
         self.istate[S_BEST] = -1
         self.best_cost = np.full(1, np.inf)
-        # The grid is built at the first reserve() that has nodes to index.
-        self.grid_head = np.full(1, -1, dtype=np.int64)
-        self.grid_params = G.grid_params(bounds, max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin, 1e-300))
-        self.istate[S_GRID_NX] = self.istate[S_GRID_NY] = 1
-        self.grid_built_at = 0
+        # Built at the first reserve() that has nodes to index, then at every doubling.
+        self.grid = G.BucketGrid(bounds)
         self.reserve(1, 0)
         self.xy[0] = start
         self.istate[S_NODES] = 1
+
+    def _set_record(self, name: str, array: np.ndarray) -> None:
+        setattr(self, name, array)
+        for field, column in dict((r[0], r[4]) for r in self._RECORDS)[name]:
+            setattr(self, field, array[:, column])
 
     @property
     def size(self) -> int:
@@ -104,27 +111,21 @@ class Tree:
         if need > self.capacity:
             cap = min(max(2 * self.capacity, need, min(INITIAL_CAPACITY, self.max_nodes)), self.max_nodes)
             for name, fill in self._NODE_ARRAYS:
-                old = getattr(self, name)
-                new = np.full((cap,) + old.shape[1:], fill, dtype=old.dtype)
-                new[: self.capacity] = old
-                setattr(self, name, new)
+                setattr(self, name, _grown(getattr(self, name), cap, fill))
+            for name, _, fill, _, _ in self._RECORDS:
+                self._set_record(name, _grown(getattr(self, name), cap, fill))
             self.capacity = cap
         t = int(self.istate[S_TRACE])
         if t + new_iterations > len(self.trace_iter):
             cap = max(2 * len(self.trace_iter), t + new_iterations, 64)
             self.trace_iter = np.concatenate((self.trace_iter[:t], np.zeros(cap - t, dtype=np.int64)))
             self.trace_cost = np.concatenate((self.trace_cost[:t], np.zeros(cap - t)))
-        if self.use_grid and n >= G.REBUILD_GROWTH * self.grid_built_at and n > 0:
-            self._rebuild_grid(n)
-
-    def _rebuild_grid(self, n: int) -> None:
-        h, nx, ny = G.grid_shape(self.bounds, min(G.REBUILD_GROWTH * n, self.max_nodes))
-        if (nx, ny) != (self.istate[S_GRID_NX], self.istate[S_GRID_NY]) or self.grid_built_at == 0:
-            self.grid_params = G.grid_params(self.bounds, h)
-            self.grid_head = np.full(nx * ny, -1, dtype=np.int64)
-            self.istate[S_GRID_NX], self.istate[S_GRID_NY] = nx, ny
-            G.rebuild(n, self.xy, self.grid_head, self.next_in_cell, self.grid_params, nx, ny)
-        self.grid_built_at = n
+        if self.use_grid and n > 0:
+            if n >= G.REBUILD_GROWTH * self.grid.built_at:
+                self.grid.rebuild(self.xy, self.cost, self.next_in_cell, self.grid_slot, n,
+                                  min(G.REBUILD_GROWTH * n, self.max_nodes))
+            else:
+                self.grid.with_nodes(self.next_in_cell, self.grid_slot)
 
     def record_cost(self, iteration: int) -> None:
         """Note the current best cost as reached at ``iteration``."""
@@ -147,8 +148,8 @@ class Tree:
         return grow(samples, it0, geom, self.xy, self.parent, self.cost, self.child, self.sibling,
                     self.goal_node, self.goal_extra, self.goal_slot, self.trace_iter, self.trace_cost, self.istate,
                     self.best_cost, fparams, mode, self.scratch_idx, self.scratch_val, self.scratch_dist,
-                    self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid, self.grid_head,
-                    self.next_in_cell, self.grid_params)
+                    self.scratch_cost, self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid,
+                    self.grid.arrays)
 
     def nodes(self) -> np.ndarray:
         return self.xy[: self.size].copy()
@@ -163,6 +164,12 @@ class Tree:
             out.append(self.xy[node])
             node = int(self.parent[node])
         return np.array(out[::-1])
+
+
+def _grown(old: np.ndarray, capacity: int, fill) -> np.ndarray:
+    new = np.full((capacity,) + old.shape[1:], fill, dtype=old.dtype)
+    new[: len(old)] = old
+    return new
 
 
 @njit(cache=True)
@@ -190,7 +197,8 @@ def _remove_child(child, sibling, p, k):
 
 
 @njit(cache=True)
-def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_extra, istate, best_cost):
+def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_extra, istate, best_cost,
+                   use_grid, grid):
     """Add delta (< 0) to the cost of root's subtree; goal candidates in it
     are offered as the new best (costs only fall, so no other can become it)."""
     top = 0
@@ -200,6 +208,8 @@ def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_ext
         top -= 1
         u = stack[top]
         cost[u] += delta
+        if use_grid:
+            G.set_cost(u, cost[u], grid)
         if goal_slot[u] >= 0:
             _offer_goal(goal_slot[u], cost[u] + goal_extra[goal_slot[u]], istate, best_cost)
         c = child[u]
@@ -304,13 +314,16 @@ def _nearest_scan(qx, qy, xy, n):
 
 
 @njit(cache=True)
-def _near_scan(qx, qy, r2, xy, n, out):
+def _near_scan(qx, qy, r2, xy, cost, n, out_idx, out_d2, out_cost):
     m = 0
     for j in range(n):
         dx = xy[j, 0] - qx
         dy = xy[j, 1] - qy
-        if dx * dx + dy * dy <= r2:
-            out[m] = j
+        d2 = dx * dx + dy * dy
+        if d2 <= r2:
+            out_idx[m] = j
+            out_d2[m] = d2
+            out_cost[m] = cost[j]
             m += 1
     return m
 
@@ -318,7 +331,7 @@ def _near_scan(qx, qy, r2, xy, n, out):
 @njit(cache=True)
 def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_extra,
          goal_slot, trace_iter, trace_cost, istate, best_cost, fparams, mode, near_idx, near_val, near_dist,
-         near_state, cand, stack, use_grid, grid_head, next_in_cell, grid_params):
+         near_cost, near_state, cand, stack, use_grid, grid):
     """Consume ``samples`` as iterations ``it0, it0 + 1, ...``.
 
     The arrays must have room for one node and one trace entry per sample.
@@ -327,15 +340,13 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
     """
     step_max = fparams[P_STEP]
     gamma = fparams[P_GAMMA]
-    gnx = istate[S_GRID_NX]
-    gny = istate[S_GRID_NY]
     for i in range(samples.shape[0]):
         it = it0 + i
         qx = samples[i, 0]
         qy = samples[i, 1]
         n = istate[S_NODES]
         if use_grid:
-            nearest, best_d2 = G.nearest(qx, qy, xy, grid_head, next_in_cell, grid_params, gnx, gny)
+            nearest, best_d2 = G.nearest(qx, qy, xy, grid)
         else:
             nearest, best_d2 = _nearest_scan(qx, qy, xy, n)
         d = math.sqrt(best_d2)
@@ -374,16 +385,14 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
             # Grid and scan return the same set in different orders; nothing
             # below depends on the order (candidates are ranked explicitly).
             if use_grid:
-                n_near = G.near(nx, ny, r2, xy, grid_head, next_in_cell, grid_params, gnx, gny, near_idx)
+                n_near = G.near(nx, ny, r2, xy, cost, grid, near_idx, near_dist, near_cost)
             else:
-                n_near = _near_scan(nx, ny, r2, xy, n, near_idx)
+                n_near = _near_scan(nx, ny, r2, xy, cost, n, near_idx, near_dist, near_cost)
             m = 0
             for o in range(n_near):
                 j = near_idx[o]
-                dx = xy[j, 0] - nx
-                dy = xy[j, 1] - ny
-                near_dist[o] = math.sqrt(dx * dx + dy * dy)
-                near_val[o] = cost[j] + near_dist[o]
+                near_dist[o] = math.sqrt(near_dist[o])  # it held the squared distance
+                near_val[o] = near_cost[o] + near_dist[o]
                 near_state[o] = 0  # edge not checked yet
                 if near_val[o] < best_c and j != nearest:
                     cand[m] = o
@@ -408,7 +417,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         child[k] = -1
         istate[S_NODES] = n + 1
         if use_grid:
-            G.insert(k, xy, grid_head, next_in_cell, grid_params, gnx, gny)
+            G.insert(k, xy, cost, grid)
         if mode == MODE_RRT_STAR:
             # Rewire in ascending index order: rewiring a node lowers the cost
             # of its subtree, which may hold a later candidate. Costs only fall,
@@ -416,7 +425,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
             m = 0
             for o in range(n_near):
                 j = near_idx[o]
-                if j != best_parent and near_state[o] != 2 and best_c + near_dist[o] < cost[j] - 1e-12:
+                if j != best_parent and near_state[o] != 2 and best_c + near_dist[o] < near_cost[o] - 1e-12:
                     cand[m] = o
                     m += 1
             _rank_by_index(cand, m, near_idx)
@@ -435,7 +444,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 sibling[j] = child[k]
                 child[k] = j
                 _shift_subtree(child, sibling, cost, j, new_c - cost[j], stack, goal_slot, goal_extra,
-                               istate, best_cost)
+                               istate, best_cost, use_grid, grid)
                 istate[S_REWIRES] += 1
         if add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fparams, mode):
             g = istate[S_GOALS] - 1

@@ -4,6 +4,19 @@ os.environ.setdefault("MPLBACKEND", "Agg")
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, settings
+
+# Property tests (tests/fuzz). The default profile is what CI runs: derandomized
+# (the same examples every run, so a failure is reproducible and the suite cannot
+# turn red at random), a bounded number of examples, no per-example deadline
+# (the first call compiles numba kernels). `--hypothesis-profile=long` searches
+# ten times more, with fresh random examples each run, for local bug hunting.
+_COMMON = dict(deadline=None, print_blob=True,
+               suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large, HealthCheck.filter_too_much])
+settings.register_profile("default", max_examples=40, derandomize=True, database=None, **_COMMON)
+settings.register_profile("ci", parent=settings.get_profile("default"))
+settings.register_profile("long", max_examples=400, derandomize=False, **_COMMON)
+settings.load_profile(os.environ.get("NAVLAB_HYPOTHESIS_PROFILE", "default"))
 
 
 @pytest.fixture

@@ -8,12 +8,12 @@ CODE = """
 import sys, pkgutil, importlib
 import navlab
 from navlab.cli import main
-import navlab.ros.core, navlab.ros.launch
+import navlab.ros.core, navlab.ros.launch, navlab.ros.entry
 for info in pkgutil.walk_packages(navlab.__path__, "navlab."):
     if not info.name.startswith("navlab.ros") and info.name != "navlab.__main__":
         importlib.import_module(info.name)
 main(["ros", "--help"], standalone_mode=False)
-print(sorted(m for m in sys.modules if m.split(".")[0] in ("rclpy", "rosbags", "nav_msgs", "geometry_msgs")))
+print(sorted(m for m in sys.modules if m.split(".")[0] in ("rclpy", "rosbags", "nav_msgs", "geometry_msgs", "visualization_msgs")))
 """
 
 

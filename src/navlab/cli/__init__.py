@@ -6,20 +6,37 @@ import sys
 
 import click
 
-from ..registry import UnknownNameError
+from .common import EXIT_INTERRUPTED, debug_enabled, describe_error
 
 
 class NavlabGroup(click.Group):
-    """Turns navlab's input errors into one clean line and exit status 2."""
+    """The top-level group: no Python traceback ever reaches a user.
+
+    Bad input (navlab's ``ValueError`` types, unreadable files, a missing
+    optional package, a request too large for memory) prints one
+    ``Error: ...`` line and exits 2; Ctrl-C prints one line and exits 130; an
+    unexpected exception (a bug) prints one ``Error: internal error: ...``
+    line and exits 1. ``NAVLAB_DEBUG=1`` re-raises instead, showing the
+    traceback.
+    """
 
     def invoke(self, ctx):
-        from ..world.io import WorldFormatError
-
         try:
             return super().invoke(ctx)
-        except (UnknownNameError, WorldFormatError, ValueError, FileNotFoundError) as exc:  # MapFormatError too
-            click.echo(f"Error: {exc}", err=True)
-            sys.exit(2)
+        except (click.exceptions.ClickException, click.exceptions.Exit, click.exceptions.Abort, SystemExit):
+            raise  # click's own messages and exit statuses
+        except KeyboardInterrupt:
+            if debug_enabled():
+                raise
+            click.echo("Interrupted.", err=True)
+            sys.exit(EXIT_INTERRUPTED)
+        except Exception as exc:
+            if debug_enabled() or (isinstance(exc, BrokenPipeError)):
+                raise  # click itself exits quietly when the reader of stdout went away (`navlab list | head`)
+                raise
+            status, line = describe_error(exc)
+            click.echo(line, err=True)
+            sys.exit(status)
 
 
 @click.group(cls=NavlabGroup, context_settings={"help_option_names": ["-h", "--help"]})
@@ -29,6 +46,9 @@ def main() -> None:
 
     Worlds are YAML world files or built-in scene names (see `navlab list`).
     Units are metres and radians unless a flag says otherwise.
+
+    Errors print one line (exit 2 for bad input, 1 for an internal error,
+    130 after Ctrl-C); set NAVLAB_DEBUG=1 to see the Python traceback.
     """
 
 

@@ -2,21 +2,84 @@
 
 from __future__ import annotations
 
+import os
 from typing import Any, Dict, Tuple
 
 import click
 import yaml
 
+#: exit status for bad input (a malformed file, an unknown name, a value out of range)
+EXIT_USAGE = 2
+#: exit status for an unexpected failure inside navlab (a bug: please report it)
+EXIT_INTERNAL = 1
+#: exit status after Ctrl-C (128 + SIGINT, as shells report it)
+EXIT_INTERRUPTED = 130
+
+#: optional packages and the extra that installs them
+_EXTRAS = {"dask": "dask", "distributed": "dask", "ompl": "ompl", "pyastar2d": "bench",
+           "rclpy": "ros2", "rosbags": "ros2", "nav_msgs": "ros2", "geometry_msgs": "ros2",
+           "sensor_msgs": "ros2", "std_msgs": "ros2", "tf2_msgs": "ros2", "visualization_msgs": "ros2"}
+
+
+def debug_enabled() -> bool:
+    """True when ``NAVLAB_DEBUG`` is set to anything but ''/0: show Python tracebacks."""
+    return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")
+
+
+def _one_line(text: str, limit: int = 2000) -> str:
+    text = " ".join(str(text).split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def describe_error(exc: BaseException) -> Tuple[int, str]:
+    """The exit status and the one ``Error: ...`` line the CLI prints for ``exc``.
+
+    Bad input — navlab's own error types (``WorldFormatError``, ``MapFormatError``,
+    ``UnknownNameError``, ``ExperimentError``: all ``ValueError``), a file that
+    cannot be read or written, a missing optional package, a request larger
+    than memory — is the user's to fix: status 2. Anything else is a defect in
+    navlab: status 1 and the exception's type, so it can be reported.
+    """
+    if isinstance(exc, MemoryError):
+        detail = _one_line(exc) or "out of memory"
+        return EXIT_USAGE, (f"Error: the request is too large for this machine's memory ({detail}); "
+                            "ask for fewer iterations, cells or samples")
+    if isinstance(exc, ModuleNotFoundError) and exc.name:
+        top = exc.name.split(".")[0]
+        if top in _EXTRAS:
+            return EXIT_USAGE, (f"Error: this needs the optional package '{top}': "
+                                f"pip install 'navlab[{_EXTRAS[top]}]'")
+    if isinstance(exc, OSError):
+        what = exc.strerror or _one_line(exc) or type(exc).__name__
+        if exc.filename is not None:
+            name = os.fsdecode(exc.filename)
+            other = f" -> {os.fsdecode(exc.filename2)}" if exc.filename2 is not None else ""
+            return EXIT_USAGE, f"Error: {name}{other}: {what}"
+        return EXIT_USAGE, f"Error: {what}"
+    if isinstance(exc, ValueError):
+        return EXIT_USAGE, f"Error: {_one_line(exc) or type(exc).__name__}"
+    return EXIT_INTERNAL, (f"Error: internal error: {type(exc).__name__}: {_one_line(exc, 500)} "
+                           "(run with NAVLAB_DEBUG=1 for the traceback)")
+
 
 def parse_params(items: Tuple[str, ...]) -> Dict[str, Any]:
-    """``key=value`` pairs; values are read as YAML (numbers, lists, mappings)."""
+    """``key=value`` pairs; values are read as YAML (numbers, lists, mappings).
+
+    Values are passed on as read (a huge integer, ``.inf``, a list): the
+    planner's or sampler's own checks reject what is out of range, with a
+    message naming the parameter.
+    """
     out: Dict[str, Any] = {}
     for item in items:
         key, sep, value = item.partition("=")
+        key = key.strip()
         if not sep or not key:
             raise click.BadParameter(f"expected key=value, got '{item}'", param_hint="--param")
         try:
-            out[key.strip()] = yaml.safe_load(value)
+            out[key] = yaml.safe_load(value)
         except yaml.YAMLError as exc:
-            raise click.BadParameter(f"cannot read the value of '{key}': {exc}", param_hint="--param") from None
+            raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
+                                     param_hint="--param") from None
+        except RecursionError:
+            raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint="--param") from None
     return out

@@ -1,34 +1,157 @@
-"""``navlab list``: the registered parts and their parameters."""
+"""``navlab list``: every registered part, with its description and parameters."""
 
 from __future__ import annotations
 
+import inspect
+import shutil
+import textwrap
+from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
+
 import click
 
-from ..registry import parameters_of
+from ..registry import Registry, parameters_of
+
+NAME_WIDTH = 20  #: [characters] the name column
+#: parameters of a grid search other than the query itself (shown for every grid planner)
+_GRID_QUERY = ("grid", "start", "goal", "algorithm")
 
 
-def _describe(factory) -> str:
-    doc = (factory.__doc__ or "").strip().splitlines()
-    return doc[0] if doc else ""
+def first_paragraph(text: Optional[str]) -> str:
+    """The first paragraph of a docstring (or a registry's description), on one line."""
+    lines = inspect.cleandoc(text or "").splitlines()
+    paragraph: List[str] = []
+    for line in lines:
+        if not line.strip():
+            if paragraph:
+                break
+            continue
+        paragraph.append(line.strip())
+    return " ".join(paragraph)
+
+
+def _entry(name: str, description: str, details: str = "") -> Iterator[str]:
+    """A name and its wrapped description, then the details indented under it."""
+    width = max(60, min(shutil.get_terminal_size((100, 24)).columns, 120))
+    indent = " " * (2 + NAME_WIDTH + 1)
+    yield textwrap.fill(description or "(no description)", width=width, initial_indent=f"  {name:<{NAME_WIDTH}} ",
+                        subsequent_indent=indent, break_on_hyphens=False)
+    if details:
+        yield textwrap.fill(details, width=width, initial_indent=indent, subsequent_indent=indent + "  ",
+                            break_on_hyphens=False)
+
+
+def _params(factory: Callable[..., Any], skip: Tuple[str, ...] = ()) -> str:
+    params = {k: v for k, v in parameters_of(factory).items() if k not in skip}
+    return ", ".join(f"{k}={v!r}" for k, v in params.items()) or "(no parameters)"
+
+
+def _from_registry(registry: Registry, params: bool = True) -> Iterator[str]:
+    for name in registry:
+        factory = registry.get(name)
+        yield from _entry(name, first_paragraph(factory.__doc__), _params(factory) if params else "")
+
+
+def _tree_planners() -> Iterator[str]:
+    from ..sampling import PLANNERS
+
+    yield from _from_registry(PLANNERS)
+    yield "  (None: derived from the world, see the docs)"
+
+
+def _grid_planners() -> Iterator[str]:
+    from ..grid.planner import GRID_ALGORITHMS, HEURISTICS, plan
+
+    shared = _params(plan, skip=_GRID_QUERY)
+    for name in GRID_ALGORITHMS:
+        yield from _entry(name, first_paragraph(GRID_ALGORITHMS.get(name)), shared)
+    yield from _entry("(heuristics)", f"for astar's heuristic=: {', '.join(HEURISTICS)}")
+
+
+def _samplers() -> Iterator[str]:
+    from ..sampling import SAMPLERS
+
+    yield from _from_registry(SAMPLERS)
+
+
+def _scenes() -> Iterator[str]:
+    from ..world import SCENES
+
+    for name in SCENES:
+        factory = SCENES.get(name)
+        w = factory()
+        yield from _entry(name, first_paragraph(factory.__doc__),
+                          f"start {w.start}, goal {w.goal}, robot radius {w.robot_radius} m, "
+                          f"{len(w.obstacles)} obstacles")
+
+
+def _controllers() -> Iterator[str]:
+    from ..control.base import CONTROLLERS
+
+    yield from _from_registry(CONTROLLERS)
+
+
+def _robots() -> Iterator[str]:
+    from ..robots.kinematics import ROBOTS
+
+    yield from _from_registry(ROBOTS)
+
+
+def _lidar_models() -> Iterator[str]:
+    from ..sensors.lidar import NOISE_MODELS
+
+    yield from _from_registry(NOISE_MODELS)
+
+
+def _suites() -> Iterator[str]:
+    from ..bench.suites import SUITES
+
+    for name in SUITES:
+        suite = SUITES.get(name)
+        data = suite()
+        counts = [(len(data.get(k) or []), k) for k in ("worlds", "planners", "samplers") if k in data]
+        sizes = ", ".join(f"{n} {k if n != 1 else k[:-1]}" for n, k in counts)
+        yield from _entry(name, first_paragraph(suite.__doc__), sizes + f"; `navlab bench --suite {name}`")
+
+
+def _executors() -> Iterator[str]:
+    from ..bench.executors import EXECUTORS
+
+    yield from _from_registry(EXECUTORS, params=False)
+
+
+def _experiments() -> Iterator[str]:
+    from ..sim.experiments import EXPERIMENTS
+
+    yield from _from_registry(EXPERIMENTS)
+
+
+#: kind → (title, the lines listing it); `navlab list KIND` shows one kind
+KINDS: Dict[str, Tuple[str, Callable[[], Iterator[str]]]] = {
+    "planners": ("planners (sampling-based, on worlds and maps)", _tree_planners),
+    "grid": ("grid planners (on occupancy grids; `navlab grid plan --algorithm`)", _grid_planners),
+    "samplers": ("samplers (for the sampling-based planners)", _samplers),
+    "scenes": ("scenes (built-in worlds)", _scenes),
+    "controllers": ("controllers (`navlab sim`)", _controllers),
+    "robots": ("robots (`navlab sim`)", _robots),
+    "lidar": ("LiDAR noise models", _lidar_models),
+    "suites": ("bench suites (`navlab bench --suite`)", _suites),
+    "executors": ("bench executors (`navlab bench --executor`)", _executors),
+    "experiments": ("sim experiments (`navlab sim --experiment`)", _experiments),
+}
 
 
 @click.command("list")
-def list_cmd() -> None:
-    """Planners, samplers and scenes, with their parameters and defaults."""
-    from ..sampling import PLANNERS, SAMPLERS
-    from ..world import SCENES
+@click.argument("kind", required=False, type=click.Choice(list(KINDS)))
+def list_cmd(kind: Optional[str]) -> None:
+    """Every registered part with its description and parameters (defaults shown).
 
-    for title, registry in (("planners", PLANNERS), ("samplers", SAMPLERS)):
+    KIND limits the list to one kind: planners, grid, samplers, scenes,
+    controllers, robots, lidar, suites, executors or experiments.
+    """
+    for i, key in enumerate([kind] if kind else list(KINDS)):
+        title, lines = KINDS[key]
+        if i:
+            click.echo("")
         click.echo(f"{title}:")
-        for name in registry:
-            cls = registry.get(name)
-            click.echo(f"  {name:<20} {_describe(cls)}")
-            params = ", ".join(f"{k}={v!r}" for k, v in parameters_of(cls).items())
-            click.echo(f"  {'':<20} {params or '(no parameters)'}")
-        click.echo("  (None: derived from the world, see the docs)" if title == "planners" else "")
-    click.echo("scenes:")
-    for name in SCENES:
-        w = SCENES.get(name)()
-        click.echo(f"  {name:<20} {_describe(SCENES.get(name))}")
-        click.echo(f"  {'':<20} start {w.start}, goal {w.goal}, robot radius {w.robot_radius} m, "
-                   f"{len(w.obstacles)} obstacles")
+        for line in lines():
+            click.echo(line)

@@ -9,6 +9,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
+from .common import EXIT_INTERRUPTED, parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -17,12 +18,14 @@ def _require_rclpy() -> None:
     try:
         import rclpy  # noqa: F401
     except ImportError as exc:
-        raise click.ClickException(f"{ROS_HINT} ({exc})") from None
+        error = click.ClickException(f"{ROS_HINT} ({exc})")
+        error.exit_code = 2  # a setting that cannot work, as every input error
+        raise error from None
 
 
 @click.group("ros")
 def ros_group() -> None:
-    """ROS 2 nodes: map_server, sim, astar_pathplanner, goto_waypoint,
+    """ROS 2 nodes: map_server, sim, pathplanner (alias astar_pathplanner), goto_waypoint,
     potential_field_navigator; `navlab ros demo` runs a whole pipeline.
 
     Run a node with ROS arguments, e.g.
@@ -83,7 +86,7 @@ for _node in NODES:
               help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "
                    "diff, the one_obstacle scene for omni3.")
 @click.option("--robot", type=click.Choice(["diff", "omni3"]), default="diff", show_default=True,
-              help="diff: map_server + sim + astar_pathplanner + goto_waypoint; omni3: sim + "
+              help="diff: map_server + sim + pathplanner + goto_waypoint; omni3: sim + "
                    "potential_field_navigator.")
 @click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")
 @click.option("--yaw", type=float, default=0.0, show_default=True, help="Start heading (rad).")
@@ -101,20 +104,25 @@ for _node in NODES:
               help="Wall-clock limit (s).")
 @click.option("--log-dir", type=click.Path(file_okay=False), default=None,
               help="With --processes: one log file per node here.")
+@click.option("--planner", default="astar", show_default=True, help="diff: the pathplanner's algorithm (any planner).")
+@click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
+              help="diff: a pathplanner parameter (sampler=integration, seed=3, max_iter=3000, ...); repeatable.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, processes, record, max_time, timeout,
-             log_dir, as_json) -> None:
+             log_dir, planner, params, as_json) -> None:
     """Drive a simulated robot to a goal through the ROS 2 nodes, in one
     command, and judge the run from /odom.
 
-    Exit status 0 when the robot stopped within 0.1 m of the goal, 1 otherwise.
+    Exit status 0 when the robot stopped within 0.1 m of the goal, 130 after
+    Ctrl-C, 1 otherwise.
     """
     _require_rclpy()
     from ..ros.demo import run_demo
 
     summary = run_demo(world, robot, None if start is None else (*start, yaw), goal, maze_size=maze_size,
                        real_time_factor=real_time_factor, processes=processes, record=record,
-                       max_time=max_time, timeout=timeout, log_dir=log_dir)
+                       max_time=max_time, timeout=timeout, log_dir=log_dir, planner=planner,
+                       planner_params=parse_params(params))
     if as_json:
         click.echo(json.dumps(summary))
     else:
@@ -128,4 +136,4 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
             click.echo(f"  {line}")
         if "recorded" in summary:
             click.echo(f"  recorded to {summary['recorded']['path']}: {summary['recorded']['messages']}")
-    sys.exit(0 if summary["status"] == "REACHED" else 1)
+    sys.exit({"REACHED": 0, "INTERRUPTED": EXIT_INTERRUPTED}.get(summary["status"], 1))

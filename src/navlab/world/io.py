@@ -12,111 +12,269 @@ The format (shared with other tools, so keep it exactly)::
       - {type: circle, center: [6.5, 2.0], radius: 0.6}
       - {type: rectangle, min: [2.5, 0.0], max: [3.0, 7.0]}
       - {type: polygon, points: [[3.6, 7.8], [4.6, 8.2], [4.0, 9.2]]}
+
+Every number is checked against :mod:`navlab.limits` here, at the file
+boundary, so the geometry kernels only ever see finite coordinates within
+±``MAX_COORDINATE`` and lengths of at least ``MIN_LENGTH``. Whatever is wrong
+with a file (not UTF-8, not YAML, empty, a directory, a wrong type or an
+out-of-range number anywhere) raises one :class:`WorldFormatError` whose
+message names the file and the field.
 """
 
 from __future__ import annotations
 
 import os
+import re
 from pathlib import Path
-from typing import Any, Callable, Dict, Union
+from typing import Any, Callable, Dict, Tuple, Union
 
 import yaml
 
+from ..atomic import write_text_atomic
+from ..limits import check_coordinate, check_length
 from ..registry import suggest
-from .shapes import Circle, Polygon, Rectangle
+from .motion import MotionFormatError, with_motion
+from .shapes import Circle, Obstacle, Point, Polygon, Rectangle
 from .world import Bounds, World
+
+MAX_FILE_BYTES = 32 * 2**20  #: [bytes] largest world file read (a world of ~1 million vertices)
 
 
 class WorldFormatError(ValueError):
     """A world file is malformed; the message names the file and the field."""
 
 
-_SHAPES: Dict[str, Callable[..., Any]] = {
-    "circle": lambda d: Circle(center=d["center"], radius=d["radius"]),
-    "rectangle": lambda d: Rectangle(min=d["min"], max=d["max"]),
-    "polygon": lambda d: Polygon(points=tuple(d["points"])),
+class _FieldError(ValueError):
+    """A bad value, raised while parsing and turned into a WorldFormatError naming the file and ``field``."""
+
+    def __init__(self, field: str, message: str) -> None:
+        super().__init__(message)
+        self.field = field
+
+
+# YAML 1.2 (and most tools that write world files) read `1e-3` as a number; PyYAML
+# follows YAML 1.1 and returns the string '1e-3'. Accept such strings as numbers.
+_NUMBER_TEXT = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)(?:[eE][-+]?[0-9]+)?")
+
+
+def _number(field: str, value: Any) -> float:
+    """A finite coordinate within ±MAX_COORDINATE (see :mod:`navlab.limits`)."""
+    if isinstance(value, str) and _NUMBER_TEXT.fullmatch(value.strip()):
+        value = float(value.replace("_", ""))  # may be inf: check_coordinate says "must be finite"
+    try:
+        return check_coordinate(field, value)
+    except ValueError as exc:
+        raise _FieldError(field, _short(exc)) from None
+
+
+def _length(field: str, value: Any, allow_zero: bool = True) -> float:
+    """A non-negative (or positive) length within [MIN_LENGTH, MAX_COORDINATE]."""
+    v = _number(field, value)  # the same messages for a wrong type or a huge number
+    try:
+        return check_length(field, v, allow_zero=allow_zero)
+    except ValueError as exc:
+        raise _FieldError(field, _short(exc)) from None
+
+
+def _pair(field: str, value: Any) -> Point:
+    """Two coordinates ``[x, y]``."""
+    if isinstance(value, (str, bytes, dict)) or not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise _FieldError(field, f"expected a pair [x, y] of numbers, got {_show(value)}")
+    return (_number(f"{field}[0]", value[0]), _number(f"{field}[1]", value[1]))
+
+
+def _interval(field: str, value: Any) -> Tuple[float, float]:
+    """``[min, max]`` with max > min."""
+    if isinstance(value, (str, bytes, dict)) or not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise _FieldError(field, f"expected [min, max], got {_show(value)}")
+    lo, hi = _number(f"{field}[0]", value[0]), _number(f"{field}[1]", value[1])
+    if not hi > lo:
+        raise _FieldError(field, f"needs max > min, got [{lo:g}, {hi:g}]")
+    return lo, hi
+
+
+def _show(value: Any, limit: int = 60) -> str:
+    """``repr`` of a bad value, shortened: the message must stay one readable line."""
+    text = repr(value)
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _short(exc: Exception, limit: int = 200) -> str:
+    text = " ".join(str(exc).split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def _mapping(field: str, value: Any, keys: Dict[str, bool]) -> Dict[str, Any]:
+    """``value`` as a mapping whose keys are among ``keys`` (True = required)."""
+    if not isinstance(value, dict):
+        raise _FieldError(field, f"expected a mapping, got {_show(value)}")
+    valid = sorted(keys)
+    for key in value:
+        if not isinstance(key, str) or key not in keys:
+            name = str(key)
+            raise _FieldError(f"{field}.{name}" if field else name,
+                              f"unknown field; valid: {', '.join(valid)}." + suggest(name, valid))
+    for key, required in keys.items():
+        if required and key not in value:
+            raise _FieldError(f"{field}.{key}" if field else key, "missing (required)")
+    return value
+
+
+# --- obstacles: one parser per shape -------------------------------------------------------------
+
+def _circle(where: str, item: Dict[str, Any]) -> Circle:
+    return Circle(center=_pair(f"{where}.center", item["center"]),
+                  radius=_length(f"{where}.radius", item["radius"], allow_zero=False))
+
+
+def _rectangle(where: str, item: Dict[str, Any]) -> Rectangle:
+    lo, hi = _pair(f"{where}.min", item["min"]), _pair(f"{where}.max", item["max"])
+    if not (hi[0] > lo[0] and hi[1] > lo[1]):
+        raise _FieldError(f"{where}.max", f"must exceed min {lo} in x and y, got {hi}")
+    return Rectangle(min=lo, max=hi)
+
+
+def _polygon(where: str, item: Dict[str, Any]) -> Polygon:
+    raw = item["points"]
+    if isinstance(raw, (str, bytes, dict)) or not isinstance(raw, (list, tuple)):
+        raise _FieldError(f"{where}.points", f"expected a list of [x, y] pairs, got {_show(raw)}")
+    if len(raw) < 3:
+        raise _FieldError(f"{where}.points", f"a polygon needs at least 3 points, got {len(raw)}")
+    points = tuple(_pair(f"{where}.points[{j}]", p) for j, p in enumerate(raw))
+    try:
+        return Polygon(points=points)
+    except ValueError as exc:  # not simple, or no area
+        raise _FieldError(f"{where}.points", _short(exc)) from None
+
+
+#: shape name → (parser, its fields: True = required)
+OBSTACLE_PARSERS: Dict[str, Tuple[Callable[[str, Dict[str, Any]], Obstacle], Dict[str, bool]]] = {
+    "circle": (_circle, {"center": True, "radius": True}),
+    "rectangle": (_rectangle, {"min": True, "max": True}),
+    "polygon": (_polygon, {"points": True}),
 }
-_SHAPE_KEYS = {"circle": {"center", "radius"}, "rectangle": {"min", "max"}, "polygon": {"points"}}
-_TOP_KEYS = {"name", "bounds", "start", "goal", "robot_radius", "goal_tolerance", "obstacles"}
+
+
+def _obstacle(where: str, item: Any) -> Obstacle:
+    """One entry of ``obstacles``: ``{type: <shape>, <the shape's fields>}``."""
+    shapes = sorted(OBSTACLE_PARSERS)
+    if not isinstance(item, dict) or "type" not in item:
+        raise _FieldError(where, f"expected a mapping with a 'type' ({', '.join(shapes)}), got {_show(item)}")
+    kind = item["type"]
+    if not isinstance(kind, str) or kind not in OBSTACLE_PARSERS:
+        raise _FieldError(f"{where}.type", f"unknown shape {_show(kind)}; valid: {', '.join(shapes)}."
+                          + suggest(str(kind), shapes))
+    parse, fields = OBSTACLE_PARSERS[kind]
+    _mapping(where, item, {"type": True, "motion": False, **fields})
+    try:
+        return with_motion(parse(where, item), item.get("motion"))  # moving obstacles: world/motion.py
+    except MotionFormatError as exc:
+        raise _FieldError(f"{where}.{exc.field}", _short(exc)) from None
+
+
+# --- the whole document ---------------------------------------------------------------------------
+
+_TOP_FIELDS = {"name": False, "bounds": True, "start": True, "goal": True, "robot_radius": False,
+               "goal_tolerance": False, "obstacles": False}
+
+
+def _world(data: Any, default_name: str) -> World:
+    if not isinstance(data, dict):
+        raise _FieldError("", f"expected a mapping of world fields, got {type(data).__name__}")
+    _mapping("", data, _TOP_FIELDS)
+    bounds_raw = data["bounds"]
+    if not isinstance(bounds_raw, dict) or set(bounds_raw) != {"x", "y"}:
+        raise _FieldError("bounds", f"expected {{x: [min, max], y: [min, max]}}, got {_show(bounds_raw)}")
+    (x0, x1), (y0, y1) = _interval("bounds.x", bounds_raw["x"]), _interval("bounds.y", bounds_raw["y"])
+
+    raw_obstacles = data.get("obstacles")
+    if raw_obstacles is None:
+        raw_obstacles = []
+    if not isinstance(raw_obstacles, list):
+        raise _FieldError("obstacles", f"expected a list, got {_show(raw_obstacles)}")
+    obstacles = tuple(_obstacle(f"obstacles[{i}]", item) for i, item in enumerate(raw_obstacles))
+
+    name = data.get("name")
+    if name is None or name == "":
+        name = default_name
+    elif isinstance(name, bool) or not isinstance(name, (str, int, float)):
+        raise _FieldError("name", f"expected text, got {_show(name)}")
+    kwargs = {"start": _pair("start", data["start"]), "goal": _pair("goal", data["goal"])}
+    for key in ("robot_radius", "goal_tolerance"):
+        if data.get(key) is not None:
+            kwargs[key] = _length(key, data[key])
+    try:
+        return World(name=str(name), bounds=Bounds(x0, x1, y0, y1), obstacles=obstacles, **kwargs)
+    except ValueError as exc:  # a rule the World adds beyond the per-field checks above
+        field = next((k for k in ("start", "goal", "robot_radius", "goal_tolerance", "bounds", "obstacles")
+                      if k in str(exc)), "world")
+        raise _FieldError(field, _short(exc)) from None
 
 
 def world_from_dict(data: Any, source: str = "<dict>") -> World:
-    """Build a :class:`World` from the YAML structure, validating every field."""
+    """Build a :class:`World` from the YAML structure, validating every field.
 
-    def fail(field: str, message: str) -> WorldFormatError:
-        return WorldFormatError(f"{source}: field '{field}': {message}")
-
-    if not isinstance(data, dict):
-        raise WorldFormatError(f"{source}: expected a mapping of world fields, got {type(data).__name__}")
-    unknown = set(data) - _TOP_KEYS
-    if unknown:
-        key = sorted(unknown)[0]
-        raise fail(key, f"unknown field; valid: {', '.join(sorted(_TOP_KEYS))}." + suggest(key, sorted(_TOP_KEYS)))
-    for required in ("bounds", "start", "goal"):
-        if required not in data:
-            raise fail(required, "missing (required)")
-    bounds_raw = data["bounds"]
+    Raises
+    ------
+    WorldFormatError
+        Anything malformed; the message is ``"<source>: field '<field>': <what>"``.
+    """
     try:
-        if not isinstance(bounds_raw, dict) or set(bounds_raw) != {"x", "y"}:
-            raise ValueError("expected {x: [min, max], y: [min, max]}")
-        (x0, x1), (y0, y1) = bounds_raw["x"], bounds_raw["y"]
-        bounds = Bounds(float(x0), float(x1), float(y0), float(y1))
-    except (ValueError, TypeError) as exc:
-        raise fail("bounds", str(exc)) from None
+        return _world(data, Path(source).stem)
+    except _FieldError as exc:
+        where = f"field '{exc.field}': " if exc.field else ""
+        raise WorldFormatError(f"{source}: {where}{exc}") from None
+    except RecursionError:  # a YAML document nested thousands deep
+        raise WorldFormatError(f"{source}: nested too deeply to be a world file") from None
 
-    obstacles = []
-    raw_obstacles = data.get("obstacles") or []
-    if not isinstance(raw_obstacles, list):
-        raise fail("obstacles", "expected a list")
-    for i, item in enumerate(raw_obstacles):
-        where = f"obstacles[{i}]"
-        if not isinstance(item, dict) or "type" not in item:
-            raise fail(where, "expected a mapping with a 'type' (circle, rectangle, polygon)")
-        kind = item["type"]
-        if kind not in _SHAPES:
-            raise fail(where + ".type", f"unknown shape '{kind}'; valid: circle, polygon, rectangle." + suggest(str(kind), list(_SHAPES)))
-        extra = set(item) - _SHAPE_KEYS[kind] - {"type"}
-        missing = _SHAPE_KEYS[kind] - set(item)
-        if missing or extra:
-            bad = sorted(missing or extra)[0]
-            raise fail(f"{where}.{bad}", "missing" if missing else f"not a field of a {kind}")
-        try:
-            obstacles.append(_SHAPES[kind](item))
-        except (ValueError, TypeError) as exc:
-            raise fail(where, str(exc)) from None
 
-    kwargs: Dict[str, Any] = {}
-    for key in ("start", "goal", "robot_radius", "goal_tolerance"):
-        if key in data:
-            kwargs[key] = data[key]
-    for key in ("robot_radius", "goal_tolerance"):
-        if key in kwargs and (isinstance(kwargs[key], bool) or not isinstance(kwargs[key], (int, float))):
-            raise fail(key, f"expected a number of metres, got {kwargs[key]!r}")
-    name = str(data.get("name") or Path(source).stem)
+def read_yaml_document(path: Union[str, os.PathLike]) -> Any:
+    """The YAML document in ``path`` (UTF-8, at most :data:`MAX_FILE_BYTES`), or None when empty.
+
+    Raises
+    ------
+    WorldFormatError
+        The file cannot be read (missing, a directory, no permission), is too
+        large, is not UTF-8 or is not YAML; the message names the file.
+    """
+    p = Path(path)
     try:
-        return World(name=name, bounds=bounds, obstacles=tuple(obstacles), **kwargs)
-    except ValueError as exc:
-        field = next((k for k in ("start", "goal", "robot_radius", "goal_tolerance") if k in str(exc)), "world")
-        raise fail(field, str(exc)) from None
+        with open(p, "rb") as f:
+            raw = f.read(MAX_FILE_BYTES + 1)
+    except OSError as exc:
+        raise WorldFormatError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise WorldFormatError(f"{p}: larger than {MAX_FILE_BYTES // 2**20} MiB; not a world file")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise WorldFormatError(f"{p}: not a UTF-8 text file (byte {exc.start}); a world file is YAML text") from None
+    try:
+        return yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        raise WorldFormatError(f"{p}: not valid YAML: {_short(exc)}") from None
+    except RecursionError:
+        raise WorldFormatError(f"{p}: nested too deeply to be a world file") from None
 
 
 def read_world_file(path: Union[str, os.PathLike]) -> World:
-    """Read a YAML world file."""
-    p = Path(path)
-    try:
-        text = p.read_text()
-    except OSError as exc:
-        raise WorldFormatError(f"{p}: cannot read: {exc.strerror}") from None
-    try:
-        data = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise WorldFormatError(f"{p}: not valid YAML: {exc}") from None
-    return world_from_dict(data, str(p))
+    """Read a YAML world file (see :func:`read_yaml_document`).
+
+    Raises
+    ------
+    WorldFormatError
+        The file cannot be read, is not UTF-8 YAML, is empty, or is malformed;
+        the message names the file.
+    """
+    data = read_yaml_document(path)
+    if data is None:
+        raise WorldFormatError(f"{path}: empty; expected the world fields (bounds, start, goal, ...)")
+    return world_from_dict(data, str(path))
 
 
 def save_world(world: World, path: Union[str, os.PathLike]) -> None:
-    """Write a world as a YAML world file that :func:`load_world` reads back."""
-    Path(path).write_text(yaml.safe_dump(world.to_dict(), sort_keys=False))
+    """Write a world as a YAML world file that :func:`load_world` reads back (atomically)."""
+    write_text_atomic(path, yaml.safe_dump(world.to_dict(), sort_keys=False))
 
 
 def load_world(source: Union[str, os.PathLike, World]) -> World:
@@ -125,7 +283,7 @@ def load_world(source: Union[str, os.PathLike, World]) -> World:
     Raises
     ------
     WorldFormatError
-        The file is malformed (the message names the file and the field).
+        The file is malformed or unreadable (the message names the file and the field).
     navlab.registry.UnknownNameError
         Neither a file nor a scene name; the message lists the scenes.
     """
@@ -134,6 +292,8 @@ def load_world(source: Union[str, os.PathLike, World]) -> World:
     if isinstance(source, World):
         return source
     text = os.fspath(source)
+    if isinstance(text, bytes):
+        text = os.fsdecode(text)
     if os.path.exists(text):
         return read_world_file(text)
     if text in SCENES:

@@ -1,0 +1,127 @@
+"""The top-level error handler: one ``Error:`` line, the documented exit status, never a traceback."""
+
+import errno
+
+import click
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from navlab.cli import NavlabGroup, main
+from navlab.cli.common import parse_params
+from navlab.grid.mapio import MapFormatError
+from navlab.registry import UnknownNameError
+from navlab.world import WorldFormatError
+
+
+def group_raising(exc):
+    """A throwaway ``navlab``-like group whose one command raises ``exc``."""
+
+    @click.group(cls=NavlabGroup)
+    def cli():
+        pass
+
+    @cli.command("boom")
+    def boom():
+        raise exc
+
+    @cli.group("sub")
+    def sub():
+        pass
+
+    @sub.command("deeper")
+    def deeper():
+        raise exc
+
+    return cli
+
+
+def numpy_memory_error():
+    try:
+        np.empty(2**62, dtype=np.uint8)
+    except MemoryError as exc:  # numpy's _ArrayMemoryError: "Unable to allocate 4 EiB ..."
+        return exc
+    pytest.skip("this machine allocated 4 EiB")
+
+
+@pytest.mark.parametrize("exc, status, expected", [
+    (WorldFormatError("w.yaml: field 'start': expected a pair"), 2, "Error: w.yaml: field 'start': expected a pair"),
+    (MapFormatError("m.yaml: field 'resolution': must be positive"), 2, "Error: m.yaml: field 'resolution'"),
+    (UnknownNameError("unknown planner 'rrtx'; valid: rrt"), 2, "Error: unknown planner 'rrtx'; valid: rrt"),
+    (ValueError("max_iter must be positive"), 2, "Error: max_iter must be positive"),
+    (ValueError("two\nlines"), 2, "Error: two lines"),
+    (FileNotFoundError(errno.ENOENT, "No such file or directory", "maze.yaml"), 2,
+     "Error: maze.yaml: No such file or directory"),
+    (IsADirectoryError(errno.EISDIR, "Is a directory", "out"), 2, "Error: out: Is a directory"),
+    (PermissionError(errno.EACCES, "Permission denied", "/root/x.png"), 2, "Error: /root/x.png: Permission denied"),
+    (OSError(errno.ENOSPC, "No space left on device"), 2, "Error: No space left on device"),
+    (MemoryError(), 2, "Error: the request is too large for this machine's memory"),
+    (ModuleNotFoundError("No module named 'dask'", name="dask"), 2, "pip install 'navlab[dask]'"),
+    (KeyError("time_s"), 1, "Error: internal error: KeyError: 'time_s' (run with NAVLAB_DEBUG=1 for the traceback)"),
+    (TypeError("unsupported operand"), 1, "Error: internal error: TypeError: unsupported operand"),
+    (OverflowError("cannot convert float infinity to integer"), 1, "Error: internal error: OverflowError"),
+    (KeyboardInterrupt(), 130, "Interrupted."),
+])
+@pytest.mark.parametrize("command", [["boom"], ["sub", "deeper"]])
+def test_every_error_is_one_line(exc, status, expected, command, monkeypatch):
+    monkeypatch.delenv("NAVLAB_DEBUG", raising=False)
+    result = CliRunner().invoke(group_raising(exc), command)
+    output = result.output
+    assert result.exit_code == status, output
+    assert "Traceback" not in output and output.count("\n") == 1
+    assert output.startswith("Interrupted." if status == 130 else "Error: ")
+    assert expected in output
+
+
+def test_numpy_allocation_failure_says_too_large(monkeypatch):
+    monkeypatch.delenv("NAVLAB_DEBUG", raising=False)
+    result = CliRunner().invoke(group_raising(numpy_memory_error()), ["boom"])
+    assert result.exit_code == 2 and "too large for this machine's memory" in result.output
+
+
+def test_navlab_debug_shows_the_exception(monkeypatch):
+    monkeypatch.setenv("NAVLAB_DEBUG", "1")
+    result = CliRunner().invoke(group_raising(KeyError("time_s")), ["boom"])
+    assert isinstance(result.exception, KeyError) and "internal error" not in result.output
+
+
+def test_click_usage_errors_keep_their_status():
+    result = CliRunner().invoke(main, ["plan"])
+    assert result.exit_code == 2 and "Missing argument" in result.output
+
+
+@pytest.mark.parametrize("args, expected", [
+    (["plan", "no/such/world.yaml"], "no such file"),
+    (["plan", "clutter", "--planner", "rrtx"], "Did you mean"),
+])
+def test_real_commands(args, expected, tmp_path):
+    result = CliRunner().invoke(main, args)
+    assert result.exit_code == 2 and expected in result.output and "Traceback" not in result.output
+
+
+def test_bad_world_files_from_the_command_line(tmp_path):
+    cases = {"huge.yaml": "bounds: {x: [0, 1], y: [0, 1]}\nstart: [0, 0]\ngoal: [1, 1]\nrobot_radius: " + "9" * 300,
+             "map.yaml": "bounds: {x: [0, 1], y: [0, 1]}\nstart: {a: 1}\ngoal: [1, 1]\n"}
+    for name, text in cases.items():
+        (tmp_path / name).write_text(text)
+    (tmp_path / "binary.yaml").write_bytes(b"\x89PNG\r\n\x1a\n\xff\xfe\x00")
+    (tmp_path / "dir.yaml").mkdir()
+    for name, field in [("huge.yaml", "robot_radius"), ("map.yaml", "start"), ("binary.yaml", "UTF-8"),
+                        ("dir.yaml", "folder")]:
+        result = CliRunner().invoke(main, ["plan", str(tmp_path / name)])
+        assert result.exit_code == 2, result.output
+        assert result.output.startswith(f"Error: {tmp_path / name}:") and field in result.output
+
+
+@pytest.mark.parametrize("value", ["9" * 400, ".inf", ".nan", "-.inf", "[1, [2, [3]]]", "{a: {b: 1}}", "2020-01-01",
+                                   "!!binary aGVsbG8=", "", "'text'"])
+def test_parse_params_passes_any_yaml_value_on(value):
+    # the validators of the planner or sampler reject what is out of range, naming the parameter
+    assert list(parse_params((f" k ={value}",))) == ["k"]
+    assert parse_params(("k=" + "9" * 400,)) == {"k": int("9" * 400)}
+
+
+@pytest.mark.parametrize("item", ["novalue", "=1", " =1", "k=[1, 2", "k=!!python/object:os.system x", "k=" + "[" * 3000])
+def test_parse_params_bad_items_are_usage_errors(item):
+    with pytest.raises(click.BadParameter):
+        parse_params((item,))

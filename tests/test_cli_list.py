@@ -1,0 +1,76 @@
+"""``navlab list``: every kind of registered part, each description whole."""
+
+import re
+
+import pytest
+from click.testing import CliRunner
+
+from navlab.bench.executors import EXECUTORS
+from navlab.bench.suites import SUITES
+from navlab.cli import main
+from navlab.cli.listing import KINDS, first_paragraph
+from navlab.control.base import CONTROLLERS
+from navlab.grid.planner import GRID_ALGORITHMS, HEURISTICS
+from navlab.robots.kinematics import ROBOTS
+from navlab.sampling import PLANNERS, SAMPLERS
+from navlab.sensors.lidar import NOISE_MODELS
+from navlab.sim.experiments import EXPERIMENTS
+from navlab.world import SCENES
+
+REGISTRIES = {"planners": PLANNERS, "grid": GRID_ALGORITHMS, "samplers": SAMPLERS, "scenes": SCENES,
+              "controllers": CONTROLLERS, "robots": ROBOTS, "lidar": NOISE_MODELS, "suites": SUITES,
+              "executors": EXECUTORS, "experiments": EXPERIMENTS}
+
+
+def listing(*args):
+    result = CliRunner().invoke(main, ["list", *args])
+    assert result.exit_code == 0, result.output
+    return result.output
+
+
+def entries(text):
+    """name → its description, unwrapped (the lines up to the parameters or the next name)."""
+    out, name = {}, None
+    for line in text.splitlines():
+        m = re.match(r"  (\S+) +(.*)", line)
+        if m and not line.startswith(" " * 23):
+            name = m.group(1)
+            out[name] = [m.group(2)]
+        elif name and line.startswith(" " * 23):
+            out[name].append(line.strip())
+    return {k: " ".join(v) for k, v in out.items()}
+
+
+def test_every_kind_has_a_registry_checked_here():
+    assert set(KINDS) == set(REGISTRIES)
+
+
+@pytest.mark.parametrize("kind", sorted(REGISTRIES))
+def test_lists_every_entry_of_each_kind(kind):
+    whole = listing()
+    one = listing(kind)
+    assert one.splitlines()[0] in whole
+    found = entries(one)
+    assert set(REGISTRIES[kind].names()) <= set(found), one
+    for name in REGISTRIES[kind]:
+        entry = REGISTRIES[kind].get(name)
+        text = entry if isinstance(entry, str) else first_paragraph(entry.__doc__)
+        assert found[name].startswith(text), (name, found[name])  # the whole first paragraph
+
+
+def test_informed_rrt_star_description_is_not_cut():
+    assert "from the informed ellipse |x − start| + |x − goal| ≤ c." in entries(listing("planners"))["informed_rrt_star"]
+
+
+def test_heuristics_listed():
+    assert all(h in listing("grid") for h in HEURISTICS)
+
+
+def test_first_paragraph():
+    assert first_paragraph("One\n    two.\n\n    Later.") == "One two."
+    assert first_paragraph(None) == "" and first_paragraph("\n\n  Only.") == "Only."
+
+
+def test_unknown_kind_is_a_usage_error():
+    result = CliRunner().invoke(main, ["list", "planers"])
+    assert result.exit_code == 2 and "Traceback" not in result.output

@@ -3,9 +3,12 @@
     pip install -e . ir-sim==2.12.0
     python benchmarks/bench_sim.py [--repeat 200]
 
-Two scenes, the same for both simulators:
+Three scenes, the same for both simulators:
 - 21 circles (radius 0.25 m on a 7 × 3 lattice) in a 10 m × 10 m world,
   an omni robot at (5, 5) with a 360-beam LiDAR (range 12 m);
+- the same plus five moving circles (radius 0.2 m, 0.3 m/s, crossing the
+  world: navlab `velocity` motions reflecting at the bounds, ir-sim omni
+  obstacles with the `dash` behaviour towards a goal);
 - a 219 × 183-cell maze grid (0.05 m cells) with the same LiDAR.
 
 ir-sim reads the circles from its YAML world file and the maze from a PNG
@@ -26,6 +29,10 @@ import time
 import numpy as np
 
 CIRCLES = [(1.5 + 1.2 * i, 2.0 + 3.0 * j, 0.25) for i in range(7) for j in range(3)]
+#: five moving circles: start, goal (ir-sim dashes there; navlab keeps the velocity and reflects)
+MOVERS = [((0.6, 3.5), (9.4, 3.5)), ((9.4, 6.5), (0.6, 6.5)), ((2.0, 9.4), (2.0, 0.6)),
+          ((8.0, 0.6), (8.0, 9.4)), ((0.6, 0.6), (9.4, 9.4))]
+MOVER_RADIUS, MOVER_SPEED = 0.2, 0.3
 
 
 def median_time(fn, repeat: int) -> float:
@@ -38,7 +45,7 @@ def median_time(fn, repeat: int) -> float:
     return statistics.median(samples)
 
 
-def irsim_env(folder: str, obstacle_map: str | None):
+def irsim_env(folder: str, obstacle_map: str | None, moving: bool = False):
     import irsim
 
     lines = ["world:", "  height: 10", "  width: 10", "  step_time: 0.05", "  sample_time: 0.05",
@@ -56,6 +63,10 @@ def irsim_env(folder: str, obstacle_map: str | None):
         lines += ["obstacle:"]
         for x, y, r in CIRCLES:
             lines += [f"  - shape: {{name: 'circle', radius: {r}}}", f"    state: [{x}, {y}, 0]"]
+        for (x, y), (gx, gy) in MOVERS if moving else ():
+            lines += [f"  - shape: {{name: 'circle', radius: {MOVER_RADIUS}}}", f"    state: [{x}, {y}, 0]",
+                      "    kinematics: {name: 'omni'}", "    behavior: {name: 'dash'}",
+                      f"    vel_max: [{MOVER_SPEED}, {MOVER_SPEED}]", f"    goal: [{gx}, {gy}, 0]"]
     path = os.path.join(folder, "world.yaml")
     with open(path, "w") as f:
         f.write("\n".join(lines) + "\n")
@@ -74,6 +85,7 @@ def navlab_step_time(scene, start, goal) -> float:
     for seed in range(3):
         r = sim.run(seed)
         best.append(r.wall_time_s / max(r.steps, 1))
+    print(f"  navlab run on {scene.name if hasattr(scene, 'name') else 'maze'}: {r.status.name} after {r.steps} steps")
     return min(best)
 
 
@@ -89,7 +101,13 @@ def main() -> None:
     from navlab.world.shapes import Circle
     from navlab.world.world import Bounds
 
+    from navlab.world.motion import ConstantVelocity
+
     world = World("circles", Bounds(0, 10, 0, 10), (5.0, 0.6), (5.0, 9.4), tuple(Circle((x, y), r) for x, y, r in CIRCLES))
+    movers = tuple(Circle(a, MOVER_RADIUS, motion=ConstantVelocity(tuple(MOVER_SPEED * (np.subtract(b, a))
+                                                                          / np.hypot(*np.subtract(b, a)))))
+                   for a, b in MOVERS)
+    moving_world = World("moving", world.bounds, world.start, world.goal, world.obstacles + movers)
     maze = make_maze(18, 15, seed=4, cell_size=0.6, wall=0.15, resolution=0.05)
     print(f"maze grid: {maze.width} x {maze.height} cells")
     lidar = Lidar()
@@ -97,14 +115,15 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as folder:
         png = os.path.join(folder, "maze.png")
         Image.fromarray(np.where(maze.blocked[::-1], 0, 255).astype(np.uint8)).save(png)
-        for name, scene, start, goal, obstacle_map in (
-                ("21 circles", world, (5.0, 0.6, 0.0), (5.0, 9.4), None),
-                ("maze grid", maze, (0.4, 0.4, 0.0), (10.5, 8.7), png)):
+        for name, scene, start, goal, obstacle_map, moving in (
+                ("21 circles", world, (5.0, 0.6, 0.0), (5.0, 9.4), None, False),
+                ("+5 moving", moving_world, (5.0, 0.6, 0.0), (5.0, 9.4), None, True),
+                ("maze grid", maze, (0.4, 0.4, 0.0), (10.5, 8.7), png, False)):
             pose = np.array(start)
             nav_scan = median_time(lambda: lidar.exact(scene, pose), args.repeat)
             nav_step = navlab_step_time(scene, start, goal)
             try:
-                env = irsim_env(folder, obstacle_map)
+                env = irsim_env(folder, obstacle_map, moving)
             except ImportError:
                 print("ir-sim not installed (pip install ir-sim==2.12.0): navlab figures only")
                 rows.append((name, nav_scan, None, nav_step, None))
@@ -120,7 +139,8 @@ def main() -> None:
             ours = same_beams.exact(scene, np.array((*robot.state[:2, 0], robot.state[2, 0])))
             theirs = np.where(valid, sensor.range_data, np.inf)
             both = np.isfinite(ours) & np.isfinite(theirs)
-            agree = np.max(np.abs(ours[both] - theirs[both])) if both.any() else float("nan")
+            # (moving obstacles have moved on in ir-sim while its step was timed: nothing to compare)
+            agree = np.max(np.abs(ours[both] - theirs[both])) if both.any() and not moving else float("nan")
             rows.append((name, nav_scan, ir_scan, nav_step, ir_step, agree))
             env.end(0) if hasattr(env, "end") else None
     print(f"{'scene':<12} {'navlab scan':>12} {'ir-sim scan':>12} {'ratio':>7} {'navlab step':>12} "

@@ -18,6 +18,7 @@ query (never part of ``stats["time_s"]``).
 from __future__ import annotations
 
 import functools
+import math
 import time
 from typing import Any, Dict, Optional
 
@@ -275,15 +276,31 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
         why = endpoint_problem(world, point, label, checker)
         if why is not None:
-            result = Result(status=status, reason=why, params=dict(params))
+            result = Result(status=status, reason=why, params=dict(params), stats=_stats_skeleton(grid))
             result.params.update(common)
             return result
 
     warmup_s = _warm(planner, sampler, settings if grid else None, on_map=world.occupancy is not None)
     result = grid_query(world, planner, settings) if grid else tree_query(world, planner, sampler, seed, params)
-    result.stats["warmup_s"] = warmup_s
+    result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": warmup_s}
     result.params.update(common)
     return result
+
+
+def _stats_skeleton(grid: bool) -> Dict[str, Any]:
+    """The stats every ``plan`` result of this kind of planner carries, whatever
+    its status (a query that stopped early has them as zeros / ``inf`` / None)."""
+    if grid:
+        from .grid.planner import STATS_KEYS
+
+        keys = dict.fromkeys(k for k in STATS_KEYS if k != "length_m")
+        keys.update(expanded=0, cost_cells=math.inf, raw_cost_cells=math.inf, grid=None, rasterize_s=0.0,
+                    collision_checks=0)
+    else:
+        keys = {"iterations": 0, "nodes": 0, "collision_checks": 0, "edge_checks": 0, "first_solution_iteration": None,
+                "first_solution_time_s": None, "rewires": 0, "cost_trace": np.zeros(0)}
+    keys.update(time_s=0.0, warmup_s=0.0)
+    return keys
 
 
 def path_length(path) -> float:

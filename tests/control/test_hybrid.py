@@ -8,9 +8,10 @@ from navlab.sim.runner import default_max_time, simulate
 from navlab.world import SCENES
 
 
+@pytest.mark.parametrize("robot", ["omni3", "diff"])
 @pytest.mark.parametrize("scene", sorted(SCENES))
-def test_default_sim_reaches_the_goal_on_every_built_in_scene(scene):
-    result, _, sim = simulate(scene)  # omni3 with the hybrid navigator
+def test_default_sim_reaches_the_goal_on_every_built_in_scene(scene, robot):
+    result, _, sim = simulate(scene, robot=robot)  # omni3: hybrid navigator; diff: goto_waypoint on RRT*
     assert result.status is SimStatus.REACHED, result.reason
     assert result.error_true < 0.05 and sim.min_clearance(result) > 0
 

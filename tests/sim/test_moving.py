@@ -131,10 +131,24 @@ def crossing(y0: float, speed: float):
                        "motion": {"waypoints": [[5, 3.5], [5, 0.5]], "speed": speed}})
 
 
-def test_diff_drive_with_replan_survives_an_obstacle_crossing_its_path():
+@pytest.mark.parametrize("planner", ["rrt_star", "astar"])
+def test_diff_drive_with_replan_survives_an_obstacle_crossing_its_path(planner):
     world = crossing(0.6, 0.2)  # without replanning the obstacle runs into the robot at x ≈ 5
-    plain, _, _ = simulate(world, robot="diff")
+    plain, _, _ = simulate(world, robot="diff", planner=planner)
     assert plain.status is SimStatus.COLLIDED and "hit the robot" in plain.reason
-    replanned, _, sim = simulate(world, robot="diff", controller_params={"replan": True})
+    replanned, _, sim = simulate(world, robot="diff", planner=planner, controller_params={"replan": True})
     assert replanned.status is SimStatus.REACHED
     assert sim.min_clearance(replanned) > 0
+
+
+def test_seed004_with_its_measured_delays_reaches_but_a_crossing_obstacle_hits_it():
+    from navlab.sim.latency import MEASURED, NONE, _simulation
+
+    target = (3.0, 0.0)
+    late = _simulation(target, "static", MEASURED)
+    r = late.run(1)
+    assert r.status is SimStatus.REACHED and r.error_true < 0.040 and late.min_clearance(r) > 0
+    crossing_now = _simulation(target, "crossing", NONE)
+    assert crossing_now.run(1).status is SimStatus.REACHED
+    r = _simulation(target, "crossing", MEASURED).run(1)
+    assert r.status is SimStatus.COLLIDED and "hit the robot" in r.reason

@@ -10,11 +10,13 @@ work); times are not. A time verdict is therefore held to two tests:
    (or pairs) of the world, p < 0.05 — the difference is not luck of the seeds;
 2. *larger than the timing noise*: the ratio of the two groups' median times
    differs from 1 by more than ``max(MIN_TIME_EFFECT, NOISE_FACTOR × ε)`` on a
-   log scale, where ε is the run-to-run noise the harness measures for that
-   pair of cells: the first trials of every cell are run a second time late in
-   the run (:data:`~navlab.bench.experiment.NOISE_REPEATS`; same seed, same
+   log scale, where ε is the run-to-run noise the harness measures where the
+   pair of cells ran: the first trials of every cell are run a second time late
+   in the run (:data:`~navlab.bench.experiment.NOISE_REPEATS`; same seed, same
    work) and ε is the median of ``|log(t_repeat / t_first)|`` over the repeats
-   of both cells.
+   of the two cells and of the other cells of their world (the pair's own four
+   repeats alone let one disturbed repeat move the bar; CPU-time noise comes
+   from the machine, which every cell of the run shares).
 
 Only then is a time claim *confirmed* or *contradicted*; otherwise it is *not
 shown* and the report says whether the difference was within the noise. The
@@ -35,8 +37,8 @@ import numpy as np
 
 from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
 
-#: a time ratio within 30% of 1 is never a verdict: below what a shared machine keeps stable
-MIN_TIME_EFFECT = math.log(1.3)
+#: a time ratio within a third of 1 is never a verdict: below what a shared machine keeps stable
+MIN_TIME_EFFECT = math.log(4 / 3)
 #: a time ratio must exceed this many times the measured timing noise ε
 NOISE_FACTOR = 2.0
 #: row fields behind ``--time``
@@ -54,15 +56,32 @@ def group_of(row: Dict[str, Any]) -> str:
     return " / ".join([row["planner"], row["sampler"]] + [f"{k}={v}" for k, v in sorted(swept.items())])
 
 
+#: the any-angle reference path of map queries
+REFERENCE_PLANNER = "theta_star"
+
+
 def timed(rows: List[Dict[str, Any]], time: str = "cpu") -> List[Dict[str, Any]]:
     """Copies of ``rows`` with ``row["time"]``: the trial's CPU or wall time
-    (the planner's own ``time_s`` for rows that have neither)."""
+    (the planner's own ``time_s`` for rows that have neither); and, for map
+    queries, ``row["vs_theta"]``: the path's length over the Theta* path's on
+    the same query (when the experiment runs ``theta_star``)."""
     field = TIME_FIELDS[time]
+    reference = {_query_key(r): r["cost"] for r in rows
+                 if r.get("planner_name") == REFERENCE_PLANNER and r.get("success") and r.get("query") is not None
+                 and not r.get("repeat") and r.get("cost")}
     out = []
     for row in rows:
         value = row.get(field)
-        out.append({**row, "time": value if value is not None else row.get("time_s")})
+        new = {**row, "time": value if value is not None else row.get("time_s")}
+        ref = reference.get(_query_key(row)) if row.get("query") is not None else None
+        if ref and row.get("success") and row.get("cost") is not None:
+            new["vs_theta"] = row["cost"] / ref
+        out.append(new)
     return out
+
+
+def _query_key(row: Dict[str, Any]) -> tuple:
+    return row["world"], row.get("query"), tuple(sorted((row.get("swept") or {}).items()))
 
 
 def by_world(rows: List[Dict[str, Any]]) -> Dict[str, Dict[str, List[Dict[str, Any]]]]:
@@ -98,10 +117,11 @@ def timing_noise(rows: List[Dict[str, Any]]) -> Dict[str, List[float]]:
     return dict(out)
 
 
-def noise_threshold(noise: Dict[str, List[float]], cell_a: Optional[str], cell_b: Optional[str]) -> Dict[str, Any]:
-    """ε of a pair of cells (median of both cells' repeat noise) and the
-    log-ratio a time difference must exceed."""
-    values = list(noise.get(cell_a, [])) + list(noise.get(cell_b, []))
+def noise_threshold(noise: Dict[str, List[float]], cells: List[str]) -> Dict[str, Any]:
+    """ε where a pair of cells ran (the median repeat noise of ``cells``: the
+    pair and the other cells of its world) and the log-ratio a time difference
+    must exceed."""
+    values = [v for cell in dict.fromkeys(cells) for v in noise.get(cell, [])]
     eps = float(np.median(values)) if values else None
     return {"noise": eps, "threshold": max(MIN_TIME_EFFECT, NOISE_FACTOR * eps) if eps is not None else MIN_TIME_EFFECT}
 
@@ -160,7 +180,7 @@ def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
 def rule_text() -> str:
     return (f"a time difference counts only when Mann–Whitney (Holm) p < {ALPHA} and the ratio of median "
             f"times is beyond ×{math.exp(MIN_TIME_EFFECT):.2f} and beyond exp({NOISE_FACTOR:g}·ε), ε being the "
-            "measured run-to-run timing noise of the two cells")
+            "run-to-run timing noise measured by repeating trials of the two cells and of their world's others")
 
 
 def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
@@ -177,7 +197,7 @@ def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
         row["p_holm"] = p
         row["magnitude"] = magnitude(row["delta"])
         if metric in TIME_METRICS:
-            limit = noise_threshold(noise, groups[row["a"]][0]["cell_id"], groups[row["b"]][0]["cell_id"])
+            limit = noise_threshold(noise, _world_cells(groups, row["a"], row["b"]))
             decision = time_decision(row, p, limit)
             row.update(noise=limit["noise"], threshold_ratio=math.exp(limit["threshold"]))
         else:
@@ -186,6 +206,11 @@ def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
         row["direction"] = decision["direction"]
         row["why"] = decision["why"]
     return out
+
+
+def _world_cells(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> List[str]:
+    """Cell ids of a pair first, then of the rest of its world."""
+    return [groups[a][0]["cell_id"], groups[b][0]["cell_id"]] + [m[0]["cell_id"] for m in groups.values()]
 
 
 def _matches(group: str, name: str) -> bool:
@@ -217,7 +242,7 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
                                       compare(metric_values(groups[ga], metric), metric_values(groups[gb], metric))))
         for (claim, metric, low, high, ga, gb, test), p in zip(tests, holm([t[-1]["p"] for t in tests])):
             if metric == "time":
-                limit = noise_threshold(noise, groups[ga][0]["cell_id"], groups[gb][0]["cell_id"])
+                limit = noise_threshold(noise, _world_cells(groups, ga, gb))
                 decision = time_decision(test, p, limit)
             else:
                 limit = {"noise": None, "threshold": None}

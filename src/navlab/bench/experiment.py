@@ -42,6 +42,7 @@ DESCRIPTIVE = ("trials", "description", "name", "claims", "study")
 NOISE_REPEATS = 2
 CLAIM_FIELDS = ("text", "metric", "lower", "higher")
 BUDGET_FIELDS = ("max_iter", "max_time")
+CLAIM_METRICS = ("cost", "time_s", "iterations", "first_solution_iteration", "vs_optimum", "vs_theta")
 
 
 class ExperimentError(ValueError):
@@ -88,6 +89,14 @@ class Cell:
         return " / ".join(parts)
 
 
+def samples(planner: str) -> bool:
+    """Whether ``planner`` takes a navlab sampler (tree planners do; grid
+    algorithms search and OMPL's planners sample by themselves)."""
+    from ..grid.planner import GRID_ALGORITHMS
+
+    return not planner.startswith(OMPL_PREFIX) and planner not in GRID_ALGORITHMS
+
+
 def stable_hash(data: Any) -> str:
     """SHA-256 of the canonical JSON of ``data``."""
     return hashlib.sha256(json.dumps(data, sort_keys=True, separators=(",", ":")).encode()).hexdigest()
@@ -117,8 +126,10 @@ class Experiment:
     #: hypotheses to test: ``{text, metric, lower, higher}`` with group labels
     #: (``sampler`` or ``planner`` titles; ``lower`` may be a list)
     claims: List[Dict[str, Any]] = field(default_factory=list)
-    #: the study a suite reproduces: ``{title, measured, table: {header, rows}}`` (report header)
+    #: the study a suite reproduces: ``{title, measured, reference: [...]}`` (report header)
     study: Dict[str, Any] = field(default_factory=dict)
+    #: map worlds by name: ``{name, map, robot_radius, queries}`` (see :mod:`navlab.bench.maps`)
+    maps: Dict[str, Dict[str, Any]] = field(default_factory=dict)
 
     def cells(self) -> List[Cell]:
         keys = sorted(self.grid)
@@ -126,7 +137,7 @@ class Experiment:
         out = []
         for world in self.worlds:
             for planner in self.planners:
-                samplers = [None] if planner.name.startswith(OMPL_PREFIX) else self.samplers
+                samplers = self.samplers if samples(planner.name) else [None]
                 for sampler in samplers:
                     for point in points:
                         out.append(Cell(world, planner, sampler, {**self.params, **point}))
@@ -155,10 +166,15 @@ class Experiment:
                 "keep_tree": i == 0 and not repeat}
         if repeat:
             spec["repeat"] = repeat
+        entry = self.maps.get(cell.world)
+        if entry is not None:
+            spec["map"] = {k: v for k, v in entry.items() if k != "queries"}
+            spec["query"] = entry["queries"][i % len(entry["queries"])]
         return spec
 
     def to_dict(self) -> Dict[str, Any]:
-        return {"name": self.name, "description": self.description, "worlds": list(self.worlds),
+        return {"name": self.name, "description": self.description,
+                "worlds": [self.maps.get(w, w) for w in self.worlds],
                 "planners": [p.to_dict() for p in self.planners], "samplers": [s.to_dict() for s in self.samplers],
                 "params": dict(self.params), "grid": {k: list(v) for k, v in self.grid.items()},
                 "budget": dict(self.budget), "trials": self.trials, "seed": self.seed,
@@ -189,7 +205,7 @@ def experiment_data(source: Union[str, Path]) -> Tuple[Dict[str, Any], str]:
             raise ExperimentError(f"{where}: not valid YAML: {exc}") from None
         if isinstance(data, dict):
             data.setdefault("name", Path(source).stem)
-            if isinstance(data.get("worlds"), (list, str)):
+            if isinstance(data.get("worlds"), (list, str, dict)):
                 data["worlds"] = [_beside(w, Path(source).parent) for w in _as_list(data["worlds"], "worlds")]
         return data, where
     if isinstance(source, str):
@@ -205,6 +221,9 @@ def _beside(world: Any, folder: Path) -> Any:
     (scene names and absolute paths unchanged)."""
     from ..world.scenes import SCENES
 
+    if isinstance(world, dict):  # a map world: its map and scenario files
+        return {k: (str(folder / v) if k in ("map", "scen") and isinstance(v, str) and not Path(v).is_absolute()
+                    else v) for k, v in world.items()}
     if not isinstance(world, str) or world in SCENES or Path(world).is_absolute():
         return world
     if Path(world).suffix.lower() not in (".yaml", ".yml", ".map", ".scen", ".pgm", ".png") and "/" not in world:
@@ -247,11 +266,24 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
     study = data.get("study") or {}
     if not isinstance(study, dict):
         raise ExperimentError("'study' must be a mapping (title, measured, table)")
+    from .maps import is_map_entry, map_entry
+
+    worlds, maps = [], {}
+    for entry in _as_list(data["worlds"], "worlds"):
+        if is_map_entry(entry):
+            checked = map_entry(entry)
+            if checked["name"] in maps:
+                raise ExperimentError(f"two map worlds are named '{checked['name']}'; give them distinct 'name's")
+            maps[checked["name"]] = checked
+            worlds.append(checked["name"])
+        else:
+            worlds.append(str(entry))
     return Experiment(
         study=dict(study),
         name=_plain_name(data.get("name", "experiment")),
         description=str(data.get("description", "")),
-        worlds=[str(w) for w in _as_list(data["worlds"], "worlds")],
+        worlds=worlds,
+        maps=maps,
         planners=[_component(p, "planners") for p in _as_list(data["planners"], "planners")],
         samplers=[_component(s, "samplers") for s in _as_list(data.get("samplers", ["uniform"]), "samplers")],
         params=dict(data.get("params") or {}),
@@ -272,12 +304,32 @@ def _plain_name(name: Any) -> str:
     return text
 
 
+def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> Dict[str, Any]:
+    """A cell's settings: the experiment's shared ``params`` and ``grid``
+    values that apply to this kind of planner (grid settings to grid
+    algorithms, the others to tree and OMPL planners), then its own."""
+    from ..planning import GRID_PARAMS
+
+    grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
+    return {**{k: v for k, v in shared.items() if (k in GRID_PARAMS) == grid}, **own}
+
+
+def _check_world(world: str) -> None:
+    from ..world.sources import MissingQueryError, load_source
+
+    try:
+        load_source(world)
+    except MissingQueryError:
+        raise ExperimentError(f"world '{world}' is a map, which has no start or goal: give it as "
+                              f"{{map: {world}, scen: FILE.scen, queries: N}} or "
+                              f"{{map: {world}, queries: [[start x, start y, goal x, goal y]]}}") from None
+
+
 def _claim(entry: Any) -> Dict[str, Any]:
     if not isinstance(entry, dict) or set(entry) - set(CLAIM_FIELDS) or not {"text", "lower", "higher"} <= set(entry):
         raise ExperimentError(f"each claim is a mapping with {', '.join(CLAIM_FIELDS)}, got {entry!r}")
-    if entry.get("metric", "cost") not in ("cost", "time_s", "iterations", "first_solution_iteration"):
-        raise ExperimentError(f"claim metric must be cost, time_s, iterations or first_solution_iteration, "
-                              f"got {entry['metric']!r}")
+    if entry.get("metric", "cost") not in CLAIM_METRICS:
+        raise ExperimentError(f"claim metric must be one of {', '.join(CLAIM_METRICS)}, got {entry['metric']!r}")
     return {"metric": "cost", **entry}
 
 
@@ -299,10 +351,13 @@ def _component(entry: Any, what: str) -> Component:
 
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
-    from ..planning import build_sampler, split_params
+    from ..planning import build_sampler, is_grid_planner, split_grid_params, split_params
     from ..sampling.planners import make_planner
-    from ..world import load_world
     from .ompl_planners import check_ompl_name, ompl_available
+
+    for planner in exp.planners:
+        if not planner.name.startswith(OMPL_PREFIX):
+            is_grid_planner(planner.name)  # unknown names: "did you mean", both kinds listed
 
     if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
         raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
@@ -321,7 +376,8 @@ def validate(exp: Experiment) -> None:
     if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
         raise ExperimentError("two planners or two samplers share a label; give them distinct 'label's")
     for world in exp.worlds:
-        load_world(world)
+        if world not in exp.maps:
+            _check_world(world)
     for cell in exp.cells():
         if cell.planner.name.startswith(OMPL_PREFIX):
             check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
@@ -329,6 +385,10 @@ def validate(exp: Experiment) -> None:
                 raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
                                       "pip install 'navlab[ompl]'")
             continue
-        params = {**cell.params, **cell.planner.params, **cell.sampler.params, **exp.budget}
+        if cell.sampler is None:  # a grid algorithm: its settings only, no budget
+            split_grid_params(cell.planner.name, routed_params(cell.planner.name, cell.params, cell.planner.params))
+            continue
+        params = {**routed_params(cell.planner.name, cell.params, cell.planner.params), **cell.sampler.params,
+                  **exp.budget}
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
         make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)

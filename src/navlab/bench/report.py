@@ -75,6 +75,18 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
                         fmt(t["mean"], 4), fmt(t["median"], 4), fmt(c["first_solution_iteration"]["median"], 0)])
     blocks.append(("table", (header, table)))
 
+    if any(c.get("vs_optimum", {}).get("n") or c.get("vs_theta", {}).get("n") for c in cells):
+        blocks.append(("h2", "Path length against the optimum and against Theta*"))
+        blocks.append(("p", "Per map query: the path's length over the stored Moving AI optimum (8-connected "
+                            "octile length, corners not cut: any-angle paths can be shorter, below 1) and over the "
+                            "Theta* path's on the same query; over the successful trials."))
+        blocks.append(("table", (["world", "cell", "success", "÷ optimum (median)", "÷ optimum (mean)",
+                                  "÷ optimum (max)", "÷ Theta* (median)", "÷ Theta* (max)", "time median [s]"],
+                                 [[c["world"], c["group"], f"{c['successes']}/{c['trials'] - c['errors']}",
+                                   fmt(c["vs_optimum"]["median"], 4), fmt(c["vs_optimum"]["mean"], 4),
+                                   fmt(c["vs_optimum"]["max"], 4), fmt(c["vs_theta"]["median"], 4),
+                                   fmt(c["vs_theta"]["max"], 4), fmt(c["time"]["median"], 4)] for c in cells])))
+
     failed = [c for c in cells if c["successes"] < c["trials"]]
     if failed:
         blocks.append(("h2", "Trials that did not succeed"))

@@ -182,9 +182,10 @@ def make_plots(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
     tasks = []
     for world, groups in by_world(rows).items():
         firsts = {g: min(m, key=lambda r: r["trial"]) for g, m in groups.items()}
+        group_specs = {g: specs.get(r["trial_id"]) for g, r in firsts.items()}
         tasks.append((world, {g: [_plot_fields(r) for r in m] for g, m in groups.items()},
                       {g: trees.get(r["cell_id"]) if r["trial"] == 0 else None for g, r in firsts.items()},
-                      {g: specs.get(r["trial_id"]) for g, r in firsts.items()}, str(folder), time_label))
+                      group_specs, str(folder), time_label))
     if jobs > 1 and len(tasks) > 1:
         from concurrent.futures import ProcessPoolExecutor
 
@@ -209,7 +210,7 @@ def _plot_world(task):
     """One world's figures: box plots, convergence, example trees. Returns
     (world, image names), or the one-line message of a failed write."""
     from ..viz.bench_plot import box_plots, convergence_plot, example_trees
-    from .trial import _world
+    from .trial import trial_world
 
     world, groups, trees, specs, folder, time_label = task
     folder = Path(folder)
@@ -230,7 +231,8 @@ def _plot_world(task):
             examples.append((f"{group} (trial {first['trial']})\n{label}", tree))
         if examples:
             names.append(f"plots/trees_{slug}.png")
-            example_trees(_world(world), examples, str(folder / names[-1]))
+            drawn = trial_world(next(sp for sp in specs.values() if sp is not None))  # trial 0's query on a map
+            example_trees(drawn, examples, str(folder / names[-1]))
     except OSError as exc:
         return str(write_error(folder / "plots", exc))
     return world, names

@@ -46,7 +46,7 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
 
 
 #: metrics that exist only for trials that found a path
-SUCCESS_ONLY = ("cost", "first_solution_iteration")
+SUCCESS_ONLY = ("cost", "first_solution_iteration", "vs_optimum", "vs_theta")
 
 
 def metric_values(rows: List[Dict[str, Any]], metric: str) -> List[float]:
@@ -62,7 +62,8 @@ def metric_values(rows: List[Dict[str, Any]], metric: str) -> List[float]:
 #: what a cell summary describes: ``time`` is the time the analysis uses
 #: (CPU or wall, see :func:`navlab.bench.analysis.timed`); ``time_s`` is the
 #: planner's own clock, ``cpu_s``/``wall_s`` the trial's
-SUMMARY_METRICS = ("cost", "time", "cpu_s", "wall_s", "time_s", "iterations", "first_solution_iteration")
+SUMMARY_METRICS = ("cost", "time", "cpu_s", "wall_s", "time_s", "iterations", "first_solution_iteration",
+                   "vs_optimum", "vs_theta")
 
 
 def cell_summary(rows: List[Dict[str, Any]]) -> Dict[str, Any]:

@@ -10,6 +10,7 @@ document's numbers, which the report shows beside ours.
 
 from __future__ import annotations
 
+from pathlib import Path
 from typing import Any, Callable, Dict, List, Optional
 
 from ..registry import Registry
@@ -31,13 +32,48 @@ def suite_names() -> List[str]:
 
 
 def suite_help() -> str:
-    """One line per suite: its name, aliases and the study it reproduces."""
+    """One line per suite: its name, aliases and the study it reproduces
+    (from the first line of its docstring: building a suite may read files)."""
     lines = []
     for name in SUITES.names():
         aliases = [a for a, n in ALIASES.items() if n == name]
-        short = SUITES.get(name)().get("study", {}).get("short", "")
+        short = (SUITES.get(name).__doc__ or "").strip().split("\n")[0].rstrip(".")
         lines.append(f"{name}" + (f" (alias {', '.join(aliases)})" if aliases else "") + (f": {short}" if short else ""))
     return "; ".join(lines)
+
+
+#: where the Moving AI maps live, seen from the repository: ``../shared/data/movingai``
+MOVINGAI_DIR = Path("..") / "shared" / "data" / "movingai"
+#: the maps of the map suite and their scenario files
+MOVINGAI_MAPS = (("arena.map", "arena.map.scen"), ("random-32-32-10.map", "random-32-32-10-random-1.scen"),
+                 ("den312d.map", "den312d.map.scen"), ("Berlin_1_256.map", "Berlin_1_256.map.scen"),
+                 ("maze512-32-9.map", "maze512-32-9.map.scen"))
+#: scenario rows planned per map (spread from the shortest query to the longest)
+MOVINGAI_QUERIES = 6
+
+
+def _movingai_candidates() -> List[Path]:
+    return [Path.cwd() / MOVINGAI_DIR] + [parent / "shared" / "data" / "movingai"
+                                          for parent in Path(__file__).resolve().parents]
+
+
+def movingai_dir() -> Path:
+    """The Moving AI data folder: ``../shared/data/movingai`` from the current
+    folder (the repository, as the README runs it), else beside the checkout
+    this package is in.
+
+    Raises
+    ------
+    ExperimentError
+        Not found (one line naming where it was looked for).
+    """
+    from .experiment import ExperimentError
+
+    for folder in _movingai_candidates():
+        if folder.is_dir():
+            return folder
+    raise ExperimentError(f"the Moving AI maps are not in {MOVINGAI_DIR} (looked from {Path.cwd()} and from the "
+                          "navlab checkout); this suite needs that folder with the .map and .map.scen files")
 
 
 #: seed 000 (SPEC.md; the seed's Tables I–VI): means over 20 trials
@@ -52,7 +88,8 @@ _SEED000_TABLE = [
 
 @SUITES.register("samplers")
 def samplers() -> Dict[str, Any]:
-    """The sampler comparison of seed 000 (integration sampling for RRT*):
+    """Seed 000's RRT* sampler comparison (LabVIEW, TELEKONTRAN 2021).
+
     RRT* with five samplers in three environments, 20 trials each, stopping
     at max_iter only (as the seed did)."""
     return {
@@ -98,8 +135,9 @@ def samplers() -> Dict[str, Any]:
 
 @SUITES.register("growth-ratio")
 def growth_ratio() -> Dict[str, Any]:
-    """The growth-ratio RRT of seed 003 against RRT with a fixed step:
-    iterations to reach the goal and path length over 100 seeds, on the
+    """Seed 003's growth-ratio RRT against fixed-step RRT (Matlab).
+
+    Iterations to reach the goal and path length over 100 seeds, on the
     seed's set-up and on the other scenes."""
     return {
         "name": "growth-ratio",
@@ -138,8 +176,10 @@ def growth_ratio() -> Dict[str, Any]:
 
 @SUITES.register("ompl-anchors")
 def ompl_anchors() -> Dict[str, Any]:
-    """navlab's RRT* and Informed RRT* beside OMPL's planners (``ompl``
-    extra) on the same worlds, budgets and exact collision checker."""
+    """navlab's RRT* beside OMPL's planners (no seed document).
+
+    RRT* and Informed RRT* beside OMPL's planners (``ompl`` extra) on the same
+    worlds, budgets and exact collision checker."""
     return {
         "name": "ompl-anchors",
         "study": {
@@ -161,9 +201,51 @@ def ompl_anchors() -> Dict[str, Any]:
     }
 
 
+@SUITES.register("grid-vs-rrt-maps")
+def grid_vs_rrt_maps() -> Dict[str, Any]:
+    """Seed 002's A* (with JPS, Theta*) against seed 000's RRT* and five samplers on Moving AI maps.
+
+    Needs the maps in ``../shared/data/movingai``. Six queries per map, spread
+    from the shortest to the longest of its scenario file; each planner solves
+    each query once (RRT* with its trial's seed)."""
+    folder = movingai_dir()
+    return {
+        "name": "grid-vs-rrt-maps",
+        "study": {
+            "short": "seed 002's grid search against seed 000's RRT* samplers on Moving AI maps",
+            "title": "no single seed document: seed 002's A* (an Indonesian-language study of A* with Bresenham "
+                     "smoothing on generated mazes under ROS 2) and seed 000's RRT* sampler comparison, put side "
+                     "by side on the Moving AI benchmark maps (Sturtevant, 'Benchmarks for grid-based "
+                     "pathfinding', IEEE TCIAIG 2012)",
+            "measured": "Seed 002 measured A* path length and search on mazes; seed 000 measured RRT* path cost and "
+                        "time per sampler in three hand-made worlds. Neither used real maps. Here every planner "
+                        "solves the same queries of five Moving AI maps (an arena, a random-obstacle grid, a game "
+                        "dungeon, a city and a 512x512 maze): path length over the stored optimum (8-connected, "
+                        "corners not cut) and over the any-angle Theta* path, time and success.",
+        },
+        "description": "A*, JPS and Theta* (complete grid searches) against RRT* with each of the five samplers "
+                       "(5000 iterations) on five Moving AI maps, six queries each.",
+        "worlds": [{"map": str(folder / m), "scen": str(folder / scen), "queries": MOVINGAI_QUERIES}
+                   for m, scen in MOVINGAI_MAPS],
+        "planners": ["astar", "jps", "theta_star", "rrt_star"],
+        "samplers": ["uniform", "goal_bias", "gaussian", "boundary", "integration"],
+        "budget": {"max_iter": 5000},
+        "trials": 6,
+        "seed": 0,
+        "claims": [
+            {"text": "Theta* (any-angle) paths are shorter than A*'s", "metric": "vs_optimum",
+             "lower": "theta_star", "higher": "astar"},
+            {"text": "A* is faster than RRT* with uniform sampling", "metric": "time_s",
+             "lower": "astar", "higher": "uniform"},
+        ],
+    }
+
+
 @SUITES.register("smoke")
 def smoke() -> Dict[str, Any]:
-    """A tiny suite that runs in seconds (the tests and a first try)."""
+    """A quick check of the harness (seconds).
+
+    Two samplers, two worlds, short trials: the tests and a first try."""
     return {
         "name": "smoke",
         "study": {"short": "a quick check of the harness", "title": "no seed document: a quick check that the harness works",

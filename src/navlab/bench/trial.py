@@ -30,9 +30,9 @@ TRACE_POINTS = 120
 
 @functools.lru_cache(maxsize=None)
 def _world(name: str):
-    from ..world import load_world
+    from ..world.sources import load_source
 
-    return load_world(name)
+    return load_source(name)
 
 
 @functools.lru_cache(maxsize=1)
@@ -49,9 +49,25 @@ def machine() -> Dict[str, Any]:
 
 
 def cell_kwargs(cell: Dict[str, Any], budget: Dict[str, Any]) -> Dict[str, Any]:
-    """The planner and sampler settings of a cell, budget included."""
+    """The planner and sampler settings of a cell, budget included (a grid
+    algorithm has no budget: it searches to the end)."""
+    from .experiment import routed_params
+
+    name = cell["planner"]["name"]
+    own = routed_params(name, cell["params"], cell["planner"]["params"])
+    if _is_grid(name):
+        return own
     sampler = cell["sampler"] or {"params": {}}
-    return {**cell["params"], **cell["planner"]["params"], **sampler["params"], **budget}
+    return {**own, **sampler["params"], **budget}
+
+
+def trial_world(spec: Dict[str, Any]):
+    """The World a trial plans in: a scene or world file, or one query of a map."""
+    if spec.get("query"):
+        from .maps import map_world
+
+        return map_world(spec["map"], spec["query"])
+    return _world(spec["cell"]["world"])
 
 
 def execute(spec: Dict[str, Any], keep_tree: Optional[bool] = None) -> Result:
@@ -61,7 +77,7 @@ def execute(spec: Dict[str, Any], keep_tree: Optional[bool] = None) -> Result:
     from .ompl_planners import plan_ompl
 
     cell = spec["cell"]
-    world = _world(cell["world"])
+    world = trial_world(spec)
     kwargs = cell_kwargs(cell, spec["budget"])
     name = cell["planner"]["name"]
     if name.startswith(OMPL_PREFIX):
@@ -77,17 +93,18 @@ def warm_trial(spec: Dict[str, Any]) -> float:
     """Warm this process for the trial's kind of query before it is timed; the
     seconds spent (about 0 once this process has run the same kind).
 
-    Tree planners: :func:`navlab.warmup.warm_up` (the kernels), then the cell's
-    own query with a tiny iteration budget, which also loads the world and
-    reaches whatever ``navlab.plan`` warms by itself (a map's kernels, a grid
-    algorithm's variant). Grid planners: the cell's query once, whole (it has no
-    budget to shrink). OMPL: :func:`navlab.warmup.warm_up`.
+    Tree planners: the cell's own query with a tiny iteration budget, so
+    ``navlab.plan`` warms its kernels (:func:`navlab.warmup.warm_up`, a map's
+    too) and the world is loaded. Grid planners: the cell's query once, whole
+    (there is no budget to shrink), which warms the algorithm's variant. OMPL:
+    :func:`navlab.warmup.warm_up`. One kind is a world (all queries of a map
+    together), a planner, a sampler and their settings.
     """
     import json
 
     cell = spec["cell"]
     key = json.dumps({"world": cell["world"], "planner": cell["planner"], "sampler": cell["sampler"],
-                      "params": cell["params"], "query": spec.get("query")}, sort_keys=True, default=str)
+                      "params": cell["params"]}, sort_keys=True, default=str)
     if key in _WARMED:
         return 0.0
     t0 = time.perf_counter()
@@ -95,6 +112,7 @@ def warm_trial(spec: Dict[str, Any]) -> float:
     return time.perf_counter() - t0
 
 
+#: kinds of query this process has warmed (a process-lifetime cache, like an lru_cache)
 _WARMED: set = set()
 
 
@@ -107,7 +125,7 @@ def _warm_kind(key: str, spec: Dict[str, Any]) -> None:
     name = cell["planner"]["name"]
     if name.startswith(OMPL_PREFIX):
         warm_up(name)
-        _world(cell["world"])
+        trial_world(spec)
     else:
         budget = {} if _is_grid(name) else {"max_iter": WARM_ITERATIONS}
         execute({**spec, "budget": budget, "keep_tree": False})
@@ -126,12 +144,15 @@ def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
 
     cell = spec["cell"]
     row = {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")}
-    row.update(world=cell["world"], planner=cell["planner"]["label"],
+    row.update(world=cell["world"], planner=cell["planner"]["label"], planner_name=cell["planner"]["name"],
                sampler=cell["sampler"]["label"] if cell["sampler"] else "-",
                params=_jsonable(cell_kwargs(cell, spec["budget"])), swept=dict(spec.get("swept") or {}),
                version=__version__, machine=machine())
     if spec.get("repeat"):
         row["repeat"] = spec["repeat"]
+    if spec.get("query"):
+        q = spec["query"]
+        row.update(query=q["index"], start=q["start"], goal=q["goal"], optimum=q.get("optimum"))
     return row
 
 
@@ -148,6 +169,8 @@ def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] =
         result = runner(spec)
         row["cpu_s"], row["wall_s"] = time.thread_time() - cpu0, time.perf_counter() - wall0
         row.update(result_fields(result))
+        if row.get("optimum") and row["success"] and row.get("cost") is not None:
+            row["vs_optimum"] = row["cost"] / row["optimum"]
         if spec.get("keep_tree") and result.tree is not None and "nodes" in result.tree:
             row["tree"] = {"nodes": np.asarray(result.tree["nodes"]), "parent": np.asarray(result.tree["parent"]),
                            "path": np.asarray(result.path, dtype=float)}

@@ -106,6 +106,10 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
         click.echo(f"\ninterrupted: {stop.kept} of {stop.total} trials are kept in {stop.folder}; "
                    f"run the rest with: {_resume_command()}", err=True)
         sys.exit(EXIT_INTERRUPTED)
+    except KeyboardInterrupt:  # before or after the trials: every finished trial is on disk
+        click.echo(f"\ninterrupted: the finished trials are kept in {folder}; continue with: {_resume_command()}",
+                   err=True)
+        sys.exit(EXIT_INTERRUPTED)
     summary = run.summary
     click.echo(f"{len(run.rows)} trials ({run.ran} run now, {run.errors} errors) in {run.elapsed_s:.1f} s; "
                f"times are {summary['time_label']}")

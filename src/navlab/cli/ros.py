@@ -81,6 +81,37 @@ for _node in NODES:
     ros_group.add_command(NodeCommand(_node))
 
 
+@ros_group.command("delay")
+@click.argument("topics", nargs=-1, required=True)
+@click.option("--duration", type=float, default=10.0, show_default=True,
+              help="How long to listen (wall-clock seconds, from when the first topic appears).")
+@click.option("--wait", type=click.FloatRange(min=0), default=10.0, show_default=True,
+              help="How long to wait for the topics to appear (wall-clock seconds).")
+@click.option("--time", "clock", type=click.Choice(["auto", "sim", "wall"]), default="auto", show_default=True,
+              help="Receive time from /clock (sim) or the system clock (wall); auto: sim when /clock is published.")
+@click.option("--json", "as_json", is_flag=True, help="One JSON object per topic.")
+def delay_cmd(topics, duration, wait, clock, as_json) -> None:
+    """Measure how late messages arrive on TOPICS: receive time minus
+    header.stamp per message, and the rate, as mean / min / max / count per
+    topic (seed 004's Tables 3–4). Works on any ROS 2 graph.
+
+    \b
+    Example (with `navlab ros sim` running):
+      navlab ros delay /scan /odom --duration 10
+    """
+    _require_rclpy()
+    from ..ros.delay import measure, table
+
+    summaries, used = measure(list(topics), duration, clock, wait=wait, args=["navlab-delay"])
+    if as_json:
+        for s in summaries:
+            click.echo(json.dumps(s | {"clock": used}))
+    else:
+        click.echo(table(summaries, used))
+    if any(s["count"] == 0 for s in summaries):
+        sys.exit(1)
+
+
 @ros_group.command("demo")
 @click.option("--map", "--world", "world", default=None,
               help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "

@@ -10,6 +10,11 @@ import click
 
 from .common import parse_params
 
+#: experiment names the CLI offers (the registry is filled when sim.experiments is imported; listed here so
+#: that `navlab --help` does not import the simulator)
+EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", "sensor-latency", "seed004-latency",
+                    "hybrid-vs-field", "random-clutter"]
+
 
 @click.command("sim")
 @click.argument("world", required=False)
@@ -20,8 +25,10 @@ from .common import parse_params
               help="Start pose [m, m, rad] (default: the world's start, heading 0).")
 @click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal [m] (default: the world's).")
 @click.option("--planner", default=None,
-              help="Path for the followers: a sampling planner (worlds, default rrt_star) or a grid "
-                   "algorithm (maps, default astar, smoothed).")
+              help="Global path for hybrid and the followers: any planner (`navlab list`; worlds default "
+                   "rrt_star, maps astar, smoothed).")
+@click.option("--sampler", default="uniform", show_default=True,
+              help="Sampler of a tree planner (rrt_star etc.), on worlds and maps.")
 @click.option("--lidar", type=click.Choice(["rplidar_a1", "exact", "none"]), default=None,
               help="LiDAR noise (default: exact when the controller needs a scan).")
 @click.option("--robot-param", "robot_params", multiple=True, metavar="KEY=VALUE",
@@ -29,28 +36,42 @@ from .common import parse_params
 @click.option("--controller-param", "controller_params", multiple=True, metavar="KEY=VALUE",
               help="Controller setting, e.g. alpha=0.8 max_speed=0.25.")
 @click.option("--dt", type=float, default=0.05, show_default=True, help="Time step [s].")
-@click.option("--max-time", type=float, default=120.0, show_default=True, help="Simulated time limit [s].")
+@click.option("--max-time", type=float, default=None,
+              help="Simulated time limit [s] (default: 60 s + 4× the path's length at the robot's speed).")
+@click.option("--lidar-timing", "lidar_timing", multiple=True, metavar="KEY=VALUE[,...]",
+              help="LiDAR rate [Hz], latency [s] and jitter [s], e.g. rate=10,latency=0.5,jitter=0.12 (default: "
+                   "every step, no delay).")
+@click.option("--odom-timing", "odom_timing", multiple=True, metavar="KEY=VALUE[,...]",
+              help="Odometry rate [Hz], latency [s] and jitter [s], e.g. rate=50,latency=0.08.")
 @click.option("--seed", type=int, default=0, show_default=True)
-@click.option("--experiment", type=click.Choice(["seed004", "seed002"]), default=None,
-              help="Run a seed's experiment instead (no WORLD).")
+@click.option("--experiment", type=click.Choice(EXPERIMENT_NAMES), default=None,
+              help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
+                   "(seed002), sensor-latency (seed004-latency: seed 004 with its measured topic delays and a "
+                   "crossing obstacle), hybrid-vs-field (random-clutter).")
 @click.option("--runs", type=click.IntRange(min=1), default=None, help="Runs per setting (experiments).")
 @click.option("--plot-dir", type=click.Path(file_okay=False), default=None,
               help="Experiments: write a PNG per run here (seed002 default: sim-results/seed002).")
 @click.option("--json", "as_json", is_flag=True, help="JSON output (one object per run for experiments).")
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="PNG of the run.")
 @click.option("--gif", type=click.Path(dir_okay=False), default=None, help="GIF animation of the run.")
-def sim_cmd(world, robot, controller, start, goal, planner, lidar, robot_params, controller_params, dt, max_time,
-            seed, experiment, runs, plot_dir, as_json, plot, gif) -> None:
+def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robot_params, controller_params, dt,
+            max_time, lidar_timing, odom_timing, seed, experiment, runs, plot_dir, as_json, plot, gif) -> None:
     """Simulate a robot in WORLD (a world YAML, a scene name, or a map_server
-    YAML / Moving AI map) driving to --goal, or run --experiment seed004 or
-    seed002. Exit status 1 when the robot does not reach the goal.
+    YAML / Moving AI map) driving to --goal, or run an --experiment. The
+    omni robot's default controller is the hybrid navigator (a global plan
+    with the potential field as local avoider); obstacles with a `motion`
+    move, and the robot can replan around them
+    (--controller-param replan=true for the followers). Exit status 1 when
+    the robot does not reach the goal.
 
     \b
     Examples:
-      navlab sim --experiment seed004
-      navlab sim clutter --robot diff --controller goto_waypoint --planner rrt_star --plot run.png
+      navlab sim trap
+      navlab sim --experiment omni-potential-field
+      navlab sim clutter --robot diff --planner rrt_star --controller-param replan=true --plot run.png
       navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --gif run.gif
-      navlab sim trap --robot omni3 --controller potential_field --lidar rplidar_a1
+      navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --planner rrt_star --sampler integration
+      navlab sim one_obstacle --controller potential_field --lidar-timing rate=10,latency=0.5
     """
     if experiment:
         if world:
@@ -62,9 +83,11 @@ def sim_cmd(world, robot, controller, start, goal, planner, lidar, robot_params,
     from ..sim.runner import simulate
 
     result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
-                                        planner=planner, lidar=lidar, robot_params=parse_params(robot_params),
+                                        planner=planner, sampler=sampler, lidar=lidar,
+                                        robot_params=parse_params(robot_params),
                                         controller_params=parse_params(controller_params), dt=dt,
-                                        max_time=max_time, seed=seed)
+                                        max_time=max_time, seed=seed,
+                                        lidar_timing=_timing(lidar_timing), odometry_timing=_timing(odom_timing))
     if plot:
         from ..viz.sim_plot import plot_run
 
@@ -85,6 +108,10 @@ def sim_cmd(world, robot, controller, start, goal, planner, lidar, robot_params,
         if result.path is not None:
             click.echo(f"  followed a {len(result.path)}-waypoint path, max tracking error "
                        f"{result.tracking_error():.3f} m")
+        if sim.scene.dynamic:
+            replans = getattr(getattr(sim.controller, "replanner", None), "count", 0)
+            click.echo(f"  {len(sim.scene.moving)} moving obstacle(s); closest approach "
+                       f"{1000 * sim.min_clearance(result):.0f} mm; {replans} replan(s)")
         for what, name in (("plot", plot), ("animation", gif)):
             if name:
                 click.echo(f"  {what} written to {name}")
@@ -92,10 +119,19 @@ def sim_cmd(world, robot, controller, start, goal, planner, lidar, robot_params,
         sys.exit(1)
 
 
-def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:
-    from ..sim.experiments import EXPERIMENTS, seed002_table, seed004_table
+def _timing(items):
+    """``rate=10,latency=0.5`` (or the flag repeated) as a mapping; None when not given."""
+    if not items:
+        return None
+    return parse_params(tuple(part for item in items for part in item.split(",") if part.strip()))
 
-    if name == "seed002" and plot_dir is None:
+
+def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:
+    from ..sim import latency
+    from ..sim.experiments import EXPERIMENTS, hybrid_table, seed002_table, seed004_table
+
+    study = EXPERIMENTS.get(name).registered_name  # the descriptive name behind an alias
+    if study == "maze-astar" and plot_dir is None:
         plot_dir = "sim-results/seed002"
     if plot_dir:
         Path(plot_dir).mkdir(parents=True, exist_ok=True)
@@ -107,7 +143,12 @@ def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:
         for row in rows:
             click.echo(json.dumps(row))
         return
-    click.echo(seed004_table(rows) if name == "seed004" else seed002_table(rows))
+    tables = {"omni-potential-field": seed004_table, "maze-astar": seed002_table,
+              "sensor-latency": latency.latency_table, "hybrid-vs-field": hybrid_table}
+    click.echo(tables[study](rows))
+    if study == "sensor-latency":
+        click.echo(f"with the measured delays the field stays clear of the cylinder up to "
+                   f"{latency.safe_speed(rows)} m/s (without delays: {latency.safe_speed(rows, 'none')} m/s)")
     wall = sum(r.get("wall_time_s", 0.0) for r in rows)
     simulated = sum(r.get("time_s", 0.0) for r in rows)
     click.echo(f"{len(rows)} runs, {simulated:.0f} s simulated in {wall:.2f} s of compute "

@@ -26,9 +26,8 @@ from typing import Optional
 
 import numpy as np
 
-from .occupancy import OccupancyGrid
+from .occupancy import MAX_CELLS, OccupancyGrid  # MAX_CELLS: the largest grid navlab makes or reads
 
-MAX_CELLS = 10**8  #: largest grid a world may be rasterised to
 DEFAULT_CELLS_ALONG_LONGER_SIDE = 200  #: default resolution = longer side of the bounds / this
 
 

@@ -9,10 +9,20 @@ so ``map → odom`` is the identity; the node publishes it once on
 Steps run on a wall-clock timer at ``real_time_factor`` times real time; the
 other nodes follow ``/clock`` with ``use_sim_time`` so that a run can go
 faster than real time.
+
+Obstacles with a ``motion`` (world files) move with simulated time: the
+scans see them where they are, and a robot they run into stops there (the
+log says who hit whom).
+
+``scan_latency`` / ``odom_latency`` (with optional seeded jitter) hold each
+``/scan`` / ``/odom`` message back that many simulated seconds while its
+stamp stays the time it was measured, as seed 004 measured on its robot
+(``navlab ros delay /scan /odom`` measures it back).
 """
 
 from __future__ import annotations
 
+import heapq
 import math
 
 import numpy as np
@@ -50,6 +60,12 @@ class SimNode(NavlabNode):
         Param("base_frame", "base_link", "the robot's frame (/odom child, /scan frame)"),
         Param("static_map_odom", True, "publish the identity map → odom transform on /tf_static "
                                        "(turn off when a localiser publishes map → odom)"),
+        Param("scan_latency", 0.0, "delay of /scan (simulated s): a scan is published this long after it is "
+                                   "taken, stamped when taken (seed 004 measured 0.5 s)"),
+        Param("scan_jitter", 0.0, "standard deviation of the /scan delay (s), seeded"),
+        Param("odom_latency", 0.0, "delay of /odom (simulated s; seed 004 measured 0.08 s)"),
+        Param("odom_jitter", 0.0, "standard deviation of the /odom delay (s), seeded"),
+        Param("odom_rate", 0.0, "/odom messages per simulated second (0: every step)"),
     )
 
     def __init__(self, **kwargs) -> None:
@@ -78,6 +94,14 @@ class SimNode(NavlabNode):
                            noise="rplidar_a1" if noisy else None)
         self.rng = np.random.default_rng(p["seed"])
         self.dt = p["dt"]
+        for name in ("scan_latency", "scan_jitter", "odom_latency", "odom_jitter", "odom_rate"):
+            if not (p[name] >= 0 and math.isfinite(p[name])):
+                raise ValueError(f"{name} must be a number ≥ 0, got {p[name]!r}")
+        # delays have their own generator: a run without them draws exactly as before
+        self.delay_rng = np.random.default_rng(np.random.SeedSequence(int(p["seed"]), spawn_key=(4,)))
+        self.odom_every = max(1, round(1.0 / (p["odom_rate"] * self.dt))) if p["odom_rate"] > 0 else 1
+        self.outbox: list = []  # (publish at [s], sequence, publisher, message): delayed messages in flight
+        self.sent = 0
         self.scan_every = max(1, round(1.0 / (p["scan_rate"] * self.dt))) if p["scan_rate"] > 0 else 0
         self.steps, self.t = 0, 0.0
         self.command, self.command_t = (0.0, 0.0, 0.0), -math.inf
@@ -114,11 +138,11 @@ class SimNode(NavlabNode):
         stale = timeout > 0 and self.t - self.command_t > timeout
         vx, vy, omega = (0.0, 0.0, 0.0) if stale else self.command
         before = self.plant.pose.copy()
-        if self.plant.step(vx, vy, omega, self.dt, self.rng):
+        if self.plant.step(vx, vy, omega, self.dt, self.rng, self.t):
             # the robot pushes against the obstacle and stays put; the wheels turn
             self.plant.pose = before
             if not self.in_contact:
-                self.log("error", f"collision at t = {self.t + self.dt:.2f} s: {self.scene.describe(before)}")
+                self.log("error", self.plant.hit)
             self.in_contact = True
         else:
             self.in_contact = False
@@ -133,14 +157,36 @@ class SimNode(NavlabNode):
         p = self.params
         twist = self.plant.last_twist
         odom = self.plant.odometry.pose
-        self.odom_pub.publish(odometry_msg(odom, twist, p["odom_frame"], p["base_frame"], stamp))
+        if self.steps % self.odom_every == 0:
+            self.send(self.odom_pub, odometry_msg(odom, twist, p["odom_frame"], p["base_frame"], stamp),
+                      p["odom_latency"], p["odom_jitter"])
         self.truth_pub.publish(odometry_msg(self.plant.pose, twist, "map", p["base_frame"], stamp))
         if self.scan_pub is not None and self.steps % self.scan_every == 0:
-            ranges = self.lidar.scan(self.scene.world, self.plant.pose, self.rng)
-            self.scan_pub.publish(scan_to_msg(ranges, self.lidar, p["base_frame"], stamp,
-                                              scan_time=self.scan_every * self.dt))
+            self.scene.set_time(self.t)  # moving obstacles where they are now
+            ranges = self.lidar.scan(self.scene, self.plant.pose, self.rng)
+            self.send(self.scan_pub, scan_to_msg(ranges, self.lidar, p["base_frame"], stamp,
+                                                 scan_time=self.scan_every * self.dt),
+                      p["scan_latency"], p["scan_jitter"])
+        self.flush()
         if self.tf_pub is not None:
             self.tf_pub.publish(self.tf_type(transforms=[transform_msg(odom, p["odom_frame"], p["base_frame"], stamp)]))
+
+
+    def send(self, publisher, msg, latency: float, jitter: float) -> None:
+        """Publish now, or ``latency`` (± jitter) simulated seconds later with
+        the stamp of when it was measured."""
+        if latency == 0 and jitter == 0:
+            publisher.publish(msg)
+            return
+        delay = max(0.0, latency + (jitter * float(self.delay_rng.standard_normal()) if jitter else 0.0))
+        self.sent += 1
+        heapq.heappush(self.outbox, (self.t + delay, self.sent, publisher, msg))
+
+    def flush(self) -> None:
+        """Publish the delayed messages that are due (a step's slack of 1e-9 s)."""
+        while self.outbox and self.outbox[0][0] <= self.t + 1e-9:
+            _, _, publisher, msg = heapq.heappop(self.outbox)
+            publisher.publish(msg)
 
 
 main = node_main(SimNode)

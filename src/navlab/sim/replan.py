@@ -40,18 +40,28 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
               sampler: str = "uniform", seed: Any = 0, extra=(), params: Optional[dict] = None):
     """A path for a disc of ``robot_radius`` (plus :data:`PLAN_MARGIN`), or
     the failed planner Result. ``extra`` obstacles join a geometric world."""
-    if isinstance(scene_world, OccupancyGrid):
+    from ..planning import is_grid_planner
+
+    if isinstance(scene_world, OccupancyGrid) and is_grid_planner(planner or "astar"):
         from ..grid import plan_world
 
         result = plan_world(scene_world.inflate(robot_radius + PLAN_MARGIN), start[:2], goal,
                             algorithm=planner or "astar", smooth=True)
+    elif isinstance(scene_world, OccupancyGrid):  # a tree planner on the map's exact cells
+        from ..planning import plan
+
+        result = plan(scene_world, planner=planner, sampler=sampler, start=tuple(start[:2]), goal=tuple(goal),
+                      seed=seed, robot_radius=robot_radius + PLAN_MARGIN, **(params or {}))
     else:
         from ..planning import plan
 
         world = replace(scene_world, start=tuple(start[:2]), goal=tuple(goal),
                         obstacles=tuple(scene_world.obstacles) + tuple(extra),
                         robot_radius=robot_radius + PLAN_MARGIN, goal_tolerance=0.0)
-        result = plan(world, planner=planner or "rrt_star", sampler=sampler, seed=seed, **(params or {}))
+        settings = dict(params or {})
+        if is_grid_planner(planner or "rrt_star"):
+            settings.setdefault("smooth", True)  # as on maps: a follower wants few waypoints, not every cell
+        result = plan(world, planner=planner or "rrt_star", sampler=sampler, seed=seed, **settings)
     if not result.success:
         return result
     path = np.asarray(result.path, float)

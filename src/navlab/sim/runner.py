@@ -55,7 +55,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         raise ValueError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
                          "and pure_pursuit")
     path = plan_path(scene_world, bot, start, goal, planner, sampler) if ctrl.needs_path else None
-    if ctrl.needs_path and hasattr(ctrl, "replanner"):
+    if ctrl.needs_path and hasattr(ctrl, "replanner"):  # replans use the same planner as the first plan
         ctrl.replanner = Replanner(scene_world, bot.radius, goal, planner, sampler)
     if max_time is None:
         max_time = default_max_time(path if path is not None else np.array((start[:2], goal)), bot, ctrl)

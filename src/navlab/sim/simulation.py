@@ -162,6 +162,12 @@ class Simulation:
         self.record_scans = record_scans
         self.lidar_timing = SensorTiming.from_dict(lidar_timing, "lidar")
         self.odometry_timing = SensorTiming.from_dict(odometry_timing, "odometry")
+        if controller.needs_path and getattr(controller, "replanner", False) is None:
+            # replanning controllers (hybrid, followers with replan) plan again with navlab's defaults
+            # unless the caller gave them a replanner (navlab sim passes its --planner on)
+            from .replan import Replanner
+
+            controller.replanner = Replanner(scene_world, robot.radius, self.goal)
         if not self.scene.free(self.start):
             raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
         if not self.scene.free(np.array((*self.goal, 0.0))):

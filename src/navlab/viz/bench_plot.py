@@ -81,7 +81,8 @@ def convergence_plot(world: str, groups: Dict[str, Rows], out: str) -> bool:
     ax.set_ylabel("best path cost [m] (median, 25–75% band)")
     ax.set_title(f"{world}: convergence")
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
+    if ax.lines:
+        ax.legend(fontsize=8)
     fig.subplots_adjust(left=0.1, right=0.97, bottom=0.12, top=0.92)
     _save(fig, out, 100)
     plt.close(fig)

@@ -1,0 +1,93 @@
+"""Maps as benchmark worlds: Moving AI scenarios and listed queries, any mix of
+planners, path length against the stored optimum and against Theta*."""
+
+import math
+
+import pytest
+
+from navlab.bench import ExperimentError, load_experiment, run_experiment
+from navlab.bench.store import read_rows
+
+
+@pytest.fixture
+def movingai(tmp_path):
+    """A 12 x 8 map with a wall (x = 6, rows 0-5) and a scenario file of two
+    queries: (1, 1) -> (4, 1), 3 cells straight; (0, 7) -> (11, 7) along the
+    open bottom row, 11 cells."""
+    rows = ["." * 12 for _ in range(8)]
+    rows = [r[:6] + "@" + r[7:] if y < 6 else r for y, r in enumerate(rows)]
+    (tmp_path / "room.map").write_text("type octile\nheight 8\nwidth 12\nmap\n" + "\n".join(rows) + "\n")
+    (tmp_path / "room.map.scen").write_text("version 1\n0\troom.map\t12\t8\t1\t1\t4\t1\t3.00000000\n"
+                                            "0\troom.map\t12\t8\t0\t7\t11\t7\t11.00000000\n")
+    return tmp_path
+
+
+def test_astar_matches_the_grid_optimum_and_theta_star_is_the_reference(movingai):
+    # query 0 only (a straight corridor): A* equals the stored optimum, Theta* too
+    exp = load_experiment({"name": "m", "worlds": [{"map": str(movingai / "room.map"),
+                                                    "scen": str(movingai / "room.map.scen"), "queries": 1}],
+                           "planners": ["astar", "theta_star", "rrt_star"], "samplers": ["uniform", "gaussian"],
+                           "budget": {"max_iter": 300}, "trials": 2, "seed": 1})
+    run = run_experiment(exp, movingai / "out", executor="serial", progress=False)
+    by = {c["group"]: c for c in run.summary["cells"]}
+    assert set(by) == {"astar / -", "theta_star / -", "rrt_star / uniform", "rrt_star / gaussian"}
+    assert by["astar / -"]["vs_optimum"]["max"] == pytest.approx(1.0, abs=1e-6)
+    assert by["theta_star / -"]["vs_theta"]["median"] == pytest.approx(1.0)
+    rows = list(read_rows(movingai / "out" / "results.jsonl"))
+    assert {tuple(r["start"]) for r in rows} == {(1.5, 1.5)} and {tuple(r["goal"]) for r in rows} == {(4.5, 1.5)}
+    for r in rows:  # grid rows have no sampler; tree rows one; every path starts and ends exactly
+        assert (r["sampler"] == "-") == (r["planner"] in ("astar", "theta_star"))
+    assert all(r["success"] and r["cost"] == pytest.approx(3.0, abs=1e-6) for r in rows if r["planner"] == "astar")
+    md = (movingai / "out" / "report.md").read_text()
+    assert "Path length against the optimum and against Theta*" in md
+
+
+def test_queries_listed_in_the_experiment_and_trials_cycle_through_them(movingai):
+    exp = load_experiment({"worlds": [{"map": str(movingai / "room.map"), "name": "room",
+                                       "queries": [[1.5, 1.5, 4.5, 1.5], [0.5, 7.5, 11.5, 7.5]]}],
+                           "planners": ["jps"], "trials": 4})
+    specs = exp.trial_specs()
+    assert [s["query"]["index"] for s in specs] == [0, 1, 0, 1]
+    run = run_experiment(exp, movingai / "o2", executor="serial", progress=False, plots=False)
+    costs = [r["cost"] for r in run.rows]
+    assert costs == pytest.approx([3.0, 11.0, 3.0, 11.0]) and all(r.get("optimum") is None for r in run.rows)
+
+
+@pytest.mark.parametrize("world, message", [
+    ({"map": "nowhere.map", "queries": [[0, 0, 1, 1]]}, "no such map file"),
+    ({"map": "ROOM", "queries": []}, "a map has no start or goal"),
+    ({"map": "ROOM", "queries": [[1, 2, 3]]}, r"query 0 must be \[start x"),
+    ({"map": "ROOM", "scen": "ROOM.scen", "queries": 0}, "positive integer"),
+    ({"map": "ROOM", "qeries": 2}, "(?i)did you mean 'queries'"),
+])
+def test_bad_map_worlds_are_refused_before_anything_runs(movingai, world, message):
+    world = {k: (str(movingai / "room.map") + v[4:] if isinstance(v, str) and v.startswith("ROOM") else v)
+             for k, v in world.items()}
+    with pytest.raises(ExperimentError, match=message):
+        load_experiment({"worlds": [world], "planners": ["astar"]})
+
+
+def test_a_map_named_as_a_plain_world_says_how_to_give_its_queries(movingai):
+    with pytest.raises(ExperimentError, match="is a map, which has no start or goal: give it as"):
+        load_experiment({"worlds": [str(movingai / "room.map")], "planners": ["astar"]})
+
+
+def test_the_map_suite_needs_the_movingai_folder(monkeypatch, tmp_path):
+    import navlab.bench.suites as suites
+
+    monkeypatch.setattr(suites, "_movingai_candidates", lambda: [tmp_path / "missing"])
+    with pytest.raises(ExperimentError, match=r"Moving AI maps are not in ../shared/data/movingai"):
+        load_experiment("grid-vs-rrt-maps")
+
+
+def test_the_map_suite_reads_the_shared_maps():
+    from navlab.bench.suites import MOVINGAI_QUERIES, movingai_dir
+
+    try:
+        movingai_dir()
+    except ExperimentError:
+        pytest.skip("no ../shared/data/movingai here")
+    exp = load_experiment("grid-vs-rrt-maps")
+    assert len(exp.worlds) == 5 and all(len(exp.maps[w]["queries"]) == MOVINGAI_QUERIES for w in exp.worlds)
+    assert all(q["optimum"] > 0 for w in exp.worlds for q in exp.maps[w]["queries"])
+    assert math.isclose(exp.maps["arena"]["queries"][0]["start"][0] % 1, 0.5)

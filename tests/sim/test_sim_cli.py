@@ -1,0 +1,83 @@
+"""``navlab sim``: moving worlds, tree planners on maps, timings, one-line errors, GIF writing."""
+
+import errno
+
+import pytest
+from click.testing import CliRunner
+
+from navlab.cli import main
+
+CROSSING = """name: crossing
+bounds: {x: [0, 10], y: [0, 4]}
+start: [1, 2]
+goal: [9, 2]
+obstacles:
+  - {type: circle, center: [5, 0.6], radius: 0.3, motion: {waypoints: [[5, 3.5], [5, 0.5]], speed: 0.2}}
+"""
+
+
+@pytest.fixture()
+def crossing(tmp_path):
+    path = tmp_path / "crossing.yaml"
+    path.write_text(CROSSING)
+    return path
+
+
+def test_replanning_follower_on_a_moving_world_and_its_gif(tmp_path, crossing):
+    from navlab.sim.runner import simulate
+    from navlab.viz.sim_plot import animate_run
+
+    res = CliRunner().invoke(main, ["sim", str(crossing), "--robot", "diff", "--controller-param", "replan=true",
+                                    "--json"])
+    assert res.exit_code == 0 and '"status": "REACHED"' in res.output
+    result, world, sim = simulate(str(crossing), robot="diff", controller_params={"replan": True}, max_time=10.0)
+    gif = tmp_path / "run.gif"
+    animate_run(world, result, str(gif), sim.robot.radius, max_frames=4, progress=True)
+    assert gif.read_bytes()[:3] == b"GIF"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["crossing.yaml", "run.gif"]  # no temporary left
+
+
+def test_disk_full_while_writing_a_gif_is_one_line_and_leaves_no_file(tmp_path, monkeypatch):
+    from matplotlib.animation import FuncAnimation
+
+    def full(self, filename, *args, **kwargs):
+        self._draw_was_started = True  # no "deleted without rendering" warning later, in another test
+        with open(filename, "wb") as f:
+            f.write(b"GIF89a")  # a torn start
+        raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(FuncAnimation, "save", full)
+    gif = tmp_path / "run.gif"
+    res = CliRunner().invoke(main, ["sim", "one_obstacle", "--gif", str(gif)])
+    assert res.exit_code == 2 and len(res.output.strip().splitlines()) == 1
+    assert "run.gif" in res.output and "No space left" in res.output
+    assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("args, words", [
+    (["clutter", "--start", "1", "1", "inf"], "start θ must be finite"),
+    (["clutter", "--goal", "nan", "2"], "goal x must be finite"),
+    (["one_obstacle", "--lidar-timing", "latency=-0.5"], "lidar: field 'latency'"),
+    (["one_obstacle", "--odom-timing", "rate=0"], "odometry: field 'rate'"),
+])
+def test_bad_input_is_one_line_and_exit_2(args, words):
+    res = CliRunner().invoke(main, ["sim", *args])
+    assert res.exit_code == 2 and words in res.output and len(res.output.strip().splitlines()) == 1
+
+
+def test_tree_planner_on_a_map(tmp_path):
+    from navlab.grid import make_maze
+    from navlab.grid.mapio import save_map
+
+    save_map(make_maze(4, 4, seed=1, cell_size=0.6, wall=0.1, resolution=0.05), tmp_path / "maze.yaml")
+    res = CliRunner().invoke(main, ["sim", str(tmp_path / "maze.yaml"), "--robot", "diff", "--start", "0.35", "0.35",
+                                    "0", "--goal", "2.15", "2.15", "--planner", "rrt_star", "--sampler",
+                                    "integration"])
+    assert res.exit_code == 0, res.output
+    assert res.output.startswith("REACHED")
+
+
+def test_latency_on_the_command_line_still_reaches():
+    res = CliRunner().invoke(main, ["sim", "one_obstacle", "--controller", "potential_field", "--lidar-timing",
+                                    "rate=10,latency=0.5", "--odom-timing", "rate=50", "--odom-timing", "latency=0.08"])
+    assert res.exit_code == 0 and res.output.startswith("REACHED")

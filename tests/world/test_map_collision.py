@@ -202,3 +202,43 @@ def test_read_only_grid_arrays_are_accepted():
     grid.blocked.setflags(write=False)
     checker = World.from_grid(grid, (0.1, 0.1), (2.9, 2.9)).checker()
     assert list(checker.points_free([[1.75, 1.75], [0.2, 0.2]])) == [False, True]
+
+
+@pytest.mark.parametrize("radius", [0.0, 0.02, 0.11])
+def test_thin_walls_of_a_maze_match_shapely(radius):
+    # one-cell walls and long segments at every angle: the early probes and
+    # the jumps must never step over a wall, the windows never miss one
+    from navlab.grid.maze import make_maze
+
+    grid = make_maze(8, 8, seed=3, cell_size=0.5, wall=0.05, resolution=0.05)  # walls one cell thick
+    world = World.from_grid(grid, (0, 0), (0, 0), robot_radius=radius)
+    union, extent = cell_squares(grid, grid.blocked | grid.unknown)
+    rng = np.random.default_rng(int(radius * 100))
+    b = world.bounds
+    a = rng.uniform([b.xmin, b.ymin], [b.xmax, b.ymax], (1200, 2))
+    c = a + rng.normal(0, 1.0, (1200, 2)) * rng.choice([0.1, 0.5, 2.0], size=(1200, 1))
+    got = world.checker().segments_free(a, c)
+    for k in range(len(a)):
+        exp = expected_free(shapely.LineString([a[k], c[k]]), extent, union, radius)
+        if exp is not None:
+            assert got[k] == exp, (a[k], c[k])
+    assert 0.05 < got.mean() < 0.9
+
+
+def test_radius_of_many_cells_on_a_fine_rotated_map():
+    # robot radius 15 cells: windows, probes (d·√2 ≤ rc) and jumps all work in cell units
+    rng = np.random.default_rng(21)
+    grid = random_grid(rng, shape=(120, 140), density=0.001, resolution=0.01, origin=(0.4, -0.3, 0.9))
+    world = World.from_grid(grid, (0, 0), (0, 0), robot_radius=0.15)
+    union, extent = cell_squares(grid, grid.blocked)
+    b = world.bounds
+    a = rng.uniform([b.xmin, b.ymin], [b.xmax, b.ymax], (1500, 2))
+    c = a + rng.normal(0, 0.15, (1500, 2))
+    got = world.checker().segments_free(a, c)
+    decided = 0
+    for k in range(len(a)):
+        exp = expected_free(shapely.LineString([a[k], c[k]]), extent, union, 0.15)
+        if exp is not None:
+            assert got[k] == exp, (a[k], c[k])
+            decided += 1
+    assert decided > 1450 and 0.03 < got.mean() < 0.9

@@ -103,7 +103,7 @@ class CollisionChecker:
             if cells.size == 0:
                 self._surface = (np.empty(0, np.int64), np.empty(0), 0.0)
             else:
-                blocked = cells != _geo.FREE
+                blocked = cells < _geo.FIRST_FREE
                 free = ~blocked
                 edges = np.zeros(cells.shape, dtype=np.int64)
                 edges[1:, :] += free[:-1, :]

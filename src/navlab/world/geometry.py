@@ -4,7 +4,7 @@ Obstacles are packed into flat arrays (a *geometry tuple*) that compiled
 planner loops receive directly. Every world — shapes, an occupancy map, or
 both — packs into the same tuple type, so each kernel compiles once:
 
-``(circles, rects, poly_verts, poly_offsets, poly_boxes, (params, cells, cheb))``
+``(circles, rects, poly_verts, poly_offsets, poly_boxes, (params, cells, gaps))``
 
 - ``circles``: (nc, 3) ``x, y, r + robot_radius`` (already inflated)
 - ``rects``: (nr, 4) ``xmin, ymin, xmax, ymax`` (not inflated)
@@ -13,11 +13,15 @@ both — packs into the same tuple type, so each kernel compiles once:
 - ``poly_boxes``: (np, 4) polygon bounding boxes grown by the robot radius
 - ``params``: float slots ``P_*`` below: ``robot_radius**2``, the bounds, and
   the map's frame (origin, yaw, resolution, robot radius in cells)
-- ``cells``: (H, W) uint8 map codes, indexed ``[y, x]``: ``FREE``,
-  ``BLOCKED`` (occupied, or unknown unless allowed) or ``SURFACE`` (blocked
-  with a free 4-neighbour); (0, 0) without a map
-- ``cheb``: (H, W) int32 chessboard distance, in cells, from each cell to the
-  nearest blocked cell (0 on blocked cells); (0, 0) without a map
+- ``cells``: (H, W) uint8 map codes, indexed ``[y, x]``: ``BLOCKED``
+  (occupied, or unknown unless allowed), ``SURFACE`` (blocked with a free
+  4-neighbour), or for a free cell ``FIRST_FREE - 1 + d`` where ``d`` is its
+  chessboard distance in cells to the nearest blocked cell (capped at 254:
+  a lower bound is all the walk needs); (0, 0) without a map. One byte per
+  cell keeps a 1000 x 1000 map in 1 MB of cache.
+- ``gaps``: (H, W) uint8, how many cells to the right along its row the next
+  ``SURFACE`` cell is (0 on one; capped at 255), so exact tests near a wall
+  step from surface cell to surface cell instead of visiting every cell.
 
 The map part sits in one nested slot so the first five slots keep the
 layout they always had (ray casting unpacks them).
@@ -60,14 +64,18 @@ from .shapes import Circle, Polygon, Rectangle
 
 # Float parameter slots of the geometry tuple's ``params``.
 P_R2, P_XMIN, P_XMAX, P_YMIN, P_YMAX = range(5)
-P_HAS_MAP, P_OX, P_OY, P_COS, P_SIN, P_RES, P_RC = range(5, 12)
-N_PARAMS = 12
-# Map cell codes.
-FREE, BLOCKED, SURFACE = 0, 1, 2
+P_HAS_MAP, P_OX, P_OY, P_COS, P_SIN, P_RES, P_RC, P_ANY_BLOCKED = range(5, 13)
+N_PARAMS = 13
+# Map cell codes: blocked below FIRST_FREE; a free cell stores 1 + its chessboard distance.
+BLOCKED, SURFACE, FIRST_FREE = 0, 1, 2
+_MAX_CODE = 255
 #: [cells] the walk jumps ahead only when it can prove at least this much room
 SKIP_MIN = 0.5
 #: [cells] length of a segment window tested exactly near a surface
-WINDOW = 2.0
+WINDOW = 8.0
+#: [cells] spacing of the look-ups that reject a colliding segment early, and their most
+PROBE_SPACING = 4.0
+MAX_PROBES = 32
 _HALF_DIAGONAL = 0.7071067811865476 + 1e-12  # [cells] centre-to-corner of a cell, rounded up
 
 
@@ -101,9 +109,11 @@ def pack_geometry(obstacles, robot_radius: float, bounds_array: np.ndarray, occu
     params[P_XMIN:P_YMAX + 1] = bounds_array
     if occupancy is None:
         cells = np.zeros((0, 0), dtype=np.uint8)
-        cheb = np.zeros((0, 0), dtype=np.int32)
+        gaps = np.zeros((0, 0), dtype=np.uint8)
     else:
-        cells, cheb = pack_map(occupancy, allow_unknown)
+        cells = pack_map(occupancy, allow_unknown)
+        gaps = surface_gaps(cells)
+        params[P_ANY_BLOCKED] = float(np.any(cells < FIRST_FREE))
         ox, oy, yaw = (float(v) for v in occupancy.origin)
         res = float(occupancy.resolution)
         params[P_HAS_MAP] = 1.0
@@ -118,17 +128,16 @@ def pack_geometry(obstacles, robot_radius: float, bounds_array: np.ndarray, occu
         np.ascontiguousarray(verts, dtype=float),
         offsets,
         np.ascontiguousarray(boxes, dtype=float),
-        (params, cells, cheb),
+        (params, cells, gaps),
     )
 
 
 def pack_map(occupancy, allow_unknown: bool = False):
-    """The map's cell codes and chessboard distance transform (see module doc)."""
+    """The map's cell codes (see the module doc)."""
     blocked = np.array(occupancy.blocked, dtype=bool)  # a private, writable copy
     if not allow_unknown and occupancy.unknown is not None:
         blocked = blocked | np.asarray(occupancy.unknown, dtype=bool)
     blocked = np.ascontiguousarray(blocked)
-    cells = blocked.astype(np.uint8)
     # a blocked cell with a free 4-neighbour inside the map is on the surface
     free = ~blocked
     touches = np.zeros_like(blocked)
@@ -136,8 +145,24 @@ def pack_map(occupancy, allow_unknown: bool = False):
     touches[:-1, :] |= free[1:, :]
     touches[:, 1:] |= free[:, :-1]
     touches[:, :-1] |= free[:, 1:]
+    cheb = chessboard_transform(blocked)
+    cells = (np.minimum(cheb, _MAX_CODE - FIRST_FREE + 1) + (FIRST_FREE - 1)).astype(np.uint8)
+    cells[blocked] = BLOCKED
     cells[blocked & touches] = SURFACE
-    return cells, chessboard_transform(blocked)
+    return cells
+
+
+@njit(cache=True)
+def surface_gaps(cells):
+    """Cells to the next ``SURFACE`` cell at or right of each cell in its row (≤ 255)."""
+    h, w = cells.shape
+    gaps = np.empty((h, w), dtype=np.uint8)
+    for j in range(h):
+        gap = _MAX_CODE
+        for i in range(w - 1, -1, -1):
+            gap = 0 if cells[j, i] == SURFACE else min(gap + 1, _MAX_CODE)
+            gaps[j, i] = gap
+    return gaps
 
 
 @njit(cache=True)
@@ -325,31 +350,101 @@ def _cell_of(u, v, w, h):
 
 
 @njit(cache=True)
-def _window_hits(u0, v0, u1, v1, rc, cells):
+def _window_hits(u0, v0, u1, v1, rc, cells, gaps):
     """Whether segment (u0, v0)–(u1, v1) (grid frame, cell units) comes within
-    ``rc`` of a surface cell's closed square (exact)."""
+    ``rc`` of a surface cell's closed square (exact).
+
+    A square within ``rc`` of the segment has its centre within
+    ``near = rc + half a diagonal``: for each row only the centres within
+    ``near`` of the part of the segment lying within ``near`` of the row's
+    centre line are visited (a superset of that capsule's row, cheap to
+    bound), stepping from surface cell to surface cell with ``gaps``.
+    """
     h, w = cells.shape
-    i_lo = max(int(math.floor(min(u0, u1) - rc)) - 1, 0)
-    i_hi = min(int(math.floor(max(u0, u1) + rc)), w - 1)
-    j_lo = max(int(math.floor(min(v0, v1) - rc)) - 1, 0)
-    j_hi = min(int(math.floor(max(v0, v1) + rc)), h - 1)
     rc2 = rc * rc
     near = rc + _HALF_DIAGONAL
     near2 = near * near
+    dv = v1 - v0
+    du = u1 - u0
+    j_lo = max(int(math.floor(min(v0, v1) - near - 0.5)), 0)
+    j_hi = min(int(math.ceil(max(v0, v1) + near - 0.5)), h - 1)
     for j in range(j_lo, j_hi + 1):
-        for i in range(i_lo, i_hi + 1):
-            if cells[j, i] != SURFACE:
+        vc = j + 0.5
+        # the segment's parameter range with |v - vc| <= near
+        if dv != 0.0:
+            ta = (vc - near - v0) / dv
+            tb = (vc + near - v0) / dv
+            t_lo = max(min(ta, tb), 0.0)
+            t_hi = min(max(ta, tb), 1.0)
+            if t_lo > t_hi:
                 continue
-            # the square is within half a diagonal of its centre: a cheap exact rejection
-            if point_segment_dist2(i + 0.5, j + 0.5, u0, v0, u1, v1) > near2:
+        else:
+            t_lo, t_hi = 0.0, 1.0
+        ua = u0 + t_lo * du
+        ub = u0 + t_hi * du
+        lo = min(ua, ub) - near
+        hi = max(ua, ub) + near
+        # one spare cell each side absorbs rounding in the interval's ends
+        i_lo = max(int(math.floor(max(lo, -2.0) - 0.5)), 0)
+        i_hi = min(int(math.ceil(min(hi, w + 2.0) - 0.5)), w - 1)
+        i = i_lo
+        while i <= i_hi:
+            gap = gaps[j, i]
+            if gap != 0:
+                i += gap  # no surface cell before i + gap
                 continue
-            if _hits(segment_rect_dist2(u0, v0, u1, v1, float(i), float(j), i + 1.0, j + 1.0), rc2):
+            i += 1
+            dc2 = point_segment_dist2(i - 0.5, j + 0.5, u0, v0, u1, v1)  # cell i - 1
+            if dc2 > near2:
+                continue  # the square is farther than its centre less half a diagonal
+            if dc2 <= rc2:
+                return True  # its centre, a point of the square, is within rc
+            if _hits(segment_rect_dist2(u0, v0, u1, v1, i - 1.0, float(j), float(i), j + 1.0), rc2):
                 return True
     return False
 
 
 @njit(cache=True)
-def map_segment_free(ax, ay, bx, by, params, cells, cheb):
+def _probe_hits(au, av, du, dv, length, rc, cells):
+    """Whether a probe point of the segment is certainly in collision.
+
+    Most segments a tree planner checks on a map collide (they cross a wall or
+    unknown space). Points spaced ``PROBE_SPACING`` cells apart, midpoint
+    first and then ever finer (bit-reversed order), are looked up: a point
+    in a blocked cell, or in a cell whose chessboard distance ``d`` to a
+    blocked cell has ``d·√2 ≤ rc`` (every point of the cell is then within
+    ``d·√2`` of that cell's square), collides. A free segment pays one look-up
+    per probe; the exact walk decides everything the probes do not.
+    """
+    h, w = cells.shape
+    n = min(int(length / PROBE_SPACING), MAX_PROBES)
+    if n < 1:
+        return False
+    levels = 1
+    while (1 << levels) <= n:
+        levels += 1
+    size = 1 << levels
+    rc2 = rc * rc
+    for k in range(1, size):
+        # bit-reversed k: 1/2, 1/4, 3/4, 1/8, ...
+        r = 0
+        x = k
+        for _ in range(levels):
+            r = (r << 1) | (x & 1)
+            x >>= 1
+        f = r / size
+        i, j = _cell_of(au + f * du, av + f * dv, w, h)
+        code = cells[j, i]
+        if code < FIRST_FREE:
+            return True
+        d = code - (FIRST_FREE - 1)
+        if code < _MAX_CODE and 2.0 * d * d <= rc2:
+            return True
+    return False
+
+
+@njit(cache=True)
+def map_segment_free(ax, ay, bx, by, params, cells, gaps):
     """Whether segment ab keeps more than the robot radius from every blocked
     cell's closed square and stays on the map (see the module doc)."""
     h, w = cells.shape
@@ -358,12 +453,17 @@ def map_segment_free(ax, ay, bx, by, params, cells, cheb):
     if not (0.0 <= au <= w and 0.0 <= av <= h and 0.0 <= bu <= w and 0.0 <= bv <= h):
         return False  # off the map (the map is convex: inside at both ends is inside throughout)
     i, j = _cell_of(au, av, w, h)
-    if cells[j, i] != FREE:
+    if cells[j, i] < FIRST_FREE:
+        return False
+    i, j = _cell_of(bu, bv, w, h)  # a steered edge often ends in a wall: one look rejects it
+    if cells[j, i] < FIRST_FREE:
         return False
     rc = params[P_RC]
     du = bu - au
     dv = bv - av
     length = math.sqrt(du * du + dv * dv)
+    if _probe_hits(au, av, du, dv, length, rc, cells):
+        return False
     t = 0.0
     pu, pv = au, av
     while True:
@@ -371,8 +471,10 @@ def map_segment_free(ax, ay, bx, by, params, cells, cheb):
         fu = pu - i
         fv = pv - j
         edge = max(min(min(fu, 1.0 - fu), min(fv, 1.0 - fv)), 0.0)
-        # every blocked square is ≥ cheb − 1 + edge away from p in L∞, hence in L2
-        room = cheb[j, i] - 1.0 + edge - rc
+        # every blocked square is ≥ d − 1 + edge away from p in L∞ (d: the cell's
+        # chessboard distance; 0 on a blocked cell), hence in L2
+        d = max(cells[j, i] - (FIRST_FREE - 1), 0)
+        room = d - 1.0 + edge - rc
         if room >= SKIP_MIN:
             t += room * (1.0 - 1e-9)  # the open ball of radius `room` about p is clear
             if t > length:
@@ -382,16 +484,16 @@ def map_segment_free(ax, ay, bx, by, params, cells, cheb):
             continue
         t2 = t + WINDOW
         if t2 >= length:
-            return not _window_hits(pu, pv, bu, bv, rc, cells)
+            return not _window_hits(pu, pv, bu, bv, rc, cells, gaps)
         f = t2 / length
         qu, qv = au + f * du, av + f * dv
-        if _window_hits(pu, pv, qu, qv, rc, cells):
+        if _window_hits(pu, pv, qu, qv, rc, cells, gaps):
             return False
         t, pu, pv = t2, qu, qv
 
 
 @njit(cache=True)
-def map_clearance(px, py, params, cells, cheb):
+def map_clearance(px, py, params, cells):
     """Distance (m) from a point to the nearest blocked cell's square (0 on
     or in one, or off the map; ``inf`` when nothing is blocked)."""
     h, w = cells.shape
@@ -399,11 +501,11 @@ def map_clearance(px, py, params, cells, cheb):
     if not (0.0 <= u <= w and 0.0 <= v <= h):
         return 0.0
     i, j = _cell_of(u, v, w, h)
-    if cells[j, i] != FREE:
+    if cells[j, i] < FIRST_FREE:
         return 0.0
-    c = cheb[j, i]
-    if c >= h + w:
+    if params[P_ANY_BLOCKED] == 0.0:
         return np.inf
+    c = cells[j, i] - (FIRST_FREE - 1)
     best = np.inf
     # ring m of cells around (i, j) is at least m − 1 cells away: stop once that exceeds the best
     m = c
@@ -429,7 +531,7 @@ def map_clearance(px, py, params, cells, cheb):
 def segment_free(ax, ay, bx, by, geom):
     """Whether segment ab (a point when a == b) keeps clearance everywhere."""
     circles, rects, verts, offsets, boxes, frame = geom
-    params, cells, cheb = frame
+    params, cells, gaps = frame
     r2 = params[P_R2]
     if not (in_bounds(ax, ay, geom) and in_bounds(bx, by, geom)):
         return False
@@ -451,7 +553,7 @@ def segment_free(ax, ay, bx, by, geom):
         if _hits(segment_polygon_dist2(ax, ay, bx, by, verts, offsets[k], offsets[k + 1]), r2):
             return False
     if params[P_HAS_MAP] != 0.0:
-        return map_segment_free(ax, ay, bx, by, params, cells, cheb)
+        return map_segment_free(ax, ay, bx, by, params, cells, gaps)
     return True
 
 
@@ -460,7 +562,7 @@ def clearance(px, py, geom):
     """Distance from a point to the nearest (un-inflated) obstacle surface
     (0 inside an obstacle or off the map; ``inf`` with no obstacles)."""
     circles, rects, verts, offsets, boxes, frame = geom
-    params, cells, cheb = frame
+    params, cells, _ = frame
     r = np.sqrt(params[P_R2])
     best = np.inf
     for k in range(circles.shape[0]):
@@ -471,7 +573,7 @@ def clearance(px, py, geom):
     for k in range(offsets.shape[0] - 1):
         best = min(best, np.sqrt(segment_polygon_dist2(px, py, px, py, verts, offsets[k], offsets[k + 1])))
     if params[P_HAS_MAP] != 0.0:
-        best = min(best, map_clearance(px, py, params, cells, cheb))
+        best = min(best, map_clearance(px, py, params, cells))
     return best
 
 

@@ -20,7 +20,65 @@ def test_plan_json_has_everything(run):
     assert out["status"] == "EXACT" and out["cost"] > 0 and len(out["path"]) >= 2
     assert out["params"]["expand_dis"] == 1.5 and out["params"]["seed"] == 3
     assert out["params"]["weights"]["gaussian"] == 0.3
-    assert {"iterations", "nodes", "collision_checks", "time_s", "cost_trace"} <= set(out["stats"])
+    assert {"iterations", "nodes", "collision_checks", "time_s", "warmup_s"} <= set(out["stats"])
+    assert "cost_trace" not in out["stats"]  # a person reads this; the trace is --trace's
+    traced = json.loads(run("plan", "squarefield", "--max-iter", "400", "--json", "--trace").output)
+    assert len(traced["stats"]["cost_trace"]) == 400
+
+
+@pytest.fixture(scope="module")
+def maze(tmp_path_factory):
+    """The issue's maze: `navlab grid maze --cells 10 10 --seed 1 --out maze.yaml`."""
+    path = tmp_path_factory.mktemp("maze") / "maze.yaml"
+    res = CliRunner().invoke(main, ["grid", "maze", "--cells", "10", "10", "--seed", "1", "--out", str(path)])
+    assert res.exit_code == 0, res.output
+    return str(path)
+
+
+@pytest.mark.parametrize("planner", ["rrt_star", "astar", "theta_star"])
+def test_plan_on_a_generated_maze(run, maze, planner):
+    res = run("plan", maze, "--planner", planner, "--start", "0.3", "0.3", "--goal", "4.8", "4.8", "--json")
+    assert res.exit_code == 0, res.output
+    out = json.loads(res.output)
+    assert out["status"] == "EXACT" and out["path"][0] == [0.3, 0.3] and out["path"][-1] == [4.8, 4.8]
+
+
+def test_plan_on_a_map_prints_the_grid_and_draws_the_map(run, maze, tmp_path):
+    png = tmp_path / "maze.png"
+    res = run("plan", maze, "--planner", "astar", "--start", "0.3", "0.3", "--goal", "4.8", "4.8",
+              "--robot-radius", "0.02", "--plot", str(png))
+    assert res.exit_code == 0, res.output
+    assert "EXACT" in res.output and "grid 102x102 at 0.05 m" in res.output and "cells expanded" in res.output
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporary file left behind
+
+
+@pytest.mark.parametrize("args, text", [
+    (("--goal", "4.8", "4.8"), "--start is required"),
+    (("--start", "0.3", "0.3"), "--goal is required"),
+    (("--start", "0.3", "0.3", "--goal", "4.8", "4.8", "--param", "resolution=0.1"), "resolution"),
+    (("--start", "0.3", "0.3", "--goal", "4.8", "4.8", "--planner", "astra"), "Did you mean 'astar'"),
+    (("--start", "0.3", "0.3", "--goal", "4.8", "4.8", "--planner", "jps", "--param", "max_iter=5"),
+     "unknown parameter 'max_iter' for grid planner 'jps'"),
+    (("--start", "0.3", "0.3", "--goal", "4.8", "4.8", "--planner", "astar", "--sampler", "gaussian"),
+     "draws no samples"),
+    (("--start", "0.3", "nan", "--goal", "4.8", "4.8"), "start y must be finite"),
+])
+def test_bad_map_queries_are_one_line_naming_the_flag(maze, args, text):
+    res = CliRunner().invoke(main, ["plan", maze, *args])
+    assert res.exit_code == 2, res.output
+    assert text in res.output and "Traceback" not in res.output
+    assert len(res.output.strip().splitlines()) == 1
+
+
+def test_invalid_goal_on_a_map_names_the_cell(run, maze):
+    res = run("plan", maze, "--planner", "astar", "--start", "0.3", "0.3", "--goal", "0.02", "0.32")
+    assert res.exit_code == 1 and "INVALID_GOAL" in res.output and "occupied cell (0, 6)" in res.output
+
+
+def test_a_too_fine_raster_is_refused(run):
+    res = CliRunner().invoke(main, ["plan", "trap", "--planner", "astar", "--param", "resolution=0.00001"])
+    assert res.exit_code == 2 and "more than 1e+08" in res.output and "Traceback" not in res.output
 
 
 def test_plan_plot_writes_png(run, tmp_path):
@@ -43,6 +101,8 @@ def test_plan_world_file(run, tmp_path):
     (("plan", "clutter", "--param", "goal_sample_rate=5"), "goal_sample_rate must be a probability"),
     (("plan", "clutter", "--param", "expand_dis"), "expected key=value"),
     (("plan", "missing.yaml"), "no such file"),
+    (("plan", "missing.map", "--start", "1", "1", "--goal", "2", "2"), "no such file"),
+    (("plan", "trap", "--robot-radius", "-1"), "robot-radius"),
 ])
 def test_bad_input_is_one_clear_line(args, text):
     res = CliRunner().invoke(main, list(args))

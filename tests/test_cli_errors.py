@@ -107,7 +107,7 @@ def test_bad_world_files_from_the_command_line(tmp_path):
     (tmp_path / "binary.yaml").write_bytes(b"\x89PNG\r\n\x1a\n\xff\xfe\x00")
     (tmp_path / "dir.yaml").mkdir()
     for name, field in [("huge.yaml", "robot_radius"), ("map.yaml", "start"), ("binary.yaml", "UTF-8"),
-                        ("dir.yaml", "cannot read")]:
+                        ("dir.yaml", "folder")]:
         result = CliRunner().invoke(main, ["plan", str(tmp_path / name)])
         assert result.exit_code == 2, result.output
         assert result.output.startswith(f"Error: {tmp_path / name}:") and field in result.output

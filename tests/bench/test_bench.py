@@ -65,8 +65,12 @@ def test_resume_after_a_kill_completes_the_same_result_set(tmp_path):
     # killed after 5 trials, in the middle of writing the 6th row
     (out / "results.jsonl").write_text("\n".join(lines[:5]) + "\n" + lines[5][:40])
     resumed = run_experiment(exp, out, executor="serial", resume=True, progress=False, plots=False)
-    assert resumed.ran == 7
+    assert resumed.ran == 12 + 8 - 5  # 12 trials and 8 noise repeats, 5 kept
     assert stable(resumed.rows) == stable(full.rows)
+    # the fragment went to the side file and is counted; every line of results.jsonl parses
+    assert (out / "results.torn.jsonl").read_text() == lines[5][:40] + "\n"
+    assert resumed.summary["torn_lines"] == 1
+    assert all(json.loads(line) for line in (out / "results.jsonl").read_text().splitlines())
     assert json.loads((out / "summary.json").read_text())["cells"] == json.loads(
         (tmp_path / "full" / "summary.json").read_text())["cells"] or _same_costs(out, tmp_path / "full")
 
@@ -91,7 +95,7 @@ def test_incompatible_or_unannounced_reuse_of_a_folder_is_refused(tmp_path):
         run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False)
     again = run_experiment(load_experiment(TINY), tmp_path, executor="serial", overwrite=True, progress=False,
                            plots=False)
-    assert again.ran == 12 and len(list(read_rows(tmp_path / "results.jsonl"))) == 12
+    assert again.ran == 20 and len(list(read_rows(tmp_path / "results.jsonl"))) == 20  # with 8 noise repeats
 
 
 def test_a_trial_that_raises_is_an_error_row_and_the_run_goes_on():
@@ -171,16 +175,17 @@ def test_experiment_file_and_cli(tmp_path):
     res = runner.invoke(main, ["bench", str(path), "--out", str(tmp_path / "o"), "--executor", "serial",
                                "--no-plots", "-q"])
     assert res.exit_code == 0, res.output
-    assert len(list(read_rows(tmp_path / "o" / "results.jsonl"))) == 2
+    assert len(list(read_rows(tmp_path / "o" / "results.jsonl"))) == 2 + 2  # and the two noise repeats
     res = runner.invoke(main, ["bench", str(path), "--out", str(tmp_path / "o"), "-q"])
     assert res.exit_code == 2 and "--resume" in res.output
     (tmp_path / "bad.yaml").write_text("worlds: [trap\n")
     res = runner.invoke(main, ["bench", str(tmp_path / "bad.yaml")])
     assert res.exit_code == 2 and "not valid YAML" in res.output
-    res = runner.invoke(main, ["bench", "--suite", "seed00"])
-    assert res.exit_code == 2 and "seed000" in res.output
-    res = runner.invoke(main, ["bench", "--suite", "seed000", "--show"])
-    assert res.exit_code == 0 and "integration" in res.output
+    res = runner.invoke(main, ["bench", "--suite", "sampler"])
+    assert res.exit_code == 2 and "did you mean 'samplers'" in res.output.lower()
+    for name in ("samplers", "seed000"):  # the descriptive name and the old one
+        res = runner.invoke(main, ["bench", "--suite", name, "--show"])
+        assert res.exit_code == 0 and "integration" in res.output and "name: samplers" in res.output
 
 
 def test_ompl_anchor_rows(tmp_path):

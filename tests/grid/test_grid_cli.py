@@ -5,7 +5,10 @@ from click.testing import CliRunner
 
 from navlab.cli import main
 
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "movingai"
+# shared/data/movingai beside the checkout (main and helpers' worktrees sit at different depths)
+DATA = next((p / "shared" / "data" / "movingai" for p in Path(__file__).resolve().parents
+             if (p / "shared" / "data" / "movingai").is_dir()), Path("shared/data/movingai"))
+
 
 
 def run(*args):
@@ -19,13 +22,13 @@ def test_maze_then_plan(tmp_path):
     res = run("grid", "plan", out, "--world", "--start", 0.3, 0.3, "--goal", 4.8, 4.8, "--smooth",
               "--inflate", 0.02, "--json", "--plot", tmp_path / "p.png")
     data = json.loads(res.output)
-    assert res.exit_code == 0 and data["status"] == "EXACT" and data["stats"]["raw_cost"] >= data["cost"]
+    assert res.exit_code == 0 and data["status"] == "EXACT" and data["stats"]["raw_cost_cells"] >= data["stats"]["cost_cells"]
     assert (tmp_path / "p.png").read_bytes()[:4] == b"\x89PNG"
 
 
 def test_scen_reports_matches():
     res = run("grid", "scen", DATA / "arena.map.scen", "--algorithm", "jps")
-    assert res.exit_code == 0 and "160 match the stored optimum, 0 do not" in res.output
+    assert res.exit_code == 0 and "160 match, 0 do not" in res.output
     assert "median" in res.output and "p95" in res.output
     res = run("grid", "scen", DATA / "den312d.map.scen", "--every", 10, "--json")
     assert json.loads(res.output)["summary"]["mismatches"] == 0
@@ -38,3 +41,59 @@ def test_bad_inputs_are_clear(tmp_path):
     assert res.exit_code == 1 and "INVALID_START" in res.output
     res = run("grid", "plan", DATA / "arena.map", "--start", 0.5, 0, "--goal", 5, 5)
     assert res.exit_code == 2 and "--world" in res.output
+
+
+def write_scen(tmp_path, rows, blocked_cell=(2, 1)):
+    """A 6x4 open map with one blocked cell, and a scenario file of (start, goal, optimum) rows."""
+    lines = ["." * 6 for _ in range(4)]
+    x, y = blocked_cell
+    lines[y] = lines[y][:x] + "@" + lines[y][x + 1:]
+    (tmp_path / "tiny.map").write_text("type octile\nheight 4\nwidth 6\nmap\n" + "\n".join(lines) + "\n")
+    text = "version 1\n" + "".join(f"0\ttiny.map\t6\t4\t{s[0]}\t{s[1]}\t{g[0]}\t{g[1]}\t{opt}\n"
+                                     for s, g, opt in rows)
+    (tmp_path / "tiny.map.scen").write_text(text)
+    return tmp_path / "tiny.map.scen"
+
+
+def test_scen_with_blocked_or_outside_cells_counts_them(tmp_path):
+    scen = write_scen(tmp_path, [((0, 0), (5, 0), 5), ((2, 1), (5, 0), 3), ((0, 0), (9, 9), 1), ((0, 0), (0, 3), 3)])
+    res = run("grid", "scen", scen)
+    assert res.exit_code == 1 and "Traceback" not in res.output
+    assert "2 match, 0 do not, 2 invalid" in res.output
+    assert "INVALID_GOAL 1" in res.output and "INVALID_START 1" in res.output
+    data = json.loads(run("grid", "scen", scen, "--json").output)
+    assert data["summary"]["statuses"] == {"EXACT": 2, "INVALID_START": 1, "INVALID_GOAL": 1}
+    assert [r["time_s"] is not None for r in data["rows"]] == [True] * 4
+
+
+def test_scen_prints_a_summary_not_every_mismatch(tmp_path):
+    rows = [((0, 0), (5, 0), 99 + k) for k in range(12)]  # every stored optimum is wrong
+    res = run("grid", "scen", write_scen(tmp_path, rows))
+    assert res.exit_code == 1 and "0 match, 12 do not" in res.output
+    listed = [line for line in res.output.splitlines() if line.strip().startswith("#")]
+    assert len(listed) == 5 and all("MISMATCH" in line for line in listed)
+    assert "#11:" in listed[0]  # the largest error first
+
+
+def test_scen_theta_star_is_bounded_by_the_octile_optimum(tmp_path):
+    # (0,3) -> (5,0) on an open map: octile 3·√2 + 2 = 6.2426; any-angle √34 = 5.831
+    scen = write_scen(tmp_path, [((0, 3), (5, 0), 6.24264069)], blocked_cell=(5, 3))
+    assert run("grid", "scen", scen).exit_code == 0
+    res = run("grid", "scen", scen, "--algorithm", "theta_star", "--json")
+    row = json.loads(res.output)["rows"][0]
+    assert res.exit_code == 0 and row["match"] and row["exact_length"] < 6.24 and row["excess"] < 0
+    res = run("grid", "scen", DATA / "arena.map.scen", "--algorithm", "theta_star")
+    assert res.exit_code == 0 and "160 match, 0 do not" in res.output and "any-angle length" in res.output
+
+
+def test_progress_is_reported_per_scenario_and_per_carved_cell(tmp_path):
+    from navlab.grid import make_maze
+    from navlab.grid.scen_runner import run_scenarios
+
+    scen = write_scen(tmp_path, [((0, 0), (5, 0), 5)] * 3)
+    done = []
+    run_scenarios(scen, progress=done.append)
+    assert done == [1, 2, 3]
+    carved = []
+    make_maze(40, 30, progress=carved.append)
+    assert carved == [1024, 1200]  # every 1024 cells and at the end

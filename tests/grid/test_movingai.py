@@ -8,7 +8,10 @@ import pytest
 from navlab.grid import load_map, plan, read_scen
 from navlab.grid.scen_runner import benchmark_length, run_scenarios
 
-DATA = Path(__file__).resolve().parents[3] / "shared" / "data" / "movingai"
+# shared/data/movingai beside the checkout (main and helpers' worktrees sit at different depths)
+DATA = next((p / "shared" / "data" / "movingai" for p in Path(__file__).resolve().parents
+             if (p / "shared" / "data" / "movingai").is_dir()), Path("shared/data/movingai"))
+
 FILES = [("arena.map", "arena.map.scen", 1), ("den312d.map", "den312d.map.scen", 3),
          ("random-32-32-10.map", "random-32-32-10-random-1.scen", 2),
          ("Berlin_1_256.map", "Berlin_1_256.map.scen", 9), ("maze512-32-9.map", "maze512-32-9.map.scen", 200)]

@@ -118,7 +118,7 @@ def test_smoothing_keeps_line_of_sight_and_shortens():
         sm = plan(grid, (sx, sy), (gx, gy), smooth=True)
         if not raw.success:
             continue
-        assert sm.cost <= raw.cost + 1e-9 and sm.stats["raw_cost"] == pytest.approx(raw.cost)
+        assert sm.cost <= raw.cost + 1e-9 and sm.stats["raw_cost_cells"] == pytest.approx(raw.cost)
         assert tuple(sm.cells[0]) == (sx, sy) and tuple(sm.cells[-1]) == (gx, gy)
         for a, b in zip(sm.cells[:-1], sm.cells[1:]):
             assert line_of_sight(grid, a, b, method="bresenham")
@@ -175,7 +175,25 @@ def test_world_variant_and_frames():
     r = plan_world(grid, (-1.9, 1.1), (7.9, 5.9))
     assert tuple(r.cells[0]) == (0, 0) and tuple(r.cells[-1]) == (19, 9)
     np.testing.assert_allclose(r.path[0], (-1.75, 1.25))
-    assert r.stats["length_m"] == pytest.approx(r.cost * 0.5)
+    assert r.cost == r.stats["length_m"] == pytest.approx(r.stats["cost_cells"] * 0.5)  # metres
+    assert r.cost == pytest.approx(np.sum(np.linalg.norm(np.diff(r.path, axis=0), axis=1)))
+
+
+def test_every_status_carries_the_same_stats_keys():
+    from navlab.grid.planner import STATS_KEYS
+
+    blocked = np.zeros((6, 6), dtype=bool)
+    blocked[:, 3] = True
+    grid = OccupancyGrid(blocked, resolution=0.25)
+    results = [plan(grid, (0, 0), (2, 5)), plan(grid, (0, 0), (5, 5)), plan(grid, (3, 0), (0, 0)),
+               plan(grid, (0, 0), (3, 3)), plan(grid, (-1, 0), (0, 0)), plan(grid, (0, 0), (9, 9)),
+               plan(grid, (0, 0), (2, 5), smooth=True)]
+    assert [r.status for r in results] == [Status.EXACT, Status.FAILED, Status.INVALID_START, Status.INVALID_GOAL,
+                                           Status.INVALID_START, Status.INVALID_GOAL, Status.EXACT]
+    for r in results:
+        assert set(r.stats) == set(STATS_KEYS), r.status
+        assert (r.cost == r.stats["length_m"] == r.stats["cost_cells"] * 0.25) or not r.success
+    assert all(math.isinf(r.cost) and math.isinf(r.stats["cost_cells"]) for r in results[1:6])
 
 
 def test_large_grid_reuses_search_state():

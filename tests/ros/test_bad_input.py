@@ -80,6 +80,9 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "dt:=fast"], "parameter dt must be float"),
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "x:=6", "-p", "y:=3.2"], "cannot start there"),
     (["ros", "astar_pathplanner", "--ros-args", "-p", "algorithm:=astra"], "Did you mean 'astar'"),
+    (["ros", "pathplanner", "--ros-args", "-p", "algorithm:=rrt_star", "-p", "max_itr:=5"], "Did you mean 'max_iter'"),
+    (["ros", "pathplanner", "--ros-args", "-p", "algorithm:=rrt_star", "-p", "sampler:=integraton"],
+     "Did you mean 'integration'"),
     (["ros", "demo", "--robot", "diff", "--map", "trap"], "plans on a map"),
 ])
 def test_node_commands_refuse_bad_settings_in_one_line(args, message):

@@ -100,3 +100,30 @@ def test_the_built_tf_message_is_kilted_tf2_msgs_on_the_wire():
     assert (first.header.stamp.sec, first.header.stamp.nanosec) == (7, 500_000_000)
     assert (first.transform.translation.x, first.transform.translation.y) == (1.0, 2.0)
     assert first.transform.rotation.z == pytest.approx(math.sin(0.25))
+
+
+def test_tree_markers_draw_every_edge_once_in_the_map_frame():
+    """A LINE_LIST with one (parent, child) point pair per edge, after a
+    DELETEALL; checked against the real message classes and, on the wire,
+    against rosbags' own copy of Kilted's visualization_msgs."""
+    from rclpy.serialization import serialize_message
+    from rosbags.typesys import Stores, get_typestore
+    from visualization_msgs.msg import Marker, MarkerArray
+
+    nodes = np.array([[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [2.0, 0.5]])
+    parent = np.array([-1, 0, 1, 1])
+    msg = C.tree_to_markers(nodes, parent, "map", C.time_msg(12.5))
+    assert isinstance(msg, MarkerArray)
+    clear, lines = msg.markers
+    assert clear.action == Marker.DELETEALL
+    assert (lines.type, lines.action, lines.header.frame_id) == (Marker.LINE_LIST, Marker.ADD, "map")
+    assert C.stamp_seconds(lines.header.stamp) == 12.5 and lines.scale.x > 0 and lines.color.a > 0
+    assert lines.pose.orientation.w == 1.0  # an identity pose: points are map coordinates
+    pairs = [((a.x, a.y), (b.x, b.y)) for a, b in zip(lines.points[::2], lines.points[1::2])]
+    assert pairs == [((0.0, 0.0), (1.0, 0.0)), ((1.0, 0.0), (1.0, 1.0)), ((1.0, 0.0), (2.0, 0.5))]
+    store = get_typestore(Stores.ROS2_KILTED)
+    back = store.deserialize_cdr(bytes(serialize_message(msg)), "visualization_msgs/msg/MarkerArray")
+    assert [m.action for m in back.markers] == [Marker.DELETEALL, Marker.ADD]
+    assert [(p.x, p.y) for p in back.markers[1].points] == [p for pair in pairs for p in pair]
+    # a root alone: no edges, an empty line list
+    assert len(C.tree_to_markers(nodes[:1], parent[:1]).markers[1].points) == 0

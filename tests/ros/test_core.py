@@ -70,8 +70,9 @@ def test_bad_goals_give_an_error_and_no_path(goal, why):
 
 
 def test_unreachable_goal_and_unknown_space():
-    grid = room()
-    grid.blocked[20:30, 20] = True  # close the gap
+    wall = np.zeros((30, 40), bool)
+    wall[20:30, 20] = True  # close the gap (grids are immutable: a new one)
+    grid = room().with_blocked(room().blocked | wall)
     log = Logbook()
     planner = GoalPlanner(log, inflation_radius=0.0)
     planner.set_map(grid)
@@ -96,8 +97,70 @@ def test_bad_planner_settings_are_refused():
         GoalPlanner(Logbook(), connectivity=6)
     with pytest.raises(ValueError, match="inflation_radius"):
         GoalPlanner(Logbook(), inflation_radius=-1.0)
-    with pytest.raises(Exception, match="unknown grid algorithm"):
+    with pytest.raises(Exception, match="unknown planner .astra.*Did you mean .astar."):
         GoalPlanner(Logbook(), algorithm="astra")
+
+
+def clearance(grid, path):
+    """Least distance from the path's segments to the grid's blocked squares
+    (shapely, not navlab's checker)."""
+    from shapely.geometry import LineString, box
+    from shapely.ops import unary_union
+
+    ys, xs = np.nonzero(grid.blocked)
+    r = grid.resolution
+    walls = unary_union([box(x * r, y * r, (x + 1) * r, (y + 1) * r) for x, y in zip(xs, ys)])
+    return LineString(path).distance(walls)
+
+
+@pytest.mark.parametrize("algorithm, sampler", [("rrt_star", "uniform"), ("rrt_star", "integration"),
+                                                ("informed_rrt_star", "gaussian"), ("rrt", "boundary")])
+def test_tree_planners_plan_round_the_wall_and_report_their_tree(algorithm, sampler):
+    log, trees = Logbook(), []
+    planner = GoalPlanner(log, algorithm, sampler=sampler, seed=5, inflation_radius=0.2, max_iter=3000,
+                          on_tree=lambda nodes, parent: trees.append((nodes, parent)))
+    planner.set_map(room())
+    planner.set_pose((0.5, 0.5, 0.0))
+    path = planner.set_goal((3.5, 0.5))
+    assert path is not None, log
+    assert tuple(path[0]) == (0.5, 0.5) and tuple(path[-1]) == (3.5, 0.5)
+    assert path[:, 1].max() > 2.0 + 0.2  # through the gap above the wall
+    assert clearance(room(), path) >= 0.2 - 1e-9
+    (nodes, parent), = trees
+    assert parent[0] == -1 and np.all((parent[1:] >= 0) & (parent[1:] < len(nodes)))
+    assert tuple(nodes[0]) == (0.5, 0.5)
+    assert all(np.any(np.all(nodes == p, axis=1)) for p in path[:-1])  # the path runs along the tree
+    again = GoalPlanner(Logbook(), algorithm, sampler=sampler, seed=5, inflation_radius=0.2, max_iter=3000)
+    again.set_map(room())
+    again.set_pose((0.5, 0.5, 0.0))
+    assert np.array_equal(again.set_goal((3.5, 0.5)), path)  # same seed, same path, bit for bit
+
+
+def test_a_tree_planner_that_fails_still_reports_its_tree():
+    log, trees = Logbook(), []
+    blocked = np.zeros((30, 40), bool)
+    blocked[:, 20] = True  # a wall from bottom to top: no way through
+    planner = GoalPlanner(log, "rrt", seed=1, inflation_radius=0.0, max_iter=200,
+                          on_tree=lambda nodes, parent: trees.append((nodes, parent)))
+    planner.set_map(OccupancyGrid(blocked, 0.1, (0.0, 0.0, 0.0)))
+    planner.set_pose((0.5, 0.5, 0.0))
+    assert planner.set_goal((3.5, 0.5)) is None
+    assert log[-1][0] == "error" and "(rrt)" in log[-1][1]
+    (nodes, _), = trees
+    assert len(nodes) > 1 and nodes[:, 0].max() < 2.0  # it grew, on its own side of the wall
+
+
+@pytest.mark.parametrize("settings, message", [
+    (dict(algorithm="rrt_star", sampler="integraton"), "Did you mean 'integration'"),
+    (dict(algorithm="rrt_star", max_itr=5), "Did you mean 'max_iter'"),
+    (dict(algorithm="astar", heuristc="octile"), "Did you mean 'heuristic'"),
+    (dict(algorithm="rrt_star", heuristic="octile"), "unknown parameter 'heuristic'"),
+    (dict(algorithm="astar", sampler="gaussian"), "is a grid search"),
+    (dict(algorithm="rrt_str"), "Did you mean 'rrt_star'"),
+])
+def test_unknown_names_are_refused_with_a_suggestion(settings, message):
+    with pytest.raises(ValueError, match=message):
+        GoalPlanner(Logbook(), **settings)
 
 
 def test_drive_follows_then_stops_once_at_the_goal():

@@ -126,3 +126,75 @@ def test_omni_robot_passes_one_obstacle_on_the_potential_field(tmp_path):
     assert truth[:, 1].max() - truth[:, 1].min() > 0.1  # and it had to swerve to do so
     scans = read_bag(bag, "/scan")
     assert len(scans) > 10 and len(scans[0][1].ranges) == 360
+
+
+@pytest.fixture(scope="module")
+def rrt_star_run(tmp_path_factory):
+    """The diff-drive demo across a generated 4×4 maze with the pathplanner on
+    RRT* (seed 0, 6000 iterations: 3000 already succeed on ten seeds in ten)."""
+    tmp_path = tmp_path_factory.mktemp("rrt_star")
+    size, cell, wall = 4, 0.6, 0.1
+    save_map(make_maze(size, size, seed=7, cell_size=cell, wall=wall, resolution=0.05), tmp_path / "maze.yaml")
+    start = maze_cell_center(0, 0, cell, wall)
+    goal = maze_cell_center(size - 1, size - 1, cell, wall)
+    bag = tmp_path / "bag"
+    proc, s = run_demo(["--map", str(tmp_path / "maze.yaml"), "--start", *map(str, start), "--goal", *map(str, goal),
+                        "--rtf", "10", "--max-time", "120", "--planner", "rrt_star", "--param", "seed=0",
+                        "--param", "max_iter=6000", "--record", str(bag), "--log-dir", str(tmp_path / "logs")])
+    logs = "\n".join(p.read_text() for p in (tmp_path / "logs").glob("*.log"))
+    return tmp_path, start, goal, bag, proc, s, logs
+
+
+def walls_of(grid):
+    """The blocked cells as one shapely shape (squares in metres)."""
+    from shapely.geometry import box
+    from shapely.ops import unary_union
+
+    ys, xs = np.nonzero(grid.blocked)
+    r, (ox, oy, _) = grid.resolution, grid.origin
+    return unary_union([box(ox + x * r, oy + y * r, ox + (x + 1) * r, oy + (y + 1) * r) for x, y in zip(xs, ys)])
+
+
+def test_rrt_star_plans_across_a_maze_and_the_robot_reaches_the_goal(rrt_star_run):
+    from shapely.geometry import LineString, MultiLineString
+
+    import navlab
+    from navlab.ros.convert import grid_from_msg
+    from navlab.sim.runner import PLAN_MARGIN
+    from navlab.world import World
+
+    tmp_path, start, goal, bag, proc, s, logs = rrt_star_run
+    assert s["status"] == "REACHED", f"{s}\n{logs[-4000:]}"
+    assert proc.returncode == 0 and s["error_true_m"] < 0.1 and s["plans"] == 1
+    assert "(rrt_star)" in logs
+    the_map = load_map(tmp_path / "maze.yaml")
+    walls = walls_of(the_map)
+    clearance = make_robot("diff").radius + PLAN_MARGIN  # the demo's inflation radius
+    # the plan: exactly from start to goal, every leg that far from every wall (shapely, not navlab)
+    (plan_t, plan), = read_bag(bag, "/plan")
+    points = np.array([[p.pose.position.x, p.pose.position.y] for p in plan.poses])
+    assert points[0].tolist() == list(start) and points[-1].tolist() == list(goal)
+    assert LineString(points).distance(walls) >= clearance - 1e-9
+    # the node planned what navlab.plan plans for the same query and seed on the
+    # /map it received (its resolution a float32 on the wire), bit for bit
+    (_, map_msg), = read_bag(bag, "/map")
+    received = grid_from_msg(map_msg)
+    assert np.array_equal(received.blocked, the_map.blocked)
+    alone = navlab.plan(World.from_grid(received, start, goal, robot_radius=clearance), planner="rrt_star", seed=0,
+                        max_iter=6000)
+    assert np.array_equal(alone.path, points)
+    # the search tree on /plan_tree: with the plan's stamp, in the map frame, every edge free
+    (tree_t, tree), = read_bag(bag, "/plan_tree")
+    clear, lines = tree.markers
+    assert (clear.action, lines.type, lines.header.frame_id) == (3, 5, "map")  # DELETEALL, LINE_LIST
+    assert lines.header.stamp == plan.header.stamp
+    ends = np.array([[p.x, p.y] for p in lines.points]).reshape(-1, 2, 2)
+    assert len(ends) > 1000 and MultiLineString(list(ends)).distance(walls) >= clearance - 1e-9
+    tree_points = {tuple(p) for p in ends.reshape(-1, 2)}
+    assert all(tuple(p) in tree_points for p in points[:-1])  # the plan runs along the tree
+    # the robot's true trajectory keeps its radius from every wall (distance transform of the map file)
+    truth = np.array([[m.pose.pose.position.x, m.pose.pose.position.y] for _, m in read_bag(bag, "/ground_truth")])
+    free = distance_transform_edt(~the_map.blocked) * the_map.resolution - the_map.resolution / 2 * math.sqrt(2)
+    cells = np.floor(truth / the_map.resolution).astype(int)
+    assert free[cells[:, 1], cells[:, 0]].min() >= make_robot("diff").radius - 0.05
+    assert np.linalg.norm(truth[-1] - goal) < 0.1

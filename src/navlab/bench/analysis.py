@@ -1,80 +1,255 @@
 """From rows to findings: per-cell summaries, comparisons within each world,
-the seed's side-by-side tables and the verdict on each stated claim."""
+the seed's side-by-side tables and the verdict on each stated claim.
+
+Time verdicts that do not flip
+------------------------------
+Path costs and iteration counts are the same on every run (same seeds, same
+work); times are not. A time verdict is therefore held to two tests:
+
+1. *significant*: two-sided Mann–Whitney U, Holm-corrected over the claims
+   (or pairs) of the world, p < 0.05 — the difference is not luck of the seeds;
+2. *larger than the timing noise*: the ratio of the two groups' median times
+   differs from 1 by more than ``max(MIN_TIME_EFFECT, NOISE_FACTOR × ε)`` on a
+   log scale, where ε is the run-to-run noise the harness measures for that
+   pair of cells: the first trials of every cell are run a second time late in
+   the run (:data:`~navlab.bench.experiment.NOISE_REPEATS`; same seed, same
+   work) and ε is the median of ``|log(t_repeat / t_first)|`` over the repeats
+   of both cells.
+
+Only then is a time claim *confirmed* or *contradicted*; otherwise it is *not
+shown* and the report says whether the difference was within the noise. The
+floor keeps verdicts off the knife edge: the three runs in docs/bench.md are
+the acceptance test. Trials are run interleaved across cells (trial 0 of every
+cell, then trial 1, ...), so a load that changes during a run slows every cell
+alike, and times are the thread's CPU time by default (``--time wall`` for wall
+time).
+"""
 
 from __future__ import annotations
 
-from collections import defaultdict
-from typing import Any, Dict, List
+import math
+from collections import Counter, defaultdict
+from typing import Any, Dict, List, Optional
 
-from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values, pairwise
+import numpy as np
 
-METRICS = ("cost", "time_s")
+from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
+
+#: a time ratio within 30% of 1 is never a verdict: below what a shared machine keeps stable
+MIN_TIME_EFFECT = math.log(1.3)
+#: a time ratio must exceed this many times the measured timing noise ε
+NOISE_FACTOR = 2.0
+#: row fields behind ``--time``
+TIME_FIELDS = {"cpu": "cpu_s", "wall": "wall_s"}
+TIME_LABELS = {"cpu": "thread CPU time", "wall": "wall-clock time"}
+#: claim and summary metrics that are times (judged with the noise rule)
+TIME_METRICS = ("time", "time_s")
+#: reasons listed per cell in the report
+TOP_REASONS = 3
 
 
 def group_of(row: Dict[str, Any]) -> str:
-    """A row's group within its world: planner and sampler."""
-    return f"{row['planner']} / {row['sampler']}"
+    """A row's group within its world: planner, sampler and swept values."""
+    swept = row.get("swept") or {}
+    return " / ".join([row["planner"], row["sampler"]] + [f"{k}={v}" for k, v in sorted(swept.items())])
+
+
+def timed(rows: List[Dict[str, Any]], time: str = "cpu") -> List[Dict[str, Any]]:
+    """Copies of ``rows`` with ``row["time"]``: the trial's CPU or wall time
+    (the planner's own ``time_s`` for rows that have neither)."""
+    field = TIME_FIELDS[time]
+    out = []
+    for row in rows:
+        value = row.get(field)
+        out.append({**row, "time": value if value is not None else row.get("time_s")})
+    return out
 
 
 def by_world(rows: List[Dict[str, Any]]) -> Dict[str, Dict[str, List[Dict[str, Any]]]]:
-    """rows[world][group] in first-seen order."""
+    """rows[world][group] in first-seen order (repeats of a trial left out)."""
     out: Dict[str, Dict[str, List[Dict[str, Any]]]] = defaultdict(lambda: defaultdict(list))
     for row in rows:
-        out[row["world"]][group_of(row)].append(row)
+        if not row.get("repeat"):
+            out[row["world"]][group_of(row)].append(row)
     return {w: dict(g) for w, g in out.items()}
 
 
-def summarize(rows: List[Dict[str, Any]]) -> Dict[str, Any]:
-    """Everything a report needs, as JSON-ready data."""
+def failures(rows: List[Dict[str, Any]]) -> Dict[str, Any]:
+    """Statuses with counts, and the most common reasons of the trials that did
+    not succeed (the exception's last line for an ERROR)."""
+    statuses = Counter(r.get("status", "?") for r in rows)
+    reasons = Counter(f"{r.get('status')}: {r.get('reason') or 'no reason given'}"
+                      for r in rows if not r.get("success"))
+    return {"statuses": dict(statuses.most_common()), "reasons": reasons.most_common(TOP_REASONS)}
+
+
+def timing_noise(rows: List[Dict[str, Any]]) -> Dict[str, List[float]]:
+    """Per cell: ``|log(t_repeat / t_first)|`` of each repeated trial (rows
+    with ``time`` set, see :func:`timed`)."""
+    first = {(r["cell_id"], r["trial"]): r for r in rows if not r.get("repeat")}
+    out: Dict[str, List[float]] = defaultdict(list)
+    for r in rows:
+        if not r.get("repeat"):
+            continue
+        f = first.get((r["cell_id"], r["trial"]))
+        a, b = (f or {}).get("time"), r.get("time")
+        if a and b and a > 0 and b > 0 and f.get("status") != "ERROR" and r.get("status") != "ERROR":
+            out[r["cell_id"]].append(abs(math.log(b / a)))
+    return dict(out)
+
+
+def noise_threshold(noise: Dict[str, List[float]], cell_a: Optional[str], cell_b: Optional[str]) -> Dict[str, Any]:
+    """ε of a pair of cells (median of both cells' repeat noise) and the
+    log-ratio a time difference must exceed."""
+    values = list(noise.get(cell_a, [])) + list(noise.get(cell_b, []))
+    eps = float(np.median(values)) if values else None
+    return {"noise": eps, "threshold": max(MIN_TIME_EFFECT, NOISE_FACTOR * eps) if eps is not None else MIN_TIME_EFFECT}
+
+
+def time_decision(test: Dict[str, Any], p: Optional[float], limit: Dict[str, Any]) -> Dict[str, Any]:
+    """The noise-aware verdict on a time difference (see the module docstring):
+    ``direction`` -1 (a lower), +1 (a higher) or 0 (not shown), and why."""
+    ma, mb = test.get("median_a"), test.get("median_b")
+    ratio = ma / mb if ma and mb and mb > 0 else None
+    if p is None:
+        return {"direction": 0, "ratio": ratio, "why": _too_few(test)}
+    significant = p < ALPHA and test.get("delta") is not None
+    big = ratio is not None and ratio > 0 and abs(math.log(ratio)) > limit["threshold"]
+    if significant and big:
+        return {"direction": -1 if ratio < 1 else 1, "ratio": ratio, "why": ""}
+    why = ("significant, but within the timing noise" if significant else "not significant")
+    return {"direction": 0, "ratio": ratio, "why": why}
+
+
+def plain_decision(test: Dict[str, Any], p: Optional[float]) -> Dict[str, Any]:
+    """Verdict on a metric without timing noise (cost, iterations)."""
+    delta = test.get("delta")
+    if p is None:
+        return {"direction": 0, "ratio": None, "why": _too_few(test)}
+    if p < ALPHA and delta is not None and delta != 0:
+        return {"direction": -1 if delta < 0 else 1, "ratio": None, "why": ""}
+    return {"direction": 0, "ratio": None, "why": "not significant"}
+
+
+def _too_few(test: Dict[str, Any]) -> str:
+    return f"too few trials to compare ({test.get('n_a', 0)} and {test.get('n_b', 0)} with a value)"
+
+
+def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
+    """Everything a report needs, as JSON-ready data. Cells are keyed by
+    world, planner, sampler and swept values; ``time`` picks CPU or wall time."""
+    rows = timed(rows, time)
+    noise = timing_noise(rows)
     worlds = by_world(rows)
     cells = []
     for world, groups in worlds.items():
         for group, members in groups.items():
-            cells.append({"world": world, "group": group, "cell_id": members[0]["cell_id"],
-                          **cell_summary(members)})
-    comparisons = {world: {m: pairwise(groups, m) for m in METRICS} for world, groups in worlds.items()}
-    return {"cells": cells, "comparisons": comparisons}
+            first = members[0]
+            cells.append({"world": world, "group": group, "cell_id": first["cell_id"], "planner": first["planner"],
+                          "sampler": first["sampler"], "swept": dict(first.get("swept") or {}),
+                          **cell_summary(members), **failures(members),
+                          "warmup_s": sum(r.get("warmup_s") or 0.0 for r in members),
+                          "timing_noise": float(np.median(noise[first["cell_id"]])) if noise.get(first["cell_id"]) else None})
+    comparisons = {world: {m: pairwise_judged(groups, m, noise) for m in ("cost", "time")}
+                   for world, groups in worlds.items()}
+    swept = sorted({k for c in cells for k in c["swept"]})
+    return {"time": time, "time_label": TIME_LABELS[time], "swept": swept, "cells": cells,
+            "comparisons": comparisons, "rule": rule_text()}
+
+
+def rule_text() -> str:
+    return (f"a time difference counts only when Mann–Whitney (Holm) p < {ALPHA} and the ratio of median "
+            f"times is beyond ×{math.exp(MIN_TIME_EFFECT):.2f} and beyond exp({NOISE_FACTOR:g}·ε), ε being the "
+            "measured run-to-run timing noise of the two cells")
+
+
+def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
+                    noise: Dict[str, List[float]]) -> List[Dict[str, Any]]:
+    """Every pair of groups compared on ``metric``, Holm over the pairs, with
+    the noise rule for times."""
+    names = list(groups)
+    out = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            out.append({"a": a, "b": b, "metric": metric,
+                        **compare(metric_values(groups[a], metric), metric_values(groups[b], metric))})
+    for row, p in zip(out, holm([r["p"] for r in out])):
+        row["p_holm"] = p
+        row["magnitude"] = magnitude(row["delta"])
+        if metric in TIME_METRICS:
+            limit = noise_threshold(noise, groups[row["a"]][0]["cell_id"], groups[row["b"]][0]["cell_id"])
+            decision = time_decision(row, p, limit)
+            row.update(noise=limit["noise"], threshold_ratio=math.exp(limit["threshold"]))
+        else:
+            decision = plain_decision(row, p)
+        row["significant"] = decision["direction"] != 0
+        row["direction"] = decision["direction"]
+        row["why"] = decision["why"]
+    return out
 
 
 def _matches(group: str, name: str) -> bool:
-    planner, sampler = group.split(" / ", 1)
-    return name in (group, planner, sampler)
+    return name == group or name in group.split(" / ")
 
 
-def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
-    """For each claim and world: 'confirmed' (the 'lower' group is lower,
-    Mann–Whitney significant after Holm over the comparisons in that world),
-    'contradicted' (significantly the other way) or 'not shown'."""
+def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time: str = "cpu") -> List[Dict[str, Any]]:
+    """For each claim and world: 'confirmed' (the 'lower' group is lower),
+    'contradicted' (the other way) or 'not shown'. Mann–Whitney, Holm over the
+    comparisons in that world; times must also beat the timing noise (see the
+    module docstring). A claim names groups by planner, sampler or ``k=v``;
+    with swept parameters it is judged within each swept combination."""
+    rows = timed(rows, time)
+    noise = timing_noise(rows)
     verdicts = []
     for world, groups in by_world(rows).items():
         tests = []
         for claim in claims:
+            metric = "time" if claim["metric"] in TIME_METRICS else claim["metric"]
             lows = claim["lower"] if isinstance(claim["lower"], list) else [claim["lower"]]
             highs = claim["higher"] if isinstance(claim["higher"], list) else [claim["higher"]]
             for low in lows:
                 for high in highs:
-                    ga = next((g for g in groups if _matches(g, low)), None)
-                    gb = next((g for g in groups if _matches(g, high)), None)
-                    if ga is None or gb is None:
-                        continue
-                    tests.append((claim, low, high, compare(metric_values(groups[ga], claim["metric"]),
-                                                            metric_values(groups[gb], claim["metric"]))))
-        for (claim, low, high, test), p in zip(tests, holm([t[3]["p"] for t in tests])):
-            delta = test["delta"]
-            if p is not None and p < ALPHA and delta is not None:
-                verdict = "confirmed" if delta < 0 else "contradicted"
+                    for ga in [g for g in groups if _matches(g, low)]:
+                        gb = _partner(ga, low, high, groups)
+                        if gb is None:
+                            continue
+                        tests.append((claim, metric, low, high, ga, gb,
+                                      compare(metric_values(groups[ga], metric), metric_values(groups[gb], metric))))
+        for (claim, metric, low, high, ga, gb, test), p in zip(tests, holm([t[-1]["p"] for t in tests])):
+            if metric == "time":
+                limit = noise_threshold(noise, groups[ga][0]["cell_id"], groups[gb][0]["cell_id"])
+                decision = time_decision(test, p, limit)
             else:
-                verdict = "not shown"
+                limit = {"noise": None, "threshold": None}
+                decision = plain_decision(test, p)
+            verdict = {-1: "confirmed", 1: "contradicted", 0: "not shown"}[decision["direction"]]
             verdicts.append({"world": world, "claim": claim["text"], "metric": claim["metric"], "lower": low,
-                             "higher": high, "verdict": verdict, "p_holm": p, "delta": delta,
-                             "magnitude": magnitude(delta), "median_lower": test["median_a"],
-                             "median_higher": test["median_b"], "n": [test["n_a"], test["n_b"]]})
+                             "higher": high, "group_lower": ga, "group_higher": gb, "verdict": verdict,
+                             "why": decision["why"], "p_holm": p, "delta": test["delta"],
+                             "magnitude": magnitude(test["delta"]), "ratio": decision["ratio"],
+                             "noise": limit["noise"],
+                             "threshold_ratio": math.exp(limit["threshold"]) if limit["threshold"] else None,
+                             "median_lower": test["median_a"], "median_higher": test["median_b"],
+                             "n": [test["n_a"], test["n_b"]]})
     return verdicts
+
+
+def _partner(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]]]) -> Optional[str]:
+    """The group named ``high`` that differs from ``ga`` only where ``low``
+    and ``high`` differ (same swept values, same planner when comparing samplers)."""
+    parts = ga.split(" / ")
+    for g in groups:
+        other = g.split(" / ")
+        if g == ga or not _matches(g, high) or len(other) != len(parts):
+            continue
+        if all(x == y or x == low or y == high for x, y in zip(parts, other)):
+            return g
+    return None
 
 
 def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
     """One line per claim over all worlds: confirmed everywhere, nowhere, or where."""
-    out: Dict[str, List[str]] = defaultdict(list)
+    out: Dict[str, List[Dict[str, Any]]] = defaultdict(list)
     for v in verdicts:
         out[v["claim"]].append(v)
     lines = {}
@@ -94,6 +269,25 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
     return lines
 
 
+def reference_table(study: Dict[str, Any], summary: Dict[str, Any]) -> Optional[List[List[Any]]]:
+    """The document's numbers beside ours: per reference entry and metric,
+    [world, group, metric, document value, our mean, our median]."""
+    refs = study.get("reference") or []
+    if not refs:
+        return None
+    table = []
+    for ref in refs:
+        cells = [c for c in summary["cells"] if c["world"] == ref["world"] and _matches(c["group"], ref["group"])]
+        for metric, value in ref.items():
+            if metric in ("world", "group"):
+                continue
+            key = "time" if metric in TIME_METRICS else metric
+            ours = cells[0].get(key, {}) if cells else {}
+            table.append([ref["world"], cells[0]["group"] if cells else ref["group"], metric, value,
+                          ours.get("mean"), ours.get("median")])
+    return table
+
+
 def side_by_side(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> List[List[Any]]:
     """The seed's per-trial layout: trial, cost and time of ``a``, then of
     ``b``, with mean and min rows (costs of failed trials shown as '-')."""
@@ -104,12 +298,12 @@ def side_by_side(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> Lis
         row: List[Any] = [i + 1]
         for side in (ra, rb):
             r = side[i] if i < len(side) else {}
-            row += [r.get("cost") if r.get("success") else None, r.get("time_s")]
+            row += [r.get("cost") if r.get("success") else None, r.get("time")]
         table.append(row)
     for label, fn in (("mean", lambda v: sum(v) / len(v)), ("min", min)):
         row = [label]
         for side in (ra, rb):
-            for metric in ("cost", "time_s"):
+            for metric in ("cost", "time"):
                 vals = metric_values(side, metric)
                 row.append(fn(vals) if vals else None)
         table.append(row)

@@ -11,6 +11,7 @@ from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Dict, Iterator, List, Optional
 
 from ..registry import Registry
+from .experiment import ExperimentError
 from .trial import error_fields, identity_fields, run_trial
 
 Spec = Dict[str, Any]
@@ -60,6 +61,9 @@ def process(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[s
                             in_doubt.append(spec)
             except BrokenProcessPool:
                 pass  # submit() on a broken pool; those in flight are handled below
+            except BaseException:  # Ctrl-C, or the consumer stopped: do not wait for queued trials
+                pool.shutdown(wait=False, cancel_futures=True)
+                raise
             in_doubt.extend(running.values())
         for spec in in_doubt:
             yield _alone(spec, trial)
@@ -75,22 +79,53 @@ def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any
                                    "it died again when the trial was rerun alone")
 
 
+#: seconds to wait for a Dask scheduler before giving up
+DASK_CONNECT_TIMEOUT = 10
+
+
+def check_executor(name: str, scheduler: Optional[str] = None) -> None:
+    """Fail in one line, before any trial runs, when ``name`` cannot run here:
+    the Dask extra is missing, or its scheduler cannot be reached."""
+    EXECUTORS.get(name)
+    if name != "dask":
+        if scheduler is not None:
+            raise ExperimentError("--scheduler is for --executor dask only")
+        return
+    try:
+        import distributed  # noqa: F401
+    except ImportError:
+        raise ExperimentError("the dask executor needs Dask, which is not installed: "
+                              "pip install 'navlab[dask]'") from None
+    if scheduler is not None:
+        _client(scheduler).close()
+
+
+def _client(scheduler):
+    from distributed import Client
+
+    try:
+        return Client(scheduler, timeout=DASK_CONNECT_TIMEOUT)
+    except (OSError, TimeoutError, ValueError, TypeError) as exc:
+        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ExperimentError(f"cannot reach scheduler {scheduler}: {detail}") from None
+
+
 @EXECUTORS.register("dask")
 def dask(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[str] = None,
          trial: Callable[[Spec], Dict[str, Any]] = run_trial) -> Iterator[Dict[str, Any]]:
     """A Dask cluster: the scheduler at ``scheduler`` (``tcp://host:8786``), or
     a LocalCluster with ``jobs`` workers when none is given. Needs the
-    ``dask`` extra, and navlab installed on every worker."""
-    try:
-        from distributed import Client, LocalCluster, as_completed
-    except ImportError:
-        raise ImportError("the dask executor needs the dask extra: pip install 'navlab[dask]'") from None
+    ``dask`` extra, and navlab installed on every worker
+    (:func:`check_executor` says so before anything runs)."""
+    check_executor("dask")
+    from distributed import LocalCluster, as_completed
+
     cluster = None
     if scheduler is None:
         cluster = LocalCluster(n_workers=jobs or os.cpu_count() or 1, threads_per_worker=1, processes=True,
                                dashboard_address=None)
         scheduler = cluster
-    client = Client(scheduler)
+    client = _client(scheduler)
     try:
         futures = client.map(trial, specs, pure=False)
         by_key = {f.key: s for f, s in zip(futures, specs)}

@@ -12,7 +12,7 @@ An experiment is a mapping (usually a YAML file)::
     trials: 20
     seed: 0
 
-A *cell* is one combination; its trials get seeds derived from the base seed
+Relative world paths in a file are read from the file's folder. A *cell* is one combination; its trials get seeds derived from the base seed
 and the cell's identity (not its position in the file, nor the number of
 trials), so any trial can be rerun alone and adding trials later keeps the
 earlier ones.
@@ -34,7 +34,12 @@ from ..registry import suggest
 
 OMPL_PREFIX = "ompl:"
 FIELDS = ("name", "description", "worlds", "planners", "samplers", "params", "grid", "budget", "trials", "seed",
-          "claims")
+          "claims", "study")
+#: fields that describe an experiment without changing its results
+DESCRIPTIVE = ("trials", "description", "name", "claims", "study")
+#: trials of each cell run a second time, late in the run, to measure how
+#: much the timing of identical work varies (the noise the time verdicts must beat)
+NOISE_REPEATS = 2
 CLAIM_FIELDS = ("text", "metric", "lower", "higher")
 BUDGET_FIELDS = ("max_iter", "max_time")
 
@@ -112,6 +117,8 @@ class Experiment:
     #: hypotheses to test: ``{text, metric, lower, higher}`` with group labels
     #: (``sampler`` or ``planner`` titles; ``lower`` may be a list)
     claims: List[Dict[str, Any]] = field(default_factory=list)
+    #: the study a suite reproduces: ``{title, measured, table: {header, rows}}`` (report header)
+    study: Dict[str, Any] = field(default_factory=dict)
 
     def cells(self) -> List[Cell]:
         keys = sorted(self.grid)
@@ -126,28 +133,42 @@ class Experiment:
         return out
 
     def trial_specs(self) -> List[Dict[str, Any]]:
-        """Everything a worker needs to run each trial (plain, picklable data)."""
+        """Everything a worker needs to run each trial (plain, picklable data),
+        cell by cell. Trial 0 of each cell keeps its tree (the example plot)."""
         specs = []
         for cell in self.cells():
-            cid = cell.cell_id
             for i in range(self.trials):
-                specs.append({"trial_id": f"{cid}-{i:04d}", "cell_id": cid, "cell": cell.to_dict(),
-                              "label": cell.label, "trial": i, "seed": trial_seed(self.seed, cid, i),
-                              "budget": dict(self.budget)})
+                specs.append(self._spec(cell, i))
         return specs
+
+    def noise_specs(self) -> List[Dict[str, Any]]:
+        """Repeats of the first :data:`NOISE_REPEATS` trials of each cell: the
+        same seed, so the same work; how their times differ from the first
+        run's measures the timing noise (see :mod:`navlab.bench.analysis`)."""
+        return [self._spec(cell, i, repeat=1) for cell in self.cells() for i in range(min(NOISE_REPEATS, self.trials))]
+
+    def _spec(self, cell: Cell, i: int, repeat: int = 0) -> Dict[str, Any]:
+        cid = cell.cell_id
+        spec = {"trial_id": f"{cid}-{i:04d}" + (f"-r{repeat}" if repeat else ""), "cell_id": cid,
+                "cell": cell.to_dict(), "label": cell.label, "trial": i, "seed": trial_seed(self.seed, cid, i),
+                "budget": dict(self.budget), "swept": {k: cell.params[k] for k in sorted(self.grid)},
+                "keep_tree": i == 0 and not repeat}
+        if repeat:
+            spec["repeat"] = repeat
+        return spec
 
     def to_dict(self) -> Dict[str, Any]:
         return {"name": self.name, "description": self.description, "worlds": list(self.worlds),
                 "planners": [p.to_dict() for p in self.planners], "samplers": [s.to_dict() for s in self.samplers],
                 "params": dict(self.params), "grid": {k: list(v) for k, v in self.grid.items()},
                 "budget": dict(self.budget), "trials": self.trials, "seed": self.seed,
-                "claims": [dict(c) for c in self.claims]}
+                "claims": [dict(c) for c in self.claims], "study": dict(self.study)}
 
     def fingerprint(self) -> str:
         """Identity of the results this experiment produces. The trial count is
         left out: more trials extend a result set, they do not change it."""
         data = self.to_dict()
-        for key in ("trials", "description", "name", "claims"):
+        for key in DESCRIPTIVE:
             data.pop(key)
         return stable_hash(data)[:16]
 
@@ -156,22 +177,39 @@ class Experiment:
 
 def experiment_data(source: Union[str, Path]) -> Tuple[Dict[str, Any], str]:
     """The raw mapping of a YAML experiment file or a built-in suite, and how
-    to name it in messages (a file's name defaults to its stem)."""
-    from .suites import SUITES
+    to name it in messages (a file's name defaults to its stem; relative
+    world paths in a file are made relative to the file's folder)."""
+    from .suites import find_suite, suite_names
 
     if Path(source).is_file():
         where = str(source)
         try:
             data = yaml.safe_load(Path(source).read_text())
-        except yaml.YAMLError as exc:
+        except (yaml.YAMLError, UnicodeDecodeError) as exc:
             raise ExperimentError(f"{where}: not valid YAML: {exc}") from None
         if isinstance(data, dict):
             data.setdefault("name", Path(source).stem)
+            if isinstance(data.get("worlds"), (list, str)):
+                data["worlds"] = [_beside(w, Path(source).parent) for w in _as_list(data["worlds"], "worlds")]
         return data, where
-    if isinstance(source, str) and source in SUITES:
-        return SUITES.get(source)(), f"suite '{source}'"
+    if isinstance(source, str):
+        found = find_suite(source)
+        if found is not None:
+            return found(), f"suite '{source}'"
     raise ExperimentError(f"no experiment file or suite named '{source}'; suites: "
-                          f"{', '.join(SUITES.names())}." + suggest(str(source), SUITES.names()))
+                          f"{', '.join(suite_names())}." + suggest(str(source), suite_names()))
+
+
+def _beside(world: Any, folder: Path) -> Any:
+    """A relative world path of an experiment file, read from the file's folder
+    (scene names and absolute paths unchanged)."""
+    from ..world.scenes import SCENES
+
+    if not isinstance(world, str) or world in SCENES or Path(world).is_absolute():
+        return world
+    if Path(world).suffix.lower() not in (".yaml", ".yml", ".map", ".scen", ".pgm", ".png") and "/" not in world:
+        return world  # not a path: let the world loader name it ("did you mean")
+    return str(folder / world)
 
 
 def load_experiment(source: Union[str, Path, Dict[str, Any]], where: str = "experiment") -> Experiment:
@@ -206,8 +244,12 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
     if not isinstance(grid, dict):
         raise ExperimentError("'grid' must map parameter names to lists of values")
     grid = {k: (list(v) if isinstance(v, (list, tuple)) else [v]) for k, v in grid.items()}
+    study = data.get("study") or {}
+    if not isinstance(study, dict):
+        raise ExperimentError("'study' must be a mapping (title, measured, table)")
     return Experiment(
-        name=str(data.get("name", "experiment")),
+        study=dict(study),
+        name=_plain_name(data.get("name", "experiment")),
         description=str(data.get("description", "")),
         worlds=[str(w) for w in _as_list(data["worlds"], "worlds")],
         planners=[_component(p, "planners") for p in _as_list(data["planners"], "planners")],
@@ -219,6 +261,15 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         seed=data.get("seed", 0),
         claims=[_claim(c) for c in data.get("claims") or []],
     )
+
+
+def _plain_name(name: Any) -> str:
+    """An experiment name names its output folder: a plain file name only."""
+    text = str(name)
+    if not text or text in (".", "..") or any(c in text for c in "/\\\0") or text != text.strip():
+        raise ExperimentError(f"'name' must be a plain file name (no path separators, not '.' or '..'), "
+                              f"got {text!r}")
+    return text
 
 
 def _claim(entry: Any) -> Dict[str, Any]:
@@ -251,7 +302,7 @@ def validate(exp: Experiment) -> None:
     from ..planning import build_sampler, split_params
     from ..sampling.planners import make_planner
     from ..world import load_world
-    from .ompl_planners import check_ompl_name
+    from .ompl_planners import check_ompl_name, ompl_available
 
     if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
         raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
@@ -274,6 +325,9 @@ def validate(exp: Experiment) -> None:
     for cell in exp.cells():
         if cell.planner.name.startswith(OMPL_PREFIX):
             check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
+            if not ompl_available():
+                raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
+                                      "pip install 'navlab[ompl]'")
             continue
         params = {**cell.params, **cell.planner.params, **cell.sampler.params, **exp.budget}
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)

@@ -13,7 +13,7 @@ import math
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
-from .analysis import by_world, judge_claims, overall_verdicts, side_by_side
+from .analysis import by_world, overall_verdicts, reference_table, side_by_side
 
 Block = Tuple[str, Any]
 
@@ -30,44 +30,85 @@ def fmt(value: Any, digits: int = 3) -> str:
 
 def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[str, Any],
           images: Dict[str, List[str]], elapsed_s: Optional[float], meta: Dict[str, Any]) -> List[Block]:
-    """The report's blocks. ``images[world]`` lists image files (relative paths)."""
+    """The report's blocks. ``images[world]`` lists image files (relative
+    paths); ``rows`` are the trials (without the noise repeats) with ``time``
+    set (:func:`~navlab.bench.analysis.timed`)."""
     blocks: List[Block] = [("h1", f"navlab bench: {experiment['name']}")]
+    study = experiment.get("study") or {}
+    if study.get("title"):
+        blocks.append(("p", f"Reproduces {study['title']}."))
+    if study.get("measured"):
+        blocks.append(("p", "What was measured there: " + study["measured"]))
     if experiment.get("description"):
         blocks.append(("p", experiment["description"]))
     n_err = sum(r.get("status") == "ERROR" for r in rows)
     budget = ", ".join(f"{k}={v}" for k, v in experiment.get("budget", {}).items()) or "planner defaults"
-    blocks.append(("p", f"{len(rows)} trials ({n_err} errors), {experiment['trials']} per cell, base seed "
-                        f"{experiment['seed']}, budget {budget}. navlab {meta.get('version')} on "
-                        f"{meta.get('cpu')} ({meta.get('cores')} cores)"
+    cells = summary["cells"]
+    per_cell = sorted({c["trials"] for c in cells})
+    blocks.append(("p", f"{len(rows)} trials ({n_err} errors) in {len(cells)} cells, "
+                        f"{'/'.join(map(str, per_cell)) or 0} per cell, base seed {experiment['seed']}, budget "
+                        f"{budget}. navlab {meta.get('version')} on {meta.get('cpu')} ({meta.get('cores')} cores)"
                         + (f"; wall time {elapsed_s:.1f} s." if elapsed_s is not None else ".")))
+    blocks.append(("p", f"Times are the {summary.get('time_label', 'thread CPU time')} of each trial "
+                        f"(`--time {'wall' if summary.get('time') == 'wall' else 'cpu'}`; "
+                        f"`--time {'cpu' if summary.get('time') == 'wall' else 'wall'}` for the other), measured "
+                        f"after each worker warmed its kernels: {fmt(summary.get('warmup_s'), 1)} s of compilation "
+                        "and cache loading in all, not counted in any trial."
+                        + (f" {summary['torn_lines']} torn line(s) were cut from results.jsonl "
+                           "(kept in results.torn.jsonl)." if summary.get("torn_lines") else "")))
 
+    swept = summary.get("swept") or []
     blocks.append(("h2", "Summary per cell"))
     blocks.append(("p", "Cost over successful trials; time over every trial that ran. CI: 95% t-interval "
                         "of the mean."))
-    header = ["world", "planner / sampler", "success", "cost mean", "cost 95% CI", "cost median", "cost min",
-              "cost max", "cost std", "time mean [s]", "time median [s]", "first solution it. (median)"]
+    header = (["world", "planner", "sampler"] + swept
+              + ["success", "cost mean", "cost 95% CI", "cost median", "cost min", "cost max", "cost std",
+                 "time mean [s]", "time median [s]", "first solution it. (median)"])
     table = []
-    for c in summary["cells"]:
-        cost, t = c["cost"], c["time_s"]
-        rate = c["success_rate"]
-        table.append([c["world"], c["group"], f"{c['successes']}/{c['trials'] - c['errors']}"
-                      + (f" ({c['errors']} err)" if c["errors"] else "") if rate is not None else "-",
-                      fmt(cost["mean"]), f"[{fmt(cost['ci95'][0])}, {fmt(cost['ci95'][1])}]",
-                      fmt(cost["median"]), fmt(cost["min"]), fmt(cost["max"]), fmt(cost["std"]),
-                      fmt(t["mean"], 4), fmt(t["median"], 4), fmt(c["first_solution_iteration"]["median"], 0)])
+    for c in cells:
+        cost, t = c["cost"], c["time"]
+        ran = c["trials"] - c["errors"]
+        table.append([c["world"], c["planner"], c["sampler"]] + [fmt(c["swept"].get(k)) for k in swept]
+                     + [f"{c['successes']}/{ran}" + (f" ({c['errors']} err)" if c["errors"] else ""),
+                        fmt(cost["mean"]), f"[{fmt(cost['ci95'][0])}, {fmt(cost['ci95'][1])}]",
+                        fmt(cost["median"]), fmt(cost["min"]), fmt(cost["max"]), fmt(cost["std"]),
+                        fmt(t["mean"], 4), fmt(t["median"], 4), fmt(c["first_solution_iteration"]["median"], 0)])
     blocks.append(("table", (header, table)))
 
-    verdicts = judge_claims(rows, experiment.get("claims") or [])
+    failed = [c for c in cells if c["successes"] < c["trials"]]
+    if failed:
+        blocks.append(("h2", "Trials that did not succeed"))
+        blocks.append(("p", "Statuses per cell, and the most common reasons (an ERROR's reason is the last "
+                            "line of its exception; results.jsonl holds the whole traceback)."))
+        blocks.append(("table", (["world", "cell", "statuses", "most common reasons"],
+                                 [[c["world"], c["group"], ", ".join(f"{k} {v}" for k, v in c["statuses"].items()),
+                                   "; ".join(f"{reason} (×{n})" for reason, n in c["reasons"])] for c in failed])))
+
+    ref = reference_table(study, summary)
+    if ref:
+        blocks.append(("h2", "The document's numbers beside ours"))
+        blocks.append(("p", "The document's value (its mean unless stated) beside our mean and median over "
+                            "the cell's trials. Times are not comparable in size (different software and "
+                            "machines), only in order."))
+        blocks.append(("table", (["world", "cell", "metric", "document", "ours (mean)", "ours (median)"],
+                                 [[r[0], r[1], r[2], fmt(r[3]), fmt(r[4], 4), fmt(r[5], 4)] for r in ref])))
+
+    verdicts = summary.get("claims") or []
     if verdicts:
         blocks.append(("h2", "The claims, tested"))
         blocks.append(("p", "Each claim per world: Mann–Whitney U (two-sided), Holm-corrected over the claims "
                             "tested in that world, α = 0.05; δ is Cliff's delta of the first group against the "
-                            "second (negative: the first is lower)."))
+                            "second (negative: the first is lower). For times, " + summary.get("rule", "") + "; "
+                            "the ratio is median (lower) / median (higher)."))
         blocks.append(("table", (["claim", "overall"], [[k, v] for k, v in overall_verdicts(verdicts).items()])))
-        blocks.append(("table", (["world", "claim", "verdict", "median (lower)", "median (higher)", "δ",
-                                  "p (Holm)"],
-                                 [[v["world"], f"{v['claim']} ({v['lower']} < {v['higher']})", v["verdict"],
-                                   fmt(v["median_lower"], 4), fmt(v["median_higher"], 4),
+        blocks.append(("table", (["world", "claim", "verdict", "median (lower)", "median (higher)", "ratio",
+                                  "needed (noise ε)", "δ", "p (Holm)"],
+                                 [[v["world"], f"{v['claim']} ({v['lower']} < {v['higher']})",
+                                   v["verdict"] + (f" ({v['why']})" if v.get("why") and v["verdict"] == "not shown"
+                                                   else ""),
+                                   fmt(v["median_lower"], 4), fmt(v["median_higher"], 4), fmt(v.get("ratio"), 3),
+                                   (f"×{v['threshold_ratio']:.2f} (ε {fmt(v.get('noise'), 3)})"
+                                    if v.get("threshold_ratio") else "-"),
                                    f"{fmt(v['delta'], 2)} ({v['magnitude']})", fmt(v["p_holm"], 3)]
                                   for v in verdicts])))
 
@@ -76,7 +117,7 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
         blocks.append(("h2", f"World: {world}"))
         for image in images.get(world, []):
             blocks.append(("img", image))
-        for metric in ("cost", "time_s"):
+        for metric in ("cost", "time"):
             comps = summary["comparisons"][world][metric]
             if not comps:
                 continue
@@ -97,8 +138,8 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
 
 def _verdict(c: Dict[str, Any]) -> str:
     if not c["significant"]:
-        return "no significant difference"
-    return f"{c['a'] if c['delta'] < 0 else c['b']} lower"
+        return "no difference shown" + (f" ({c['why']})" if c.get("why") else "")
+    return f"{c['a'] if c['direction'] < 0 else c['b']} lower"
 
 
 def to_markdown(blocks: Sequence[Block]) -> str:

@@ -3,26 +3,41 @@
 Output folder::
 
     experiment.json   the experiment and its fingerprint
-    results.jsonl     one row per finished trial (appended as trials end)
+    results.jsonl     one row per finished trial (appended as trials end),
+                      and the repeated trials that measure timing noise
     summary.json      per-cell statistics, comparisons and claim verdicts
     report.md         the report; report.html is the same, self-contained
     plots/            box plots, convergence curves, example trees
+
+Trials run interleaved across cells (trial 0 of every cell, then trial 1,
+...), so a machine whose load changes during the run slows every cell alike;
+the noise-measuring repeats run last.
 """
 
 from __future__ import annotations
 
 import json
+import os
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional
 
-from .analysis import by_world, judge_claims, summarize
-from .executors import EXECUTORS
+from ..atomic import write_text_atomic
+from .analysis import by_world, judge_claims, summarize, timed
+from .executors import EXECUTORS, check_executor
 from .experiment import OMPL_PREFIX, Experiment
 from .report import build, to_html, to_markdown
-from .store import ResultStore
+from .store import OutputError, ResultStore, read_rows, write_error
 from .trial import execute, machine
+
+
+class Interrupted(Exception):
+    """Ctrl-C during a run: the rows written so far are kept."""
+
+    def __init__(self, folder: Path, kept: int, total: int) -> None:
+        super().__init__(f"interrupted: {kept} of {total} trials kept in {folder}")
+        self.folder, self.kept, self.total = folder, kept, total
 
 
 @dataclass
@@ -32,40 +47,81 @@ class BenchRun:
     folder: Path
     rows: List[Dict[str, Any]]
     summary: Dict[str, Any]
-    ran: int  #: trials run now (the others were already finished)
+    ran: int  #: trials run now (the others were already finished), repeats included
     elapsed_s: float
+    #: seconds per phase of the run (see :func:`breakdown_lines`)
+    breakdown: Dict[str, Any] = field(default_factory=dict)
 
     @property
     def errors(self) -> int:
         return sum(r.get("status") == "ERROR" for r in self.rows)
 
 
+def interleave(specs: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
+    """Trial 0 of every cell, then trial 1 of every cell, ...; cells in their
+    order of first appearance."""
+    order: Dict[str, int] = {}
+    for s in specs:
+        order.setdefault(s["cell_id"], len(order))
+    return sorted(specs, key=lambda s: (s["trial"], order[s["cell_id"]]))
+
+
 def run_experiment(experiment: Experiment, out, executor: str = "process", jobs: Optional[int] = None,
                    scheduler: Optional[str] = None, resume: bool = False, overwrite: bool = False,
-                   progress: bool = True, plots: bool = True) -> BenchRun:
+                   progress: bool = True, plots: bool = True, time_kind: str = "cpu") -> BenchRun:
     """Run every unfinished trial of ``experiment``, store the rows, write
     summary and report. See :class:`~navlab.bench.store.ResultStore` for
-    ``resume`` and ``overwrite``."""
+    ``resume`` and ``overwrite``; ``time_kind`` is ``"cpu"`` or ``"wall"``.
+
+    Raises
+    ------
+    ExperimentError
+        Before any trial: the executor cannot run (Dask missing or its
+        scheduler unreachable), the folder is in use or holds other results.
+        During the run: a file cannot be written (one line naming it).
+    Interrupted
+        Ctrl-C; the rows written so far are kept (``--resume`` runs the rest).
+    """
+    check_executor(executor, scheduler)
     run_trials = EXECUTORS.get(executor)
-    store = ResultStore(out, experiment, resume=resume, overwrite=overwrite)
-    specs = experiment.trial_specs()
-    done = store.finished()
-    todo = [s for s in specs if s["trial_id"] not in done]
-    t0 = time.perf_counter()
-    try:
+    phases: Dict[str, Any] = {}
+    with ResultStore(out, experiment, resume=resume, overwrite=overwrite) as store:
+        specs = experiment.trial_specs()
+        done = store.finished()
+        todo = interleave([s for s in specs if s["trial_id"] not in done])
+        todo += interleave([s for s in experiment.noise_specs() if s["trial_id"] not in done])
+        trees: Dict[str, Dict[str, Any]] = {}
+        t0 = time.perf_counter()
+        new_rows: List[Dict[str, Any]] = []
         if todo:
             bar = _progress(len(todo), f"{experiment.name}: {len(specs) - len(todo)} of {len(specs)} done before"
                             if len(todo) < len(specs) else experiment.name, progress)
-            for row in run_trials(todo, jobs=jobs, scheduler=scheduler):
-                store.append(row)
-                bar.update(1)
+            try:
+                for row in run_trials(todo, jobs=jobs, scheduler=scheduler):
+                    tree = row.pop("tree", None)
+                    if tree is not None:
+                        trees[row["cell_id"]] = tree
+                    store.append(row)
+                    new_rows.append(row)
+                    bar.update(1)
+            except KeyboardInterrupt:
+                bar.close()
+                store.close()
+                kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
+                raise Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs)) from None
             bar.close()
-    finally:
-        store.close()
-    elapsed = time.perf_counter() - t0
-    rows = store.current_rows(specs)
-    summary = write_report(experiment, rows, store.folder, elapsed if todo else None, plots=plots)
-    return BenchRun(store.folder, rows, summary, len(todo), elapsed)
+        elapsed = time.perf_counter() - t0
+        phases["trials"] = elapsed
+        phases["workers"] = 1 if executor == "serial" else (jobs or os.cpu_count() or 1)
+        phases["warmup_s"] = sum(r.get("warmup_s") or 0.0 for r in new_rows)
+        phases["trial_cpu_s"] = sum(r.get("cpu_s") or 0.0 for r in new_rows)
+        phases["repeats"] = sum(bool(r.get("repeat")) for r in new_rows)
+        rows = store.current_rows(specs)
+        repeats = [store.rows[s["trial_id"]] for s in experiment.noise_specs() if s["trial_id"] in store.rows]
+        summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
+                               time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
+                               plot_jobs=1 if executor == "serial" else min(phases["workers"], os.cpu_count() or 1))
+    return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 
 def _progress(total: int, desc: str, enabled: bool):
@@ -75,52 +131,140 @@ def _progress(total: int, desc: str, enabled: bool):
 
 
 def write_report(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
-                 elapsed_s: Optional[float] = None, plots: bool = True) -> Dict[str, Any]:
-    """summary.json, report.md, report.html and (with ``plots``) the figures."""
-    summary = summarize(rows)
-    summary["claims"] = judge_claims(rows, experiment.claims)
-    (folder / "summary.json").write_text(json.dumps(summary, indent=1))
-    images = make_plots(experiment, rows, folder) if plots else {}
+                 elapsed_s: Optional[float] = None, plots: bool = True, time_kind: str = "cpu",
+                 trees: Optional[Dict[str, Dict[str, Any]]] = None, torn: int = 0,
+                 phases: Optional[Dict[str, Any]] = None, plot_jobs: int = 1) -> Dict[str, Any]:
+    """summary.json, report.md, report.html and (with ``plots``) the figures,
+    drawn by ``plot_jobs`` processes. ``rows`` may include the noise repeats;
+    ``phases`` gets the seconds spent here."""
+    phases = phases if phases is not None else {}
+    t0 = time.perf_counter()
+    summary = summarize(rows, time_kind)
+    summary["claims"] = judge_claims(rows, experiment.claims, time_kind)
+    summary["torn_lines"] = torn
+    summary["warmup_s"] = sum(r.get("warmup_s") or 0.0 for r in rows)
+    _write(folder / "summary.json", json.dumps(summary, indent=1))
+    t1 = time.perf_counter()
+    trials = [r for r in timed(rows, time_kind) if not r.get("repeat")]
+    images = make_plots(experiment, trials, folder, trees or {}, jobs=plot_jobs,
+                        time_label=summary["time_label"]) if plots else {}
+    t2 = time.perf_counter()
     from .. import __version__
 
     meta = {"version": __version__, **machine()}
-    blocks = build(experiment.to_dict(), rows, summary, images, elapsed_s, meta)
-    (folder / "report.md").write_text(to_markdown(blocks))
-    (folder / "report.html").write_text(to_html(blocks, folder))
+    blocks = build(experiment.to_dict(), trials, summary, images, elapsed_s, meta)
+    _write(folder / "report.md", to_markdown(blocks))
+    _write(folder / "report.html", to_html(blocks, folder))
+    phases["plots"] = t2 - t1
+    phases["report"] = (t1 - t0) + (time.perf_counter() - t2)
     return summary
 
 
-def make_plots(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path) -> Dict[str, List[str]]:
-    """Figures per world; the example trees rerun trial 0 of each navlab cell
-    with its recorded seed (same seed, same tree) in this process."""
+def _write(path: Path, text: str) -> None:
+    try:
+        write_text_atomic(path, text)
+    except OSError as exc:
+        raise write_error(path, exc) from None
+
+
+def make_plots(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
+               trees: Dict[str, Dict[str, Any]], jobs: int = 1, time_label: str = "time") -> Dict[str, List[str]]:
+    """Figures per world, drawn by up to ``jobs`` processes (one world each).
+    The example tree of each cell is trial 0's, kept by the worker that ran
+    it; when trial 0 ran in an earlier (resumed) run, it is rerun with its
+    recorded seed (same seed, same tree)."""
+    plot_dir = folder / "plots"
+    try:
+        plot_dir.mkdir(exist_ok=True)
+    except OSError as exc:
+        raise write_error(plot_dir, exc) from None
+    specs = {s["trial_id"]: s for s in experiment.trial_specs() if s["trial"] == 0}
+    tasks = []
+    for world, groups in by_world(rows).items():
+        firsts = {g: min(m, key=lambda r: r["trial"]) for g, m in groups.items()}
+        tasks.append((world, {g: [_plot_fields(r) for r in m] for g, m in groups.items()},
+                      {g: trees.get(r["cell_id"]) if r["trial"] == 0 else None for g, r in firsts.items()},
+                      {g: specs.get(r["trial_id"]) for g, r in firsts.items()}, str(folder), time_label))
+    if jobs > 1 and len(tasks) > 1:
+        from concurrent.futures import ProcessPoolExecutor
+
+        with ProcessPoolExecutor(min(jobs, len(tasks))) as pool:
+            done = list(pool.map(_plot_world, tasks))
+    else:
+        done = [_plot_world(t) for t in tasks]
+    for error in (d for d in done if isinstance(d, str)):
+        raise OutputError(error)
+    return {world: names for world, names in done}
+
+
+#: what the figures read from a row
+_PLOT_FIELDS = ("cell_id", "trial", "status", "success", "cost", "time", "time_s", "trace")
+
+
+def _plot_fields(row: Dict[str, Any]) -> Dict[str, Any]:
+    return {k: row.get(k) for k in _PLOT_FIELDS}
+
+
+def _plot_world(task):
+    """One world's figures: box plots, convergence, example trees. Returns
+    (world, image names), or the one-line message of a failed write."""
     from ..viz.bench_plot import box_plots, convergence_plot, example_trees
     from .trial import _world
 
-    plot_dir = folder / "plots"
-    plot_dir.mkdir(exist_ok=True)
-    images: Dict[str, List[str]] = {}
-    specs = {s["trial_id"]: s for s in experiment.trial_specs()}
-    for world, groups in by_world(rows).items():
-        slug = _slug(world)
-        names = [f"plots/box_{slug}.png"]
-        box_plots(world, groups, str(folder / names[0]))
+    world, groups, trees, specs, folder, time_label = task
+    folder = Path(folder)
+    slug = _slug(world)
+    names = [f"plots/box_{slug}.png"]
+    try:
+        box_plots(world, groups, str(folder / names[0]), time_label=f"{time_label} [s]")
         if convergence_plot(world, groups, str(folder / f"plots/convergence_{slug}.png")):
             names.append(f"plots/convergence_{slug}.png")
         examples = []
         for group, members in groups.items():
             first = min(members, key=lambda r: r["trial"])
-            spec = specs.get(first["trial_id"])
-            if spec is None or spec["cell"]["planner"]["name"].startswith(OMPL_PREFIX):
+            tree = trees.get(group) or _rerun_tree(specs.get(group))
+            if tree is None:
                 continue
-            try:
-                examples.append((f"{group} (trial {first['trial']})", execute(spec, keep_tree=True)))
-            except Exception:  # noqa: BLE001 - an errored trial has no tree to draw
-                continue
+            label = f"{first['cost']:.2f} m" if first.get("success") and first.get("cost") is not None \
+                else first.get("status", "?")
+            examples.append((f"{group} (trial {first['trial']})\n{label}", tree))
         if examples:
             names.append(f"plots/trees_{slug}.png")
             example_trees(_world(world), examples, str(folder / names[-1]))
-        images[world] = names
-    return images
+    except OSError as exc:
+        return str(write_error(folder / "plots", exc))
+    return world, names
+
+
+def _rerun_tree(spec: Optional[Dict[str, Any]]) -> Optional[Dict[str, Any]]:
+    if spec is None or spec["cell"]["planner"]["name"].startswith(OMPL_PREFIX):
+        return None
+    try:
+        result = execute(spec, keep_tree=True)
+    except Exception:  # noqa: BLE001 - an errored trial has no tree to draw
+        return None
+    if result.tree is None or "nodes" not in result.tree:
+        return None
+    return {"nodes": result.tree["nodes"], "parent": result.tree["parent"], "path": result.path}
+
+
+def breakdown_lines(run: BenchRun, total_s: Optional[float] = None) -> List[str]:
+    """Where the run's time went, for the end of ``navlab bench``."""
+    p = run.breakdown
+    if not p:
+        return []
+    parts = []
+    if total_s is not None:
+        parts.append(f"total {total_s:.1f} s")
+        known = p.get("trials", 0) + p.get("plots", 0) + p.get("report", 0)
+        parts.append(f"start-up and checks {max(0.0, total_s - known):.1f} s")
+    workers = p.get("workers", 1)
+    parts.append(f"trials {p.get('trials', 0):.1f} s on {workers} worker{'s' if workers > 1 else ''} "
+                 f"(trial CPU {p.get('trial_cpu_s', 0):.1f} s, warm-up {p.get('warmup_s', 0):.1f} s summed over "
+                 f"workers, {p.get('repeats', 0)} noise repeats)")
+    parts.append(f"plots {p.get('plots', 0):.1f} s")
+    parts.append(f"summary and report {p.get('report', 0):.1f} s")
+    return ["time: " + "; ".join(parts)]
 
 
 def _slug(name: str) -> str:

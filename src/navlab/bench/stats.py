@@ -59,14 +59,20 @@ def metric_values(rows: List[Dict[str, Any]], metric: str) -> List[float]:
     return [v for v in picked if v is not None]
 
 
+#: what a cell summary describes: ``time`` is the time the analysis uses
+#: (CPU or wall, see :func:`navlab.bench.analysis.timed`); ``time_s`` is the
+#: planner's own clock, ``cpu_s``/``wall_s`` the trial's
+SUMMARY_METRICS = ("cost", "time", "cpu_s", "wall_s", "time_s", "iterations", "first_solution_iteration")
+
+
 def cell_summary(rows: List[Dict[str, Any]]) -> Dict[str, Any]:
-    """Success rate and descriptions of cost, time and iterations for one cell."""
+    """Success rate and descriptions of cost, times and iterations for one cell."""
     ran = sum(r.get("status") != "ERROR" for r in rows)
     ok = sum(bool(r.get("success")) for r in rows)
     return {"trials": len(rows), "errors": len(rows) - ran, "successes": ok,
             "success_rate": ok / ran if ran else None,
             **{m: describe(metric_values(rows, m))
-               for m in ("cost", "time_s", "iterations", "first_solution_iteration")}}
+               for m in SUMMARY_METRICS}}
 
 
 def cliffs_delta(a: Sequence[float], b: Sequence[float]) -> float:

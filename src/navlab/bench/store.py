@@ -1,18 +1,69 @@
 """A result set on disk: ``experiment.json`` (what was asked) and
 ``results.jsonl`` (one row per finished trial, appended and flushed as each
-trial ends, so a killed run loses only the trials in flight)."""
+trial ends, so a killed run loses only the trials in flight).
+
+One run at a time: the folder is locked (an OS file lock on ``.lock``, held
+until the run ends; the kernel drops it when the process dies, so a killed
+run never leaves a stale lock) and a second run is refused with the holder's
+pid. ``experiment.json`` is replaced atomically. A last line cut short (a
+kill, a full disk) is moved to ``results.torn.jsonl`` before anything is
+appended, so the next row starts on a line of its own.
+"""
 
 from __future__ import annotations
 
+import errno
+import fcntl
 import json
 import os
 from pathlib import Path
-from typing import Any, Dict, Iterator, List
+from typing import Any, Dict, Iterator, List, Optional
 
-from .experiment import Experiment, ExperimentError
+from ..atomic import write_text_atomic
+from .experiment import DESCRIPTIVE, Experiment, ExperimentError
 
 EXPERIMENT_FILE = "experiment.json"
 RESULTS_FILE = "results.jsonl"
+TORN_FILE = "results.torn.jsonl"
+LOCK_FILE = ".lock"
+
+
+class OutputError(ExperimentError):
+    """A file of the output folder cannot be written (disk full, permissions)."""
+
+
+def write_error(path, exc: OSError) -> OutputError:
+    """The one-line error for a failed write of ``path``."""
+    return OutputError(f"cannot write '{path}': {exc.strerror or exc}")
+
+
+class FolderLock:
+    """An exclusive, non-blocking ``flock`` on ``folder/.lock`` that records
+    the holder's pid; :meth:`release` (or the process's end) frees it."""
+
+    def __init__(self, folder: Path) -> None:
+        self.path = folder / LOCK_FILE
+        try:
+            self._fd: Optional[int] = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
+        except OSError as exc:
+            raise write_error(self.path, exc) from None
+        try:
+            fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as exc:
+            holder = os.pread(self._fd, 32, 0).decode(errors="replace").strip() or "unknown"
+            os.close(self._fd)
+            self._fd = None
+            if exc.errno in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
+                raise ExperimentError(f"'{folder}' is in use by another navlab bench run (pid {holder}); "
+                                      "wait for it to end or use another --out") from None
+            raise
+        os.ftruncate(self._fd, 0)
+        os.pwrite(self._fd, f"{os.getpid()}\n".encode(), 0)
+
+    def release(self) -> None:
+        if self._fd is not None:
+            os.close(self._fd)  # closing the descriptor drops the lock
+            self._fd = None
 
 
 class ResultStore:
@@ -35,40 +86,90 @@ class ResultStore:
     """
 
     def __init__(self, folder, experiment: Experiment, resume: bool = False, overwrite: bool = False) -> None:
+        if resume and overwrite:
+            raise ExperimentError("--resume keeps the finished trials and --overwrite discards them: give one")
         self.folder = Path(folder)
         self.experiment = experiment
         self.results_path = self.folder / RESULTS_FILE
         if self.folder.exists() and not self.folder.is_dir():
             raise ExperimentError(f"output '{folder}' exists and is not a folder")
-        if overwrite:
-            self.results_path.unlink(missing_ok=True)
-            old_rows = []
-        else:
-            old_rows = list(read_rows(self.results_path)) if self.results_path.exists() else []
-            _check_reuse(self.folder, experiment, old_rows, resume)
-        self.folder.mkdir(parents=True, exist_ok=True)
-        meta = {"fingerprint": experiment.fingerprint(), "experiment": experiment.to_dict()}
-        (self.folder / EXPERIMENT_FILE).write_text(json.dumps(meta, indent=2))
+        try:
+            self.folder.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise write_error(self.folder, exc) from None
+        self._lock: Optional[FolderLock] = FolderLock(self.folder)
+        self._file = None
+        try:
+            _cut_torn_tail(self.results_path)
+            if overwrite:
+                self.results_path.unlink(missing_ok=True)
+                (self.folder / TORN_FILE).unlink(missing_ok=True)
+                old_rows = []
+            else:
+                old_rows = list(read_rows(self.results_path)) if self.results_path.exists() else []
+                _check_reuse(self.folder, experiment, old_rows, resume)
+            #: torn last lines cut from results.jsonl over the folder's life (kept in results.torn.jsonl)
+            self.torn = _count_lines(self.folder / TORN_FILE)
+            meta = {"fingerprint": experiment.fingerprint(), "experiment": experiment.to_dict()}
+            try:
+                write_text_atomic(self.folder / EXPERIMENT_FILE, json.dumps(meta, indent=2))
+            except OSError as exc:
+                raise write_error(self.folder / EXPERIMENT_FILE, exc) from None
+        except BaseException:
+            self.close()
+            raise
         # Errors are retried on resume; the newest row of a trial wins.
         self.rows: Dict[str, Dict[str, Any]] = {row["trial_id"]: row for row in old_rows}
-        self._file = None
 
     def finished(self) -> set:
         """Trial ids that need not run again (errored trials do)."""
         return {tid for tid, row in self.rows.items() if row.get("status") != "ERROR"}
 
     def append(self, row: Dict[str, Any]) -> None:
-        if self._file is None:
-            self._file = open(self.results_path, "a", encoding="utf-8")
-        self._file.write(json.dumps(row, separators=(",", ":")) + "\n")
-        self._file.flush()
-        os.fsync(self._file.fileno())
+        """Write one row and flush it to disk (one line, whole or torn: never
+        two rows on one line)."""
+        line = json.dumps(row, separators=(",", ":")) + "\n"
+        try:
+            if self._file is None:
+                self._file = open(self.results_path, "a", encoding="utf-8")
+            self._file.write(line)
+            self._file.flush()
+            os.fsync(self._file.fileno())
+        except OSError as exc:
+            self._abandon_file()
+            raise write_error(self.results_path, exc) from None
         self.rows[row["trial_id"]] = row
 
-    def close(self) -> None:
+    def _abandon_file(self) -> None:
+        """After a failed write the buffer may hold part of a line: drop it
+        (the next run cuts the torn tail)."""
         if self._file is not None:
-            self._file.close()
+            try:
+                self._file.close()
+            except OSError:
+                pass
             self._file = None
+
+    def close(self) -> None:
+        """Close the results file and release the folder's lock."""
+        try:
+            if self._file is not None:
+                try:
+                    self._file.close()
+                except OSError as exc:
+                    raise write_error(self.results_path, exc) from None
+                finally:
+                    self._file = None
+        finally:
+            if self._lock is not None:
+                self._lock.release()
+                self._lock = None
+
+    def __enter__(self) -> "ResultStore":
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
 
     def current_rows(self, specs: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
         """Rows of the given trials, in the experiment's order."""
@@ -93,8 +194,47 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
         raise ExperimentError(f"'{folder}' holds results without {EXPERIMENT_FILE}; use another --out")
 
 
+def _cut_torn_tail(path: Path) -> int:
+    """Move an unterminated last line of ``path`` to the torn file beside it
+    and truncate ``path`` after its last complete line; 1 if it did, else 0."""
+    try:
+        with open(path, "rb+") as f:
+            size = f.seek(0, os.SEEK_END)
+            if size == 0:
+                return 0
+            f.seek(size - 1)
+            if f.read(1) == b"\n":
+                return 0
+            f.seek(max(0, size - (1 << 20)))
+            tail = f.read()
+            cut = size - len(tail) + tail.rfind(b"\n") + 1 if b"\n" in tail else 0
+            f.seek(cut)
+            fragment = f.read()
+            torn = path.parent / TORN_FILE
+            with open(torn, "ab") as side:
+                side.write(fragment + b"\n")
+                side.flush()
+                os.fsync(side.fileno())
+            f.truncate(cut)
+            f.flush()
+            os.fsync(f.fileno())
+            return 1
+    except FileNotFoundError:
+        return 0
+    except OSError as exc:
+        raise write_error(path, exc) from None
+
+
+def _count_lines(path: Path) -> int:
+    try:
+        with open(path, "rb") as f:
+            return sum(1 for line in f if line.strip())
+    except FileNotFoundError:
+        return 0
+
+
 def read_rows(path) -> Iterator[Dict[str, Any]]:
-    """Rows of a results file; a last line cut short by a kill is skipped."""
+    """Rows of a results file; a line that is not JSON (cut short by a kill) is skipped."""
     with open(path, encoding="utf-8") as f:
         for line in f:
             line = line.strip()
@@ -107,5 +247,5 @@ def read_rows(path) -> Iterator[Dict[str, Any]]:
 
 
 def _differences(a: Dict[str, Any], b: Dict[str, Any]) -> List[str]:
-    ignored = {"trials", "description", "name", "claims"}
+    ignored = set(DESCRIPTIVE)
     return [k for k in sorted(set(a) | set(b)) if k not in ignored and a.get(k) != b.get(k)]

@@ -1,22 +1,75 @@
 """Built-in experiment suites (``navlab bench --suite NAME``), as plain data
 in the experiment-file format (``navlab bench --suite NAME --show`` prints
-one as YAML to start your own from)."""
+one as YAML to start your own from).
+
+Suites are named for what they study; the seed numbers they were first
+called by stay as aliases (:data:`ALIASES`). Each suite's ``study`` names the
+document it reproduces, says what was measured there, and lists the
+document's numbers, which the report shows beside ours.
+"""
 
 from __future__ import annotations
 
-from typing import Any, Callable, Dict
+from typing import Any, Callable, Dict, List, Optional
 
 from ..registry import Registry
 
 SUITES: Registry[Callable[[], Dict[str, Any]]] = Registry("suite")
+#: old names that still work
+ALIASES = {"seed000": "samplers", "seed003": "growth-ratio", "anchors": "ompl-anchors"}
 
 
-@SUITES.register("seed000")
-def seed000() -> Dict[str, Any]:
-    """Seed 000: RRT* with five samplers in three environments, 20 trials
-    each, stopping at max_iter only (as the seed did)."""
+def find_suite(name: str) -> Optional[Callable[[], Dict[str, Any]]]:
+    """The suite called ``name`` (or by an alias), or None."""
+    name = ALIASES.get(name, name)
+    return SUITES.get(name) if name in SUITES else None
+
+
+def suite_names() -> List[str]:
+    """Every name a suite answers to, aliases last."""
+    return SUITES.names() + list(ALIASES)
+
+
+def suite_help() -> str:
+    """One line per suite: its name, aliases and the study it reproduces."""
+    lines = []
+    for name in SUITES.names():
+        aliases = [a for a, n in ALIASES.items() if n == name]
+        short = SUITES.get(name)().get("study", {}).get("short", "")
+        lines.append(f"{name}" + (f" (alias {', '.join(aliases)})" if aliases else "") + (f": {short}" if short else ""))
+    return "; ".join(lines)
+
+
+#: seed 000 (SPEC.md; the seed's Tables I–VI): means over 20 trials
+_SEED000_TABLE = [
+    ("clutter", "integration", 13.94, 58.13), ("clutter", "gaussian", 14.02, 114.09),
+    ("clutter", "boundary", 15.00, 38.31),
+    ("squarefield", "integration", 12.69, 47.31), ("squarefield", "gaussian", 12.90, 55.91),
+    ("squarefield", "boundary", 14.35, 25.24),
+    ("trap", "integration", 20.23, 29.81), ("trap", "gaussian", 20.68, 54.30), ("trap", "boundary", 20.76, 25.26),
+]
+
+
+@SUITES.register("samplers")
+def samplers() -> Dict[str, Any]:
+    """The sampler comparison of seed 000 (integration sampling for RRT*):
+    RRT* with five samplers in three environments, 20 trials each, stopping
+    at max_iter only (as the seed did)."""
     return {
-        "name": "seed000",
+        "name": "samplers",
+        "study": {
+            "short": "seed 000's RRT* sampler comparison (LabVIEW, TELEKONTRAN 2021)",
+            "title": "seed 000: RRT* with integration sampling (goal bias + Gaussian + boundary), an "
+                     "Indonesian-language journal article (TELEKONTRAN vol. 9 no. 2, October 2021; no "
+                     "authors in our copy), implemented in LabVIEW 2014 on an AMD A9 3 GHz",
+            "measured": "The seed ran RRT* in LabVIEW with the integration, Gaussian and boundary samplers in "
+                        "three environments (clutter, SquareField BW, trap), 20 trials each with identical "
+                        "parameters, stopping at max_iter, and tabulated the path cost [m] and computation "
+                        "time [s] of every trial with their mean and min (Tables I-VI). Its times are LabVIEW "
+                        "times including drawing, tens of seconds per run; ours are the CPU time of the "
+                        "compiled planner, so only the ordering of times can be compared, not their size.",
+            "reference": [{"world": w, "group": g, "cost": c, "time_s": t} for w, g, c, t in _SEED000_TABLE],
+        },
         "description": "RRT* with the integration, Gaussian and boundary samplers (uniform and goal "
                        "bias as baselines) in clutter, SquareField BW and trap; 20 trials each, "
                        "stop at max_iter (seed 000, Tables I-VI).",
@@ -43,13 +96,27 @@ def seed000() -> Dict[str, Any]:
     }
 
 
-@SUITES.register("seed003")
-def seed003() -> Dict[str, Any]:
-    """Seed 003: the growth-ratio RRT against RRT with a fixed step, iterations
-    to reach the goal and path length over 100 seeds, on the seed's set-up
-    and on the other scenes."""
+@SUITES.register("growth-ratio")
+def growth_ratio() -> Dict[str, Any]:
+    """The growth-ratio RRT of seed 003 against RRT with a fixed step:
+    iterations to reach the goal and path length over 100 seeds, on the
+    seed's set-up and on the other scenes."""
     return {
-        "name": "seed003",
+        "name": "growth-ratio",
+        "study": {
+            "short": "seed 003's growth-ratio RRT against fixed-step RRT (Matlab)",
+            "title": "seed 003: an RRT whose step follows the growth ratio of random samples inside and "
+                     "outside the start-goal rectangle, an English-language conference-style paper (no "
+                     "title or authors in our copy), implemented in Matlab on an Intel i7-9750",
+            "measured": "The seed grew one tree with the growth-ratio step and one with a fixed step in an "
+                        "empty square, root (1, 5), goal (5, 6), stopping within p_min = 0.5 of the goal, and "
+                        "reported a single run of each: iterations to reach the goal (JI), path length (PJ) "
+                        "and branches. The growth ratio reached the goal at iteration 265 with path length 4.3; "
+                        "fixed-step RRT had not reached it by iteration 265 (2.7442 left). We compare both "
+                        "over 100 seeds.",
+            "reference": [{"world": "growth_ratio", "group": "growth_ratio_rrt", "first_solution_iteration": 265,
+                           "cost": 4.3}],
+        },
         "description": "Growth-ratio RRT vs. fixed-step RRT (steps 0.2 m and 0.5 m): iterations to "
                        "reach p_min of the goal and path length (seed 003).",
         "worlds": ["growth_ratio", "clutter", "squarefield", "trap"],
@@ -69,12 +136,20 @@ def seed003() -> Dict[str, Any]:
     }
 
 
-@SUITES.register("anchors")
-def anchors() -> Dict[str, Any]:
+@SUITES.register("ompl-anchors")
+def ompl_anchors() -> Dict[str, Any]:
     """navlab's RRT* and Informed RRT* beside OMPL's planners (``ompl``
     extra) on the same worlds, budgets and exact collision checker."""
     return {
-        "name": "anchors",
+        "name": "ompl-anchors",
+        "study": {
+            "short": "navlab's RRT* beside OMPL's planners (no seed document)",
+            "title": "no seed document: navlab's planners beside the Open Motion Planning Library "
+                     "(Şucan, Moll, Kavraki, IEEE RAM 2012) as an outside anchor",
+            "measured": "The same queries, budgets and exact collision checker for navlab's RRT* / Informed "
+                        "RRT* and OMPL's RRTstar / InformedRRTstar / RRTConnect (driven from Python), so cost "
+                        "and time can be compared with a widely used library.",
+        },
         "description": "navlab RRT* / Informed RRT* vs OMPL RRTstar / InformedRRTstar / RRTConnect, "
                        "5000 iterations (RRTConnect stops at its first solution).",
         "worlds": ["pythonrobotics", "clutter", "trap"],
@@ -91,6 +166,8 @@ def smoke() -> Dict[str, Any]:
     """A tiny suite that runs in seconds (the tests and a first try)."""
     return {
         "name": "smoke",
+        "study": {"short": "a quick check of the harness", "title": "no seed document: a quick check that the harness works",
+                  "measured": "Two samplers, two worlds, a few short trials."},
         "description": "Two samplers, two worlds, 4 trials of 300 iterations.",
         "worlds": ["squarefield", "trap"],
         "planners": ["rrt_star"],

@@ -1,6 +1,13 @@
 """One trial: run a cell's planner with the trial's seed and turn the Result
 into a flat, JSON-ready row. Runs in worker processes, so it takes and
-returns plain data only."""
+returns plain data only.
+
+Timing: before a process's first trial of each kind (world, planner,
+sampler, settings), the query is warmed (:func:`warm_trial`) and that time is recorded apart
+(``warmup_s``), so neither the trial's time nor its ``max_time`` budget pays
+for compilation. Each trial records its wall time (``wall_s``) and the CPU
+time of the thread that ran it (``cpu_s``), which a busy machine disturbs far
+less (time spent waiting for a core is not counted)."""
 
 from __future__ import annotations
 
@@ -8,8 +15,9 @@ import functools
 import os
 import platform
 import socket
+import time
 import traceback
-from typing import Any, Callable, Dict
+from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
@@ -46,8 +54,9 @@ def cell_kwargs(cell: Dict[str, Any], budget: Dict[str, Any]) -> Dict[str, Any]:
     return {**cell["params"], **cell["planner"]["params"], **sampler["params"], **budget}
 
 
-def execute(spec: Dict[str, Any], keep_tree: bool = False) -> Result:
-    """Run the trial described by ``spec`` and return navlab's Result."""
+def execute(spec: Dict[str, Any], keep_tree: Optional[bool] = None) -> Result:
+    """Run the trial described by ``spec`` and return navlab's Result (with
+    its tree when ``keep_tree``, by default ``spec["keep_tree"]``)."""
     from ..planning import plan
     from .ompl_planners import plan_ompl
 
@@ -57,9 +66,58 @@ def execute(spec: Dict[str, Any], keep_tree: bool = False) -> Result:
     name = cell["planner"]["name"]
     if name.startswith(OMPL_PREFIX):
         return plan_ompl(world, name[len(OMPL_PREFIX):], spec["seed"], **kwargs)
-    if keep_tree:
+    if _is_grid(name):
+        return plan(world, planner=name, sampler=None, seed=spec["seed"], **kwargs)
+    if spec.get("keep_tree") if keep_tree is None else keep_tree:
         kwargs["keep_tree"] = True
     return plan(world, planner=name, sampler=cell["sampler"]["name"], seed=spec["seed"], **kwargs)
+
+
+def warm_trial(spec: Dict[str, Any]) -> float:
+    """Warm this process for the trial's kind of query before it is timed; the
+    seconds spent (about 0 once this process has run the same kind).
+
+    Tree planners: :func:`navlab.warmup.warm_up` (the kernels), then the cell's
+    own query with a tiny iteration budget, which also loads the world and
+    reaches whatever ``navlab.plan`` warms by itself (a map's kernels, a grid
+    algorithm's variant). Grid planners: the cell's query once, whole (it has no
+    budget to shrink). OMPL: :func:`navlab.warmup.warm_up`.
+    """
+    import json
+
+    cell = spec["cell"]
+    key = json.dumps({"world": cell["world"], "planner": cell["planner"], "sampler": cell["sampler"],
+                      "params": cell["params"], "query": spec.get("query")}, sort_keys=True, default=str)
+    if key in _WARMED:
+        return 0.0
+    t0 = time.perf_counter()
+    _warm_kind(key, spec)
+    return time.perf_counter() - t0
+
+
+_WARMED: set = set()
+
+
+def _warm_kind(key: str, spec: Dict[str, Any]) -> None:
+    from ..warmup import WARM_ITERATIONS, warm_up
+
+    if key in _WARMED:
+        return
+    cell = spec["cell"]
+    name = cell["planner"]["name"]
+    if name.startswith(OMPL_PREFIX):
+        warm_up(name)
+        _world(cell["world"])
+    else:
+        budget = {} if _is_grid(name) else {"max_iter": WARM_ITERATIONS}
+        execute({**spec, "budget": budget, "keep_tree": False})
+    _WARMED.add(key)
+
+
+def _is_grid(planner: str) -> bool:
+    from ..grid.planner import GRID_ALGORITHMS
+
+    return planner in GRID_ALGORITHMS
 
 
 def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
@@ -70,23 +128,39 @@ def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
     row = {key: spec[key] for key in ("trial_id", "cell_id", "label", "trial", "seed")}
     row.update(world=cell["world"], planner=cell["planner"]["label"],
                sampler=cell["sampler"]["label"] if cell["sampler"] else "-",
-               params=_jsonable(cell_kwargs(cell, spec["budget"])), version=__version__, machine=machine())
+               params=_jsonable(cell_kwargs(cell, spec["budget"])), swept=dict(spec.get("swept") or {}),
+               version=__version__, machine=machine())
+    if spec.get("repeat"):
+        row["repeat"] = spec["repeat"]
     return row
 
 
-def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute) -> Dict[str, Any]:
-    """Run one trial with ``runner``; an exception becomes an ``ERROR`` row
-    with its traceback."""
+def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute,
+              warm: Callable[[Dict[str, Any]], float] = warm_trial) -> Dict[str, Any]:
+    """Warm up (timed apart), then run one trial with ``runner`` and time it
+    (wall and thread CPU time); an exception becomes an ``ERROR`` row with
+    its traceback. With ``spec["keep_tree"]`` the row carries the tree under
+    ``"tree"`` (numpy arrays: for the example plot, not for results.jsonl)."""
     row = identity_fields(spec)
     try:
-        row.update(result_fields(runner(spec)))
+        row["warmup_s"] = warm(spec)
+        wall0, cpu0 = time.perf_counter(), time.thread_time()
+        result = runner(spec)
+        row["cpu_s"], row["wall_s"] = time.thread_time() - cpu0, time.perf_counter() - wall0
+        row.update(result_fields(result))
+        if spec.get("keep_tree") and result.tree is not None and "nodes" in result.tree:
+            row["tree"] = {"nodes": np.asarray(result.tree["nodes"]), "parent": np.asarray(result.tree["parent"]),
+                           "path": np.asarray(result.path, dtype=float)}
     except Exception:  # noqa: BLE001 - any failure of one trial is data, not the end of the run
         row.update(error_fields(traceback.format_exc()))
     return row
 
 
 def error_fields(message: str) -> Dict[str, Any]:
-    return {"status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message}
+    """The fields of a trial that raised; ``reason`` is the exception's last line."""
+    lines = [line for line in message.strip().splitlines() if line.strip()]
+    return {"status": "ERROR", "success": False, "cost": None, "time_s": None, "error": message,
+            "reason": lines[-1].strip() if lines else "unknown error"}
 
 
 def result_fields(result: Result) -> Dict[str, Any]:

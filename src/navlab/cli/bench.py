@@ -2,17 +2,23 @@
 
 from __future__ import annotations
 
+import shlex
 import sys
+from typing import List, Optional
 
 import click
 import yaml
 
+from ..bench.suites import suite_help
 from .common import parse_params
+
+#: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
+EXIT_INTERRUPTED = 130
 
 
 @click.command("bench")
 @click.argument("experiment", required=False)
-@click.option("--suite", default=None, help="A built-in suite: seed000, seed003, anchors, smoke.")
+@click.option("--suite", default=None, help="A built-in suite. " + suite_help() + ".")
 @click.option("--out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: bench-results/NAME).")
 @click.option("--world", "worlds", multiple=True, help="World or scene (repeatable; replaces the file's).")
@@ -30,27 +36,34 @@ from .common import parse_params
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
 @click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")
 @click.option("--overwrite", is_flag=True, help="Discard the results in --out and start again.")
+@click.option("--time", "time_kind", type=click.Choice(["cpu", "wall"]), default="cpu", show_default=True,
+              help="Time the statistics, plots and claims use: the trial thread's CPU time, or wall-clock time.")
 @click.option("--no-plots", is_flag=True, help="Skip the figures (faster).")
 @click.option("--show", is_flag=True, help="Print the experiment as YAML and exit (a template for your own).")
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
 def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, trials, max_iter, max_time, seed,
-              executor, jobs, scheduler, resume, overwrite, no_plots, show, quiet) -> None:
+              executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet) -> None:
     """Run a benchmark: EXPERIMENT (a YAML file) or --suite NAME, optionally
     changed by flags, or an experiment made of flags alone (--world, --planner).
 
     Rows go to OUT/results.jsonl as trials finish; OUT/report.md and
-    OUT/report.html summarise them. Exit status 1 when a trial errored.
+    OUT/report.html summarise them. Exit status 1 when a trial errored,
+    2 for bad input (nothing runs), 130 when stopped by Ctrl-C (the finished
+    trials are kept: rerun with --resume).
 
     \b
     Examples:
-      navlab bench --suite seed000
-      navlab bench --suite seed000 --trials 40 --out runs/s0 --resume
+      navlab bench --suite samplers
+      navlab bench --suite samplers --trials 40 --out runs/s0 --resume
       navlab bench --world trap --planner rrt_star --sampler uniform --sampler gaussian --trials 10
       navlab bench my_study.yaml --executor dask --scheduler tcp://10.0.0.5:8786
     """
     from ..bench import load_experiment, run_experiment
     from ..bench.experiment import experiment_data
+    from ..bench.runner import Interrupted, breakdown_lines
 
+    if resume and overwrite:
+        raise click.UsageError("--resume keeps the finished trials and --overwrite discards them: give one")
     if experiment and suite:
         raise click.UsageError("give an experiment file or --suite, not both")
     if experiment or suite:
@@ -86,21 +99,64 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
         click.echo(yaml.safe_dump(data, sort_keys=False))
         return
     folder = out or f"bench-results/{exp.name}"
-    run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
-                         overwrite=overwrite, progress=not quiet, plots=not no_plots)
-    click.echo(f"{len(run.rows)} trials ({run.ran} run now, {run.errors} errors) in {run.elapsed_s:.1f} s")
-    for cell in run.summary["cells"]:
+    try:
+        run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
+                             overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)
+    except Interrupted as stop:
+        click.echo(f"\ninterrupted: {stop.kept} of {stop.total} trials are kept in {stop.folder}; "
+                   f"run the rest with: {_resume_command()}", err=True)
+        sys.exit(EXIT_INTERRUPTED)
+    summary = run.summary
+    click.echo(f"{len(run.rows)} trials ({run.ran} run now, {run.errors} errors) in {run.elapsed_s:.1f} s; "
+               f"times are {summary['time_label']}")
+    click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
+               f"{summary['warmup_s']:.1f} s in all, not counted in any trial")
+    if summary.get("torn_lines"):
+        click.echo(f"{summary['torn_lines']} torn line(s) cut from results.jsonl (kept in results.torn.jsonl)")
+    width = max([len(c["group"]) for c in summary["cells"]] + [20]) + 2
+    for cell in summary["cells"]:
         cost = cell["cost"]
-        click.echo(f"  {cell['world']:<14} {cell['group']:<32} success {cell['successes']}/{cell['trials']}"
-                   f"  cost mean {_f(cost['mean'])} min {_f(cost['min'])}  time mean {_f(cell['time_s']['mean'], 4)} s")
-    for verdict in _overall(run.summary):
+        ran = cell["trials"] - cell["errors"]
+        line = (f"  {cell['world']:<14} {cell['group']:<{width}} success {cell['successes']}/{ran}"
+                f"  cost mean {_f(cost['mean'])} min {_f(cost['min'])}  time median {_f(cell['time']['median'], 4)} s")
+        if cell["successes"] < cell["trials"] and cell["reasons"]:
+            line += f"  [{cell['reasons'][0][0]}]"
+        click.echo(line)
+    for verdict in _overall(summary):
         click.echo(verdict)
     click.echo(f"report: {run.folder / 'report.html'} (and report.md, results.jsonl)")
+    for line in breakdown_lines(run, _since_process_start()):
+        click.echo(line)
     if run.errors:
         sys.exit(1)
 
 
-def _overall(summary) -> list:
+def _resume_command() -> str:
+    """The command line that was run, with --resume (and without --overwrite)."""
+    args = sys.argv[1:]
+    if "bench" in args:
+        args = args[args.index("bench") + 1:]
+    args = [a for a in args if a != "--overwrite"]
+    if "--resume" not in args:
+        args.append("--resume")
+    return "navlab bench " + " ".join(shlex.quote(a) for a in args)
+
+
+def _since_process_start() -> Optional[float]:
+    """Seconds since this process started (Linux /proc), start-up included."""
+    try:
+        import os
+
+        with open("/proc/self/stat") as f:
+            start_ticks = int(f.read().rsplit(")", 1)[1].split()[19])
+        with open("/proc/uptime") as f:
+            uptime = float(f.read().split()[0])
+        return uptime - start_ticks / os.sysconf("SC_CLK_TCK")
+    except (OSError, ValueError, IndexError):
+        return None
+
+
+def _overall(summary) -> List[str]:
     from ..bench.analysis import overall_verdicts
 
     return [f"  claim: {k}: {v}" for k, v in overall_verdicts(summary.get("claims", [])).items()]

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 import click
+import numpy as np
 
 
 @click.group("grid")
@@ -19,7 +21,8 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 
 @grid_group.command("plan")
 @click.argument("map_path", metavar="MAP", type=click.Path(dir_okay=False))
-@click.option("--start", nargs=2, type=float, required=True, metavar="X Y", help="Start cell (or metres with --world).")
+@click.option("--start", nargs=2, type=float, required=True, metavar="X Y",
+              help="Start cell (or metres with --world).")
 @click.option("--goal", nargs=2, type=float, required=True, metavar="X Y", help="Goal cell (or metres with --world).")
 @click.option("--world", "in_world", is_flag=True, help="Start and goal are world coordinates in metres.")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
@@ -30,41 +33,57 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
 @click.option("--inflate", type=float, default=0.0, show_default=True, help="Inflate obstacles by this radius, m.")
 @click.option("--allow-unknown", is_flag=True, help="Let the path cross cells of unknown occupancy.")
+@click.option("--map-rule", type=click.Choice(["nav2", "ros1"]), default="nav2", show_default=True,
+              help="How a map_server image is read: Nav2's map_io (inclusive thresholds) or ROS 1's map_server.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG of grid and path.")
 def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivity, weight, smooth, inflate,
-              allow_unknown, as_json, plot) -> None:
+              allow_unknown, map_rule, as_json, plot) -> None:
     """Plan a path on MAP between two cells (x = column, y = row)."""
     from ..grid import load_map, plan, plan_world
 
-    grid = load_map(map_path)
+    for label, v in (("--start", start), ("--goal", goal)):
+        if not all(math.isfinite(c) for c in v):
+            raise ValueError(f"{label} must be finite numbers, got {v[0]:g} {v[1]:g}")
+        if not in_world and any(c != int(c) for c in v):
+            raise ValueError(f"{label}: cells are integers; use --world for metres, got {v[0]:g} {v[1]:g}")
+    grid = load_map(map_path, rule=map_rule)
     if inflate:
         grid = grid.inflate(inflate)
     kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,
                   weight=weight, allow_unknown=allow_unknown)
     if in_world:
         result = plan_world(grid, start, goal, **kwargs)
+        ends = np.array([start, goal], dtype=float)
     else:
-        for label, v in (("--start", start), ("--goal", goal)):
-            if any(c != int(c) for c in v):
-                raise click.BadParameter(f"cells are integers; use --world for metres, got {v}", param_hint=label)
-        result = plan(grid, (int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])), **kwargs)
+        cells = ((int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])))
+        result = plan(grid, *cells, **kwargs)
+        ends = grid.cell_to_world(np.array(cells, dtype=float))
     if plot:
         from ..viz.grid_plot import plot_grid_plan
 
         raw = result.tree["raw_cells"] if result.tree else None
-        plot_grid_plan(grid, result, plot, raw_cells=raw)
+        try:
+            plot_grid_plan(grid, result, plot, raw_cells=raw, start=ends[0], goal=ends[1])
+        except OSError as exc:
+            fail(f"cannot write {plot}: {exc.strerror or exc}")
     if as_json:
         click.echo(json.dumps(result.to_dict()))
     else:
         click.echo(f"{grid.name}: {algorithm}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
         if result.success:
-            click.echo(f"  {len(result.cells)} cells, length {result.cost:.6f} cells = {result.stats['length_m']:.4f} m, "
+            click.echo(f"  {len(result.cells)} cells, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
         if plot:
             click.echo(f"  plot written to {plot}")
     if not result.success:
         sys.exit(1)
+
+
+def fail(message: str) -> None:
+    """One line on stderr and exit status 2 (an input or file error, not a traceback)."""
+    click.echo(f"Error: {message}", err=True)
+    sys.exit(2)
 
 
 @grid_group.command("scen")
@@ -76,30 +95,60 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
 @click.option("--limit", type=click.IntRange(min=1), default=None, help="Only the first N scenarios.")
 @click.option("--every", type=click.IntRange(min=1), default=1, show_default=True, help="Only every k-th scenario.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary and every scenario as JSON.")
-def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json) -> None:
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, quiet) -> None:
     """Run a Moving AI scenario file; compare lengths with the stored optima.
 
     Lengths are compared as the benchmark computes them (a diagonal costs
     1.414213562) to one unit in the last printed digit; exact lengths are in
-    the JSON rows as exact_length.
+    the JSON rows as exact_length. theta_star (any-angle) matches when its
+    path is at most the stored octile optimum. Prints a summary with the five
+    worst scenarios; exit status 1 when any scenario mismatches or is invalid
+    (start or goal blocked or outside the map).
     """
+    from ..grid.scen import read_scen
     from ..grid.scen_runner import run_scenarios
 
-    out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every)
+    total = len(read_scen(scen_path)[::every][:limit])
+    with progress_bar(total, "scenarios", quiet) as bar:
+        out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every,
+                            progress=lambda done: bar.update(done - bar.n))
     s = out["summary"]
     if as_json:
         click.echo(json.dumps(out))
     else:
-        click.echo(f"{s['map']}: {s['scenarios']} scenarios, {algorithm} ({heuristic}): "
-                   f"{s['scenarios'] - s['mismatches']} match the stored optimum, {s['mismatches']} do not")
-        click.echo(f"  time per query: median {s['time_median_ms']:.3f} ms, p95 {s['time_p95_ms']:.3f} ms, "
-                   f"total {s['time_total_s']:.3f} s")
-        for row in out["rows"]:
-            if not row["match"]:
-                click.echo(f"  mismatch #{row['index']}: {row['start']} -> {row['goal']}: stored {row['optimal']}, "
-                           f"got {row['length']} ({row['status']})")
-    if s["mismatches"]:
+        click.echo(scen_report(s))
+    if s["mismatches"] or s["invalid"]:
         sys.exit(1)
+
+
+def scen_report(s) -> str:
+    """The summary of ``navlab grid scen`` as text: counts, times, the worst five."""
+    fmt = lambda v: "-" if v is None else f"{v:.8g}"  # noqa: E731
+    lines = [f"{s['map']}: {s['scenarios']} scenarios, {s['algorithm']} ({s['heuristic']}), "
+             f"length {s['comparison']}: {s['matches']} match, {s['mismatches']} do not"
+             + (f", {s['invalid']} invalid (start or goal blocked or outside the map)" if s["invalid"] else "")]
+    lines.append("  statuses: " + ", ".join(f"{k} {v}" for k, v in sorted(s["statuses"].items())))
+    if s.get("length_over_optimal_median") is not None:
+        lines.append(f"  any-angle length / octile optimum: median {s['length_over_optimal_median']:.4f}")
+    lines.append(f"  time per query: median {s['time_median_ms']:.3f} ms, p95 {s['time_p95_ms']:.3f} ms, "
+                 f"total {s['time_total_s']:.3f} s")
+    if s["worst"]:
+        lines.append(f"  worst {len(s['worst'])} (length - optimum):")
+        for w in s["worst"]:
+            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {fmt(w['optimal'])}, "
+                         f"got {fmt(w['length'])} ({w['status']}, {'match' if w['match'] else 'MISMATCH'}, "
+                         f"excess {fmt(w['excess'])})")
+    return "\n".join(lines)
+
+
+def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0):
+    """A tqdm bar on stderr, off with ``quiet``, when stderr is not a terminal, or for
+    fewer than ``threshold`` items."""
+    from tqdm import tqdm
+
+    disable = True if quiet or total < threshold else None  # None: off when not a TTY
+    return tqdm(total=total, unit=f" {unit}", file=sys.stderr, disable=disable, leave=False, dynamic_ncols=True)
 
 
 @grid_group.command("maze")
@@ -113,11 +162,25 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json) 
 @click.option("--resolution", type=click.FloatRange(min=0, min_open=True), default=0.05, show_default=True,
               help="Map resolution, m per pixel.")
 @click.option("--out", type=click.Path(dir_okay=False), required=True, help="Output map_server YAML (PGM beside it).")
-def grid_maze(cells, seed, cell_size, wall, resolution, out) -> None:
-    """Generate a perfect maze as a ROS map_server map (YAML + PGM)."""
-    from ..grid import make_maze, save_map
+@click.option("--quiet", is_flag=True, help="No progress bar.")
+def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
+    """Generate a perfect maze as a ROS map_server map (YAML + PGM).
 
-    grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution)
-    image = save_map(grid, out)
+    The resolution must be at most the wall thickness and the corridor width
+    (cell size - wall), so neither vanishes; mazes whose map would exceed
+    navlab's 1e8-cell limit or the memory available are refused before
+    anything is built. Mazes of more than 1000 cells show a progress bar.
+    """
+    from ..grid import make_maze, save_map
+    from ..grid.maze import maze_size
+
+    maze_size(cells[0], cells[1], cell_size, wall, resolution)  # refuse before the bar and the carving
+    with progress_bar(cells[0] * cells[1], "cells", quiet, threshold=1000) as bar:
+        grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution,
+                         progress=lambda done: bar.update(done - bar.n))
+    try:
+        image = save_map(grid, out)
+    except OSError as exc:
+        fail(str(exc.strerror or exc))
     click.echo(f"wrote {out} and {image}: {cells[0]}x{cells[1]} cells, {grid.width}x{grid.height} pixels "
                f"at {resolution} m")

@@ -1,4 +1,4 @@
-"""``navlab plan``: plan a path in a world."""
+"""``navlab plan``: plan a path in any source with any planner."""
 
 from __future__ import annotations
 
@@ -9,50 +9,91 @@ import click
 
 from .common import parse_params
 
+_FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
+
 
 @click.command("plan")
-@click.argument("world")
-@click.option("--planner", default="rrt_star", show_default=True, help="Registered planner (navlab list).")
-@click.option("--sampler", default="uniform", show_default=True, help="Registered sampler (navlab list).")
+@click.argument("source", metavar="SOURCE")
+@click.option("--planner", default="rrt_star", show_default=True,
+              help="Tree planner or grid algorithm (navlab list): rrt, rrt_star, informed_rrt_star, "
+                   "growth_ratio_rrt, astar, dijkstra, jps, theta_star.")
+@click.option("--sampler", default=None, help="Registered sampler for tree planners (navlab list). [default: uniform]")
+@click.option("--start", nargs=2, type=float, default=None, metavar="X Y",
+              help="Start in metres (overrides the world's; required for maps).")
+@click.option("--goal", nargs=2, type=float, default=None, metavar="X Y",
+              help="Goal in metres (overrides the world's; required for maps).")
+@click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
+              help="Robot radius in metres (overrides the world's; maps: 0).")
 @click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iterations (default: the planner's).")
-@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None, help="Time limit in seconds.")
+@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None,
+              help="Time limit in seconds (starts after warm-up).")
 @click.option("--seed", type=int, default=0, show_default=True, help="Random seed (same seed, same result).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
-              help="Planner or sampler setting, e.g. expand_dis=1.0 goal_sample_rate=0.05 "
-                   "'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}'. Repeatable.")
-@click.option("--json", "as_json", is_flag=True, help="Print status, cost, path, stats and all parameters as JSON.")
-@click.option("--plot", type=click.Path(dir_okay=False, writable=True), default=None,
-              help="Write a PNG of obstacles, tree, path, start and goal.")
-def plan_cmd(world, planner, sampler, max_iter, max_time, seed, params, as_json, plot) -> None:
-    """Plan a path in WORLD (a YAML world file or a scene name)."""
-    from .. import load_world, plan
+              help="Planner, sampler or grid setting, e.g. expand_dis=1.0 goal_sample_rate=0.05 "
+                   "'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}' resolution=0.05 "
+                   "heuristic=octile connectivity=8 smooth=true allow_unknown=true. Repeatable.")
+@click.option("--json", "as_json", is_flag=True,
+              help="Print status, cost, path, stats and all parameters as JSON (without the cost trace).")
+@click.option("--trace", is_flag=True, help="With --json: include the per-iteration cost trace.")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None,
+              help="Write a PNG of the world or map, tree, path, start and goal.")
+def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_time, seed, params, as_json,
+             trace, plot) -> None:
+    """Plan a path in SOURCE: a built-in scene name, a world YAML, a ROS map_server
+    YAML (PGM/PNG) or a Moving AI .map. Maps have no start or goal: give
+    --start and --goal (metres, map frame)."""
+    from ..planning import is_grid_planner, plan
+    from ..world.sources import MissingQueryError, load_source
 
-    w = load_world(world)
     settings = parse_params(params)
-    if max_iter is not None:
-        settings["max_iter"] = max_iter
-    if max_time is not None:
-        settings["max_time"] = max_time
-    if plot:
+    for flag, value in (("max_iter", max_iter), ("max_time", max_time)):
+        if value is not None:
+            settings[flag] = value
+    grid = is_grid_planner(planner)
+    if sampler is None:
+        sampler = None if grid else "uniform"
+    if plot and not grid:
         settings.setdefault("keep_tree", True)
-    result = plan(w, planner=planner, sampler=sampler, seed=seed, **settings)
+    try:
+        world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
+                            allow_unknown=settings.get("allow_unknown"))
+    except MissingQueryError as exc:
+        # one line through the CLI's error handler (exit 2), naming the flag
+        raise ValueError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
+                         f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
+    result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
     if plot:
         from ..viz import plot_plan
 
-        plot_plan(w, result, plot)
+        plot_plan(world, result, plot)
     if as_json:
-        click.echo(json.dumps(result.to_dict()))
+        out = result.to_dict()
+        if not trace:
+            out["stats"].pop("cost_trace", None)
+        click.echo(json.dumps(out))
     else:
-        s = result.stats
-        click.echo(f"{w.name}: {planner} + {sampler}, seed {seed}: {result.status.name}"
-                   + (f" ({result.reason})" if result.reason else ""))
-        if len(result.path):
-            click.echo(f"  cost {result.cost:.4f} m, {len(result.path)} waypoints")
-        if s:
-            first = s.get("first_solution_iteration")
-            click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "
-                       f"{s['time_s'] * 1000:.1f} ms" + (f", first solution at iteration {first}" if first is not None else ""))
-        if plot:
-            click.echo(f"  plot written to {plot}")
+        _print_summary(world, result, planner, sampler, seed, plot)
     if not result.success:
         sys.exit(1)
+
+
+def _print_summary(world, result, planner, sampler, seed, plot) -> None:
+    s = result.stats
+    what = planner if sampler is None else f"{planner} + {sampler}, seed {seed}"
+    click.echo(f"{world.name}: {what}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
+    if len(result.path):
+        click.echo(f"  cost {result.cost:.4f} m, {len(result.path)} waypoints")
+    if "iterations" in s:
+        first = s.get("first_solution_iteration")
+        click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "
+                   f"planning {s['time_s'] * 1000:.1f} ms"
+                   + (f", first solution at iteration {first}" if first is not None else ""))
+    elif "time_s" in s:
+        line = f"  grid {s.get('grid', '?')} at {result.params.get('resolution', 0):g} m"
+        if "expanded" in s:
+            line += f", {s['expanded']} cells expanded"
+        click.echo(line + f", planning {s['time_s'] * 1000:.1f} ms (rasterising {s.get('rasterize_s', 0) * 1000:.1f} ms)")
+    if s.get("warmup_s", 0) > 0.0005:
+        click.echo(f"  warm-up (compiling / loading kernels, not planning) {s['warmup_s'] * 1000:.0f} ms")
+    if plot:
+        click.echo(f"  plot written to {plot}")

@@ -9,6 +9,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
+from .common import parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -17,7 +18,9 @@ def _require_rclpy() -> None:
     try:
         import rclpy  # noqa: F401
     except ImportError as exc:
-        raise click.ClickException(f"{ROS_HINT} ({exc})") from None
+        error = click.ClickException(f"{ROS_HINT} ({exc})")
+        error.exit_code = 2  # a setting that cannot work, as every input error
+        raise error from None
 
 
 @click.group("ros")
@@ -101,9 +104,12 @@ for _node in NODES:
               help="Wall-clock limit (s).")
 @click.option("--log-dir", type=click.Path(file_okay=False), default=None,
               help="With --processes: one log file per node here.")
+@click.option("--planner", default="astar", show_default=True, help="diff: the pathplanner's algorithm (any planner).")
+@click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
+              help="diff: a pathplanner parameter (sampler=integration, seed=3, max_iter=3000, ...); repeatable.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary as JSON.")
 def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, processes, record, max_time, timeout,
-             log_dir, as_json) -> None:
+             log_dir, planner, params, as_json) -> None:
     """Drive a simulated robot to a goal through the ROS 2 nodes, in one
     command, and judge the run from /odom.
 
@@ -114,7 +120,8 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
 
     summary = run_demo(world, robot, None if start is None else (*start, yaw), goal, maze_size=maze_size,
                        real_time_factor=real_time_factor, processes=processes, record=record,
-                       max_time=max_time, timeout=timeout, log_dir=log_dir)
+                       max_time=max_time, timeout=timeout, log_dir=log_dir, planner=planner,
+                       planner_params=parse_params(params))
     if as_json:
         click.echo(json.dumps(summary))
     else:

@@ -1,8 +1,10 @@
-"""Controllers: potential field (holonomic), goto_waypoint and pure pursuit."""
+"""Controllers: potential field (holonomic), the hybrid navigator (global plan +
+field), goto_waypoint and pure pursuit (with optional replanning)."""
 
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, make_controller
 from .followers import GotoWaypoint, PurePursuit
+from .hybrid import Hybrid
 from .potential_field import PotentialField, attractive, repulsive
 
-__all__ = ["CONTROLLERS", "Command", "Controller", "GotoWaypoint", "PotentialField", "PurePursuit", "REACHED",
+__all__ = ["CONTROLLERS", "Command", "Controller", "GotoWaypoint", "Hybrid", "PotentialField", "PurePursuit", "REACHED",
            "RUNNING", "STALLED", "StallDetector", "attractive", "make_controller", "repulsive"]

@@ -1,9 +1,10 @@
 """Path followers for a differential drive: seed 002's goto_waypoint and
-pure pursuit."""
+pure pursuit, optionally replanning when the path ahead is blocked."""
 
 from __future__ import annotations
 
 import math
+from typing import Optional
 
 import numpy as np
 
@@ -12,12 +13,74 @@ from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, S
 
 
 class _Follower(Controller):
+    """What both followers share: the path, the stall detector and the
+    ``replan`` option. With ``replan`` the follower reads the LiDAR; when a
+    sensed point the map does not explain lies on the next ``check_ahead``
+    metres of the path it stops, and plans again from where it is around
+    what it sees (at most every ``replan_interval`` s); it drives on when the
+    path ahead is clear again (the obstacle has passed) or a new path is."""
+
     needs_path = True
 
-    def __init__(self, stall_window: float = 8.0, stall_progress: float = 0.02) -> None:
+    def __init__(self, stall_window: float = 8.0, stall_progress: float = 0.02, replan: bool = False,
+                 replan_interval: float = 1.0, check_ahead: float = 1.0) -> None:
+        if not isinstance(replan, bool):
+            raise ValueError(f"replan must be true or false, got {replan!r}")
+        for name, value in (("replan_interval", replan_interval), ("check_ahead", check_ahead)):
+            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+                raise ValueError(f"{name} must be a positive number, got {value!r}")
         self.stall = StallDetector(stall_window, stall_progress)
         self.path = np.zeros((1, 2))
         self.index = 0
+        self.replan, self.replan_interval, self.check_ahead = replan, replan_interval, check_ahead
+        self.needs_scan = replan
+        self.replanner = None  #: set by the simulator when ``replan`` is on
+        self.evade_speed = 0.22  #: [m/s] speed at which the robot gets out of a moving obstacle's way
+        self._last_replan = -math.inf
+
+    def _ahead(self, pose) -> np.ndarray:
+        """The path from the robot over the next ``check_ahead`` metres."""
+        pts = [np.asarray(pose[:2], float)]
+        left = self.check_ahead
+        for q in self.path[self.index:]:
+            step = float(np.hypot(*(q - pts[-1])))
+            if step >= left:
+                pts.append(pts[-1] + (q - pts[-1]) * (left / step))
+                break
+            pts.append(q)
+            left -= step
+        return np.asarray(pts)
+
+    def _evade(self, pose) -> Optional[Command]:
+        """Back away from (or drive on ahead of) a moving obstacle whose
+        predicted sweep covers the robot, keeping the heading."""
+        threat = getattr(self.replanner, "threat", None)
+        if threat is None:
+            return None
+        centre, v = threat
+        away = np.asarray(pose[:2], float) - centre
+        speed = float(np.hypot(*v))
+        if speed > 0:  # leave the obstacle's line of travel rather than run ahead of it
+            u = v / speed
+            away = away - (away @ u) * u
+        forward = math.cos(pose[2]) * away[0] + math.sin(pose[2]) * away[1] >= 0
+        return Command(self.evade_speed if forward else -self.evade_speed, 0.0, 0.0)
+
+    def _wait_or_replan(self, t: float, pose, points) -> bool:
+        """True when the robot should hold still this step (path ahead blocked)."""
+        if not self.replan or self.replanner is None:
+            return False
+        self.replanner.observe(t, pose, points)
+        if not self.replanner.blocked(pose, self._ahead(pose), points):
+            return False
+        if t - self._last_replan >= self.replan_interval:
+            self._last_replan = t
+            new = self.replanner.plan(pose, points)
+            if new is not None:
+                self.path, self.index = new, 1
+                self.stall.reset()
+                return self.replanner.blocked(pose, self._ahead(pose), points)
+        return True
 
     def reset(self, goal, path=None) -> None:
         pts = np.asarray(path if path is not None else [goal], float)[:, :2]
@@ -26,6 +89,7 @@ class _Follower(Controller):
         self.path = pts
         self.index = 1 if len(pts) > 1 else 0
         self.stall.reset()
+        self._last_replan = -math.inf
 
     def _stalled(self, t: float, pose) -> bool:
         # progress towards the current waypoint, measured along the remaining path
@@ -51,12 +115,17 @@ class GotoWaypoint(_Follower):
         ``slow_speed`` and the gain is multiplied by ``turn_boost``.
     reach_radius : float
         Waypoint tolerance (m); the last waypoint uses ``goal_radius``.
+    replan, replan_interval, check_ahead :
+        Stop and replan when a sensed obstacle blocks the next
+        ``check_ahead`` m of the path, at most every ``replan_interval`` s
+        (see the base class; the simulator supplies the planner).
     """
 
     def __init__(self, speed: float = 0.2, heading_gain: float = 1.5, turn_threshold: float = 0.5,
                  slow_speed: float = 0.02, turn_boost: float = 1.5, reach_radius: float = 0.1,
-                 goal_radius: float = 0.05, stall_window: float = 8.0) -> None:
-        super().__init__(stall_window)
+                 goal_radius: float = 0.05, stall_window: float = 8.0, replan: bool = False,
+                 replan_interval: float = 1.0, check_ahead: float = 1.0) -> None:
+        super().__init__(stall_window, replan=replan, replan_interval=replan_interval, check_ahead=check_ahead)
         for name, value in (("speed", speed), ("heading_gain", heading_gain), ("reach_radius", reach_radius),
                             ("goal_radius", goal_radius), ("turn_threshold", turn_threshold)):
             if not value > 0:
@@ -77,6 +146,10 @@ class GotoWaypoint(_Follower):
             self.index += 1
         if self._stalled(t, pose):
             return Command(status=STALLED)
+        if self._wait_or_replan(t, pose, points):
+            return self._evade(pose) or Command()
+        dx, dy = self.path[self.index] - pose[:2]
+        dist = math.hypot(dx, dy)
         error = _wrap(math.atan2(dy, dx) - pose[2])
         if abs(error) > self.turn_threshold:
             return Command(self.slow_speed, 0.0, self.turn_boost * self.heading_gain * error)
@@ -99,8 +172,9 @@ class PurePursuit(_Follower):
     """
 
     def __init__(self, lookahead: float = 0.2, speed: float = 0.2, goal_radius: float = 0.05,
-                 stall_window: float = 8.0) -> None:
-        super().__init__(stall_window)
+                 stall_window: float = 8.0, replan: bool = False, replan_interval: float = 1.0,
+                 check_ahead: float = 1.0) -> None:
+        super().__init__(stall_window, replan=replan, replan_interval=replan_interval, check_ahead=check_ahead)
         for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius)):
             if not value > 0:
                 raise ValueError(f"pure_pursuit {name} must be positive, got {value!r}")
@@ -133,6 +207,8 @@ class PurePursuit(_Follower):
             return Command(status=REACHED)
         if self._stalled(t, pose):
             return Command(status=STALLED)
+        if self._wait_or_replan(t, pose, points):
+            return self._evade(pose) or Command()
         tx, ty = self._target(pose) - pose[:2]
         alpha = _wrap(math.atan2(ty, tx) - pose[2])
         ld = max(math.hypot(tx, ty), 1e-9)

@@ -1,26 +1,31 @@
 """Map files: ROS map_server YAML + PGM/PNG, and Moving AI ``.map``.
 
-ROS map_server semantics (nav2_map_server): for each pixel, with ``v`` its
-value (averaged over colour channels) scaled to [0, 1], occupancy
-``p = 1 − v`` (or ``v`` with ``negate: 1``); ``p > occupied_thresh`` is
-occupied, ``p < free_thresh`` free, anything between unknown (``trinary``).
-``scale`` keeps the in-between values as probabilities (unknown only for
-transparent pixels); ``raw`` takes pixel values as occupancy 0–100 directly
-(255 unknown). The image's first row is the top of the map, so row 0 of
-``blocked`` is the image's last row (at ``origin``).
+ROS map_server maps are read as Nav2's ``nav2_map_server`` reads them (the
+ROS 2 standard; ``rule="nav2"``, the default), or as ROS 1's ``map_server``
+did (``rule="ros1"``). Both turn each pixel into a value of a ROS
+``nav_msgs/OccupancyGrid`` (−1 unknown, 0 free, 100 occupied, 1–99 in
+between); navlab then blocks the cells of value 100, marks −1 unknown, and
+keeps the in-between values (``scale``/``raw`` modes) as probabilities in
+``OccupancyGrid.probability``. docs/grid.md states both rules in full.
+
+The image's first row is the top of the map, so row 0 of ``blocked`` is the
+image's last row (at ``origin``).
 """
 
 from __future__ import annotations
 
 import math
 import os
+import warnings
 from pathlib import Path
-from typing import Any, Dict, Union
+from typing import Any, Dict, Optional, Tuple, Union
 
 import numpy as np
 import yaml
 
-from .occupancy import OccupancyGrid
+from ..atomic import atomic_path
+from ..limits import MAX_COORDINATE, MIN_LENGTH
+from .occupancy import MAX_CELLS, OccupancyGrid
 
 PathLike = Union[str, os.PathLike]
 
@@ -31,169 +36,397 @@ class MapFormatError(ValueError):
 
 MOVINGAI_PASSABLE = set(".GS")
 MOVINGAI_BLOCKED = set("@OTW")
+MAP_RULES = ("nav2", "ros1")
+MAP_MODES = ("trinary", "scale", "raw")
+UNKNOWN, FREE, OCCUPIED = -1, 0, 100  #: nav_msgs/OccupancyGrid cell values
 
 
-def read_pgm(path: PathLike) -> np.ndarray:
-    """Read a binary (P5) or plain (P2) PGM into a 2D array (first row = top)."""
-    p = Path(path)
-    data = p.read_bytes()
-    magic = data[:2]
+def _too_big(path: Path, width: int, height: int) -> MapFormatError:
+    return MapFormatError(f"{path}: {width}x{height} = {width * height} cells is more than the "
+                          f"{MAX_CELLS:.0e} cells navlab reads (navlab.grid.MAX_CELLS)")
+
+
+# -- PGM ---------------------------------------------------------------------------
+def _pgm_header(path: Path, f) -> Tuple[bytes, int, int, int]:
+    """Magic, width, height and maxval, leaving ``f`` at the first data byte."""
+    head = f.read(1 << 16)  # a header (with comments) longer than 64 KiB is not a map's
+    magic = head[:2]
     if magic not in (b"P5", b"P2"):
-        raise MapFormatError(f"{p}: not a PGM file (magic {magic!r}, expected P5 or P2)")
-    # Header: magic, width, height, maxval, separated by whitespace and comments.
+        raise MapFormatError(f"{path}: not a PGM file (magic {magic!r}, expected P5 or P2)")
     tokens, pos = [], 2
     while len(tokens) < 3:
-        while pos < len(data) and chr(data[pos]).isspace():
+        while pos < len(head) and head[pos:pos + 1].isspace():
             pos += 1
-        if pos < len(data) and data[pos:pos + 1] == b"#":
-            while pos < len(data) and data[pos:pos + 1] not in (b"\n", b"\r"):
+        if head[pos:pos + 1] == b"#":
+            while pos < len(head) and head[pos:pos + 1] not in (b"\n", b"\r"):
                 pos += 1
             continue
         start = pos
-        while pos < len(data) and not chr(data[pos]).isspace():
+        while pos < len(head) and not head[pos:pos + 1].isspace() and head[pos:pos + 1] != b"#":
             pos += 1
-        if start == pos:
-            raise MapFormatError(f"{p}: truncated PGM header")
-        tokens.append(data[start:pos])
+        if start == pos or pos == len(head):
+            raise MapFormatError(f"{path}: truncated PGM header")
+        tokens.append(head[start:pos])
     try:
         width, height, maxval = (int(t) for t in tokens)
     except ValueError:
-        raise MapFormatError(f"{p}: bad PGM header values {tokens}") from None
+        raise MapFormatError(f"{path}: bad PGM header values {tokens}") from None
     if width <= 0 or height <= 0 or not 0 < maxval < 65536:
-        raise MapFormatError(f"{p}: bad PGM size {width}x{height} or maxval {maxval}")
-    pos += 1  # the single whitespace after maxval
-    count = width * height
-    if magic == b"P5":
-        dtype = np.uint8 if maxval < 256 else np.dtype(">u2")
-        raw = np.frombuffer(data, dtype=dtype, count=min(count, (len(data) - pos) // np.dtype(dtype).itemsize), offset=pos)
-    else:
-        raw = np.array(data[pos:].split(), dtype=np.int64) if len(data) > pos else np.empty(0, dtype=np.int64)
+        raise MapFormatError(f"{path}: bad PGM size {width}x{height} or maxval {maxval}")
+    if width * height > MAX_CELLS:
+        raise _too_big(path, width, height)
+    f.seek(pos + 1)  # the single whitespace after maxval
+    return magic, width, height, maxval
+
+
+def read_pgm(path: PathLike) -> np.ndarray:
+    """Read a binary (P5) or plain (P2) PGM as 8-bit grey levels (first row = top).
+
+    Other ``maxval`` are scaled to 0–255 and rounded, as an image library
+    converting to 8-bit grey does. The size is checked against
+    :data:`~navlab.grid.occupancy.MAX_CELLS` before the pixels are read.
+    """
+    p = Path(path)
+    with open(p, "rb") as f:
+        magic, width, height, maxval = _pgm_header(p, f)
+        count = width * height
+        if magic == b"P5":
+            dtype = np.dtype(np.uint8) if maxval < 256 else np.dtype(">u2")
+            data = f.read(count * dtype.itemsize)
+            raw = np.frombuffer(data, dtype=dtype, count=len(data) // dtype.itemsize)
+        else:
+            # at most 6 bytes ("65535 ") a pixel; a longer file is not this image
+            data = f.read(count * 8 + 4096)
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", DeprecationWarning)  # a stray token ends the parse
+                raw = np.fromstring(data.decode("latin-1"), dtype=np.int64, sep=" ")
     if raw.size < count:
         raise MapFormatError(f"{p}: truncated PGM data: {raw.size} of {count} pixels ({width}x{height})")
-    return raw[:count].reshape(height, width).astype(np.float64) / maxval * 255.0
+    raw = raw[:count].reshape(height, width)
+    if np.any((raw < 0) | (raw > maxval)):
+        raise MapFormatError(f"{p}: PGM pixel values outside 0..{maxval}")
+    if maxval == 255:
+        return raw.astype(np.uint8)
+    return np.floor(raw.astype(np.float64) * (255.0 / maxval) + 0.5).astype(np.uint8)
 
 
-def _read_image(path: Path) -> tuple[np.ndarray, np.ndarray]:
-    """Pixel values in [0, 255] (colour averaged) and an alpha mask (True = opaque)."""
-    if not path.exists():
-        raise MapFormatError(f"{path}: map image not found")
+# -- images: grey levels and alpha ------------------------------------------------
+class _Image:
+    """The parts of an image the two rules read: 8-bit grey (luma, as Nav2's
+    GraphicsMagick converts), the per-pixel sum of the colour channels and
+    their count (ROS 1 averages them), and alpha (None when opaque)."""
+
+    def __init__(self, gray: np.ndarray, colour_sum: np.ndarray, channels: int, alpha: Optional[np.ndarray]):
+        self.gray, self.colour_sum, self.channels, self.alpha = gray, colour_sum, channels, alpha
+
+
+def _read_image(path: Path) -> _Image:
     if path.suffix.lower() == ".pgm":
-        values = read_pgm(path)
-        return values, np.ones(values.shape, dtype=bool)
+        gray = read_pgm(path)
+        return _Image(gray, gray, 1, None)
     from PIL import Image, UnidentifiedImageError
 
-    try:
-        with Image.open(path) as img:
-            img.load()
-            arr = np.asarray(img.convert("RGBA" if "A" in img.getbands() else "RGB"), dtype=np.float64)
-    except (UnidentifiedImageError, OSError) as exc:
-        raise MapFormatError(f"{path}: cannot read image: {exc}") from None
-    opaque = arr[..., 3] > 0 if arr.shape[-1] == 4 else np.ones(arr.shape[:2], dtype=bool)
-    return arr[..., :3].mean(axis=-1), opaque
+    with warnings.catch_warnings():
+        # navlab's own limit (MAX_CELLS) is checked on the header just below
+        warnings.simplefilter("ignore", Image.DecompressionBombWarning)
+        try:
+            with Image.open(path) as img:
+                width, height = img.size
+                if width * height > MAX_CELLS:
+                    raise _too_big(path, width, height)
+                img.load()
+                if img.mode == "P" or img.mode.startswith("I") or img.mode == "F":
+                    # palettes and 16-bit/float grey: through RGBA (keeps transparency)
+                    img = img.convert("RGBA") if img.mode == "P" else _gray16_to_l(img)
+                bands = img.getbands()
+                alpha = np.asarray(img.getchannel("A")) if "A" in bands else None
+                gray = np.asarray(img.convert("L"))
+                colour_bands = [b for b in bands if b != "A"]
+                if colour_bands == ["L"]:
+                    colour_sum, channels = gray, 1
+                else:
+                    rgb = np.asarray(img.convert("RGB"))
+                    colour_sum, channels = rgb.sum(axis=2, dtype=np.uint16), 3
+        except Image.DecompressionBombError as exc:
+            raise MapFormatError(f"{path}: image too large ({exc}); navlab reads at most "
+                                 f"{MAX_CELLS:.0e} cells") from None
+        except (UnidentifiedImageError, OSError, SyntaxError, ValueError) as exc:
+            if isinstance(exc, MapFormatError):
+                raise
+            raise MapFormatError(f"{path}: cannot read image: {exc}") from None
+    return _Image(gray, colour_sum, channels, alpha)
 
 
+def _gray16_to_l(img):
+    """16-bit or float grey to 8-bit, scaled (Pillow's own conversion clips)."""
+    from PIL import Image
+
+    arr = np.asarray(img, dtype=np.float64)
+    top = 65535.0 if img.mode.startswith("I;16") or arr.max(initial=0) > 255 else 255.0
+    return Image.fromarray(np.clip(np.floor(arr * (255.0 / top) + 0.5), 0, 255).astype(np.uint8), "L")
+
+
+# -- the two rules ------------------------------------------------------------------
+def nav2_cell_values(gray: np.ndarray, alpha: Optional[np.ndarray], mode: str, negate: bool,
+                     occupied_thresh: float, free_thresh: float) -> np.ndarray:
+    """ROS OccupancyGrid values (int8) of 8-bit grey pixels as Nav2's map_io assigns them.
+
+    trinary/scale: ``occ = 1 − g/255`` (``g/255`` with ``negate``) in single
+    precision; ``occ >= occupied_thresh`` → 100, ``occ <= free_thresh`` → 0,
+    else −1 (trinary) or ``round(100·(occ − free)/(occupied − free))``
+    (scale); a pixel with alpha below 255 → −1. raw: the grey level itself
+    when 0–100, else −1 (alpha and negate ignored).
+    """
+    g = np.arange(256, dtype=np.float32) / np.float32(255.0)
+    if mode == "raw":
+        lut = np.where(np.arange(256) <= OCCUPIED, np.arange(256), UNKNOWN)
+        return lut.astype(np.int8)[gray]
+    occ = g if negate else np.float32(1.0) - g
+    o, f = np.float32(occupied_thresh), np.float32(free_thresh)
+    lut = np.full(256, UNKNOWN, dtype=np.int64)
+    lut[occ >= o] = OCCUPIED
+    lut[occ <= f] = FREE
+    if mode == "scale":
+        between = (occ > f) & (occ < o)
+        scaled = (occ[between] - f) / (o - f) * np.float32(100.0)
+        lut[between] = np.floor(scaled + np.float32(0.5)).astype(np.int64)  # round half away from zero
+    values = lut.astype(np.int8)[gray]
+    if alpha is not None:
+        values[alpha < 255] = UNKNOWN
+    return values
+
+
+def ros1_cell_values(colour_sum: np.ndarray, channels: int, alpha: Optional[np.ndarray], mode: str,
+                     negate: bool, occupied_thresh: float, free_thresh: float) -> np.ndarray:
+    """ROS OccupancyGrid values (int8) as ROS 1's map_server assigns them.
+
+    The mean of the colour channels (in trinary mode the alpha byte is
+    averaged in too, as ROS 1 does), ``255 − mean`` with ``negate``; raw:
+    that mean truncated when 0–100, else −1. Otherwise ``occ = (255 −
+    mean)/255``; ``occ > occupied_thresh`` → 100, ``occ < free_thresh`` →
+    0, else −1 in trinary mode or for a fully transparent pixel, else
+    ``int(99·(occ − free)/(occupied − free))`` (scale).
+    """
+    total, n = colour_sum.astype(np.int64), channels
+    if alpha is not None and mode == "trinary":
+        total, n = total + alpha, n + 1
+    sums = np.arange(255 * n + 1)
+    mean = sums / n
+    if negate:
+        mean = 255.0 - mean
+    if mode == "raw":
+        lut = np.where(mean <= OCCUPIED, np.trunc(mean), UNKNOWN).astype(np.int8)
+        return lut[total]
+    occ = (255.0 - mean) / 255.0
+    lut = np.full(sums.size, UNKNOWN, dtype=np.int64)
+    between = (occ <= occupied_thresh) & (occ >= free_thresh)
+    if mode == "scale":
+        lut[between] = np.trunc(99.0 * (occ[between] - free_thresh) / (occupied_thresh - free_thresh))
+    lut[occ > occupied_thresh] = OCCUPIED
+    lut[occ < free_thresh] = FREE
+    values = lut.astype(np.int8)[total]
+    if mode == "scale" and alpha is not None:
+        # only an in-between pixel becomes unknown when transparent
+        values[(alpha == 0) & between[total]] = UNKNOWN
+    return values
+
+
+def grid_from_values(values: np.ndarray, resolution: float, origin, name: str, keep_probability: bool,
+                     flip: bool = True) -> OccupancyGrid:
+    """An OccupancyGrid from ROS cell values: 100 blocked, −1 unknown, and
+    (``keep_probability``) 0–100 as probabilities in ``grid.probability``."""
+    if flip:
+        values = np.flipud(values)  # first image row is the top of the map
+    probability = None
+    if keep_probability:
+        probability = np.where(values >= 0, values.astype(np.float32) / np.float32(100.0), np.float32(np.nan))
+    return OccupancyGrid(values == OCCUPIED, resolution, origin, values < 0, name=name, probability=probability)
+
+
+# -- YAML fields ---------------------------------------------------------------------
 def _number(meta: Dict[str, Any], key: str, source: Path, default: Any = None) -> float:
     value = meta.get(key, default)
     if value is None:
         raise MapFormatError(f"{source}: field '{key}' is missing")
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+    if isinstance(value, str):
+        # PyYAML reads YAML 1.1, where 5e-2 (no dot) is a string; yaml-cpp (Nav2) reads it as a number
+        try:
+            value = float(value)
+        except ValueError:
+            pass
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise MapFormatError(f"{source}: field '{key}' must be a number, got {value!r}")
-    return float(value)
+    try:
+        v = float(value)
+    except OverflowError:
+        raise MapFormatError(f"{source}: field '{key}' is too large") from None
+    if not math.isfinite(v):
+        raise MapFormatError(f"{source}: field '{key}' must be finite, got {value!r}")
+    return v
 
 
-def load_ros_map(yaml_path: PathLike) -> OccupancyGrid:
-    """Read a ROS map_server map (YAML + PGM or PNG)."""
+def _origin(meta: Dict[str, Any], source: Path) -> Tuple[float, float, float]:
+    origin = meta.get("origin", [0.0, 0.0, 0.0])
+    if not (isinstance(origin, list) and len(origin) == 3):
+        raise MapFormatError(f"{source}: field 'origin' must be [x, y, yaw], got {origin!r}")
+    out = []
+    for label, v in zip(("x", "y", "yaw"), origin):
+        if isinstance(v, str):  # 5e-2: a string to YAML 1.1, a number to Nav2
+            try:
+                v = float(v)
+            except ValueError:
+                pass
+        try:
+            ok = not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(float(v))
+        except OverflowError:
+            ok = False
+        if not ok:
+            raise MapFormatError(f"{source}: field 'origin' {label} must be a finite number, got {v!r}")
+        if label != "yaw" and abs(float(v)) > MAX_COORDINATE:
+            raise MapFormatError(f"{source}: field 'origin' {label} = {float(v):g} is out of range "
+                                 f"(|{label}| <= {MAX_COORDINATE:g} m)")
+        out.append(float(v))
+    return out[0], out[1], out[2]
+
+
+def _image_path(meta: Dict[str, Any], source: Path) -> Path:
+    if "image" not in meta:
+        raise MapFormatError(f"{source}: field 'image' is missing")
+    name = meta["image"]
+    if not isinstance(name, str) or not name.strip():
+        raise MapFormatError(f"{source}: field 'image' must be a file name, got {name!r}")
+    image = Path(name)
+    image = image if image.is_absolute() else source.parent / image
+    if image.is_dir():
+        raise MapFormatError(f"{source}: field 'image' names a directory, not an image: {image}")
+    if not image.exists():
+        raise MapFormatError(f"{source}: field 'image': {image}: map image not found")
+    return image
+
+
+def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
+    """Read a ROS map_server map (YAML + PGM or PNG).
+
+    Parameters
+    ----------
+    yaml_path : path
+    rule : {"nav2", "ros1"}
+        How pixels become cells: Nav2's map_io (ROS 2; inclusive thresholds,
+        alpha < 255 unknown) or ROS 1's map_server (strict thresholds, see
+        :func:`ros1_cell_values`).
+
+    Raises
+    ------
+    MapFormatError
+        Naming the file and the field for every malformed input, an image
+        that is missing or a directory, and an image of more than
+        :data:`~navlab.grid.occupancy.MAX_CELLS` pixels (refused from its
+        header, before it is decoded).
+    """
+    if rule not in MAP_RULES:
+        raise ValueError(f"rule must be one of {', '.join(MAP_RULES)}, got {rule!r}")
     src = Path(yaml_path)
     try:
-        meta = yaml.safe_load(src.read_text())
+        meta = yaml.safe_load(src.read_text(encoding="utf-8"))
     except OSError as exc:
-        raise MapFormatError(f"{src}: cannot read: {exc.strerror}") from None
-    except yaml.YAMLError as exc:
+        raise MapFormatError(f"{src}: cannot read: {exc.strerror or exc}") from None
+    except (yaml.YAMLError, UnicodeDecodeError) as exc:
         raise MapFormatError(f"{src}: not valid YAML: {exc}") from None
     if not isinstance(meta, dict):
         raise MapFormatError(f"{src}: expected a mapping of map fields")
-    if "image" not in meta:
-        raise MapFormatError(f"{src}: field 'image' is missing")
+    image = _image_path(meta, src)
     resolution = _number(meta, "resolution", src)
-    if resolution <= 0:
-        raise MapFormatError(f"{src}: field 'resolution' must be positive, got {resolution}")
-    origin = meta.get("origin", [0.0, 0.0, 0.0])
-    if not (isinstance(origin, list) and len(origin) == 3 and all(isinstance(v, (int, float)) for v in origin)):
-        raise MapFormatError(f"{src}: field 'origin' must be [x, y, yaw], got {origin!r}")
+    if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
+        raise MapFormatError(f"{src}: field 'resolution' must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} "
+                             f"m per cell, got {meta['resolution']!r}")
+    origin = _origin(meta, src)
     occ_t = _number(meta, "occupied_thresh", src, 0.65)
     free_t = _number(meta, "free_thresh", src, 0.196)
     if not (0.0 <= free_t <= occ_t <= 1.0):
         raise MapFormatError(f"{src}: thresholds need 0 <= free_thresh ({free_t}) <= occupied_thresh ({occ_t}) <= 1")
     negate = meta.get("negate", 0)
-    if negate not in (0, 1, True, False):
+    if negate not in (0, 1) or isinstance(negate, float):
         raise MapFormatError(f"{src}: field 'negate' must be 0 or 1, got {negate!r}")
     mode = meta.get("mode", "trinary")
-    if mode not in ("trinary", "scale", "raw"):
+    if mode not in MAP_MODES:
         raise MapFormatError(f"{src}: field 'mode' must be trinary, scale or raw, got {mode!r}")
-    image = Path(str(meta["image"]))
-    image = image if image.is_absolute() else src.parent / image
-    values, opaque = _read_image(image)
-    values = np.flipud(values)  # first image row is the top of the map
-    opaque = np.flipud(opaque)
-    if mode == "raw":
-        blocked = values >= 100 * occ_t
-        unknown = (values >= 255) | ~opaque
-        blocked &= ~unknown
+    pixels = _read_image(image)
+    if rule == "nav2":
+        values = nav2_cell_values(pixels.gray, pixels.alpha, mode, bool(negate), occ_t, free_t)
     else:
-        occ = values / 255.0 if negate else (255.0 - values) / 255.0
-        blocked = occ > occ_t
-        free = occ < free_t
-        unknown = ~blocked & ~free if mode == "trinary" else ~opaque
-        if mode == "scale":
-            blocked &= opaque
-    return OccupancyGrid(blocked, resolution, tuple(float(v) for v in origin), unknown, name=src.stem)
+        values = ros1_cell_values(pixels.colour_sum, pixels.channels, pixels.alpha, mode, bool(negate), occ_t, free_t)
+    return grid_from_values(values, resolution, origin, src.stem, keep_probability=mode != "trinary")
 
 
+# -- Moving AI ---------------------------------------------------------------------
 def load_movingai_map(path: PathLike) -> OccupancyGrid:
-    """Read a Moving AI ``.map``; ``blocked[y, x]`` uses the file's row order."""
+    """Read a Moving AI ``.map``; ``blocked[y, x]`` uses the file's row order.
+
+    Every row must have exactly ``width`` characters; ``width × height`` is
+    checked against :data:`~navlab.grid.occupancy.MAX_CELLS` before the rows
+    are read.
+    """
     p = Path(path)
     try:
-        lines = p.read_text().splitlines()
+        with open(p, "r", encoding="latin-1", newline=None) as f:
+            header: Dict[str, str] = {}
+            n = 0
+            while True:
+                line = f.readline(4096)
+                n += 1
+                if not line:
+                    raise MapFormatError(f"{p}: no 'map' line after the header")
+                if line.strip() == "map":
+                    break
+                parts = line.split()
+                if len(parts) != 2 or n > 16:
+                    raise MapFormatError(f"{p}: line {n}: bad header line {line.rstrip()!r}")
+                header[parts[0]] = parts[1]
+            if header.get("type") != "octile":
+                raise MapFormatError(f"{p}: header 'type' must be octile, got {header.get('type')!r}")
+            size = {}
+            for key in ("height", "width"):
+                text = header.get(key)
+                if text is None or not text.isdigit() or int(text) < 1:
+                    raise MapFormatError(f"{p}: header '{key}' must be a positive integer, got {text!r}")
+                size[key] = int(text)
+            height, width = size["height"], size["width"]
+            if width * height > MAX_CELLS:
+                raise _too_big(p, width, height)
+            rows = f.read((width + 2) * (height + 1)).splitlines()
+            extra = f.read(1)
     except OSError as exc:
-        raise MapFormatError(f"{p}: cannot read: {exc.strerror}") from None
-    header: Dict[str, str] = {}
-    i = 0
-    while i < len(lines) and lines[i].strip() != "map":
-        parts = lines[i].split()
-        if len(parts) != 2:
-            raise MapFormatError(f"{p}: line {i + 1}: bad header line {lines[i]!r}")
-        header[parts[0]] = parts[1]
-        i += 1
-    if i == len(lines):
-        raise MapFormatError(f"{p}: no 'map' line after the header")
-    if header.get("type") != "octile":
-        raise MapFormatError(f"{p}: header 'type' must be octile, got {header.get('type')!r}")
-    try:
-        height, width = int(header["height"]), int(header["width"])
-    except (KeyError, ValueError):
-        raise MapFormatError(f"{p}: header needs integer 'height' and 'width'") from None
-    rows = lines[i + 1: i + 1 + height]
+        raise MapFormatError(f"{p}: cannot read: {exc.strerror or exc}") from None
+    while rows and not rows[-1].strip():
+        rows.pop()
     if len(rows) < height:
         raise MapFormatError(f"{p}: truncated: {len(rows)} of {height} map rows")
+    if len(rows) > height or extra.strip():
+        raise MapFormatError(f"{p}: more map rows than the header's height {height}")
     grid = np.zeros((height, width), dtype=bool)
+    passable = np.frombuffer(b".GS", dtype=np.uint8)
     for y, row in enumerate(rows):
-        if len(row) < width:
-            raise MapFormatError(f"{p}: map row {y} has {len(row)} of {width} characters")
-        chars = np.frombuffer(row[:width].encode("latin-1"), dtype=np.uint8)
-        bad = set(row[:width]) - MOVINGAI_PASSABLE - MOVINGAI_BLOCKED
+        if len(row) != width:
+            raise MapFormatError(f"{p}: map row {y} has {len(row)} characters, the header's width is {width}")
+        bad = set(row) - MOVINGAI_PASSABLE - MOVINGAI_BLOCKED
         if bad:
             raise MapFormatError(f"{p}: map row {y} has unknown terrain {sorted(bad)}")
-        grid[y] = ~np.isin(chars, np.frombuffer(b".GS", dtype=np.uint8))
+        grid[y] = ~np.isin(np.frombuffer(row.encode("latin-1"), dtype=np.uint8), passable)
     return OccupancyGrid(grid, 1.0, (0.0, 0.0, 0.0), name=p.stem)
 
 
-def load_map(path: PathLike) -> OccupancyGrid:
-    """Read a map: ROS map_server YAML (``.yaml``/``.yml``) or Moving AI ``.map``."""
+def load_map(path: PathLike, rule: str = "nav2") -> OccupancyGrid:
+    """Read a map: ROS map_server YAML (``.yaml``/``.yml``) or Moving AI ``.map``.
+
+    ``rule`` chooses how a map_server image is read (see :func:`load_ros_map`).
+    """
     p = Path(path)
+    if p.is_dir():
+        raise MapFormatError(f"{p}: is a directory, not a map file")
     if not p.exists():
         raise MapFormatError(f"{p}: no such file")
     if p.suffix.lower() in (".yaml", ".yml"):
-        return load_ros_map(p)
+        return load_ros_map(p, rule=rule)
     if p.suffix.lower() == ".map":
         return load_movingai_map(p)
     raise MapFormatError(f"{p}: unknown map format (expected a map_server .yaml or a Moving AI .map)")
@@ -201,7 +434,12 @@ def load_map(path: PathLike) -> OccupancyGrid:
 
 def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     """Write map_server YAML + binary PGM (trinary: 0 occupied, 254 free, 205
-    unknown, as map_saver does); returns the image path."""
+    unknown, as map_saver does); returns the image path.
+
+    Both files are written to temporary names and renamed (:mod:`navlab.atomic`),
+    so a full disk leaves no truncated file; the OSError names the file.
+    Probabilities (``grid.probability``) are not written.
+    """
     ypath = Path(yaml_path)
     image = ypath.with_suffix(".pgm")
     pixels = np.full(grid.blocked.shape, 254, dtype=np.uint8)
@@ -209,7 +447,6 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     pixels[grid.blocked] = 0
     pixels = np.flipud(pixels)
     header = f"P5\n# navlab {grid.name}\n{grid.width} {grid.height}\n255\n".encode()
-    image.write_bytes(header + pixels.tobytes())
     meta = {
         "image": image.name,
         "mode": "trinary",
@@ -219,5 +456,10 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
         "occupied_thresh": 0.65,
         "free_thresh": 0.196,
     }
-    ypath.write_text(yaml.safe_dump(meta, sort_keys=False))
+    for target, data in ((image, header + pixels.tobytes()), (ypath, yaml.safe_dump(meta, sort_keys=False).encode())):
+        try:
+            with atomic_path(target) as tmp:
+                tmp.write_bytes(data)
+        except OSError as exc:
+            raise OSError(exc.errno, f"cannot write {target}: {exc.strerror or exc}") from None
     return image

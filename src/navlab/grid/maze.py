@@ -2,24 +2,78 @@
 
 from __future__ import annotations
 
-import math
+from typing import Callable, Optional
 
 import numpy as np
 
-from .occupancy import OccupancyGrid
+from ..limits import check_length
+from .occupancy import MAX_CELLS, OccupancyGrid
+
+#: Bytes a maze cell costs while it is carved: three bool arrays and, at
+#: worst, one (x, y) tuple on the Python stack (~120 B measured).
+BYTES_PER_MAZE_CELL = 130
+#: Bytes a map pixel costs at the peak of :func:`make_maze` and ``save_map``:
+#: the broadcast wall masks, the grid's two arrays and the flipped image.
+BYTES_PER_PIXEL = 12
 
 
-def maze_walls(cells_x: int, cells_y: int, rng: np.random.Generator):
+def available_memory() -> Optional[int]:
+    """Bytes of memory available now (Linux ``MemAvailable``), or None when unknown."""
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        import os
+
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
+def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolution: float) -> tuple:
+    """The map's size in pixels (nx, ny), after checking the maze fits: at
+    most MAX_CELLS pixels, walls and corridors at least a pixel wide, and an
+    estimate of the memory it needs below what the machine has available.
+    Raises ValueError naming the parameter, before anything is allocated."""
+    if wall < resolution:
+        raise ValueError(f"resolution {resolution:g} m is coarser than the {wall:g} m wall: walls would vanish "
+                         f"from the map; use a resolution of at most {wall:g} m")
+    if cell_size - wall < resolution:
+        raise ValueError(f"resolution {resolution:g} m is coarser than the {cell_size - wall:g} m corridor "
+                         f"(cell_size - wall): corridors would vanish; use a resolution of at most "
+                         f"{cell_size - wall:g} m")
+    nx = int(round((cells_x * cell_size + wall) / resolution))
+    ny = int(round((cells_y * cell_size + wall) / resolution))
+    if nx * ny > MAX_CELLS:
+        raise ValueError(f"a {cells_x}x{cells_y}-cell maze at {resolution:g} m is a {nx}x{ny}-pixel map, more than "
+                         f"the {MAX_CELLS:.0e} cells navlab supports; use fewer cells or a coarser resolution")
+    need = cells_x * cells_y * BYTES_PER_MAZE_CELL + nx * ny * BYTES_PER_PIXEL
+    have = available_memory()
+    if have is not None and need > have:
+        raise ValueError(f"a {cells_x}x{cells_y}-cell maze ({nx}x{ny} pixels) needs about {need / 2**30:.1f} GiB, "
+                         f"more than the {have / 2**30:.1f} GiB available")
+    return nx, ny
+
+
+def maze_walls(cells_x: int, cells_y: int, rng: np.random.Generator,
+               progress: Optional[Callable[[int], None]] = None):
     """Carve a perfect maze by randomized depth-first search (recursive backtracker).
 
     Returns ``(east, north)`` bool arrays of shape (cells_y, cells_x): whether
-    the wall on the cell's east / north side stands.
+    the wall on the cell's east / north side stands. ``progress(n)``, when
+    given, is called with the number of cells carved so far (every 1024 cells
+    and at the end).
     """
     east = np.ones((cells_y, cells_x), dtype=bool)
     north = np.ones((cells_y, cells_x), dtype=bool)
     seen = np.zeros((cells_y, cells_x), dtype=bool)
     stack = [(0, 0)]
     seen[0, 0] = True
+    carved = 1
     while stack:
         x, y = stack[-1]
         options = [(dx, dy) for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1))
@@ -39,11 +93,17 @@ def maze_walls(cells_x: int, cells_y: int, rng: np.random.Generator):
             north[ny, nx] = False
         seen[ny, nx] = True
         stack.append((nx, ny))
+        carved += 1
+        if progress is not None and carved % 1024 == 0:
+            progress(carved)
+    if progress is not None:
+        progress(carved)
     return east, north
 
 
 def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0.5,
-              wall: float = 0.1, resolution: float = 0.05) -> OccupancyGrid:
+              wall: float = 0.1, resolution: float = 0.05,
+              progress: Optional[Callable[[int], None]] = None) -> OccupancyGrid:
     """A perfect maze of ``cells_x × cells_y`` cells as an occupancy grid.
 
     Parameters
@@ -57,7 +117,17 @@ def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0
         Wall thickness, m (walls are centred on cell borders; the outer wall
         is included).
     resolution : float
-        Grid resolution, m per pixel.
+        Grid resolution, m per pixel: at most the wall thickness and the
+        corridor width (``cell_size − wall``), so neither vanishes from the map.
+    progress : callable, optional
+        Called with the number of maze cells carved (see :func:`maze_walls`).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: bad sizes, a resolution too coarse for the
+        walls, or a maze whose map exceeds MAX_CELLS pixels or the memory
+        available (checked before anything is allocated; :func:`maze_size`).
 
     Cell (i, j) of the maze has its centre at world
     ``(wall/2 + (i + 0.5)·cell_size, wall/2 + (j + 0.5)·cell_size)``.
@@ -65,15 +135,15 @@ def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0
     for name, v in (("cells_x", cells_x), ("cells_y", cells_y)):
         if isinstance(v, bool) or not isinstance(v, int) or v < 1:
             raise ValueError(f"{name} must be a positive integer, got {v!r}")
-    for name, v in (("cell_size", cell_size), ("wall", wall), ("resolution", resolution)):
-        if not (isinstance(v, (int, float)) and v > 0 and math.isfinite(v)):
-            raise ValueError(f"{name} must be a positive number of metres, got {v!r}")
+    if cells_x * cells_y > MAX_CELLS:
+        raise ValueError(f"a {cells_x}x{cells_y}-cell maze has more than the {MAX_CELLS:.0e} cells navlab supports")
+    cell_size, wall, resolution = (check_length(name, v, allow_zero=False) for name, v in
+                                   (("cell_size", cell_size), ("wall", wall), ("resolution", resolution)))
     if wall >= cell_size:
         raise ValueError(f"wall ({wall} m) must be thinner than cell_size ({cell_size} m)")
+    nx, ny = maze_size(cells_x, cells_y, cell_size, wall, resolution)
     rng = np.random.default_rng(seed)
-    east, north = maze_walls(cells_x, cells_y, rng)
-    width_m, height_m = cells_x * cell_size + wall, cells_y * cell_size + wall
-    nx, ny = int(round(width_m / resolution)), int(round(height_m / resolution))
+    east, north = maze_walls(cells_x, cells_y, rng, progress)
     xs = (np.arange(nx) + 0.5) * resolution - wall / 2  # pixel centres, cell-border frame
     ys = (np.arange(ny) + 0.5) * resolution - wall / 2
     # Which border line (if any) each pixel column / row lies on.

@@ -1,30 +1,82 @@
-"""Occupancy grids: cells indexed ``[y, x]`` (row, column) with a metric frame."""
+"""Occupancy grids: cells indexed ``[y, x]`` (row, column) with a metric frame.
+
+A grid is immutable: its arrays are read-only copies and its fields frozen.
+Planners hang search state and transforms on the grid (``_cache``); because
+nothing can change under them, a plan always reflects the grid as it is.
+Changes go through methods that return a new grid (:meth:`OccupancyGrid.with_blocked`,
+:meth:`~OccupancyGrid.with_origin`, ...), which starts with an empty cache.
+"""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Optional, Tuple
+from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate
 
-@dataclass(eq=False)
+#: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
+#: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
+#: 5 cm, and about 0.3 GB for a grid and its search state. Larger inputs are
+#: refused, with one line, before they are decoded or allocated.
+MAX_CELLS = 100_000_000
+
+
+def _read_only(values: Any, dtype, name: str) -> np.ndarray:
+    """A C-contiguous read-only copy (a caller's later edits cannot reach it,
+    and ``flags.writeable = True`` on it raises)."""
+    try:
+        out = np.array(values, dtype=dtype, order="C", copy=True)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be an array of {np.dtype(dtype).name}: {exc}") from None
+    out.flags.writeable = False
+    return out.view()  # a view of a read-only base can never be made writeable again
+
+
+def _finite_number(name: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise ValueError(f"{name} must be a number, got {value!r}")
+    try:
+        v = float(value)
+    except OverflowError:
+        raise ValueError(f"{name} is too large, got {value!r}") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{name} must be finite, got {value!r}")
+    return v
+
+
+@dataclass(frozen=True, eq=False)
 class OccupancyGrid:
-    """A 2D occupancy grid.
+    """A 2D occupancy grid (immutable).
 
     Attributes
     ----------
-    blocked : ndarray of bool, shape (H, W)
+    blocked : ndarray of bool, shape (H, W), read-only
         Occupied cells, indexed ``[y, x]``.
     resolution : float
-        Metres per cell.
+        Metres per cell, in [MIN_LENGTH, MAX_COORDINATE] (:mod:`navlab.limits`).
     origin : tuple (x, y, yaw)
-        World pose of the outer corner of cell (0, 0), as in ROS map_server.
-    unknown : ndarray of bool, optional
+        World pose of the outer corner of cell (0, 0), as in ROS map_server
+        (m, m, rad); x and y within ±MAX_COORDINATE.
+    unknown : ndarray of bool, read-only
         Cells of unknown occupancy (kept from the map; planners treat them as
-        blocked unless asked to allow them).
+        blocked unless asked to allow them). All False when not given.
     name : str
+    probability : ndarray of float32, read-only, optional
+        Occupancy probability in [0, 1] per cell (NaN where unknown), kept
+        from maps read in ``scale`` or ``raw`` mode. Planners do not use it:
+        cells below certain occupancy are passable, as in Nav2's static
+        costmap layer with its defaults; it is there for a cost layer.
+
+    Examples
+    --------
+    >>> g = OccupancyGrid(np.zeros((3, 4), bool), resolution=0.5)
+    >>> g2 = g.with_blocked(g.blocked | (np.arange(4) == 2))   # a wall in column 2
+    >>> bool(g.blocked[0, 2]), bool(g2.blocked[0, 2])
+    (False, True)
     """
 
     blocked: np.ndarray
@@ -32,27 +84,68 @@ class OccupancyGrid:
     origin: Tuple[float, float, float] = (0.0, 0.0, 0.0)
     unknown: Optional[np.ndarray] = None
     name: str = "grid"
-    _cache: dict = field(default_factory=dict, repr=False)
+    probability: Optional[np.ndarray] = None
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
-        self.blocked = np.ascontiguousarray(np.asarray(self.blocked, dtype=bool))
-        if self.blocked.ndim != 2 or 0 in self.blocked.shape:
-            raise ValueError(f"blocked must be a non-empty 2D array, got shape {self.blocked.shape}")
-        if not (isinstance(self.resolution, (int, float)) and self.resolution > 0 and math.isfinite(self.resolution)):
-            raise ValueError(f"resolution must be a positive number of metres per cell, got {self.resolution!r}")
-        self.resolution = float(self.resolution)
-        origin = tuple(float(v) for v in self.origin)
+        put = object.__setattr__  # frozen: fields are set once, here
+        blocked = _read_only(self.blocked, bool, "blocked")
+        if blocked.ndim != 2 or 0 in blocked.shape:
+            raise ValueError(f"blocked must be a non-empty 2D array, got shape {blocked.shape}")
+        if blocked.size > MAX_CELLS:
+            raise ValueError(f"blocked has {blocked.size} cells, more than the {MAX_CELLS:.0e} navlab supports")
+        put(self, "blocked", blocked)
+        resolution = _finite_number("resolution", self.resolution)
+        if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
+            raise ValueError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
+                             f"got {self.resolution!r}")
+        put(self, "resolution", resolution)
+        try:
+            origin = tuple(self.origin)
+        except TypeError:
+            raise ValueError(f"origin must be (x, y, yaw), got {self.origin!r}") from None
         if len(origin) == 2:
             origin = origin + (0.0,)
         if len(origin) != 3:
             raise ValueError(f"origin must be (x, y, yaw), got {self.origin!r}")
-        self.origin = origin
-        if self.unknown is None:
-            self.unknown = np.zeros_like(self.blocked)
-        self.unknown = np.ascontiguousarray(np.asarray(self.unknown, dtype=bool))
-        if self.unknown.shape != self.blocked.shape:
-            raise ValueError("unknown and blocked differ in shape")
+        x = check_coordinate("origin x", origin[0])
+        y = check_coordinate("origin y", origin[1])
+        yaw = _finite_number("origin yaw", origin[2])
+        put(self, "origin", (x, y, yaw))
+        unknown = np.zeros(blocked.shape, bool) if self.unknown is None else self.unknown
+        unknown = _read_only(unknown, bool, "unknown")
+        if unknown.shape != blocked.shape:
+            raise ValueError(f"unknown has shape {unknown.shape}, blocked {blocked.shape}")
+        put(self, "unknown", unknown)
+        if self.probability is not None:
+            prob = _read_only(self.probability, np.float32, "probability")
+            if prob.shape != blocked.shape:
+                raise ValueError(f"probability has shape {prob.shape}, blocked {blocked.shape}")
+            if np.any((prob < 0) | (prob > 1)):
+                raise ValueError("probability must lie in [0, 1] (NaN for unknown)")
+            put(self, "probability", prob)
+        put(self, "name", str(self.name))
 
+    def __reduce__(self):
+        # rebuilt through the constructor: read-only arrays, and no cache carried along
+        return (_rebuild, (self.blocked, self.resolution, self.origin, self.unknown, self.name, self.probability))
+
+    # -- new grids from this one ------------------------------------------------
+    def replace(self, **changes: Any) -> "OccupancyGrid":
+        """A new grid with some fields changed (validated like the constructor)."""
+        return dataclasses.replace(self, **changes)
+
+    def with_blocked(self, blocked: np.ndarray) -> "OccupancyGrid":
+        """The same grid with ``blocked`` replaced (e.g. ``g.with_blocked(g.blocked | wall)``)."""
+        return self.replace(blocked=blocked)
+
+    def with_unknown(self, unknown: np.ndarray) -> "OccupancyGrid":
+        return self.replace(unknown=unknown)
+
+    def with_origin(self, origin) -> "OccupancyGrid":
+        return self.replace(origin=origin)
+
+    # -- geometry ---------------------------------------------------------------
     @property
     def height(self) -> int:
         return self.blocked.shape[0]
@@ -84,8 +177,13 @@ class OccupancyGrid:
         return local @ self._rotation().T + np.asarray(self.origin[:2])
 
     def world_to_cell(self, xy) -> np.ndarray:
-        """Integer cells (x, y) containing world points (may lie outside the grid)."""
+        """Integer cells (x, y) containing world points (may lie outside the grid).
+
+        Points must be finite (a NaN or infinite coordinate has no cell).
+        """
         p = np.asarray(xy, dtype=float)
+        if not np.all(np.isfinite(p)):
+            raise ValueError(f"world points must be finite, got {p.tolist()}")
         local = (p - np.asarray(self.origin[:2])) @ self._rotation()
         return np.floor(local / self.resolution).astype(np.int64)
 
@@ -98,10 +196,13 @@ class OccupancyGrid:
         blocked cell's centre also blocked (Euclidean distance transform)."""
         from scipy.ndimage import distance_transform_edt
 
-        if not (radius >= 0 and math.isfinite(radius)):
+        if isinstance(radius, bool) or not isinstance(radius, (int, float)) or not (radius >= 0 and math.isfinite(radius)):
             raise ValueError(f"inflation radius must be a non-negative number of metres, got {radius!r}")
         if radius == 0 or not self.blocked.any():
-            return OccupancyGrid(self.blocked.copy(), self.resolution, self.origin, self.unknown.copy(), self.name)
+            return self
         dist = distance_transform_edt(~self.blocked) * self.resolution
-        return OccupancyGrid(dist <= radius + 1e-12, self.resolution, self.origin, self.unknown.copy(),
-                             f"{self.name} (inflated {radius} m)")
+        return self.replace(blocked=dist <= radius + 1e-12, name=f"{self.name} (inflated {radius} m)")
+
+
+def _rebuild(blocked, resolution, origin, unknown, name, probability) -> OccupancyGrid:
+    return OccupancyGrid(blocked, resolution, origin, unknown, name, probability)

@@ -31,6 +31,7 @@ from typing import Any, Dict, Tuple
 
 import numpy as np
 
+from ..limits import check_coordinate
 from ..registry import Registry
 from ..result import Result, Status
 from . import kernels as K
@@ -130,9 +131,19 @@ def _cell(value, what: str) -> Tuple[int, int]:
         x, y = value
         if int(x) == x and int(y) == y:
             return int(x), int(y)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # not a pair, NaN, inf
         pass
     raise ValueError(f"{what} must be an integer cell (x, y), got {value!r}")
+
+
+#: The stats every grid Result carries, whatever its status (inf where there is no path).
+STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells")
+
+
+def _stats(t0: float, expanded: int = 0, cost_cells: float = math.inf, raw_cost_cells: float = math.inf,
+           resolution: float = 1.0) -> Dict[str, Any]:
+    return {"expanded": int(expanded), "time_s": time.perf_counter() - t0, "cost_cells": cost_cells,
+            "length_m": cost_cells * resolution, "raw_cost_cells": raw_cost_cells}
 
 
 def path_cost(cells: np.ndarray) -> float:
@@ -163,7 +174,10 @@ def line_of_sight(grid: OccupancyGrid, a, b, method: str = "supercover", allow_u
 def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: str = "octile",
          connectivity: int = 8, smooth: bool = False, weight: float = 1.0, allow_unknown: bool = False,
          smooth_method: str = "bresenham") -> Result:
-    """Plan on an occupancy grid between cells ``start`` and ``goal`` (x, y).
+    """Plan on an occupancy grid between cells ``start`` and ``goal`` (x, y): the cell-level function.
+
+    Start and goal are cells, and the path joins cell centres; for metres use
+    :func:`plan_world`, or ``navlab.plan`` for every source and planner.
 
     Parameters
     ----------
@@ -187,9 +201,12 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     -------
     Result
         ``cells`` (N, 2) int (x, y), ``path`` (world coordinates of cell
-        centres), ``cost`` (length in cells: 1 per straight step, √2 per
-        diagonal; Euclidean between smoothed waypoints), ``stats`` (expanded,
-        time_s, length_m, raw_cost when smoothed), and when smoothed
+        centres), ``cost`` (path length in **metres**, as for every navlab
+        planner), ``stats`` with the same keys whatever the status
+        (:data:`STATS_KEYS`): ``expanded``, ``time_s``, ``cost_cells`` (length
+        in cells: 1 per straight step, √2 per diagonal, Euclidean between
+        smoothed waypoints), ``length_m`` (= ``cost``), ``raw_cost_cells``
+        (before smoothing); ``inf`` where there is no path. When smoothed,
         ``tree = {"raw_cells": ...}``, the path before smoothing (for drawing).
 
     References
@@ -218,36 +235,44 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     s = searcher_for(grid, allow_unknown)
     for label, cell, status in (("start", s_cell, Status.INVALID_START), ("goal", g_cell, Status.INVALID_GOAL)):
         if not (0 <= cell[0] < grid.width and 0 <= cell[1] < grid.height):
-            return Result(status=status, params=params, cells=np.empty((0, 2), dtype=np.int64),
+            return Result(status=status, params=params, stats=_stats(t0), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
         if s.free[s.index(*cell)] == 0:
             kind = "unknown" if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
-            return Result(status=status, params=params, cells=np.empty((0, 2), dtype=np.int64),
+            return Result(status=status, params=params, stats=_stats(t0), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
     code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
     b = s.index(*g_cell)
     status, expanded = s.search(algorithm, s.index(*s_cell), b, connectivity, code,
                                 float(weight) if algorithm == "astar" else 1.0)
-    found = status == 1
-    stats: Dict[str, Any] = {"expanded": int(expanded)}
-    if not found:
-        stats["time_s"] = time.perf_counter() - t0
-        return Result(status=Status.FAILED, params=params, stats=stats, cells=np.empty((0, 2), dtype=np.int64),
+    if status != 1:
+        return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded),
+                      cells=np.empty((0, 2), dtype=np.int64),
                       reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
     cells = K.trace_path(s.parent, b, s.stride, algorithm == "jps")
     raw = None
+    raw_cost = path_cost(cells)
     if smooth and len(cells) > 2:
         raw = cells
-        stats["raw_cost"] = path_cost(cells)
         cells = K.smooth_path(s.free, s.stride, np.ascontiguousarray(cells), smooth_method == "bresenham")
-    cost = path_cost(cells)
-    stats["length_m"] = cost * grid.resolution
-    stats["time_s"] = time.perf_counter() - t0
-    return Result(status=Status.EXACT, path=grid.cell_to_world(cells), cost=cost, stats=stats,
+    cost = path_cost(cells) if raw is not None else raw_cost
+    stats = _stats(t0, expanded, cost, raw_cost, grid.resolution)
+    return Result(status=Status.EXACT, path=grid.cell_to_world(cells), cost=stats["length_m"], stats=stats,
                   params=params, cells=cells, tree=None if raw is None else {"raw_cells": raw})
 
 
 def plan_world(grid: OccupancyGrid, start_xy, goal_xy, **kwargs: Any) -> Result:
-    """:func:`plan` with start and goal in world coordinates (metres)."""
-    cells = grid.world_to_cell(np.array([start_xy, goal_xy], dtype=float))
+    """:func:`plan` with start and goal in world coordinates (metres).
+
+    Coordinates must be finite and within ±MAX_COORDINATE (:mod:`navlab.limits`);
+    the cells containing them are planned between.
+    """
+    points = []
+    for label, xy in (("start", start_xy), ("goal", goal_xy)):
+        try:
+            x, y = xy
+        except (TypeError, ValueError):
+            raise ValueError(f"{label} must be a point (x, y) in metres, got {xy!r}") from None
+        points.append((check_coordinate(f"{label} x", x), check_coordinate(f"{label} y", y)))
+    cells = grid.world_to_cell(np.array(points, dtype=float))
     return plan(grid, tuple(cells[0]), tuple(cells[1]), **kwargs)

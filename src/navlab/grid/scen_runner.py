@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
@@ -18,6 +18,12 @@ from .scen import Scenario, read_scen
 #: straight + 1.414213562 · diagonal rounded to the printed digits (worst
 #: difference 0.49 units), while exact √2 drifts by ~3.7e-10 per diagonal step.
 MOVINGAI_SQRT2 = 1.414213562
+
+#: Algorithms whose paths are not 8-connected grid paths: the stored octile
+#: optimum is an upper bound for them (any-angle paths are shorter by design).
+ANY_ANGLE = ("theta_star",)
+
+WORST = 5  #: rows listed in the summary
 
 
 def benchmark_length(cells: np.ndarray) -> float:
@@ -35,13 +41,42 @@ def resolve_map(scen_path: Path, scenario: Scenario, map_path: Optional[str]) ->
     return candidate
 
 
+def compare(sc: Scenario, result, any_angle: bool) -> Dict[str, Any]:
+    """One row: the path's length against the stored optimum.
+
+    Grid algorithms match when the length computed the benchmark's way
+    (:data:`MOVINGAI_SQRT2`) equals the optimum to one unit of its last
+    printed digit. Any-angle algorithms match when their exact length is at
+    most the optimum (plus that unit): lower is fine. ``excess`` is the
+    length minus the optimum (signed; what the worst rows are ranked by).
+    """
+    row: Dict[str, Any] = {"start": list(sc.start), "goal": list(sc.goal), "optimal": sc.optimal,
+                           "status": result.status.name, "length": None, "exact_length": None, "excess": None,
+                           "match": False, "expanded": result.stats["expanded"], "time_s": result.stats["time_s"]}
+    if not result.success:
+        return row
+    exact = float(result.stats["cost_cells"])
+    length = exact if any_angle else benchmark_length(result.cells)
+    tol = sc.tolerance() * (1 + 1e-9)
+    excess = length - sc.optimal
+    row.update(length=length, exact_length=exact, excess=excess,
+               match=bool(excess <= tol if any_angle else abs(excess) <= tol))
+    return row
+
+
 def run_scenarios(scen_path, map_path: Optional[str] = None, algorithm: str = "astar",
-                  heuristic: str = "octile", limit: Optional[int] = None, every: int = 1) -> Dict[str, Any]:
+                  heuristic: str = "octile", limit: Optional[int] = None, every: int = 1,
+                  progress: Optional[Callable[[int], None]] = None) -> Dict[str, Any]:
     """Plan every scenario (8-connected, no corner cutting) and compare lengths.
 
-    A scenario matches when the path's length, computed as the benchmark does
-    (:data:`MOVINGAI_SQRT2`), equals the stored optimum to one unit of its last
-    printed digit. Returns per-scenario rows and a summary.
+    A scenario whose start or goal is blocked or outside the map is planned
+    like any other and counted by its status (``INVALID_START`` /
+    ``INVALID_GOAL``) under ``invalid``, apart from the mismatches.
+    ``progress(n)`` is called after each scenario with the number done (for a
+    progress bar). Returns ``{"summary": ..., "rows": [...]}``; the summary
+    counts matches, mismatches, invalid rows and every status, and lists the
+    five worst rows (failed first, then by distance from the optimum; for
+    any-angle algorithms, by how far they exceed it).
     """
     scen_path = Path(scen_path)
     scenarios = read_scen(scen_path)[::every]
@@ -53,21 +88,43 @@ def run_scenarios(scen_path, map_path: Optional[str] = None, algorithm: str = "a
     if (grid.width, grid.height) != (scenarios[0].width, scenarios[0].height):
         raise MapFormatError(f"{scen_path}: scenarios are for a {scenarios[0].width}x{scenarios[0].height} map, "
                              f"the map is {grid.width}x{grid.height}")
+    any_angle = algorithm in ANY_ANGLE
     plan(grid, scenarios[0].start, scenarios[0].goal, algorithm=algorithm, heuristic=heuristic)  # warm up
     rows: List[Dict[str, Any]] = []
     for i, sc in enumerate(scenarios):
         r = plan(grid, sc.start, sc.goal, algorithm=algorithm, heuristic=heuristic)
-        length = benchmark_length(r.cells) if r.success else math.inf
-        ok = r.success and abs(length - sc.optimal) <= sc.tolerance() * (1 + 1e-9)
-        rows.append({"index": i, "start": list(sc.start), "goal": list(sc.goal), "optimal": sc.optimal,
-                     "length": length if r.success else None, "exact_length": r.cost if r.success else None,
-                     "status": r.status.name, "match": bool(ok), "expanded": r.stats.get("expanded"),
-                     "time_s": r.stats["time_s"]})
+        rows.append({"index": i, **compare(sc, r, any_angle)})
+        if progress is not None:
+            progress(i + 1)
+    return {"summary": summarize(rows, grid.name, algorithm, heuristic), "rows": rows}
+
+
+def summarize(rows: List[Dict[str, Any]], map_name: str, algorithm: str, heuristic: str) -> Dict[str, Any]:
+    any_angle = algorithm in ANY_ANGLE
+    invalid = [row for row in rows if row["status"].startswith("INVALID")]
+    statuses: Dict[str, int] = {}
+    for row in rows:
+        statuses[row["status"]] = statuses.get(row["status"], 0) + 1
     times = np.array([row["time_s"] for row in rows])
+
+    def badness(row):
+        if row["excess"] is None:
+            return math.inf
+        return row["excess"] if any_angle else abs(row["excess"])
+
+    ranked = sorted((row for row in rows if not row["status"].startswith("INVALID")), key=badness, reverse=True)
     summary = {
-        "map": grid.name, "scenarios": len(rows), "algorithm": algorithm, "heuristic": heuristic,
-        "mismatches": sum(not row["match"] for row in rows),
+        "map": map_name, "scenarios": len(rows), "algorithm": algorithm, "heuristic": heuristic,
+        "comparison": "at most the octile optimum" if any_angle else "equal to the octile optimum",
+        "matches": sum(row["match"] for row in rows),
+        "mismatches": sum(not row["match"] for row in rows) - len(invalid),
+        "invalid": len(invalid), "statuses": statuses,
+        "worst": [{k: row[k] for k in ("index", "start", "goal", "optimal", "length", "excess", "status", "match")}
+                  for row in ranked[:WORST]],
         "time_median_ms": float(np.median(times) * 1000), "time_p95_ms": float(np.percentile(times, 95) * 1000),
         "time_total_s": float(times.sum()),
     }
-    return {"summary": summary, "rows": rows}
+    if any_angle:
+        ratios = [row["length"] / row["optimal"] for row in rows if row["length"] is not None and row["optimal"] > 0]
+        summary["length_over_optimal_median"] = float(np.median(ratios)) if ratios else None
+    return summary

@@ -4,6 +4,7 @@ that turns bad settings into one error line."""
 
 from __future__ import annotations
 
+import signal
 import sys
 import time
 from typing import Any, Callable, Dict, List, NamedTuple, Optional, Sequence
@@ -65,8 +66,9 @@ class NavlabNode(Node):
         self.params: Dict[str, Any] = {}
         for p in self.PARAMETERS:
             # dynamic typing, then our own check: `-p x:=1` for a float must work
-            self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
-                                                                         dynamic_typing=True))
+            if not self.has_parameter(p.name):  # a node that declares every override has it already
+                self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
+                                                                             dynamic_typing=True))
             self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
 
     def log(self, level: str, text: str) -> None:
@@ -107,11 +109,21 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
         except (ValueError, FileNotFoundError, KeyError) as exc:
             print(f"Error: {exc}", file=sys.stderr)
             return 2
+        except Exception:
+            if rclpy.ok():
+                raise
+            return 0  # Ctrl-C while the node was being built: rclpy has shut down under it
         try:
             rclpy.spin(node)
         except (KeyboardInterrupt, ExternalShutdownException):
             pass
+        except Exception:
+            if rclpy.ok():
+                raise
+            # SIGINT/SIGTERM shut rclpy down while a callback was publishing
         finally:
+            # a second Ctrl-C must not break the teardown with a traceback
+            signal.signal(signal.SIGINT, signal.SIG_IGN)
             node.destroy_node()
     finally:
         rclpy.try_shutdown()

@@ -100,6 +100,46 @@ def path_to_msg(points: np.ndarray, frame_id: str = "map", stamp=None):
     return msg
 
 
+def tree_edges(nodes: np.ndarray, parent: np.ndarray) -> np.ndarray:
+    """(E, 2, 2) segments (parent point, child point) of a search tree given
+    as node positions and parent indices (−1 for the root)."""
+    nodes = np.asarray(nodes, float).reshape(-1, 2)
+    parent = np.asarray(parent, np.int64).reshape(-1)
+    child = np.flatnonzero(parent >= 0)
+    return np.stack([nodes[parent[child]], nodes[child]], axis=1)
+
+
+def tree_to_markers(nodes: np.ndarray, parent: np.ndarray, frame_id: str = "map", stamp=None,
+                    width: float = 0.01, color=(0.2, 0.5, 1.0, 0.6)):
+    """visualization_msgs/MarkerArray drawing a search tree: a DELETEALL (the
+    previous plan's tree goes), then one LINE_LIST marker with a point pair
+    per edge (parent, child), in ``frame_id`` at z = 0. RViz and Foxglove show it.
+
+    Parameters
+    ----------
+    nodes : (N, 2) array
+    parent : (N,) int array
+        Each node's parent index, −1 for the root (``Result.tree``).
+    width : float
+        Line width (m).
+    color : (r, g, b, a)
+    """
+    from geometry_msgs.msg import Point
+    from visualization_msgs.msg import Marker, MarkerArray
+
+    clear = Marker(action=Marker.DELETEALL)
+    clear.header.frame_id = frame_id
+    lines = Marker(ns="plan_tree", id=0, type=Marker.LINE_LIST, action=Marker.ADD)
+    lines.header.frame_id = frame_id
+    if stamp is not None:
+        clear.header.stamp = lines.header.stamp = stamp
+    lines.pose.orientation.w = 1.0
+    lines.scale.x = float(width)
+    lines.color.r, lines.color.g, lines.color.b, lines.color.a = map(float, color)
+    lines.points = [Point(x=float(x), y=float(y)) for x, y in tree_edges(nodes, parent).reshape(-1, 2).tolist()]
+    return MarkerArray(markers=[clear, lines])
+
+
 def path_from_msg(msg) -> np.ndarray:
     return np.array([[p.pose.position.x, p.pose.position.y] for p in msg.poses], dtype=float).reshape(-1, 2)
 

@@ -10,13 +10,14 @@ Each class reports through ``log(level, text)`` with level one of
 from __future__ import annotations
 
 import math
-from typing import Callable, Optional, Tuple
+from typing import Any, Callable, Dict, Optional, Tuple
 
 import numpy as np
 
 from ..control.base import REACHED, STALLED, Controller
 from ..grid.occupancy import OccupancyGrid
-from ..grid.planner import GRID_ALGORITHMS, HEURISTICS, plan_world
+from ..planning import is_grid_planner
+from ..result import Result
 
 Log = Callable[[str, str], None]
 Twist = Tuple[float, float, float]
@@ -35,40 +36,99 @@ def finite(values, what: str, log: Log) -> bool:
     return False
 
 
+#: node-level defaults of the grid searches that differ from navlab.grid's
+#: (seed 002's planner shortcuts its path along lines of sight)
+GRID_DEFAULTS = {"smooth": True}
+
+
+def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, seed: int,
+                robot_radius: float, allow_unknown: bool, params: Dict[str, Any]) -> Result:
+    """:func:`navlab.plan` on a map: the occupied (and, unless
+    ``allow_unknown``, unknown) cells are the obstacles, kept
+    ``robot_radius`` away from the path. ``sampler`` goes to the tree
+    planners only."""
+    from ..planning import plan
+    from ..world.world import World
+
+    world = World.from_grid(grid, start, goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
+    extra = {"sampler": None} if is_grid_planner(algorithm) else {"sampler": sampler}
+    return plan(world, planner=algorithm, seed=seed, **extra, **params)
+
+
 class GoalPlanner:
-    """Plans a path from the latest pose to each goal on the latest map
-    (seed 002's A* path planner).
+    """Plans a path from the latest pose to each goal on the latest map, with
+    any registered planner: the grid searches (seed 002's A*, Dijkstra, JPS,
+    Theta*) or the RRT family with any sampler (seeds 000, 001, 003).
 
     A goal that arrives before the map or the first pose is kept and planned
     as soon as both are known. A goal outside the map, in an obstacle or
     closer to one than ``inflation_radius`` gives an error and no path.
+    Planning goes through :func:`navlab.plan` on
+    :meth:`navlab.World.from_grid` of the received map.
 
     Parameters
     ----------
     log : callable
-    algorithm, heuristic, connectivity, smooth, allow_unknown
-        As in :func:`navlab.grid.plan`.
+    algorithm : str
+        Any registered planner (``navlab list``).
+    sampler : str
+        For the tree planners (a grid search takes only ``uniform``, the default).
+    seed : int
+        Every plan draws from a fresh generator with this seed: the same map,
+        pose and goal give the same path.
     inflation_radius : float
-        Obstacles are grown by this much before planning (m): the robot's
-        radius plus a margin for tracking.
+        The clearance kept from obstacles (m): the robot's radius plus a
+        margin for tracking.
+    allow_unknown : bool
+        Plan through cells of unknown occupancy.
+    on_tree : callable, optional
+        Called with ``(nodes, parent)`` after every plan of a tree planner
+        (also a failed one): the search tree, for drawing.
+    **params
+        The planner's and sampler's settings, routed by name as in
+        :func:`navlab.plan` (``max_iter``, ``expand_dis``, ``heuristic``,
+        ``connectivity``, ...).
+
+    Raises
+    ------
+    ValueError
+        An unknown algorithm, sampler or parameter (with a "did you mean"),
+        or a bad value: found by planning once on a small empty map, which
+        also compiles the planner's kernels before the first goal.
     """
 
-    def __init__(self, log: Log, algorithm: str = "astar", heuristic: str = "octile", connectivity: int = 8,
-                 smooth: bool = True, inflation_radius: float = 0.175, allow_unknown: bool = False) -> None:
-        GRID_ALGORITHMS.get(algorithm)
-        HEURISTICS.get(heuristic)
-        if connectivity not in (4, 8):
-            raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
+    def __init__(self, log: Log, algorithm: str = "astar", sampler: str = "uniform", seed: int = 0,
+                 inflation_radius: float = 0.175, allow_unknown: bool = False,
+                 on_tree: Optional[Callable[[np.ndarray, np.ndarray], None]] = None, **params: Any) -> None:
         if not (inflation_radius >= 0 and math.isfinite(inflation_radius)):
             raise ValueError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
-        self.log = log
-        self.options = dict(algorithm=algorithm, heuristic=heuristic, connectivity=connectivity, smooth=smooth,
-                            allow_unknown=allow_unknown)
+        self.tree_planner = not is_grid_planner(algorithm)  # unknown names: "did you mean"
+        if not self.tree_planner:
+            if sampler != "uniform":
+                raise ValueError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
+            params = {**GRID_DEFAULTS, **params}
+        elif on_tree is not None:
+            params["keep_tree"] = True
+        self.log, self.on_tree = log, on_tree
+        self.query = dict(algorithm=algorithm, sampler=sampler, seed=seed, allow_unknown=allow_unknown,
+                          params=params)
         self.inflation_radius = float(inflation_radius)
         self.grid: Optional[OccupancyGrid] = None
         self.inflated: Optional[OccupancyGrid] = None
         self.pose: Optional[np.ndarray] = None
         self.pending: Optional[np.ndarray] = None
+        self._check_settings()
+
+    def _check_settings(self) -> None:
+        """Plan once on a 2 m × 2 m empty map: bad names and values raise
+        here, at start-up, and the kernels are compiled before the first goal."""
+        q = dict(self.query)
+        params = dict(q.pop("params"))
+        if self.tree_planner:
+            params["max_iter"] = 64
+            params.pop("max_time", None)
+        empty = OccupancyGrid(np.zeros((20, 20), bool), 0.1, (0.0, 0.0, 0.0))
+        plan_on_map(empty, (0.5, 0.5), (1.5, 1.5), robot_radius=0.0, params=params, **q)
 
     def set_map(self, grid: OccupancyGrid) -> Optional[np.ndarray]:
         self.grid, self.inflated = grid, grid.inflate(self.inflation_radius)
@@ -111,7 +171,7 @@ class GoalPlanner:
         x, y = int(cell[0]), int(cell[1])
         if grid.blocked[y, x]:
             return "is in an obstacle"
-        if grid.unknown[y, x] and not self.options["allow_unknown"]:
+        if grid.unknown[y, x] and not self.query["allow_unknown"]:
             return "is in unknown space (set allow_unknown to plan through it)"
         if self.inflated.blocked[y, x]:
             return f"is closer to an obstacle than the inflation radius {self.inflation_radius:g} m"
@@ -124,14 +184,22 @@ class GoalPlanner:
             if why is not None:
                 self.log("error", f"no path: the {label} {_xy(p)} {why}")
                 return None
-        result = plan_world(self.inflated, start, goal, **self.options)
+        start, goal = tuple(map(float, start)), tuple(map(float, goal))
+        try:
+            result = plan_on_map(self.grid, start, goal, robot_radius=self.inflation_radius, **self.query)
+        except ValueError as exc:  # a setting this map cannot take (e.g. a sampler parameter)
+            self.log("error", f"no path from {_xy(start)} to {_xy(goal)}: {exc}")
+            return None
+        if self.on_tree is not None and self.tree_planner and result.tree is not None:
+            self.on_tree(result.tree["nodes"], result.tree["parent"])
+        what = self.query["algorithm"]
         if not result.success:
-            self.log("error", f"no path from {_xy(start)} to {_xy(goal)}: {result.status.name} {result.reason}")
+            self.log("error", f"no path from {_xy(start)} to {_xy(goal)} ({what}): {result.status.name} {result.reason}")
             return None
         path = np.array(result.path, float)
-        path[0], path[-1] = start, goal  # cell centres → the exact endpoints
-        self.log("info", f"path from {_xy(start)} to {_xy(goal)}: {len(path)} poses, "
-                         f"{result.stats['length_m']:.2f} m, {result.stats['time_s'] * 1000:.1f} ms")
+        length = float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1)))
+        self.log("info", f"path from {_xy(start)} to {_xy(goal)} ({what}): {len(path)} poses, "
+                         f"{length:.2f} m, {result.stats['time_s'] * 1000:.1f} ms")
         return path
 
 

@@ -1,8 +1,8 @@
 """``navlab ros demo``: a whole pipeline without ros2 launch, driven to one
 goal and judged from ``/odom``.
 
-- ``diff`` (seed 002): map_server + sim + astar_pathplanner + goto_waypoint
-  on a map (a generated maze by default).
+- ``diff`` (seed 002): map_server + sim + pathplanner (A* by default, or any
+  registered planner) + goto_waypoint on a map (a generated maze by default).
 - ``omni3`` (seed 004): sim + potential_field_navigator on a world or map
   (the ``one_obstacle`` scene by default).
 
@@ -17,10 +17,12 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
+import shutil
 import tempfile
 import time
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, Iterator, List, Optional, Sequence
 
 import numpy as np
 import rclpy
@@ -53,8 +55,10 @@ def maze_setup(directory: Path, size: int = DEFAULT_MAZE, seed: int = 0):
 
 
 def pipeline(world: str, robot: str, start: Sequence[float], real_time_factor: float,
-             sim_params: Optional[Dict[str, Any]] = None) -> List:
-    """The nodes and their parameters for one robot type."""
+             sim_params: Optional[Dict[str, Any]] = None, planner: str = "astar",
+             planner_params: Optional[Dict[str, Any]] = None) -> List:
+    """The nodes and their parameters for one robot type; ``planner`` and
+    ``planner_params`` go to the diff pipeline's pathplanner node."""
     from ..robots import make_robot
     from ..sim.runner import PLAN_MARGIN
 
@@ -65,7 +69,8 @@ def pipeline(world: str, robot: str, start: Sequence[float], real_time_factor: f
         return [sim, ("potential_field_navigator", {"use_sim_time": True})]
     radius = make_robot(robot).radius
     return [("map_server", {"yaml_filename": world}), sim,
-            ("astar_pathplanner", {"use_sim_time": True, "inflation_radius": radius + PLAN_MARGIN}),
+            ("pathplanner", {"use_sim_time": True, "inflation_radius": radius + PLAN_MARGIN, "algorithm": planner,
+                             **(planner_params or {})}),
             ("goto_waypoint", {"use_sim_time": True})]
 
 
@@ -73,8 +78,14 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
              real_time_factor: float = 5.0, processes: bool = False, record: Optional[str] = None,
              max_time: Optional[float] = None, timeout: float = 300.0, tolerance: float = 0.1,
              log_dir: Optional[str] = None, sim_params: Optional[Dict[str, Any]] = None,
+             planner: str = "astar", planner_params: Optional[Dict[str, Any]] = None,
              progress=None) -> Dict[str, Any]:
     """Run one mission; returns its summary (see :class:`Mission`).
+
+    ``planner`` (any registered planner) and ``planner_params`` (its and its
+    sampler's settings, ``sampler`` and ``seed`` included) configure the
+    diff pipeline's pathplanner node. The generated maze is written to
+    ``log_dir`` when given (see :func:`run_folder`).
 
     Raises
     ------
@@ -88,11 +99,10 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
         raise ValueError(f"robot must be diff or omni3, got {robot!r}")
     if not (real_time_factor > 0 and math.isfinite(real_time_factor)):
         raise ValueError(f"real_time_factor must be positive, got {real_time_factor!r}")
-    tmp = tempfile.TemporaryDirectory(prefix="navlab-demo-")
-    try:
+    with run_folder(log_dir) as folder:
         if world is None:
             if robot == "diff":
-                world, maze_start, maze_goal = maze_setup(Path(tmp.name), maze_size)
+                world, maze_start, maze_goal = maze_setup(folder, maze_size)
                 start, goal = start or maze_start, goal or maze_goal
             else:
                 world = "one_obstacle"
@@ -106,12 +116,45 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
                                  "(or use --robot omni3 in a world file)")
             start, goal = start or scene.start, goal or scene.goal
         goal = (float(goal[0]), float(goal[1]))
-        specs = pipeline(str(world), robot, start, real_time_factor, sim_params)
+        specs = pipeline(str(world), robot, start, real_time_factor, sim_params, planner, planner_params)
         if max_time is None:
             max_time = 600.0
         return _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress)
-    finally:
-        tmp.cleanup()
+
+
+#: temporary run folders: navlab-demo-<pid of the run>-<random>
+TEMP_PREFIX = "navlab-demo-"
+
+
+@contextlib.contextmanager
+def run_folder(log_dir: Optional[str] = None) -> Iterator[Path]:
+    """Where a run writes its files (the generated maze): ``log_dir`` when
+    given, kept with the node logs as part of the run's output; otherwise a
+    temporary folder removed at the end. A run killed with SIGKILL cannot
+    remove its temporary folder, so each run first removes those of runs
+    whose process is gone (the pid is in the name)."""
+    if log_dir is not None:
+        folder = Path(log_dir)
+        folder.mkdir(parents=True, exist_ok=True)
+        yield folder
+        return
+    root = Path(tempfile.gettempdir())
+    for stale in root.glob(f"{TEMP_PREFIX}*-*"):
+        pid = stale.name[len(TEMP_PREFIX):].split("-")[0]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(stale, ignore_errors=True)
+    with tempfile.TemporaryDirectory(prefix=f"{TEMP_PREFIX}{os.getpid()}-") as tmp:
+        yield Path(tmp)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # another user's process
+        return True
+    return True
 
 
 def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress) -> Dict[str, Any]:

@@ -15,12 +15,18 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 NODES: Dict[str, Tuple[str, str]] = {
     "map_server": ("navlab.ros.map_server", "MapServer"),
     "sim": ("navlab.ros.sim", "SimNode"),
-    "astar_pathplanner": ("navlab.ros.astar_pathplanner", "AStarPathPlanner"),
+    "pathplanner": ("navlab.ros.pathplanner", "PathPlanner"),
+    "astar_pathplanner": ("navlab.ros.astar_pathplanner", "AStarPathPlanner"),  # its first name
     "goto_waypoint": ("navlab.ros.goto_waypoint", "GotoWaypointNode"),
     "potential_field_navigator": ("navlab.ros.potential_field_navigator", "PotentialFieldNavigator"),
 }
 
 NodeSpec = Tuple[str, Dict[str, Any]]
+
+#: a node process's first instructions: quiet on Ctrl-C from the start
+#: (importing navlab takes a second or two), then navlab.ros.entry.run_child
+CHILD_BOOTSTRAP = ("import os, signal, sys; signal.signal(signal.SIGINT, lambda *_: os._exit(130)); "
+                   "from navlab.ros.entry import run_child; sys.exit(run_child(sys.argv[1:]))")
 
 
 def check_node_name(name: str) -> None:
@@ -53,8 +59,16 @@ def ros_args(params: Dict[str, Any]) -> List[str]:
 
 
 class NodeProcesses:
-    """Child processes running nodes; a context manager that interrupts
-    them (as Ctrl-C would) on exit, and kills those that hang.
+    """Child processes running nodes; a context manager that stops them on
+    exit (SIGTERM, on which rclpy shuts a node down cleanly) and kills those
+    that hang.
+
+    Each node runs in a process group of its own, so a terminal's Ctrl-C
+    reaches only the launcher, which then stops each node once: a SIGINT
+    would raise KeyboardInterrupt in a node still starting Python, and a
+    second one would break a node's shutdown, each with a traceback. Each
+    node dies with the launcher, even a SIGKILLed one
+    (:func:`navlab.ros.entry.die_with_parent`).
 
     Parameters
     ----------
@@ -71,16 +85,26 @@ class NodeProcesses:
         self.procs: List[Tuple[str, subprocess.Popen]] = []
 
     def __enter__(self) -> "NodeProcesses":
-        for name, params in self.specs:
-            out = None
-            if self.log_dir is not None:
-                Path(self.log_dir).mkdir(parents=True, exist_ok=True)
-                out = open(Path(self.log_dir) / f"{name}.log", "w")
-            cmd = [sys.executable, "-m", NODES[name][0], *ros_args(params)]
-            self.procs.append((name, subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT if out else None,
-                                                      env=os.environ.copy())))
-            if out is not None:
-                out.close()  # the child holds its own copy
+        from .entry import PARENT_ENV
+
+        env = {**os.environ, PARENT_ENV: str(os.getpid())}
+        try:
+            for name, params in self.specs:
+                out = None
+                if self.log_dir is not None:
+                    Path(self.log_dir).mkdir(parents=True, exist_ok=True)
+                    out = open(Path(self.log_dir) / f"{name}.log", "w")
+                cmd = [sys.executable, "-c", CHILD_BOOTSTRAP, name, *ros_args(params)]
+                try:
+                    proc = subprocess.Popen(cmd, stdout=out, stderr=subprocess.STDOUT if out else None, env=env,
+                                            process_group=0)
+                finally:
+                    if out is not None:
+                        out.close()  # the child holds its own copy
+                self.procs.append((name, proc))
+        except BaseException:  # Ctrl-C or an OSError half-way: stop the nodes already started
+            self.__exit__()
+            raise
         return self
 
     def failed(self) -> List[Tuple[str, int]]:
@@ -90,7 +114,7 @@ class NodeProcesses:
     def __exit__(self, *exc) -> None:
         for _, p in self.procs:
             if p.poll() is None:
-                p.send_signal(signal.SIGINT)
+                p.send_signal(signal.SIGTERM)
         for _, p in self.procs:
             try:
                 p.wait(timeout=10)

@@ -12,6 +12,7 @@ from nav_msgs.msg import OccupancyGrid, Odometry
 from nav_msgs.msg import Path as PathMsg
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
+from visualization_msgs.msg import MarkerArray
 
 from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, NavlabNode
 from .convert import tf_message_type
@@ -23,6 +24,7 @@ TOPICS: Dict[str, Tuple[type, object]] = {
     "/odom": (Odometry, DEFAULT_QOS),
     "/ground_truth": (Odometry, DEFAULT_QOS),
     "/plan": (PathMsg, DEFAULT_QOS),
+    "/plan_tree": (MarkerArray, DEFAULT_QOS),
     "/cmd_vel": (Twist, DEFAULT_QOS),
     "/scan": (LaserScan, SCAN_QOS),
     "/clock": (Clock, DEFAULT_QOS),

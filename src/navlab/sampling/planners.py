@@ -29,6 +29,9 @@ PLANNERS: Registry[type] = Registry("planner")
 
 RngLike = Union[None, int, np.random.Generator]
 
+#: nearest-neighbour indexes a tree planner can use (see TreePlanner)
+INDEXES = ("grid", "scan")
+
 
 def _check_positive(name: str, value: Any, integer: bool = False) -> None:
     if value is None:
@@ -72,6 +75,10 @@ class TreePlanner:
         Samples drawn per call of the sampler.
     keep_tree : bool
         Return the tree in ``Result.tree`` (for drawing).
+    index : {"grid", "scan"}
+        How nearest and near-set queries are answered: the bucket grid
+        (:mod:`navlab.sampling.bucket_grid`), or a linear scan of every node,
+        the reference it is tested against. Both grow the same tree.
     """
 
     mode = K.MODE_RRT
@@ -79,13 +86,14 @@ class TreePlanner:
 
     def __init__(self, sampler: Union[str, Sampler] = "uniform", expand_dis: Optional[float] = None,
                  max_iter: Optional[int] = None, max_time: Optional[float] = None,
-                 batch_size: int = 64, keep_tree: bool = False) -> None:
+                 batch_size: int = 64, keep_tree: bool = False, index: str = "grid") -> None:
         self.sampler = sampler
         self.expand_dis = expand_dis
         self.max_iter = max_iter
         self.max_time = max_time
         self.batch_size = batch_size
         self.keep_tree = keep_tree
+        self.index = index
 
     # -- settings -----------------------------------------------------------
     def get_params(self) -> Dict[str, Any]:
@@ -96,6 +104,8 @@ class TreePlanner:
         _check_positive("max_iter", self.max_iter, integer=True)
         _check_positive("max_time", self.max_time)
         _check_positive("batch_size", self.batch_size, integer=True)
+        if self.index not in INDEXES:
+            raise ValueError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
 
     def resolved_params(self, world) -> Dict[str, Any]:
         """Settings with the world-derived defaults filled in."""
@@ -140,15 +150,18 @@ class TreePlanner:
         invalid = _check_query(world, checker)
         if invalid is not None:
             invalid.params = params
+            invalid.stats = _stats(checker=checker, elapsed=time.perf_counter() - t0)
             return invalid
 
         max_iter = params["max_iter"]
-        tree = K.Tree(max_iter + 1, world.start, max_iter)
+        tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid")
         fparams = self._fparams(world, params)
         geom = checker.geometry
-        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.istate, fparams, self.mode):
+        if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.goal_slot, tree.istate,
+                                fparams, self.mode):
             tree.best_cost[0] = tree.goal_extra[0]
             tree.istate[K.S_BEST] = 0
+            tree.record_cost(0)
         box = BoxRegion(world.bounds)
         it = 0
         first_time = None
@@ -158,34 +171,23 @@ class TreePlanner:
                 break
             batch = min(self.batch_size, max_iter - it)
             samples = np.ascontiguousarray(
-                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box)))
-            used = K.grow(samples, it, geom, tree.xy, tree.parent, tree.cost, tree.child, tree.sibling,
-                          tree.goal_node, tree.goal_extra, tree.trace, tree.istate, tree.best_cost,
-                          fparams, self.mode, tree.scratch_idx, tree.scratch_val, tree.scratch_dist,
-                          tree.scratch_state, tree.scratch_stack)
+                sampler.sample(world, rng, batch, checker=checker, region=self._region(world, tree, box),
+                               deadline=None if self.max_time is None else t0 + self.max_time))
+            used = tree.grow(samples, it, geom, fparams, self.mode)
             it += used
             if first_time is None and tree.istate[K.S_FIRST_ITER] >= 0:
                 first_time = time.perf_counter() - t0
             if tree.istate[K.S_DONE]:
                 break
         checker.add_counts(segments=int(tree.istate[K.S_EDGE_CHECKS]))
-        if tree.istate[K.S_GOALS] > 0 and self.mode == K.MODE_RRT_STAR:
-            # Rewiring may have lowered a goal node's cost after it was found.
-            K._refresh_best(tree.cost, tree.goal_node, tree.goal_extra, tree.istate, tree.best_cost)
         return self._result(world, tree, it, checker, params, time.perf_counter() - t0, first_time)
 
     def _result(self, world, tree, iterations, checker, params, elapsed, first_time) -> Result:
-        stats: Dict[str, Any] = {
-            "iterations": int(iterations),
-            "nodes": tree.size,
-            "collision_checks": checker.checks,
-            "edge_checks": int(tree.istate[K.S_EDGE_CHECKS]),
-            "time_s": elapsed,
-            "first_solution_iteration": int(tree.istate[K.S_FIRST_ITER]) if tree.istate[K.S_FIRST_ITER] >= 0 else None,
-            "first_solution_time_s": first_time,
-            "rewires": int(tree.istate[K.S_REWIRES]),
-            "cost_trace": tree.trace[:iterations].copy(),
-        }
+        first = int(tree.istate[K.S_FIRST_ITER])
+        stats = _stats(checker=checker, elapsed=elapsed, iterations=iterations, nodes=tree.size,
+                       edge_checks=int(tree.istate[K.S_EDGE_CHECKS]), rewires=int(tree.istate[K.S_REWIRES]),
+                       first_iteration=first if first >= 0 else None, first_time=first_time,
+                       cost_trace=tree.cost_trace(iterations))
         best = int(tree.istate[K.S_BEST])
         goal = np.asarray(world.goal)
         if best >= 0:
@@ -205,6 +207,24 @@ class TreePlanner:
         treedata = {"nodes": tree.nodes(), "parent": tree.parents()} if self.keep_tree else None
         return Result(status=status, path=path, cost=cost, stats=stats, reason=reason,
                       tree=treedata, params=params)
+
+
+def _stats(checker, elapsed: float, iterations: int = 0, nodes: int = 0, edge_checks: int = 0,
+           rewires: int = 0, first_iteration: Optional[int] = None, first_time: Optional[float] = None,
+           cost_trace: Optional[np.ndarray] = None) -> Dict[str, Any]:
+    """The statistics every tree-planner result carries, whatever its status
+    (a query rejected before planning has them too, as zeros)."""
+    return {
+        "iterations": int(iterations),
+        "nodes": int(nodes),
+        "collision_checks": checker.checks,
+        "edge_checks": int(edge_checks),
+        "time_s": elapsed,
+        "first_solution_iteration": first_iteration,
+        "first_solution_time_s": first_time,
+        "rewires": int(rewires),
+        "cost_trace": np.zeros(0) if cost_trace is None else cost_trace,
+    }
 
 
 def _check_query(world, checker) -> Optional[Result]:
@@ -261,8 +281,8 @@ class RRTStar(TreePlanner):
     def __init__(self, sampler: Union[str, Sampler] = "uniform", expand_dis: Optional[float] = None,
                  max_iter: Optional[int] = None, max_time: Optional[float] = None,
                  connect_circle_dist: Optional[float] = None, batch_size: int = 64,
-                 keep_tree: bool = False) -> None:
-        super().__init__(sampler, expand_dis, max_iter, max_time, batch_size, keep_tree)
+                 keep_tree: bool = False, index: str = "grid") -> None:
+        super().__init__(sampler, expand_dis, max_iter, max_time, batch_size, keep_tree, index)
         self.connect_circle_dist = connect_circle_dist
 
     def _validate(self) -> None:
@@ -293,8 +313,9 @@ class InformedRRTStar(RRTStar):
     def __init__(self, sampler: Union[str, Sampler] = "uniform", expand_dis: Optional[float] = None,
                  max_iter: Optional[int] = None, max_time: Optional[float] = None,
                  connect_circle_dist: Optional[float] = None, batch_size: int = 32,
-                 keep_tree: bool = False) -> None:
-        super().__init__(sampler, expand_dis, max_iter, max_time, connect_circle_dist, batch_size, keep_tree)
+                 keep_tree: bool = False, index: str = "grid") -> None:
+        super().__init__(sampler, expand_dis, max_iter, max_time, connect_circle_dist, batch_size, keep_tree,
+                         index)
 
     def _region(self, world, tree, default):
         c_best = float(tree.best_cost[0])
@@ -328,8 +349,9 @@ class GrowthRatioRRT(TreePlanner):
 
     def __init__(self, sampler: Union[str, Sampler] = "uniform", p_min: Optional[float] = None,
                  expand_dis: Optional[float] = None, max_iter: Optional[int] = None,
-                 max_time: Optional[float] = None, batch_size: int = 64, keep_tree: bool = False) -> None:
-        super().__init__(sampler, expand_dis, max_iter, max_time, batch_size, keep_tree)
+                 max_time: Optional[float] = None, batch_size: int = 64, keep_tree: bool = False,
+                 index: str = "grid") -> None:
+        super().__init__(sampler, expand_dis, max_iter, max_time, batch_size, keep_tree, index)
         self.p_min = p_min
 
     def _validate(self) -> None:

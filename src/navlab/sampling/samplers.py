@@ -2,19 +2,34 @@
 
 ``sampler.sample(world, rng, n)`` returns an ``(n, 2)`` array. Samplers that
 need collision information ask the checker (counted); they never read
-obstacles. ``region`` replaces the bounds as the source of uniform draws
-(Informed RRT* passes its ellipse).
+obstacles, so they work alike on shape worlds and occupancy maps. ``region``
+replaces the bounds as the source of uniform draws (Informed RRT* passes its
+ellipse). ``deadline`` (a :func:`time.perf_counter` value) bounds the time a
+sampler may spend: loops that try again stop once it has passed.
+
+Parameters are validated when a sampler is built, with a ``ValueError``
+naming the field.
 """
 
 from __future__ import annotations
 
 import math
+import time
+from collections.abc import Mapping
 from typing import Any, Dict, Optional
 
 import numpy as np
 
-from ..registry import Registry, check_params, parameters_of
+from ..limits import check_length
+from ..registry import Registry, check_params, parameters_of, suggest
 from .regions import BoxRegion
+
+#: most rounds a sampler may be asked to try (each round is one batch of checks)
+MAX_ROUNDS = 1_000_000
+#: most rays a boundary sampler may spread around each inside point
+MAX_DIRECTIONS = 10_000
+#: rounds of free uniform draws that top up a surface sampler that found too few
+TOP_UP_ROUNDS = 20
 
 SAMPLERS: Registry[type] = Registry("sampler")
 
@@ -25,12 +40,26 @@ def _probability(name: str, value: Any) -> float:
     return float(value)
 
 
-def _positive(name: str, value: Any, allow_none: bool = True) -> Optional[float]:
-    if value is None and allow_none:
+def _length(name: str, value: Any) -> Optional[float]:
+    """None, or a positive length in metres within navlab.limits."""
+    if value is None:
         return None
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not (value > 0 and math.isfinite(value)):
-        raise ValueError(f"{name} must be a positive number, got {value!r}")
-    return float(value)
+    if isinstance(value, np.generic):
+        value = value.item()
+    return check_length(name, value, allow_zero=False)
+
+
+def _count(name: str, value: Any, most: int) -> int:
+    """A whole number in [1, most]."""
+    if isinstance(value, np.integer):
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int) or not (1 <= value <= most):
+        raise ValueError(f"{name} must be a whole number from 1 to {most}, got {value!r}")
+    return value
+
+
+def _expired(deadline: Optional[float]) -> bool:
+    return deadline is not None and time.perf_counter() > deadline
 
 
 class Sampler:
@@ -43,19 +72,36 @@ class Sampler:
         args = ", ".join(f"{k}={v!r}" for k, v in self.get_params().items())
         return f"{type(self).__name__}({args})"
 
-    def sample(self, world, rng: np.random.Generator, n: int, checker=None, region=None) -> np.ndarray:
-        """Return ``n`` samples as an ``(n, 2)`` array."""
-        if n < 0:
-            raise ValueError(f"n must be non-negative, got {n}")
+    def sample(self, world, rng: np.random.Generator, n: int, checker=None, region=None,
+               deadline: Optional[float] = None) -> np.ndarray:
+        """Return ``n`` samples as an ``(n, 2)`` array.
+
+        Parameters
+        ----------
+        world : World
+        rng : numpy.random.Generator
+        n : int
+        checker : CollisionChecker, optional
+            The planner's checker (its counters record the sampler's checks).
+        region : BoxRegion or InformedRegion, optional
+            Where uniform draws come from (default: the world's bounds).
+        deadline : float, optional
+            A :func:`time.perf_counter` value; loops that retry stop once it
+            has passed and the sampler returns what it has, topped up.
+        """
+        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
+            raise ValueError(f"n must be a non-negative whole number, got {n!r}")
+        if deadline is not None and not (isinstance(deadline, (int, float)) and math.isfinite(deadline)):
+            raise ValueError(f"deadline must be a finite time.perf_counter() value, got {deadline!r}")
         region = region if region is not None else BoxRegion(world.bounds)
         checker = checker if checker is not None else world.checker()
         if n == 0:
             return np.empty((0, 2))
-        out = self._sample(world, rng, int(n), checker, region)
+        out = self._sample(world, rng, int(n), checker, region, deadline)
         assert out.shape == (n, 2)
         return out
 
-    def _sample(self, world, rng, n, checker, region) -> np.ndarray:  # pragma: no cover
+    def _sample(self, world, rng, n, checker, region, deadline) -> np.ndarray:  # pragma: no cover
         raise NotImplementedError
 
 
@@ -63,7 +109,7 @@ class Sampler:
 class UniformSampler(Sampler):
     """Uniform over the sampling area (LaValle 1998)."""
 
-    def _sample(self, world, rng, n, checker, region):
+    def _sample(self, world, rng, n, checker, region, deadline):
         return region.draw(rng, n)
 
 
@@ -82,23 +128,41 @@ class GoalBiasSampler(Sampler):
 
     def __init__(self, goal_sample_rate: float = 0.05, base: Any = "uniform") -> None:
         self.goal_sample_rate = _probability("goal_sample_rate", goal_sample_rate)
+        if isinstance(base, str):
+            self._base = make_sampler(base)
+        elif isinstance(base, Sampler):
+            self._base = base
+        else:
+            raise ValueError(f"base must be a sampler name or a Sampler, got {base!r}")
         self.base = base
-        self._base = make_sampler(base) if isinstance(base, str) else base
 
-    def _sample(self, world, rng, n, checker, region):
+    def _sample(self, world, rng, n, checker, region, deadline):
         is_goal = rng.random(n) < self.goal_sample_rate
         out = np.empty((n, 2))
         out[is_goal] = world.goal
-        out[~is_goal] = self._base.sample(world, rng, int((~is_goal).sum()), checker, region)
+        out[~is_goal] = self._base.sample(world, rng, int((~is_goal).sum()), checker, region, deadline)
         return out
 
 
-def _fill_uniform(parts: list, n: int, rng, region) -> np.ndarray:
-    """Concatenate accepted samples; top up with uniform draws if a sampler
-    found too few (e.g. a Gaussian sampler in a world without obstacles)."""
+def _fill_free(parts: list, n: int, rng, region, checker, deadline) -> np.ndarray:
+    """Concatenate accepted (free) samples and top up a sampler that found
+    too few (e.g. a Gaussian sampler in a world without obstacles).
+
+    The top-up keeps only free uniform draws, so a surface sampler never
+    returns a sample in collision; if even those run short (a region almost
+    all blocked, or the deadline passed), found samples are repeated, and only
+    a sampler that found none at all returns plain uniform draws.
+    """
     out = np.concatenate(parts) if parts else np.empty((0, 2))
+    for _ in range(TOP_UP_ROUNDS):
+        if len(out) >= n or _expired(deadline):
+            break
+        draws = region.draw(rng, n - len(out))
+        out = np.concatenate((out, draws[checker.points_free(draws)]))
+    if len(out) == 0:
+        return region.draw(rng, n)
     if len(out) < n:
-        out = np.concatenate((out, region.draw(rng, n - len(out))))
+        out = np.concatenate((out, out[rng.integers(len(out), size=n - len(out))]))
     return out[:n]
 
 
@@ -116,8 +180,9 @@ class GaussianSampler(Sampler):
         Standard deviation of the pair distance in metres; default 2% of the
         bounds' diagonal.
     max_rounds : int
-        Batches of pairs tried before topping up with uniform samples (which
-        happens only where hardly any pair straddles a surface).
+        Batches of pairs tried (at most ``MAX_ROUNDS``, and never past the
+        deadline) before topping up with free uniform samples (which happens
+        only where hardly any pair straddles a surface).
 
     References
     ----------
@@ -126,12 +191,10 @@ class GaussianSampler(Sampler):
     """
 
     def __init__(self, sigma: Optional[float] = None, max_rounds: int = 50) -> None:
-        self.sigma = _positive("sigma", sigma)
-        if not isinstance(max_rounds, int) or max_rounds < 1:
-            raise ValueError(f"max_rounds must be a positive integer, got {max_rounds!r}")
-        self.max_rounds = max_rounds
+        self.sigma = _length("sigma", sigma)
+        self.max_rounds = _count("max_rounds", max_rounds, MAX_ROUNDS)
 
-    def _sample(self, world, rng, n, checker, region):
+    def _sample(self, world, rng, n, checker, region, deadline):
         sigma = self.sigma or 0.02 * world.bounds.diagonal
         parts, found = [], 0
         for _ in range(self.max_rounds):
@@ -146,22 +209,24 @@ class GaussianSampler(Sampler):
             chosen = np.where((keep == 0)[:, None], c1, c2)[keep >= 0]
             parts.append(chosen)
             found += len(chosen)
-            if found >= n:
+            if found >= n or _expired(deadline):
                 break
-        return _fill_uniform(parts, n, rng, region)
+        return _fill_free(parts, n, rng, region, checker, deadline)
 
 
 @SAMPLERS.register("boundary")
 class BoundarySampler(Sampler):
     """Points just outside obstacle surfaces, found by bisection (J. Wang et al.).
 
-    Take a point inside an obstacle (obstacles picked in proportion to their
-    inflated perimeter), spread ``directions`` rays evenly around it (random
-    phase), and along each ray bisect between the inside point and a point
-    outside until the interval is shorter than ``tolerance``; the free end of
-    the interval is the sample ("connector node"). Rays whose outer point is
-    itself blocked (another obstacle, or outside the bounds) are skipped.
-    Samples are never in collision.
+    Take a point inside an obstacle (the checker draws it, picking obstacles
+    in proportion to their inflated perimeter, and a map's blocked region in
+    proportion to its surface length), spread ``directions`` rays evenly
+    around it (random phase), and along each ray bisect between the inside
+    point and a point outside until the interval is shorter than
+    ``tolerance``; the free end of the interval is the sample ("connector
+    node"), on the surface of the region inflated by the robot radius. Rays
+    whose outer point is itself blocked (another obstacle, or outside the
+    bounds or map) are skipped. Samples are never in collision.
 
     Parameters
     ----------
@@ -169,6 +234,9 @@ class BoundarySampler(Sampler):
         Rays per inside point (m in the seed).
     tolerance : float, optional
         Final bisection interval in metres; default 0.1% of the diagonal.
+    max_rounds : int
+        Batches of inside points tried before topping up with free uniform
+        samples (at most ``MAX_ROUNDS``, and never past the deadline).
 
     References
     ----------
@@ -177,24 +245,18 @@ class BoundarySampler(Sampler):
     """
 
     def __init__(self, directions: int = 8, tolerance: Optional[float] = None, max_rounds: int = 50) -> None:
-        if isinstance(directions, bool) or not isinstance(directions, int) or directions < 1:
-            raise ValueError(f"directions must be a positive integer, got {directions!r}")
-        self.directions = directions
-        self.tolerance = _positive("tolerance", tolerance)
-        self.max_rounds = max_rounds
+        self.directions = _count("directions", directions, MAX_DIRECTIONS)
+        self.tolerance = _length("tolerance", tolerance)
+        self.max_rounds = _count("max_rounds", max_rounds, MAX_ROUNDS)
 
-    def _sample(self, world, rng, n, checker, region):
-        if not world.obstacles:
+    def _sample(self, world, rng, n, checker, region, deadline):
+        if not checker.has_obstacles:
             return region.draw(rng, n)
-        r = world.robot_radius
-        weights = np.array([o.perimeter(r) for o in world.obstacles])
         tol = self.tolerance or 1e-3 * world.bounds.diagonal
         parts, found = [], 0
         for _ in range(self.max_rounds):
             seeds = -(-(n - found) // self.directions) + 1
-            which = rng.choice(len(world.obstacles), size=seeds, p=weights / weights.sum())
-            inner = np.concatenate([world.obstacles[k].interior_points(rng, 1) for k in which])
-            reach = np.array([_reach(world.obstacles[k], r) for k in which])
+            inner, reach = checker.interior_points(rng, seeds)
             phase = rng.random(seeds) * 2 * math.pi
             angles = phase[:, None] + np.arange(self.directions) * (2 * math.pi / self.directions)
             unit = np.stack((np.cos(angles), np.sin(angles)), axis=-1).reshape(-1, 2)
@@ -212,15 +274,9 @@ class BoundarySampler(Sampler):
             chosen = hi[region.contains(hi)]
             parts.append(chosen[rng.permutation(len(chosen))])
             found += len(chosen)
-            if found >= n:
+            if found >= n or _expired(deadline):
                 break
-        return _fill_uniform(parts, n, rng, region)
-
-
-def _reach(obstacle, inflate: float) -> float:
-    """A length that takes any interior point outside the inflated obstacle."""
-    x0, y0, x1, y1 = obstacle.bbox()
-    return math.hypot(x1 - x0, y1 - y0) + inflate + 1e-6
+        return _fill_free(parts, n, rng, region, checker, deadline)
 
 
 INTEGRATION_DEFAULT_WEIGHTS = {"goal": 0.10, "uniform": 0.30, "gaussian": 0.30, "boundary": 0.30}
@@ -251,10 +307,13 @@ class IntegrationSampler(Sampler):
 
     def __init__(self, weights: Optional[Dict[str, float]] = None, sigma: Optional[float] = None,
                  directions: int = 8, tolerance: Optional[float] = None) -> None:
+        if weights is not None and not isinstance(weights, Mapping):
+            raise ValueError("weights must be a mapping of component to probability, e.g. "
+                             f"{INTEGRATION_DEFAULT_WEIGHTS}, got {weights!r}")
         w = dict(INTEGRATION_DEFAULT_WEIGHTS if weights is None else weights)
         for key, value in w.items():
-            if key not in self.COMPONENTS:
-                from ..registry import suggest
+            if not isinstance(key, str) or key not in self.COMPONENTS:
+                key = str(key)
                 raise ValueError(f"weights: unknown component '{key}'; valid: {', '.join(self.COMPONENTS)}." + suggest(key, list(self.COMPONENTS)))
             _probability(f"weights['{key}']", value)
         if abs(sum(w.values()) - 1.0) > 1e-9:
@@ -267,7 +326,7 @@ class IntegrationSampler(Sampler):
             "boundary": BoundarySampler(directions=directions, tolerance=tolerance),
         }
 
-    def _sample(self, world, rng, n, checker, region):
+    def _sample(self, world, rng, n, checker, region, deadline):
         names = [k for k in self.COMPONENTS if self.weights.get(k, 0.0) > 0]
         probs = np.array([self.weights[k] for k in names])
         pick = rng.choice(len(names), size=n, p=probs / probs.sum())
@@ -280,7 +339,7 @@ class IntegrationSampler(Sampler):
             if name == "goal":
                 out[rows] = world.goal
             else:
-                out[rows] = self._parts[name].sample(world, rng, count, checker, region)
+                out[rows] = self._parts[name].sample(world, rng, count, checker, region, deadline)
         return out
 
 

@@ -2,13 +2,20 @@
 
 Python draws a batch of samples (any sampler), this loop consumes it: nearest
 node, steer, exact edge check, and for RRT* choose-parent and rewire with cost
-propagation. All state lives in preallocated arrays owned by :class:`Tree`, so
-a query never reallocates and a batch boundary changes nothing: the same seed
-gives the same tree bit for bit whatever the batch size.
+propagation. State lives in arrays owned by :class:`Tree`, which Python grows
+(by doubling) between batches so that a batch always fits: memory follows the
+tree actually grown, not ``max_iter``. A batch boundary changes nothing: the
+same seed gives the same tree bit for bit whatever the batch size.
 
-Nearest-neighbour and near-set queries are brute force over the node array.
-For the trees this loop grows (≤ 10⁵ nodes) a compiled linear scan is cheaper
-than maintaining a spatial index under rewiring.
+Nearest-neighbour and near-set queries go through a uniform bucket grid
+(:mod:`.bucket_grid`, which says why that structure) or, with
+``use_grid=False``, through the brute-force scan over the node array. Both
+return the same nodes in the same order, so both grow the same tree; the scan
+stays as the reference the tests compare the grid against.
+
+The best-cost trace is stored as change points (iteration, new best cost),
+one per improvement, and expanded to one value per iteration only for the
+result (:meth:`Tree.cost_trace`).
 """
 
 from __future__ import annotations
@@ -19,44 +26,129 @@ import numpy as np
 from numba import njit
 
 from ..world.geometry import segment_free
+from . import bucket_grid as G
 
 MODE_RRT, MODE_RRT_STAR, MODE_GROWTH = 0, 1, 2
 
 # Integer state slots.
-S_NODES, S_EDGE_CHECKS, S_GOALS, S_FIRST_ITER, S_DONE, S_IN, S_OUT, S_REWIRES, S_BEST = range(9)
-N_ISTATE = 9
+(S_NODES, S_EDGE_CHECKS, S_GOALS, S_FIRST_ITER, S_DONE, S_IN, S_OUT, S_REWIRES, S_BEST,
+ S_TRACE, S_GRID_NX, S_GRID_NY) = range(12)
+N_ISTATE = 12
 # Float parameter slots.
 P_STEP, P_GAMMA, P_GX, P_GY, P_GTOL, P_CONNECT, P_CAP, P_SX, P_SY = range(9)
 N_FPARAMS = 9
 
+#: nodes the arrays hold at first (they double when needed)
+INITIAL_CAPACITY = 1024
+#: candidate lists up to this long are ranked by insertion sort (no allocation)
+RANK_SMALL = 24
+
 
 class Tree:
-    """Preallocated arrays of a search tree with ``capacity`` nodes."""
+    """Arrays of a search tree, grown by doubling as the tree grows.
 
-    def __init__(self, capacity: int, start, max_iter: int) -> None:
-        self.xy = np.zeros((capacity, 2))
-        self.parent = np.full(capacity, -1, dtype=np.int64)
-        self.cost = np.zeros(capacity)
-        self.child = np.full(capacity, -1, dtype=np.int64)
-        self.sibling = np.full(capacity, -1, dtype=np.int64)
-        self.goal_node = np.full(capacity, -1, dtype=np.int64)
-        self.goal_extra = np.zeros(capacity)
-        self.trace = np.full(max_iter, np.inf)
+    Parameters
+    ----------
+    start : (2,) array_like
+        The root.
+    bounds : Bounds
+        The world's bounds (the bucket grid covers them).
+    max_nodes : int
+        Nodes the tree can ever hold (``max_iter + 1``); the arrays never grow
+        beyond it, and start at ``min(max_nodes, INITIAL_CAPACITY)``.
+    use_grid : bool
+        Answer nearest / near-set queries with the bucket grid (else by scan).
+    """
+
+    #: per-node arrays and their fill value
+    _NODE_ARRAYS = (("xy", 0.0), ("parent", -1), ("cost", 0.0), ("child", -1), ("sibling", -1),
+                    ("goal_node", -1), ("goal_extra", 0.0), ("goal_slot", -1), ("next_in_cell", -1),
+                    ("scratch_idx", 0), ("scratch_val", 0.0), ("scratch_dist", 0.0),
+                    ("scratch_state", 0), ("scratch_cand", 0), ("scratch_stack", 0))
+    _DTYPES = {"parent": np.int64, "child": np.int64, "sibling": np.int64, "goal_node": np.int64, "goal_slot": np.int64,
+               "next_in_cell": np.int64, "scratch_idx": np.int64, "scratch_state": np.int8, "scratch_cand": np.int64,
+               "scratch_stack": np.int64}
+
+    def __init__(self, start, bounds, max_nodes: int, use_grid: bool = True) -> None:
+        self.bounds = bounds
+        self.max_nodes = int(max_nodes)
+        self.use_grid = bool(use_grid)
+        self.capacity = 0
+        for name, fill in self._NODE_ARRAYS:
+            shape = (0, 2) if name == "xy" else (0,)
+            setattr(self, name, np.full(shape, fill, dtype=self._DTYPES.get(name, np.float64)))
+        self.trace_iter = np.zeros(0, dtype=np.int64)
+        self.trace_cost = np.zeros(0)
         self.istate = np.zeros(N_ISTATE, dtype=np.int64)
         self.istate[S_FIRST_ITER] = -1
         self.istate[S_BEST] = -1
         self.best_cost = np.full(1, np.inf)
-        self.scratch_idx = np.zeros(capacity, dtype=np.int64)
-        self.scratch_val = np.zeros(capacity)
-        self.scratch_dist = np.zeros(capacity)
-        self.scratch_state = np.zeros(capacity, dtype=np.int8)
-        self.scratch_stack = np.zeros(capacity, dtype=np.int64)
+        # The grid is built at the first reserve() that has nodes to index.
+        self.grid_head = np.full(1, -1, dtype=np.int64)
+        self.grid_params = G.grid_params(bounds, max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin, 1e-300))
+        self.istate[S_GRID_NX] = self.istate[S_GRID_NY] = 1
+        self.grid_built_at = 0
+        self.reserve(1, 0)
         self.xy[0] = start
         self.istate[S_NODES] = 1
 
     @property
     def size(self) -> int:
         return int(self.istate[S_NODES])
+
+    def reserve(self, new_nodes: int, new_iterations: int) -> None:
+        """Make room for ``new_nodes`` more nodes and ``new_iterations`` more
+        trace entries (doubling), and rebuild the grid if the tree doubled."""
+        n = int(self.istate[S_NODES])
+        need = min(n + new_nodes, self.max_nodes)
+        if need > self.capacity:
+            cap = min(max(2 * self.capacity, need, min(INITIAL_CAPACITY, self.max_nodes)), self.max_nodes)
+            for name, fill in self._NODE_ARRAYS:
+                old = getattr(self, name)
+                new = np.full((cap,) + old.shape[1:], fill, dtype=old.dtype)
+                new[: self.capacity] = old
+                setattr(self, name, new)
+            self.capacity = cap
+        t = int(self.istate[S_TRACE])
+        if t + new_iterations > len(self.trace_iter):
+            cap = max(2 * len(self.trace_iter), t + new_iterations, 64)
+            self.trace_iter = np.concatenate((self.trace_iter[:t], np.zeros(cap - t, dtype=np.int64)))
+            self.trace_cost = np.concatenate((self.trace_cost[:t], np.zeros(cap - t)))
+        if self.use_grid and n >= G.REBUILD_GROWTH * self.grid_built_at and n > 0:
+            self._rebuild_grid(n)
+
+    def _rebuild_grid(self, n: int) -> None:
+        h, nx, ny = G.grid_shape(self.bounds, min(G.REBUILD_GROWTH * n, self.max_nodes))
+        if (nx, ny) != (self.istate[S_GRID_NX], self.istate[S_GRID_NY]) or self.grid_built_at == 0:
+            self.grid_params = G.grid_params(self.bounds, h)
+            self.grid_head = np.full(nx * ny, -1, dtype=np.int64)
+            self.istate[S_GRID_NX], self.istate[S_GRID_NY] = nx, ny
+            G.rebuild(n, self.xy, self.grid_head, self.next_in_cell, self.grid_params, nx, ny)
+        self.grid_built_at = n
+
+    def record_cost(self, iteration: int) -> None:
+        """Note the current best cost as reached at ``iteration``."""
+        self.reserve(0, 1)
+        _record_cost(iteration, self.best_cost[0], self.trace_iter, self.trace_cost, self.istate)
+
+    def cost_trace(self, iterations: int) -> np.ndarray:
+        """Best cost after each of the first ``iterations`` iterations."""
+        t = int(self.istate[S_TRACE])
+        its = self.trace_iter[:t]
+        keep = its < iterations
+        its, vals = its[keep], self.trace_cost[:t][keep]
+        lengths = np.diff(np.append(its, iterations))
+        head = np.full(int(its[0]) if len(its) else iterations, np.inf)
+        return np.concatenate((head, np.repeat(vals, lengths)))
+
+    def grow(self, samples: np.ndarray, it0: int, geom, fparams: np.ndarray, mode: int) -> int:
+        """Consume ``samples`` as iterations ``it0, it0 + 1, ...`` (see :func:`grow`)."""
+        self.reserve(len(samples), len(samples))
+        return grow(samples, it0, geom, self.xy, self.parent, self.cost, self.child, self.sibling,
+                    self.goal_node, self.goal_extra, self.goal_slot, self.trace_iter, self.trace_cost, self.istate,
+                    self.best_cost, fparams, mode, self.scratch_idx, self.scratch_val, self.scratch_dist,
+                    self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid, self.grid_head,
+                    self.next_in_cell, self.grid_params)
 
     def nodes(self) -> np.ndarray:
         return self.xy[: self.size].copy()
@@ -74,6 +166,19 @@ class Tree:
 
 
 @njit(cache=True)
+def _record_cost(it, value, trace_iter, trace_cost, istate):
+    t = istate[S_TRACE]
+    if t > 0 and trace_iter[t - 1] == it:
+        trace_cost[t - 1] = value
+        return
+    if t > 0 and trace_cost[t - 1] == value:
+        return
+    trace_iter[t] = it
+    trace_cost[t] = value
+    istate[S_TRACE] = t + 1
+
+
+@njit(cache=True)
 def _remove_child(child, sibling, p, k):
     if child[p] == k:
         child[p] = sibling[k]
@@ -85,7 +190,9 @@ def _remove_child(child, sibling, p, k):
 
 
 @njit(cache=True)
-def _shift_subtree(child, sibling, cost, root, delta, stack):
+def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_extra, istate, best_cost):
+    """Add delta (< 0) to the cost of root's subtree; goal candidates in it
+    are offered as the new best (costs only fall, so no other can become it)."""
     top = 0
     stack[top] = root
     top += 1
@@ -93,6 +200,8 @@ def _shift_subtree(child, sibling, cost, root, delta, stack):
         top -= 1
         u = stack[top]
         cost[u] += delta
+        if goal_slot[u] >= 0:
+            _offer_goal(goal_slot[u], cost[u] + goal_extra[goal_slot[u]], istate, best_cost)
         c = child[u]
         while c >= 0:
             stack[top] = c
@@ -100,17 +209,13 @@ def _shift_subtree(child, sibling, cost, root, delta, stack):
             c = sibling[c]
 
 
-@njit(cache=True)
-def _refresh_best(cost, goal_node, goal_extra, istate, best_cost):
-    best = np.inf
-    arg = -1
-    for g in range(istate[S_GOALS]):
-        c = cost[goal_node[g]] + goal_extra[g]
-        if c < best:
-            best = c
-            arg = g
-    best_cost[0] = best
-    istate[S_BEST] = arg
+@njit(cache=True, inline="always")
+def _offer_goal(g, value, istate, best_cost):
+    """Keep (best cost, goal index) the lexicographic minimum over the goal
+    candidates, as a forward scan with a strict ``<`` finds it."""
+    if value < best_cost[0] or (value == best_cost[0] and g < istate[S_BEST]):
+        best_cost[0] = value
+        istate[S_BEST] = g
 
 
 @njit(cache=True)
@@ -125,7 +230,7 @@ def growth_step(inside, n_in, n_out, d, cap):
 
 
 @njit(cache=True)
-def add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode):
+def add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fparams, mode):
     """Record node k as reaching the goal if it does (returns True then)."""
     gx, gy = fparams[P_GX], fparams[P_GY]
     dg = math.hypot(gx - xy[k, 0], gy - xy[k, 1])
@@ -145,36 +250,95 @@ def add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode
     g = istate[S_GOALS]
     goal_node[g] = k
     goal_extra[g] = extra
+    goal_slot[k] = g
     istate[S_GOALS] = g + 1
     return True
 
 
 @njit(cache=True)
+def _rank_by_cost(pos, m, val, idx):
+    """Sort ``pos[:m]`` by (val[pos], idx[pos]): cheapest first, the lower
+    node index first among equal costs."""
+    if m <= RANK_SMALL:
+        for a in range(1, m):
+            p = pos[a]
+            b = a - 1
+            while b >= 0 and (val[pos[b]] > val[p] or (val[pos[b]] == val[p] and idx[pos[b]] > idx[p])):
+                pos[b + 1] = pos[b]
+                b -= 1
+            pos[b + 1] = p
+        return
+    p = pos[:m].copy()
+    p = p[np.argsort(idx[p])]  # node indices are distinct: any sort is stable here
+    pos[:m] = p[np.argsort(val[p], kind="mergesort")]
+
+
+@njit(cache=True)
+def _rank_by_index(pos, m, idx):
+    """Sort ``pos[:m]`` by idx[pos] (distinct)."""
+    if m <= RANK_SMALL:
+        for a in range(1, m):
+            p = pos[a]
+            b = a - 1
+            while b >= 0 and idx[pos[b]] > idx[p]:
+                pos[b + 1] = pos[b]
+                b -= 1
+            pos[b + 1] = p
+        return
+    p = pos[:m].copy()
+    pos[:m] = p[np.argsort(idx[p])]
+
+
+@njit(cache=True)
+def _nearest_scan(qx, qy, xy, n):
+    nearest = 0
+    best_d2 = np.inf
+    for j in range(n):
+        dx = xy[j, 0] - qx
+        dy = xy[j, 1] - qy
+        d2 = dx * dx + dy * dy
+        if d2 < best_d2:
+            best_d2 = d2
+            nearest = j
+    return nearest, best_d2
+
+
+@njit(cache=True)
+def _near_scan(qx, qy, r2, xy, n, out):
+    m = 0
+    for j in range(n):
+        dx = xy[j, 0] - qx
+        dy = xy[j, 1] - qy
+        if dx * dx + dy * dy <= r2:
+            out[m] = j
+            m += 1
+    return m
+
+
+@njit(cache=True)
 def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_extra,
-         trace, istate, best_cost, fparams, mode, near_idx, near_val, near_dist, near_state, stack):
+         goal_slot, trace_iter, trace_cost, istate, best_cost, fparams, mode, near_idx, near_val, near_dist,
+         near_state, cand, stack, use_grid, grid_head, next_in_cell, grid_params):
     """Consume ``samples`` as iterations ``it0, it0 + 1, ...``.
 
+    The arrays must have room for one node and one trace entry per sample.
     Returns the number of samples consumed (fewer than given when the tree
     stops: RRT and growth-ratio RRT at their first solution).
     """
     step_max = fparams[P_STEP]
     gamma = fparams[P_GAMMA]
+    gnx = istate[S_GRID_NX]
+    gny = istate[S_GRID_NY]
     for i in range(samples.shape[0]):
         it = it0 + i
         qx = samples[i, 0]
         qy = samples[i, 1]
         n = istate[S_NODES]
-        nearest = 0
-        best_d2 = np.inf
-        for j in range(n):
-            dx = xy[j, 0] - qx
-            dy = xy[j, 1] - qy
-            d2 = dx * dx + dy * dy
-            if d2 < best_d2:
-                best_d2 = d2
-                nearest = j
+        if use_grid:
+            nearest, best_d2 = G.nearest(qx, qy, xy, grid_head, next_in_cell, grid_params, gnx, gny)
+        else:
+            nearest, best_d2 = _nearest_scan(qx, qy, xy, n)
         d = math.sqrt(best_d2)
-        trace[it] = best_cost[0]
         if d <= 1e-12:
             continue
         if mode == MODE_GROWTH:
@@ -203,28 +367,33 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         best_parent = nearest
         best_c = cost[nearest] + step
         n_near = 0
-        rewired = False
+        best_before = best_cost[0]
         if mode == MODE_RRT_STAR:
             radius = min(gamma * math.sqrt(math.log(n + 1) / (n + 1)), step_max)
             r2 = radius * radius
-            for j in range(n):
+            # Grid and scan return the same set in different orders; nothing
+            # below depends on the order (candidates are ranked explicitly).
+            if use_grid:
+                n_near = G.near(nx, ny, r2, xy, grid_head, next_in_cell, grid_params, gnx, gny, near_idx)
+            else:
+                n_near = _near_scan(nx, ny, r2, xy, n, near_idx)
+            m = 0
+            for o in range(n_near):
+                j = near_idx[o]
                 dx = xy[j, 0] - nx
                 dy = xy[j, 1] - ny
-                d2 = dx * dx + dy * dy
-                if d2 <= r2:
-                    near_idx[n_near] = j
-                    near_dist[n_near] = math.sqrt(d2)
-                    near_val[n_near] = cost[j] + near_dist[n_near]
-                    near_state[n_near] = 0  # edge not checked yet
-                    n_near += 1
-            # Choose parent: check candidates cheapest first, stop at the first free.
-            order = np.argsort(near_val[:n_near])
-            for o in order:
+                near_dist[o] = math.sqrt(dx * dx + dy * dy)
+                near_val[o] = cost[j] + near_dist[o]
+                near_state[o] = 0  # edge not checked yet
+                if near_val[o] < best_c and j != nearest:
+                    cand[m] = o
+                    m += 1
+            # Choose parent: the candidates cheaper than through the nearest
+            # node, cheapest first (lower index on a tie); the first free wins.
+            _rank_by_cost(cand, m, near_val, near_idx)
+            for t in range(m):
+                o = cand[t]
                 j = near_idx[o]
-                if near_val[o] >= best_c:
-                    break
-                if j == nearest:
-                    continue
                 istate[S_EDGE_CHECKS] += 1
                 if segment_free(xy[j, 0], xy[j, 1], nx, ny, geom):
                     near_state[o] = 1
@@ -238,15 +407,24 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         child[best_parent] = k
         child[k] = -1
         istate[S_NODES] = n + 1
+        if use_grid:
+            G.insert(k, xy, grid_head, next_in_cell, grid_params, gnx, gny)
         if mode == MODE_RRT_STAR:
+            # Rewire in ascending index order: rewiring a node lowers the cost
+            # of its subtree, which may hold a later candidate. Costs only fall,
+            # so the nodes that fail the test now fail it at their turn too.
+            m = 0
             for o in range(n_near):
                 j = near_idx[o]
-                if j == best_parent:
-                    continue
+                if j != best_parent and near_state[o] != 2 and best_c + near_dist[o] < cost[j] - 1e-12:
+                    cand[m] = o
+                    m += 1
+            _rank_by_index(cand, m, near_idx)
+            for t in range(m):
+                o = cand[t]
+                j = near_idx[o]
                 new_c = best_c + near_dist[o]
                 if new_c >= cost[j] - 1e-12:
-                    continue
-                if near_state[o] == 2:
                     continue
                 if near_state[o] == 0 and j != nearest:
                     istate[S_EDGE_CHECKS] += 1
@@ -256,15 +434,16 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 parent[j] = k
                 sibling[j] = child[k]
                 child[k] = j
-                _shift_subtree(child, sibling, cost, j, new_c - cost[j], stack)
+                _shift_subtree(child, sibling, cost, j, new_c - cost[j], stack, goal_slot, goal_extra,
+                               istate, best_cost)
                 istate[S_REWIRES] += 1
-                rewired = True
-        found = add_goal_candidate(k, geom, xy, goal_node, goal_extra, istate, fparams, mode)
-        if found or (rewired and istate[S_GOALS] > 0):
-            _refresh_best(cost, goal_node, goal_extra, istate, best_cost)
-            if istate[S_FIRST_ITER] < 0 and best_cost[0] < np.inf:
+        if add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fparams, mode):
+            g = istate[S_GOALS] - 1
+            _offer_goal(g, cost[k] + goal_extra[g], istate, best_cost)
+        if best_cost[0] != best_before:
+            _record_cost(it, best_cost[0], trace_iter, trace_cost, istate)
+            if istate[S_FIRST_ITER] < 0:
                 istate[S_FIRST_ITER] = it
-        trace[it] = best_cost[0]
         if mode != MODE_RRT_STAR and istate[S_GOALS] > 0:
             istate[S_DONE] = 1
             return i + 1

@@ -115,6 +115,8 @@ class Lidar:
         """Noise-free ranges (``inf`` for no return, no ``range_min`` cut)."""
         pose = np.ascontiguousarray(pose, dtype=float)
         out = np.empty(self.beams)
+        if getattr(scene, "is_grid", False):  # a simulator Scene of a map
+            scene = scene.world
         grid = getattr(scene, "blocked", None)
         if grid is not None:
             R.scan_grid(pose, self.angles, self.range_max, grid, np.asarray(scene.origin, float),
@@ -125,7 +127,7 @@ class Lidar:
         return out
 
     def scan(self, scene: Any, pose, rng: Optional[np.random.Generator] = None) -> np.ndarray:
-        """One scan of ``scene`` (a World or OccupancyGrid) from ``pose`` (x, y, θ)."""
+        """One scan of ``scene`` (a World, OccupancyGrid or simulator Scene) from ``pose`` (x, y, θ)."""
         ranges = self.exact(scene, pose)
         if self.noise is not None and rng is not None:
             ranges = self.noise.apply(ranges, rng)
@@ -141,7 +143,12 @@ class Lidar:
 
 
 def shapes_of(world):
-    """A world's shapes packed for ray casting (un-inflated; cached on the world)."""
+    """A world's shapes packed for ray casting (un-inflated; cached on the world).
+    A simulator :class:`~navlab.sim.Scene` gives its own, with the moving
+    obstacles where they are at the scene's time."""
+    moving = getattr(world, "lidar_shapes", None)
+    if moving is not None:
+        return moving
     cache = getattr(world, "__dict__", {}).get("_lidar_shapes")
     if cache is not None:
         return cache

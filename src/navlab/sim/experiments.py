@@ -16,7 +16,7 @@ import numpy as np
 
 from ..registry import Registry
 from ..world import World
-from ..world.shapes import Circle
+from ..world.shapes import Circle, Rectangle
 from ..world.world import Bounds
 
 EXPERIMENTS: Registry[Callable[..., List[Dict[str, Any]]]] = Registry("experiment")
@@ -54,6 +54,7 @@ def seed004_simulation(target, obstacle: bool, dt: float = 0.05):
                       compass=Compass(noise_deg=1.0, offset_deg=5.0), dt=dt, max_time=60.0)
 
 
+@EXPERIMENTS.register("omni-potential-field")
 @EXPERIMENTS.register("seed004")
 def seed004(runs: int = 5, seed: int = 0, plot_dir: Optional[str] = None, **_: Any) -> List[Dict[str, Any]]:
     """One row per run: target, obstacle, status, final true and odometry
@@ -89,6 +90,7 @@ def _tag(target) -> str:
 SEED002_CELL, SEED002_WALL = 0.6, 0.1
 
 
+@EXPERIMENTS.register("maze-astar")
 @EXPERIMENTS.register("seed002")
 def seed002(runs: int = 1, seed: int = 0, plot_dir: Optional[str] = ".", **_: Any) -> List[Dict[str, Any]]:
     """Mazes of 10×10 and 15×15 cells (0.6 m cells, 0.1 m walls, so 0.5 m
@@ -142,6 +144,56 @@ def seed002(runs: int = 1, seed: int = 0, plot_dir: Optional[str] = ".", **_: An
                     row["plot"] = name
                 rows.append(row)
     return rows
+
+
+def random_clutter_world(seed: int, obstacles: int = 18) -> World:
+    """A 10 m × 10 m world from (1, 1) to (9, 9) with ``obstacles`` random
+    circles (radius 0.2–0.7 m) and boxes (0.4–1.6 m sides), none within
+    1.2 m of the start or the goal (seeded: the same seed, the same world)."""
+    rng = np.random.default_rng(seed)
+    start, goal = np.array((1.0, 1.0)), np.array((9.0, 9.0))
+    shapes = []
+    while len(shapes) < obstacles:
+        c = rng.uniform(0.5, 9.5, 2)
+        if min(np.hypot(*(c - start)), np.hypot(*(c - goal))) < 1.2:
+            continue
+        if rng.random() < 0.5:
+            shapes.append(Circle((float(c[0]), float(c[1])), float(rng.uniform(0.2, 0.7))))
+        else:
+            half = rng.uniform(0.2, 0.8, 2)
+            shapes.append(Rectangle(tuple(c - half), tuple(c + half)))
+    return World(f"random_clutter_{seed}", Bounds(0.0, 10.0, 0.0, 10.0), (1.0, 1.0), (9.0, 9.0), tuple(shapes))
+
+
+@EXPERIMENTS.register("hybrid-vs-field")
+@EXPERIMENTS.register("random-clutter")
+def hybrid_vs_field(runs: int = 20, seed: int = 0, **_: Any) -> List[Dict[str, Any]]:
+    """The omni robot on ``runs`` seeded random cluttered worlds, with the
+    plain potential field and with the hybrid navigator (defaults)."""
+    from .runner import simulate
+
+    rows = []
+    for k in range(runs):
+        world = random_clutter_world(seed * 1000 + k)
+        for controller in ("potential_field", "hybrid"):
+            result, _, sim = simulate(world, robot="omni3", controller=controller, seed=k)
+            rows.append({"experiment": "hybrid-vs-field", "world": world.name, "controller": controller,
+                         "status": result.status.name, "time_s": result.time_s,
+                         "error_true_mm": 1000 * result.error_true, "min_clearance_m": sim.min_clearance(result),
+                         "replans": getattr(sim.controller, "replans", 0), "wall_time_s": result.wall_time_s})
+    return rows
+
+
+def hybrid_table(rows: List[Dict[str, Any]]) -> str:
+    lines = [f"{'controller':>16} {'reached':>8} {'stalled':>8} {'other':>6} {'mean time s':>12}"]
+    for controller in ("potential_field", "hybrid"):
+        group = [r for r in rows if r["controller"] == controller]
+        reached = [r for r in group if r["status"] == "REACHED"]
+        stalled = sum(r["status"] == "STALLED" for r in group)
+        mean = np.mean([r["time_s"] for r in reached]) if reached else float("nan")
+        lines.append(f"{controller:>16} {len(reached):>5}/{len(group):<2} {stalled:>8} "
+                     f"{len(group) - len(reached) - stalled:>6} {mean:>12.1f}")
+    return "\n".join(lines)
 
 
 def seed004_table(rows: List[Dict[str, Any]]) -> str:

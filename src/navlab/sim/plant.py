@@ -34,17 +34,21 @@ class Plant:
         self._wheel_angles = np.zeros(robot.n_wheels)
         self._ticks = encoders.counts(self._wheel_angles)
         self.last_twist = (0.0, 0.0, 0.0)  #: the limited command of the last step
+        self.hit: Optional[str] = None  #: who hit whom in the last step, if anything
 
-    def step(self, vx: float, vy: float, omega: float, dt: float, rng: Optional[np.random.Generator]) -> bool:
-        """Move for ``dt`` under a commanded twist (limited to the robot's
-        capabilities); True when the motion hit something (the pose is then
-        the colliding one)."""
+    def step(self, vx: float, vy: float, omega: float, dt: float, rng: Optional[np.random.Generator],
+             t: float = 0.0) -> bool:
+        """Move for ``dt`` from time ``t`` under a commanded twist (limited to
+        the robot's capabilities); True when the motion hit something or
+        something hit the robot (moving obstacles move over the same step;
+        the pose is then the colliding one and :attr:`hit` says who hit whom)."""
         robot, enc = self.robot, self.encoders
         self.last_twist = robot.limit(vx, vy, omega)
         rotation = enc.actual_speeds(robot.inverse(*self.last_twist), rng) * dt
         bx, by, bw = robot.forward(enc.ground_rotation(rotation, rng) / dt)
         new_pose = integrate_pose(self.pose, bx, by, bw, dt)
-        collided = not self.scene.free_motion(self.pose, new_pose)
+        self.hit = self.scene.hit(self.pose, new_pose, t, t + dt)
+        collided = self.hit is not None
         self.pose = new_pose
         self._wheel_angles += rotation
         ticks = enc.counts(self._wheel_angles)

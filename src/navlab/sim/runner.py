@@ -10,24 +10,33 @@ from ..control import make_controller
 from ..grid.occupancy import OccupancyGrid
 from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
+from .replan import PLAN_MARGIN, Replanner  # noqa: F401  (PLAN_MARGIN: the seeds' experiments use it)
+from .replan import plan_path as _plan_path
 from .scene import load_scene_world
 from .simulation import SimResult, Simulation
 
-DEFAULT_CONTROLLER = {"omni3": "potential_field", "diff": "goto_waypoint"}
-#: inflation beyond the robot radius when planning a path to follow: half a
-#: 0.05 m cell's diagonal for the grid's discretisation plus room for the
-#: follower's tracking error
-PLAN_MARGIN = 0.07
+#: the omni robot follows a global plan with the potential field as its local
+#: avoider (the plain field stalls in traps and clutter); the diff drive
+#: follows the plan with seed 002's goto_waypoint
+DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint"}
 
 
 def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None, start=None, goal=None,
              planner: Optional[str] = None, lidar: Optional[str] = None, robot_params: Optional[Dict] = None,
-             controller_params: Optional[Dict] = None, dt: float = 0.05, max_time: float = 120.0,
-             seed: Any = 0) -> Tuple[SimResult, Any, Simulation]:
+             controller_params: Optional[Dict] = None, dt: float = 0.05, max_time: Optional[float] = None,
+             seed: Any = 0, sampler: str = "uniform", lidar_timing: Optional[Dict] = None,
+             odometry_timing: Optional[Dict] = None) -> Tuple[SimResult, Any, Simulation]:
     """Build and run one simulation; every input is checked before it runs.
 
-    Returns the result, the world or grid, and the Simulation.
+    ``max_time`` defaults to :func:`default_max_time` of the path (or the
+    straight line) to the goal. Returns the result, the world or grid, and
+    the Simulation.
     """
+    from ..limits import check_coordinate
+
+    for name, values in (("start", start), ("goal", goal)):
+        for axis, v in zip("xyθ", values or ()):
+            check_coordinate(f"{name} {axis}", v)
     scene_world = load_scene_world(world)
     bot = make_robot(robot, **(robot_params or {}))
     ctrl = make_controller(controller or DEFAULT_CONTROLLER[robot], **(controller_params or {}))
@@ -43,42 +52,43 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     start = tuple(float(v) for v in start) if len(start) == 3 else (float(start[0]), float(start[1]), 0.0)
     goal = (float(goal[0]), float(goal[1]))
     if planner is not None and not ctrl.needs_path:
-        raise ValueError(f"controller '{controller}' plans nothing ahead; --planner is for goto_waypoint and "
-                         "pure_pursuit")
-    path = plan_path(scene_world, bot, start, goal, planner) if ctrl.needs_path else None
+        raise ValueError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
+                         "and pure_pursuit")
+    path = plan_path(scene_world, bot, start, goal, planner, sampler) if ctrl.needs_path else None
+    if ctrl.needs_path and hasattr(ctrl, "replanner"):
+        ctrl.replanner = Replanner(scene_world, bot.radius, goal, planner, sampler)
+    if max_time is None:
+        max_time = default_max_time(path if path is not None else np.array((start[:2], goal)), bot, ctrl)
     sensor = None
     if lidar != "none" and (ctrl.needs_scan or lidar is not None):
         sensor = Lidar(noise=None if lidar in (None, "exact") else lidar)
     noisy = lidar == "rplidar_a1"
     sim = Simulation(scene_world, bot, ctrl, start, goal, lidar=sensor,
                      encoders=WheelEncoders(noise=0.02 if noisy else 0.0, slip=0.01 if noisy else 0.0),
-                     compass=Compass(noise_deg=1.0) if noisy else None, dt=dt, max_time=max_time, path=path)
+                     compass=Compass(noise_deg=1.0) if noisy else None, dt=dt, max_time=max_time, path=path,
+                     lidar_timing=lidar_timing, odometry_timing=odometry_timing)
     return sim.run(seed), scene_world, sim
 
 
-def plan_path(scene_world, robot, start, goal, planner: Optional[str]) -> np.ndarray:
-    """A collision-free path for the robot's footprint (plus a margin)."""
-    from dataclasses import replace
+def default_max_time(path: np.ndarray, robot, controller) -> float:
+    """Four times the path's length at the slower of the robot's and the
+    controller's top speed, plus a minute for turning and waiting (a 49 m
+    map path gets about 15 min rather than a fixed 120 s)."""
+    length = float(np.sum(np.hypot(*np.diff(np.asarray(path, float)[:, :2], axis=0).T)))
+    field = getattr(controller, "field", controller)
+    speed = min(robot.max_speed, getattr(controller, "speed", None) or getattr(field, "max_speed", robot.max_speed))
+    return 60.0 + 4.0 * length / speed
 
+
+def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform") -> np.ndarray:
+    """A collision-free path for the robot's footprint (plus a margin)."""
     from ..sim.scene import Scene
 
     scene = Scene(scene_world, robot.radius)
     for label, p in (("start", start), ("goal", goal)):
         if not scene.free(p):
             raise ValueError(f"the {label} is in collision: {scene.describe(p)}")
-    if isinstance(scene_world, OccupancyGrid):
-        from ..grid import plan_world
-
-        result = plan_world(scene_world.inflate(robot.radius + PLAN_MARGIN), start[:2], goal,
-                            algorithm=planner or "astar", smooth=True)
-    else:
-        from ..planning import plan
-
-        world = replace(scene_world, start=start[:2], goal=goal,
-                        robot_radius=robot.radius + PLAN_MARGIN, goal_tolerance=0.0)
-        result = plan(world, planner=planner or "rrt_star", sampler="uniform", seed=0)
-    if not result.success:
-        raise ValueError(f"no path for the robot from {start[:2]} to {goal}: {result.status.name} {result.reason}")
-    path = np.asarray(result.path, float)
-    path[0], path[-1] = start[:2], goal
+    path = _plan_path(scene_world, robot.radius, start, goal, planner, sampler)
+    if not isinstance(path, np.ndarray):
+        raise ValueError(f"no path for the robot from {start[:2]} to {goal}: {path.status.name} {path.reason}")
     return path

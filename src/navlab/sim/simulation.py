@@ -22,6 +22,7 @@ import numpy as np
 from ..control.base import REACHED, STALLED, Controller
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
+from ..sensors.timing import DelayLine, SensorTiming
 from .plant import Plant
 from .scene import Scene
 
@@ -129,11 +130,16 @@ class Simulation:
         Waypoints for path-following controllers.
     record_scans : bool
         Keep every scan in the result.
+    lidar_timing, odometry_timing : SensorTiming or dict, optional
+        Rate, latency and jitter of the LiDAR and of the odometry
+        (``{rate: 10, latency: 0.5}``); the controller acts on the newest
+        measurement that has arrived. Default: every step, no delay.
     """
 
     def __init__(self, scene_world, robot, controller: Controller, start, goal, lidar: Optional[Lidar] = None,
                  encoders: Optional[WheelEncoders] = None, compass: Optional[Compass] = None, dt: float = 0.05,
-                 max_time: float = 120.0, path=None, record_scans: bool = False) -> None:
+                 max_time: float = 120.0, path=None, record_scans: bool = False,
+                 lidar_timing: Optional[SensorTiming] = None, odometry_timing: Optional[SensorTiming] = None) -> None:
         if not (isinstance(dt, (int, float)) and dt > 0 and math.isfinite(dt)):
             raise ValueError(f"time step dt must be a positive number of seconds, got {dt!r}")
         if not max_time > 0:
@@ -154,6 +160,8 @@ class Simulation:
         self.goal = np.asarray(goal, float)[:2]
         self.path = None if path is None else np.asarray(path, float)
         self.record_scans = record_scans
+        self.lidar_timing = SensorTiming.from_dict(lidar_timing, "lidar")
+        self.odometry_timing = SensorTiming.from_dict(odometry_timing, "odometry")
         if not self.scene.free(self.start):
             raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
         if not self.scene.free(np.array((*self.goal, 0.0))):
@@ -161,44 +169,65 @@ class Simulation:
 
     def run(self, seed: Any = 0) -> SimResult:
         rng = np.random.default_rng(seed)
+        # latency jitter has its own stream, so runs without jitter draw exactly as before
+        entropy = int(seed) if isinstance(seed, (int, np.integer)) else 0
+        timing_rng = np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=(4,)))
         n_max = int(math.ceil(self.max_time / self.dt)) + 1
         true = np.empty((n_max, 3))
         odo = np.empty((n_max, 3))
         cmds = np.zeros((n_max, 3))
         scans = np.empty((n_max, self.lidar.beams)) if (self.record_scans and self.lidar) else None
-        plant = Plant(self.scene, self.robot, self.start, self.encoders, self.compass)
+        scene = self.scene
+        scene.set_time(0.0)
+        plant = Plant(scene, self.robot, self.start, self.encoders, self.compass)
         self.controller.reset(self.goal, self.path)
         true[0], odo[0] = plant.pose, plant.odometry.pose
         status, reason = SimStatus.TIMEOUT, f"goal not reached in {self.max_time:g} s of simulated time"
         dt = self.dt
+        scanning = self.lidar is not None and (self.controller.needs_scan or scans is not None)
+        lidar_line = DelayLine(self.lidar_timing, timing_rng, initial=np.empty((0, 2)))
+        odom_line = DelayLine(self.odometry_timing, timing_rng, initial=plant.odometry.pose.copy())
         n = 1  # states recorded
         wall0 = time.perf_counter()
         while n < n_max:
             t = (n - 1) * dt
+            scene.set_time(t)
+            if odom_line.due(t):
+                odom_line.push(t, plant.odometry.pose)
             points = None
-            if self.lidar is not None and (self.controller.needs_scan or scans is not None):
-                ranges = self.lidar.scan(self.scene.world, plant.pose, rng)
-                if scans is not None:
-                    scans[n - 1] = ranges
-                # the controller places the points around the pose it believes in
-                points = self.lidar.points(ranges, plant.odometry.pose)
-            command = self.controller.command(t, plant.odometry.pose, points)
+            if scanning:
+                if lidar_line.due(t):
+                    ranges = self.lidar.scan(scene, plant.pose, rng)
+                    if scans is not None:
+                        scans[n - 1] = ranges
+                    # the points are placed around the pose the robot believed in when it scanned
+                    lidar_line.push(t, self.lidar.points(ranges, plant.odometry.pose))
+                elif scans is not None:
+                    scans[n - 1] = np.nan
+                points = lidar_line.read(t)
+            command = self.controller.command(t, odom_line.read(t), points)
             if command.status == REACHED:
                 status, reason = SimStatus.REACHED, ""
                 break
             if command.status == STALLED:
                 status, reason = SimStatus.STALLED, "no progress towards the goal (a local minimum?)"
                 break
-            collided = plant.step(command.vx, command.vy, command.omega, dt, rng)
+            collided = plant.step(command.vx, command.vy, command.omega, dt, rng, t)
             cmds[n - 1] = plant.last_twist
             true[n], odo[n] = plant.pose, plant.odometry.pose
             n += 1
             if collided:
-                status, reason = SimStatus.COLLIDED, \
-                    f"collision at t = {t + dt:.2f} s: {self.scene.describe(plant.pose)}"
+                status, reason = SimStatus.COLLIDED, plant.hit
                 break
         wall = time.perf_counter() - wall0
         steps = n - 1
         return SimResult(status, steps * dt, steps, wall, np.arange(n) * dt, true[:n].copy(), odo[:n].copy(),
                          cmds[:n].copy(), self.goal.copy(), self.path,
                          None if scans is None else scans[:n].copy(), reason)
+
+    def min_clearance(self, result: SimResult) -> float:
+        """Smallest gap (m) between the robot's disc and any obstacle, where
+        each was, over a run (negative after a collision; nan on maps)."""
+        if self.scene.is_grid:
+            return math.nan
+        return float(np.min(self.scene.clearances(result.true_poses, result.t)))

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import Optional, Sequence
 
 import numpy as np
 
@@ -19,8 +19,13 @@ def draw_grid(ax, grid) -> None:
 
 
 def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[np.ndarray] = None,
-                   expanded: Optional[np.ndarray] = None, title: Optional[str] = None):
-    """The grid (world frame), optional expanded cells, raw and smoothed paths."""
+                   expanded: Optional[np.ndarray] = None, title: Optional[str] = None,
+                   start: Optional[Sequence[float]] = None, goal: Optional[Sequence[float]] = None):
+    """The grid (world frame), optional expanded cells, raw and smoothed paths.
+
+    ``start`` and ``goal`` (metres) are drawn whether or not there is a path
+    (default: the path's ends), so a failed plan still shows what was asked.
+    """
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 7))
     draw_grid(ax, grid)
@@ -32,11 +37,16 @@ def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[
         ax.plot(raw[:, 0], raw[:, 1], "-", color="tab:blue", lw=1.2, label="raw path")
     if len(result.path):
         ax.plot(result.path[:, 0], result.path[:, 1], "-", color="tab:orange", lw=2.2,
-                label=f"path ({result.stats.get('length_m', 0):.3f} m)")
-        ax.plot(*result.path[0], "o", color="tab:green", ms=8, label="start")
-        ax.plot(*result.path[-1], "*", color="tab:red", ms=13, label="goal")
+                label=f"path ({result.cost:.3f} m)")
+        start = result.path[0] if start is None else start
+        goal = result.path[-1] if goal is None else goal
+    if start is not None:
+        ax.plot(*np.asarray(start, float)[:2], "o", color="tab:green", ms=8, label="start")
+    if goal is not None:
+        ax.plot(*np.asarray(goal, float)[:2], "*", color="tab:red", ms=13, label="goal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_title(title or f"{grid.name}: {result.params.get('algorithm')} — {result.status.name}")
-    ax.legend(loc="best", fontsize=8)
+    if ax.get_legend_handles_labels()[0]:  # no legend (and no matplotlib warning) when nothing is labelled
+        ax.legend(loc="best", fontsize=8)
     return save_figure(fig, out)

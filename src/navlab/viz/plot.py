@@ -17,11 +17,42 @@ def _pyplot():
 
 
 def save_figure(fig, out: Optional[str], dpi: int = 110):
-    """Write ``fig`` to ``out`` (when given) and release it; return it."""
+    """Write ``fig`` to ``out`` (when given) and release it; return it.
+
+    The file appears whole or not at all (:func:`navlab.atomic.atomic_path`);
+    a write that fails (disk full, no permission) is one ``ValueError``
+    naming the file.
+    """
     if out:
-        fig.savefig(out, dpi=dpi, bbox_inches="tight")
-        _pyplot().close(fig)
+        from pathlib import Path
+
+        from ..atomic import atomic_path
+
+        fmt = Path(out).suffix.lstrip(".").lower() or "png"
+        try:
+            with atomic_path(out) as tmp:
+                fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format=fmt)
+        except OSError as exc:
+            raise ValueError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
+        finally:
+            _pyplot().close(fig)
     return fig
+
+
+def draw_map(ax, grid, allow_unknown: bool = False, occupied: float = 0.35) -> None:
+    """An occupancy grid as an image in the map frame: occupied cells dark
+    (grey level ``occupied``), unknown cells mid grey (light when
+    ``allow_unknown``), free cells white."""
+    import matplotlib.transforms as mtransforms
+
+    shade = np.full(grid.blocked.shape, 1.0)
+    shade[grid.unknown] = 0.85 if allow_unknown else 0.6
+    shade[grid.blocked] = occupied
+    w, h = grid.width * grid.resolution, grid.height * grid.resolution
+    ox, oy, yaw = grid.origin
+    image = ax.imshow(shade, cmap="gray", vmin=0, vmax=1, origin="lower", extent=(0, w, 0, h),
+                      interpolation="nearest", zorder=1)
+    image.set_transform(mtransforms.Affine2D().rotate(yaw).translate(ox, oy) + ax.transData)
 
 
 def draw_world(ax, world, show_inflation: bool = True) -> None:
@@ -31,6 +62,8 @@ def draw_world(ax, world, show_inflation: bool = True) -> None:
     from ..world.shapes import Circle, Polygon, Rectangle
 
     r = world.robot_radius
+    if getattr(world, "occupancy", None) is not None:
+        draw_map(ax, world.occupancy, world.allow_unknown)
     for o in world.obstacles:
         if isinstance(o, Circle):
             ax.add_patch(patches.Circle(o.center, o.radius, color="0.35", zorder=2))
@@ -75,18 +108,27 @@ def draw_tree(ax, nodes: np.ndarray, parent: np.ndarray) -> None:
 
 def draw_path(ax, path: np.ndarray, label: str = "path", color: str = "tab:orange", **kw) -> None:
     if len(path):
-        ax.plot(path[:, 0], path[:, 1], "-", color=color, lw=kw.pop("lw", 2.2), zorder=4, label=label, **kw)
+        kw.setdefault("ls", "-")
+        ax.plot(path[:, 0], path[:, 1], color=color, lw=kw.pop("lw", 2.2), zorder=4, label=label, **kw)
 
 
 def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = None):
     """A figure of world, tree (if kept), path, start and goal; saved to ``out``."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(7, 7))
+    tree = result.tree if isinstance(result.tree, dict) else {}
+    if "raster" in tree and getattr(world, "occupancy", None) is None:
+        draw_map(ax, tree["raster"], occupied=0.8)  # the cells a grid planner saw, under the exact shapes
     draw_world(ax, world)
-    if result.tree is not None:
-        draw_tree(ax, result.tree["nodes"], result.tree["parent"])
+    if "nodes" in tree:
+        draw_tree(ax, tree["nodes"], tree["parent"])
+    if "raw_cells" in tree and "raster" in tree:  # a smoothed grid path: the path before smoothing
+        raw = tree["raster"].cell_to_world(tree["raw_cells"])
+        draw_path(ax, raw, label="grid path before smoothing", color="tab:blue", lw=1.0, ls="--")
     draw_path(ax, result.path, label=f"path {result.cost:.3f} m" if np.isfinite(result.cost) else "path")
-    ax.set_title(title or f"{world.name}: {result.params.get('planner', '')} + {result.params.get('sampler', '')} "
-                 f"— {result.status.name}")
+    what = result.params.get("planner", "")
+    if result.params.get("sampler"):
+        what += f" + {result.params['sampler']}"
+    ax.set_title(title or f"{world.name}: {what} — {result.status.name}")
     ax.legend(loc="upper left", fontsize=8)
     return save_figure(fig, out)

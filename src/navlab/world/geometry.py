@@ -1,35 +1,92 @@
 """Exact distance and collision kernels, compiled with numba.
 
 Obstacles are packed into flat arrays (a *geometry tuple*) that compiled
-planner loops receive directly:
+planner loops receive directly. Every world — shapes, an occupancy map, or
+both — packs into the same tuple type, so each kernel compiles once:
 
-``(circles, rects, poly_verts, poly_offsets, poly_boxes, params)``
+``(circles, rects, poly_verts, poly_offsets, poly_boxes, (params, cells, cheb))``
 
 - ``circles``: (nc, 3) ``x, y, r + robot_radius`` (already inflated)
 - ``rects``: (nr, 4) ``xmin, ymin, xmax, ymax`` (not inflated)
 - ``poly_verts``: (nv, 2) all polygon vertices, polygon k owning rows
   ``poly_offsets[k]:poly_offsets[k + 1]``
 - ``poly_boxes``: (np, 4) polygon bounding boxes grown by the robot radius
-- ``params``: ``[robot_radius**2, xmin, xmax, ymin, ymax]``
+- ``params``: float slots ``P_*`` below: ``robot_radius**2``, the bounds, and
+  the map's frame (origin, yaw, resolution, robot radius in cells)
+- ``cells``: (H, W) uint8 map codes, indexed ``[y, x]``: ``FREE``,
+  ``BLOCKED`` (occupied, or unknown unless allowed) or ``SURFACE`` (blocked
+  with a free 4-neighbour); (0, 0) without a map
+- ``cheb``: (H, W) int32 chessboard distance, in cells, from each cell to the
+  nearest blocked cell (0 on blocked cells); (0, 0) without a map
+
+The map part sits in one nested slot so the first five slots keep the
+layout they always had (ray casting unpacks them).
 
 A point or segment collides with an obstacle when its exact Euclidean
-distance to the (un-inflated) obstacle is below the robot radius; with a zero
-radius, touching counts as collision (obstacles are closed sets). Nothing is
-discretised: segment–circle, segment–rectangle and segment–polygon distances
-are computed analytically, so a valid edge keeps clearance ≥ robot radius
-along its whole length.
+distance to the (un-inflated) obstacle is at most the robot radius: it is
+free only when the distance *exceeds* the radius, so at radius 0 touching
+counts as collision (obstacles are closed sets) for circles, rectangles,
+polygons and map cells alike. Nothing is discretised: segment–circle,
+segment–rectangle, segment–polygon and segment–cell-square distances are
+computed analytically, so a valid edge keeps clearance > robot radius along
+its whole length. Points outside the bounds, or outside the map's (possibly
+rotated) rectangle, are never free.
+
+Maps: a segment is walked in the grid frame (cell units). Where the
+chessboard distance transform proves the robot disc is at least half a cell
+from every blocked square, the walk jumps ahead by that proven margin (sphere
+tracing); near a surface it tests a short window of the segment exactly
+against the blocked squares around it. Only ``SURFACE`` cells are tested:
+a segment that reaches the blocked region's interior must cross its surface,
+and the nearest point of the region lies on it. So a check costs a few jumps
+in open space plus exact square tests where the segment passes a wall —
+independent of the map's size. The chessboard transform (two passes, exact
+for that metric) is a valid lower bound on Euclidean clearance and costs a few
+milliseconds for 10⁶ cells, so the checker needs no cache that could go stale.
+
+The finite range :mod:`navlab.limits` enforces at the input boundary keeps
+every squared distance finite: kernels reject a point outside the bounds
+before any square is formed.
 """
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 from numba import njit
 
 from .shapes import Circle, Polygon, Rectangle
 
+# Float parameter slots of the geometry tuple's ``params``.
+P_R2, P_XMIN, P_XMAX, P_YMIN, P_YMAX = range(5)
+P_HAS_MAP, P_OX, P_OY, P_COS, P_SIN, P_RES, P_RC = range(5, 12)
+N_PARAMS = 12
+# Map cell codes.
+FREE, BLOCKED, SURFACE = 0, 1, 2
+#: [cells] the walk jumps ahead only when it can prove at least this much room
+SKIP_MIN = 0.5
+#: [cells] length of a segment window tested exactly near a surface
+WINDOW = 2.0
+_HALF_DIAGONAL = 0.7071067811865476 + 1e-12  # [cells] centre-to-corner of a cell, rounded up
 
-def pack_geometry(obstacles, robot_radius: float, bounds_array: np.ndarray):
-    """Pack shapes into the geometry tuple the kernels take."""
+
+def pack_geometry(obstacles, robot_radius: float, bounds_array: np.ndarray, occupancy=None,
+                  allow_unknown: bool = False):
+    """Pack shapes (and optionally an occupancy grid) into the geometry tuple.
+
+    Parameters
+    ----------
+    obstacles : sequence of Circle, Rectangle, Polygon
+    robot_radius : float
+        Metres; every obstacle and blocked cell is inflated by it.
+    bounds_array : ndarray
+        ``[xmin, xmax, ymin, ymax]``.
+    occupancy : OccupancyGrid, optional
+        Only ``blocked``, ``unknown``, ``resolution``, ``origin`` are read.
+    allow_unknown : bool
+        Treat the grid's unknown cells as free.
+    """
     circles = [(*o.center, o.radius + robot_radius) for o in obstacles if isinstance(o, Circle)]
     rects = [(*o.min, *o.max) for o in obstacles if isinstance(o, Rectangle)]
     polys = [np.asarray(o.points, dtype=float) for o in obstacles if isinstance(o, Polygon)]
@@ -39,15 +96,85 @@ def pack_geometry(obstacles, robot_radius: float, bounds_array: np.ndarray):
         [(p[:, 0].min() - robot_radius, p[:, 1].min() - robot_radius,
           p[:, 0].max() + robot_radius, p[:, 1].max() + robot_radius) for p in polys]
     ).reshape(-1, 4)
-    params = np.concatenate(([robot_radius**2], bounds_array)).astype(float)
+    params = np.zeros(N_PARAMS)
+    params[P_R2] = robot_radius**2
+    params[P_XMIN:P_YMAX + 1] = bounds_array
+    if occupancy is None:
+        cells = np.zeros((0, 0), dtype=np.uint8)
+        cheb = np.zeros((0, 0), dtype=np.int32)
+    else:
+        cells, cheb = pack_map(occupancy, allow_unknown)
+        ox, oy, yaw = (float(v) for v in occupancy.origin)
+        res = float(occupancy.resolution)
+        params[P_HAS_MAP] = 1.0
+        params[P_OX], params[P_OY] = ox, oy
+        # an unrotated map keeps cos = 1, sin = 0 exactly, so its frame change is exact
+        params[P_COS], params[P_SIN] = (1.0, 0.0) if yaw == 0.0 else (math.cos(yaw), math.sin(yaw))
+        params[P_RES] = res
+        params[P_RC] = robot_radius / res
     return (
         np.asarray(circles, dtype=float).reshape(-1, 3),
         np.asarray(rects, dtype=float).reshape(-1, 4),
         np.ascontiguousarray(verts, dtype=float),
         offsets,
         np.ascontiguousarray(boxes, dtype=float),
-        params,
+        (params, cells, cheb),
     )
+
+
+def pack_map(occupancy, allow_unknown: bool = False):
+    """The map's cell codes and chessboard distance transform (see module doc)."""
+    blocked = np.array(occupancy.blocked, dtype=bool)  # a private, writable copy
+    if not allow_unknown and occupancy.unknown is not None:
+        blocked = blocked | np.asarray(occupancy.unknown, dtype=bool)
+    blocked = np.ascontiguousarray(blocked)
+    cells = blocked.astype(np.uint8)
+    # a blocked cell with a free 4-neighbour inside the map is on the surface
+    free = ~blocked
+    touches = np.zeros_like(blocked)
+    touches[1:, :] |= free[:-1, :]
+    touches[:-1, :] |= free[1:, :]
+    touches[:, 1:] |= free[:, :-1]
+    touches[:, :-1] |= free[:, 1:]
+    cells[blocked & touches] = SURFACE
+    return cells, chessboard_transform(blocked)
+
+
+@njit(cache=True)
+def chessboard_transform(blocked):
+    """Chessboard distance (cells) from every cell to the nearest blocked one.
+
+    Rosenfeld and Pfaltz's two-pass algorithm, exact for this metric; cells of
+    a map without blocked cells get ``H + W`` (farther than anything in it).
+    """
+    h, w = blocked.shape
+    far = h + w
+    d = np.empty((h, w), dtype=np.int32)
+    for j in range(h):
+        for i in range(w):
+            best = 0 if blocked[j, i] else far
+            if best and j > 0:
+                best = min(best, d[j - 1, i] + 1)
+                if i > 0:
+                    best = min(best, d[j - 1, i - 1] + 1)
+                if i + 1 < w:
+                    best = min(best, d[j - 1, i + 1] + 1)
+            if best and i > 0:
+                best = min(best, d[j, i - 1] + 1)
+            d[j, i] = best
+    for j in range(h - 1, -1, -1):
+        for i in range(w - 1, -1, -1):
+            best = d[j, i]
+            if best and j + 1 < h:
+                best = min(best, d[j + 1, i] + 1)
+                if i > 0:
+                    best = min(best, d[j + 1, i - 1] + 1)
+                if i + 1 < w:
+                    best = min(best, d[j + 1, i + 1] + 1)
+            if best and i + 1 < w:
+                best = min(best, d[j, i + 1] + 1)
+            d[j, i] = best
+    return d
 
 
 @njit(cache=True, inline="always")
@@ -167,25 +294,148 @@ def segment_polygon_dist2(ax, ay, bx, by, verts, start, stop):
 
 @njit(cache=True, inline="always")
 def _hits(d2, r2):
-    return d2 < r2 or d2 == 0.0
+    # free only when the distance exceeds the radius: at radius 0, touching collides
+    return d2 <= r2
 
 
 @njit(cache=True)
 def in_bounds(x, y, geom):
-    p = geom[5]
-    return p[1] <= x <= p[2] and p[3] <= y <= p[4]
+    """Whether (x, y) lies in the closed bounds (False for NaN)."""
+    p = geom[5][0]
+    return p[P_XMIN] <= x <= p[P_XMAX] and p[P_YMIN] <= y <= p[P_YMAX]
+
+
+@njit(cache=True, inline="always")
+def _to_grid(x, y, params):
+    """World point → grid frame in cell units (rotation about the origin by −yaw)."""
+    dx = x - params[P_OX]
+    dy = y - params[P_OY]
+    c = params[P_COS]
+    s = params[P_SIN]
+    res = params[P_RES]
+    return (dx * c + dy * s) / res, (dy * c - dx * s) / res
+
+
+@njit(cache=True, inline="always")
+def _cell_of(u, v, w, h):
+    """Cell (i, j) holding grid point (u, v) of the closed map (edges clamp inward)."""
+    i = min(max(int(math.floor(u)), 0), w - 1)
+    j = min(max(int(math.floor(v)), 0), h - 1)
+    return i, j
+
+
+@njit(cache=True)
+def _window_hits(u0, v0, u1, v1, rc, cells):
+    """Whether segment (u0, v0)–(u1, v1) (grid frame, cell units) comes within
+    ``rc`` of a surface cell's closed square (exact)."""
+    h, w = cells.shape
+    i_lo = max(int(math.floor(min(u0, u1) - rc)) - 1, 0)
+    i_hi = min(int(math.floor(max(u0, u1) + rc)), w - 1)
+    j_lo = max(int(math.floor(min(v0, v1) - rc)) - 1, 0)
+    j_hi = min(int(math.floor(max(v0, v1) + rc)), h - 1)
+    rc2 = rc * rc
+    near = rc + _HALF_DIAGONAL
+    near2 = near * near
+    for j in range(j_lo, j_hi + 1):
+        for i in range(i_lo, i_hi + 1):
+            if cells[j, i] != SURFACE:
+                continue
+            # the square is within half a diagonal of its centre: a cheap exact rejection
+            if point_segment_dist2(i + 0.5, j + 0.5, u0, v0, u1, v1) > near2:
+                continue
+            if _hits(segment_rect_dist2(u0, v0, u1, v1, float(i), float(j), i + 1.0, j + 1.0), rc2):
+                return True
+    return False
+
+
+@njit(cache=True)
+def map_segment_free(ax, ay, bx, by, params, cells, cheb):
+    """Whether segment ab keeps more than the robot radius from every blocked
+    cell's closed square and stays on the map (see the module doc)."""
+    h, w = cells.shape
+    au, av = _to_grid(ax, ay, params)
+    bu, bv = _to_grid(bx, by, params)
+    if not (0.0 <= au <= w and 0.0 <= av <= h and 0.0 <= bu <= w and 0.0 <= bv <= h):
+        return False  # off the map (the map is convex: inside at both ends is inside throughout)
+    i, j = _cell_of(au, av, w, h)
+    if cells[j, i] != FREE:
+        return False
+    rc = params[P_RC]
+    du = bu - au
+    dv = bv - av
+    length = math.sqrt(du * du + dv * dv)
+    t = 0.0
+    pu, pv = au, av
+    while True:
+        i, j = _cell_of(pu, pv, w, h)
+        fu = pu - i
+        fv = pv - j
+        edge = max(min(min(fu, 1.0 - fu), min(fv, 1.0 - fv)), 0.0)
+        # every blocked square is ≥ cheb − 1 + edge away from p in L∞, hence in L2
+        room = cheb[j, i] - 1.0 + edge - rc
+        if room >= SKIP_MIN:
+            t += room * (1.0 - 1e-9)  # the open ball of radius `room` about p is clear
+            if t > length:
+                return True
+            f = t / length
+            pu, pv = au + f * du, av + f * dv
+            continue
+        t2 = t + WINDOW
+        if t2 >= length:
+            return not _window_hits(pu, pv, bu, bv, rc, cells)
+        f = t2 / length
+        qu, qv = au + f * du, av + f * dv
+        if _window_hits(pu, pv, qu, qv, rc, cells):
+            return False
+        t, pu, pv = t2, qu, qv
+
+
+@njit(cache=True)
+def map_clearance(px, py, params, cells, cheb):
+    """Distance (m) from a point to the nearest blocked cell's square (0 on
+    or in one, or off the map; ``inf`` when nothing is blocked)."""
+    h, w = cells.shape
+    u, v = _to_grid(px, py, params)
+    if not (0.0 <= u <= w and 0.0 <= v <= h):
+        return 0.0
+    i, j = _cell_of(u, v, w, h)
+    if cells[j, i] != FREE:
+        return 0.0
+    c = cheb[j, i]
+    if c >= h + w:
+        return np.inf
+    best = np.inf
+    # ring m of cells around (i, j) is at least m − 1 cells away: stop once that exceeds the best
+    m = c
+    while m < h + w:
+        lower = m - 1.0
+        if lower > 0.0 and lower * lower >= best:
+            break
+        for dj in range(-m, m + 1):
+            jj = j + dj
+            if jj < 0 or jj >= h:
+                continue
+            # the ring's top and bottom rows in full, its sides at their two ends
+            step = 1 if (dj == -m or dj == m) else 2 * m
+            for di in range(-m, m + 1, step):
+                ii = i + di
+                if 0 <= ii < w and cells[jj, ii] == SURFACE:
+                    best = min(best, point_rect_dist2(u, v, float(ii), float(jj), ii + 1.0, jj + 1.0))
+        m += 1
+    return math.sqrt(best) * params[P_RES]
 
 
 @njit(cache=True)
 def segment_free(ax, ay, bx, by, geom):
     """Whether segment ab (a point when a == b) keeps clearance everywhere."""
-    circles, rects, verts, offsets, boxes, params = geom
-    r2 = params[0]
+    circles, rects, verts, offsets, boxes, frame = geom
+    params, cells, cheb = frame
+    r2 = params[P_R2]
     if not (in_bounds(ax, ay, geom) and in_bounds(bx, by, geom)):
         return False
     for k in range(circles.shape[0]):
         cr = circles[k, 2]
-        if point_segment_dist2(circles[k, 0], circles[k, 1], ax, ay, bx, by) < cr * cr:
+        if point_segment_dist2(circles[k, 0], circles[k, 1], ax, ay, bx, by) <= cr * cr:
             return False
     r = np.sqrt(r2)
     sxmin, sxmax = min(ax, bx), max(ax, bx)
@@ -200,15 +450,18 @@ def segment_free(ax, ay, bx, by, geom):
             continue
         if _hits(segment_polygon_dist2(ax, ay, bx, by, verts, offsets[k], offsets[k + 1]), r2):
             return False
+    if params[P_HAS_MAP] != 0.0:
+        return map_segment_free(ax, ay, bx, by, params, cells, cheb)
     return True
 
 
 @njit(cache=True)
 def clearance(px, py, geom):
     """Distance from a point to the nearest (un-inflated) obstacle surface
-    (0 inside an obstacle; ``inf`` with no obstacles)."""
-    circles, rects, verts, offsets, boxes, params = geom
-    r = np.sqrt(params[0])
+    (0 inside an obstacle or off the map; ``inf`` with no obstacles)."""
+    circles, rects, verts, offsets, boxes, frame = geom
+    params, cells, cheb = frame
+    r = np.sqrt(params[P_R2])
     best = np.inf
     for k in range(circles.shape[0]):
         d = np.hypot(px - circles[k, 0], py - circles[k, 1]) - (circles[k, 2] - r)
@@ -217,6 +470,8 @@ def clearance(px, py, geom):
         best = min(best, np.sqrt(point_rect_dist2(px, py, rects[k, 0], rects[k, 1], rects[k, 2], rects[k, 3])))
     for k in range(offsets.shape[0] - 1):
         best = min(best, np.sqrt(segment_polygon_dist2(px, py, px, py, verts, offsets[k], offsets[k + 1])))
+    if params[P_HAS_MAP] != 0.0:
+        best = min(best, map_clearance(px, py, params, cells, cheb))
     return best
 
 

@@ -34,6 +34,7 @@ import yaml
 from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
+from .motion import MotionFormatError, with_motion
 from .shapes import Circle, Obstacle, Point, Polygon, Rectangle
 from .world import Bounds, World
 
@@ -170,8 +171,11 @@ def _obstacle(where: str, item: Any) -> Obstacle:
         raise _FieldError(f"{where}.type", f"unknown shape {_show(kind)}; valid: {', '.join(shapes)}."
                           + suggest(str(kind), shapes))
     parse, fields = OBSTACLE_PARSERS[kind]
-    _mapping(where, item, {"type": True, **fields})
-    return parse(where, item)
+    _mapping(where, item, {"type": True, "motion": False, **fields})
+    try:
+        return with_motion(parse(where, item), item.get("motion"))  # moving obstacles: world/motion.py
+    except MotionFormatError as exc:
+        raise _FieldError(f"{where}.{exc.field}", _short(exc)) from None
 
 
 # --- the whole document ---------------------------------------------------------------------------
@@ -242,14 +246,14 @@ def _loader_for(raw: bytes, text: str):
     return c_loader if max(flow, block) <= _C_PARSER_MAX_NESTING else yaml.SafeLoader
 
 
-def read_world_file(path: Union[str, os.PathLike]) -> World:
-    """Read a YAML world file (UTF-8, at most :data:`MAX_FILE_BYTES` = 2 MiB).
+def read_yaml_document(path: Union[str, os.PathLike]) -> Any:
+    """The YAML document in ``path`` (UTF-8, at most :data:`MAX_FILE_BYTES` = 2 MiB), or None when empty.
 
     Raises
     ------
     WorldFormatError
-        The file cannot be read (missing, a directory, no permission), is not
-        UTF-8 YAML, is empty, or is malformed; the message names the file.
+        The file cannot be read (missing, a directory, no permission), is too
+        large, is not UTF-8 or is not YAML; the message names the file.
     """
     p = Path(path)
     try:
@@ -265,14 +269,26 @@ def read_world_file(path: Union[str, os.PathLike]) -> World:
     except UnicodeDecodeError as exc:
         raise WorldFormatError(f"{p}: not a UTF-8 text file (byte {exc.start}); a world file is YAML text") from None
     try:
-        data = yaml.load(text, Loader=_loader_for(raw, text))  # noqa: S506 -- both loaders are safe ones
+        return yaml.load(text, Loader=_loader_for(raw, text))  # noqa: S506 -- both loaders are safe ones
     except yaml.YAMLError as exc:
         raise WorldFormatError(f"{p}: not valid YAML: {_short(exc)}") from None
     except RecursionError:
         raise WorldFormatError(f"{p}: nested too deeply to be a world file") from None
+
+
+def read_world_file(path: Union[str, os.PathLike]) -> World:
+    """Read a YAML world file (see :func:`read_yaml_document`).
+
+    Raises
+    ------
+    WorldFormatError
+        The file cannot be read, is not UTF-8 YAML, is empty, or is malformed;
+        the message names the file.
+    """
+    data = read_yaml_document(path)
     if data is None:
-        raise WorldFormatError(f"{p}: empty; expected the world fields (bounds, start, goal, ...)")
-    return world_from_dict(data, str(p))
+        raise WorldFormatError(f"{path}: empty; expected the world fields (bounds, start, goal, ...)")
+    return world_from_dict(data, str(path))
 
 
 def save_world(world: World, path: Union[str, os.PathLike]) -> None:

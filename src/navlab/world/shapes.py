@@ -1,6 +1,8 @@
 """Obstacle shapes: circles, axis-aligned rectangles and simple polygons.
 
-Shapes are immutable values in metres. Collision queries never loop over
+Shapes are immutable values in metres. A shape may carry a ``motion``
+(:mod:`navlab.world.motion`): its geometry is then the one at t = 0, which
+is what the packed geometry, and so every planner, sees. Collision queries never loop over
 these objects; :mod:`navlab.world.geometry` packs them into flat arrays for
 the compiled kernels.
 """
@@ -10,11 +12,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
 Point = Tuple[float, float]
+
+
+def _motion_dict(shape, out: Dict[str, Any]) -> Dict[str, Any]:
+    if shape.motion is not None:
+        out["motion"] = shape.motion.to_dict()
+    return out
 
 
 def _point(value: Any, what: str) -> Point:
@@ -30,6 +38,7 @@ class Circle:
 
     center: Point
     radius: float
+    motion: Optional[Any] = None  #: a :mod:`navlab.world.motion` motion; the shape is its t = 0 geometry
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _point(self.center, "circle center"))
@@ -51,7 +60,7 @@ class Circle:
         return np.column_stack((self.center[0] + rho * np.cos(phi), self.center[1] + rho * np.sin(phi)))
 
     def to_dict(self) -> Dict[str, Any]:
-        return {"type": "circle", "center": list(self.center), "radius": self.radius}
+        return _motion_dict(self, {"type": "circle", "center": list(self.center), "radius": self.radius})
 
 
 @dataclass(frozen=True)
@@ -60,6 +69,7 @@ class Rectangle:
 
     min: Point
     max: Point
+    motion: Optional[Any] = None  #: see :class:`Circle`
 
     def __post_init__(self) -> None:
         lo = _point(self.min, "rectangle min")
@@ -82,7 +92,7 @@ class Rectangle:
         return centre + (rng.random((n, 2)) * 2 - 1) * half
 
     def to_dict(self) -> Dict[str, Any]:
-        return {"type": "rectangle", "min": list(self.min), "max": list(self.max)}
+        return _motion_dict(self, {"type": "rectangle", "min": list(self.min), "max": list(self.max)})
 
 
 @dataclass(frozen=True)
@@ -90,6 +100,7 @@ class Polygon:
     """A simple polygon given by its vertices (m), in either orientation."""
 
     points: Tuple[Point, ...]
+    motion: Optional[Any] = None  #: see :class:`Circle`
 
     def __post_init__(self) -> None:
         import shapely
@@ -139,7 +150,7 @@ class Polygon:
         return centroid + 0.999 * (base - centroid)
 
     def to_dict(self) -> Dict[str, Any]:
-        return {"type": "polygon", "points": [list(p) for p in self.points]}
+        return _motion_dict(self, {"type": "polygon", "points": [list(p) for p in self.points]})
 
 
 Obstacle = Circle | Rectangle | Polygon

@@ -8,10 +8,35 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from .shapes import Obstacle, _point
+from ..limits import check_coordinate, check_length
+from .shapes import Circle, Obstacle, Polygon, Rectangle
 
 if TYPE_CHECKING:  # the grid package imports nothing from world; keep it that way at run time
     from ..grid.occupancy import OccupancyGrid
+
+
+def _plain(value: Any) -> Any:
+    """A numpy scalar as the Python number it holds (other values unchanged)."""
+    return value.item() if isinstance(value, np.generic) else value
+
+
+def _query_point(value: Any, what: str) -> Tuple[float, float]:
+    """``value`` as an (x, y) pair of supported coordinates, else ValueError naming ``what``."""
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise ValueError(f"{what} must be two numbers [x, y] in metres, got {value!r}")
+    return (check_coordinate(f"{what} x", _plain(value[0])), check_coordinate(f"{what} y", _plain(value[1])))
+
+
+def _check_obstacle(k: int, obstacle: Any) -> None:
+    """Every coordinate of an obstacle within the supported range (circle radii too)."""
+    if not isinstance(obstacle, (Circle, Rectangle, Polygon)):
+        raise ValueError(f"obstacles[{k}] must be a Circle, Rectangle or Polygon, got {type(obstacle).__name__}")
+    for v in obstacle.bbox():
+        check_coordinate(f"obstacles[{k}] coordinate", float(v))
+    if isinstance(obstacle, Circle):
+        check_length(f"obstacles[{k}] radius", obstacle.radius, allow_zero=False)
 
 
 @dataclass(frozen=True)
@@ -24,9 +49,8 @@ class Bounds:
     ymax: float
 
     def __post_init__(self) -> None:
-        vals = (self.xmin, self.xmax, self.ymin, self.ymax)
-        if not all(math.isfinite(v) for v in vals):
-            raise ValueError(f"bounds must be finite, got {vals}")
+        for what in ("xmin", "xmax", "ymin", "ymax"):
+            object.__setattr__(self, what, check_coordinate(f"bounds.{what}", _plain(getattr(self, what))))
         if not (self.xmax > self.xmin and self.ymax > self.ymin):
             raise ValueError(f"bounds need max > min in x and y, got x=[{self.xmin}, {self.xmax}] y=[{self.ymin}, {self.ymax}]")
 
@@ -81,14 +105,24 @@ class World:
     allow_unknown: bool = False
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "start", _point(self.start, "start"))
-        object.__setattr__(self, "goal", _point(self.goal, "goal"))
+        # Everything is checked against navlab.limits here, so the compiled
+        # kernels never see a non-finite or overflowing number.
+        if not isinstance(self.bounds, Bounds):
+            raise ValueError(f"bounds must be a Bounds, got {type(self.bounds).__name__}")
+        object.__setattr__(self, "start", _query_point(self.start, "start"))
+        object.__setattr__(self, "goal", _query_point(self.goal, "goal"))
         object.__setattr__(self, "obstacles", tuple(self.obstacles))
+        for k, obstacle in enumerate(self.obstacles):
+            _check_obstacle(k, obstacle)
         for what in ("robot_radius", "goal_tolerance"):
-            value = getattr(self, what)
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value >= 0):
-                raise ValueError(f"{what} must be a non-negative number of metres, got {value!r}")
-            object.__setattr__(self, what, float(value))
+            object.__setattr__(self, what, check_length(what, _plain(getattr(self, what))))
+        if not isinstance(self.allow_unknown, (bool, np.bool_)):
+            raise ValueError(f"allow_unknown must be true or false, got {self.allow_unknown!r}")
+        object.__setattr__(self, "allow_unknown", bool(self.allow_unknown))
+        if self.occupancy is not None:
+            for what in ("blocked", "resolution", "origin"):
+                if not hasattr(self.occupancy, what):
+                    raise ValueError(f"occupancy must be an OccupancyGrid, got {type(self.occupancy).__name__}")
 
     @classmethod
     def from_grid(cls, grid: "OccupancyGrid", start, goal, robot_radius: float = 0.0,

@@ -1,0 +1,184 @@
+"""Conservative rasterisation: the grid a grid planner searches for a World.
+
+A grid planner moves between cell centres, and every step between two
+neighbouring free cells (diagonal steps only when both orthogonal neighbours
+are free, line-of-sight tests over every cell a segment touches) stays inside
+the closed squares of free cells. So a cell is blocked when *any part* of its
+square comes within the robot radius of an obstacle; then every grid path is
+collision-free in the exact world, whatever the resolution. Cell-centre tests
+would not give that guarantee: an obstacle can reach into a cell without
+covering its centre.
+
+Distances are exact: analytic for circles and axis-aligned rectangles,
+shapely's exact polygon distance for polygons. Maps keep their own cells;
+the robot radius blocks every cell whose square lies within that radius of
+an occupied (or unknown, unless allowed) cell's square.
+
+This module reads World objects duck-typed (``bounds``, ``obstacles``,
+``robot_radius``, ``occupancy``, ``allow_unknown``) so the grid package still
+imports nothing from :mod:`navlab.world`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Optional
+
+import numpy as np
+
+from .occupancy import OccupancyGrid
+
+MAX_CELLS = 10**8  #: largest grid a world may be rasterised to
+DEFAULT_CELLS_ALONG_LONGER_SIDE = 200  #: default resolution = longer side of the bounds / this
+
+
+def default_resolution(bounds) -> float:
+    """1/200 of the bounds' longer side (m)."""
+    return max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin) / DEFAULT_CELLS_ALONG_LONGER_SIDE
+
+
+def grid_shape(bounds, resolution: float) -> tuple[int, int]:
+    """(width, height) in whole cells inside ``bounds``; raises before anything is allocated.
+
+    The grid starts at the bounds' lower-left corner and holds only whole
+    cells, so a sliver narrower than a cell along the upper edges is left out
+    (conservative: every cell lies inside the bounds).
+    """
+    if isinstance(resolution, bool) or not isinstance(resolution, (int, float)) or not math.isfinite(resolution) \
+            or resolution <= 0:
+        raise ValueError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
+    sx, sy = bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin
+    # a hair of slack so that 10 m / 0.05 m counts 200 cells, not 199
+    nx, ny = math.floor(sx / resolution * (1 + 1e-12)), math.floor(sy / resolution * (1 + 1e-12))
+    if nx * ny > MAX_CELLS:
+        raise ValueError(f"resolution {resolution:g} m would rasterise the {sx:g} m x {sy:g} m bounds to "
+                         f"{nx} x {ny} = {nx * ny:.3g} cells (more than {MAX_CELLS:.0e}); use a coarser resolution")
+    if nx < 1 or ny < 1:
+        raise ValueError(f"resolution {resolution:g} m is larger than the {sx:g} m x {sy:g} m bounds")
+    return nx, ny
+
+
+def _margin(bounds) -> float:
+    """Floating-point slack (m) added to every clearance test, so rounding never frees a cell."""
+    scale = max(1.0, abs(bounds.xmin), abs(bounds.xmax), abs(bounds.ymin), abs(bounds.ymax))
+    return 1e-9 * scale
+
+
+def _window(lo: float, hi: float, origin: float, res: float, n: int) -> tuple[int, int]:
+    """Index range [i0, i1) of the cells overlapping [lo, hi] along one axis."""
+    i0 = max(0, math.floor((lo - origin) / res) - 1)
+    i1 = min(n, math.floor((hi - origin) / res) + 2)
+    return i0, i1
+
+
+def block_obstacles(blocked: np.ndarray, origin_xy, resolution: float, obstacles, radius: float,
+                    margin: float) -> None:
+    """Mark in ``blocked`` ([y, x], unrotated cells from ``origin_xy``) every
+    cell whose square is within ``radius`` (+ ``margin``) of an obstacle."""
+    import shapely
+
+    from ..world.shapes import Circle, Polygon, Rectangle
+
+    h, w = blocked.shape
+    ox, oy = origin_xy
+    reach = radius + margin
+    for o in obstacles:
+        x0, y0, x1, y1 = o.bbox()
+        i0, i1 = _window(x0 - reach, x1 + reach, ox, resolution, w)
+        j0, j1 = _window(y0 - reach, y1 + reach, oy, resolution, h)
+        if i0 >= i1 or j0 >= j1:
+            continue
+        cx0 = ox + np.arange(i0, i1) * resolution  # cell squares' edges in this window
+        cy0 = oy + np.arange(j0, j1) * resolution
+        cx1, cy1 = cx0 + resolution, cy0 + resolution
+        if isinstance(o, Circle):
+            (px, py), limit = o.center, o.radius + reach
+            gx = np.maximum(np.maximum(cx0 - px, px - cx1), 0.0)
+            gy = np.maximum(np.maximum(cy0 - py, py - cy1), 0.0)
+            hit = np.hypot(gx[None, :], gy[:, None]) <= limit
+        elif isinstance(o, Rectangle):
+            gx = np.maximum(np.maximum(cx0 - o.max[0], o.min[0] - cx1), 0.0)
+            gy = np.maximum(np.maximum(cy0 - o.max[1], o.min[1] - cy1), 0.0)
+            hit = np.hypot(gx[None, :], gy[:, None]) <= reach
+        elif isinstance(o, Polygon):
+            shape = shapely.Polygon(o.points)
+            shapely.prepare(shape)
+            X0, Y0 = np.meshgrid(cx0, cy0)
+            boxes = shapely.box(X0, Y0, X0 + resolution, Y0 + resolution)
+            hit = shapely.dwithin(boxes, shape, reach)
+        else:  # pragma: no cover - a new shape kind must be taught here
+            raise TypeError(f"cannot rasterise obstacle {o!r}")
+        blocked[j0:j1, i0:i1] |= hit
+
+
+def inflate_cells(blocked: np.ndarray, resolution: float, radius: float, margin: float = 0.0) -> np.ndarray:
+    """Block every cell whose square is closer than ``radius`` (+ ``margin``)
+    to a blocked cell's square (squares that touch are 0 m apart)."""
+    if radius <= 0 or not blocked.any():
+        return blocked.copy()
+    from scipy.ndimage import binary_dilation
+
+    k = math.ceil(radius / resolution) + 1
+    d = np.arange(-k, k + 1)
+    gap = np.maximum(np.abs(d) - 1, 0) * resolution
+    footprint = np.hypot(gap[None, :], gap[:, None]) < radius + margin
+    return binary_dilation(blocked, structure=footprint)
+
+
+def rasterize(world, resolution: Optional[float] = None) -> OccupancyGrid:
+    """The grid a grid planner searches for ``world``.
+
+    Parameters
+    ----------
+    world : World
+        A geometric world, or one carrying an ``occupancy`` map.
+    resolution : float, optional
+        Metres per cell for geometric worlds (default: :func:`default_resolution`).
+        A map is searched on its own cells; giving a resolution for it is an error.
+
+    Returns
+    -------
+    OccupancyGrid
+        ``blocked`` is every cell the robot may not enter (occupied, unknown
+        unless ``world.allow_unknown``, or within the robot radius of either);
+        its ``unknown`` is empty.
+
+    Raises
+    ------
+    ValueError
+        A bad resolution, one giving more than :data:`MAX_CELLS` cells (before
+        anything is allocated), or a resolution for a map.
+    """
+    r = world.robot_radius
+    margin = _margin(world.bounds)
+    grid = world.occupancy
+    if grid is not None:
+        if resolution is not None:
+            raise ValueError(f"resolution: a map is planned on its own cells ({grid.resolution:g} m); "
+                             "leave resolution out")
+        # Many queries on one map (a benchmark, a ROS node) share its raster and
+        # so its search buffers. A grid is immutable (read-only arrays, frozen
+        # fields), so a raster hung on it can never go stale.
+        cache = getattr(grid, "_cache", None)
+        key = ("navlab.plan raster", r, bool(world.allow_unknown), tuple(world.obstacles))
+        if isinstance(cache, dict) and key in cache:
+            return cache[key]
+        blocked = ~grid.passable(world.allow_unknown)
+        blocked = inflate_cells(blocked, grid.resolution, r, margin)
+        if world.obstacles:
+            if grid.origin[2] != 0.0:
+                raise ValueError("obstacles on a rotated map (origin yaw != 0) cannot be rasterised onto its cells")
+            block_obstacles(blocked, grid.origin[:2], grid.resolution, world.obstacles, r, margin)
+        raster = OccupancyGrid(blocked, grid.resolution, grid.origin, name=grid.name)
+        if isinstance(cache, dict):
+            for old in [k for k in cache if isinstance(k, tuple) and k and k[0] == "navlab.plan raster"]:
+                del cache[old]  # one raster per map: a new radius replaces the old one
+            cache[key] = raster
+        return raster
+    if resolution is None:
+        resolution = default_resolution(world.bounds)
+    nx, ny = grid_shape(world.bounds, resolution)
+    blocked = np.zeros((ny, nx), dtype=bool)
+    origin = (world.bounds.xmin, world.bounds.ymin)
+    block_obstacles(blocked, origin, float(resolution), world.obstacles, r, margin)
+    return OccupancyGrid(blocked, float(resolution), (*origin, 0.0), name=world.name)

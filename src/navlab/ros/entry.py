@@ -1,0 +1,81 @@
+"""Entry points of the node processes, free of ROS until a node starts.
+
+- Console scripts (``navlab-sim``, ``navlab-pathplanner``, ...) are
+  ``navlab ros NODE``: the same arguments, help and errors — without the
+  ``ros2`` extra the same one line and exit status 2, not a traceback.
+- :func:`run_child` is how :class:`~navlab.ros.launch.NodeProcesses` starts
+  a node (``launch.CHILD_BOOTSTRAP``): the process dies
+  with its launcher (``PR_SET_PDEATHSIG`` on Linux), and an interrupt at any
+  moment, even while Python is still importing, ends it without a traceback.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import signal
+import sys
+from typing import Callable, List, Optional
+
+#: set by the launcher to its pid: the child checks it is still its parent
+PARENT_ENV = "NAVLAB_LAUNCHER_PID"
+#: <linux/prctl.h>
+PR_SET_PDEATHSIG = 1
+#: exit status of a process ended by SIGINT, as a shell reports it
+INTERRUPTED = 128 + signal.SIGINT
+
+
+def die_with_parent(parent_pid: Optional[int], sig: int = signal.SIGTERM) -> bool:
+    """Ask the kernel to send ``sig`` to this process when its parent dies
+    (Linux; elsewhere nothing). Returns False when the parent is already gone
+    (it died before the request could take effect), so nothing would come.
+
+    The launcher keeps its own process group for the nodes (a terminal's
+    Ctrl-C reaches only the launcher), so without this a SIGKILLed launcher
+    would leave its nodes running forever.
+    """
+    if sys.platform.startswith("linux"):
+        libc = ctypes.CDLL(None, use_errno=True)
+        if libc.prctl(PR_SET_PDEATHSIG, int(sig), 0, 0, 0) != 0:
+            raise OSError(ctypes.get_errno(), "prctl(PR_SET_PDEATHSIG) failed")
+    return parent_pid is None or os.getppid() == parent_pid
+
+
+def run_child(argv: List[str]) -> int:
+    """Run node ``argv[0]`` with the ROS arguments that follow (see the module docstring)."""
+    parent = os.environ.get(PARENT_ENV)
+    if not die_with_parent(int(parent) if parent else None):
+        return INTERRUPTED
+    try:
+        # from here on an interrupt is a KeyboardInterrupt (the launcher's
+        # bootstrap exited at once until now), then rclpy's
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        from .base import run_node
+        from .launch import node_class
+
+        name = argv[0]
+        return run_node(node_class(name), [f"navlab-{name}", *argv[1:]])
+    except KeyboardInterrupt:  # interrupted before rclpy took over the signals (imports, start-up)
+        return INTERRUPTED
+
+
+def console_script(node: str) -> Callable[[], None]:
+    """The ``navlab-<node>`` console script: ``navlab ros <node> ARGS``."""
+
+    def main() -> None:
+        try:
+            from ..cli import main as navlab
+        except KeyboardInterrupt:  # Ctrl-C while importing
+            sys.exit(INTERRUPTED)
+        navlab(["ros", node, *sys.argv[1:]], prog_name=f"navlab-{node.replace('_', '-')}")
+
+    main.__doc__ = f"navlab ros {node}"
+    return main
+
+
+map_server = console_script("map_server")
+sim = console_script("sim")
+pathplanner = console_script("pathplanner")
+astar_pathplanner = console_script("astar_pathplanner")
+goto_waypoint = console_script("goto_waypoint")
+potential_field_navigator = console_script("potential_field_navigator")

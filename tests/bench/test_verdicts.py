@@ -1,0 +1,88 @@
+"""The noise-aware time verdicts, on synthetic timing data (no real timing, no clock)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from navlab.bench.analysis import (MIN_TIME_EFFECT, NOISE_FACTOR, judge_claims, noise_threshold, summarize,
+                                   time_decision, timing_noise)
+
+CLAIM = {"text": "a is faster than b", "metric": "time_s", "lower": "a", "higher": "b"}
+
+
+def synthetic_run(ratio, seed, load_sd=0.25, trial_sd=0.3, repeat_sd=0.02, n=20):
+    """Rows of two cells whose true median CPU times differ by ``ratio``.
+
+    Each trial's work varies from seed to seed (log-normal, ``trial_sd``,
+    the same on every run: same seeds, same work); each run has its own
+    machine load, a common factor that interleaving applies to both cells
+    alike but that varies per trial too (``repeat_sd``); the first two trials
+    of each cell are repeated late in the run.
+    """
+    work = np.random.default_rng(1234)  # the seeds' work: identical in every run
+    machine = np.random.default_rng(seed)
+    load = math.exp(machine.normal(0, load_sd))
+    rows = []
+    for cell, base in (("a", 0.1 * ratio), ("b", 0.1)):
+        intrinsic = base * np.exp(work.normal(0, trial_sd, n))
+        for i in range(n):
+            t = intrinsic[i] * load * math.exp(machine.normal(0, repeat_sd))
+            rows.append({"trial_id": f"{cell}-{i}", "cell_id": cell, "trial": i, "world": "w", "planner": "rrt_star",
+                         "sampler": cell, "status": "EXACT", "success": True, "cost": 1.0, "cpu_s": t, "wall_s": t})
+        for i in range(2):
+            t = intrinsic[i] * load * math.exp(machine.normal(0, repeat_sd))
+            rows.append({"trial_id": f"{cell}-{i}-r1", "cell_id": cell, "trial": i, "world": "w",
+                         "planner": "rrt_star", "sampler": cell, "status": "EXACT", "success": True, "cost": 1.0,
+                         "cpu_s": t, "wall_s": t, "repeat": 1})
+    return rows
+
+
+@pytest.mark.parametrize("ratio, expected", [(0.4, "confirmed"), (2.5, "contradicted"), (0.93, "not shown"),
+                                             (1.05, "not shown")])
+def test_verdicts_do_not_flip_across_runs_with_different_machine_load(ratio, expected):
+    verdicts = {judge_claims(synthetic_run(ratio, seed), [CLAIM])[0]["verdict"] for seed in range(12)}
+    assert verdicts == {expected}
+
+
+def test_a_significant_difference_inside_the_floor_is_not_a_verdict():
+    # 15% slower, no noise at all, every trial the same: significant, but below the floor
+    rows = synthetic_run(0.85, 0, trial_sd=0.01, repeat_sd=0.0)
+    v = judge_claims(rows, [CLAIM])[0]
+    assert v["p_holm"] < 0.05 and v["verdict"] == "not shown" and "within the timing noise" in v["why"]
+    assert v["threshold_ratio"] == pytest.approx(math.exp(MIN_TIME_EFFECT))
+
+
+def test_measured_noise_raises_the_bar():
+    # A 2x difference is confirmed on a quiet machine and not shown when repeats of the same
+    # work differ by ~35% (the bar becomes exp(3 * 0.35) ≈ 2.9x).
+    test = {"median_a": 0.1, "median_b": 0.2, "delta": -1.0}
+    quiet = noise_threshold({"a": [0.01, 0.02], "b": [0.01, 0.03]}, "a", "b")
+    noisy = noise_threshold({"a": [0.3, 0.4], "b": [0.35, 0.35]}, "a", "b")
+    assert time_decision(test, 1e-6, quiet)["direction"] == -1
+    assert noisy["threshold"] == pytest.approx(NOISE_FACTOR * 0.35)
+    assert time_decision(test, 1e-6, noisy)["direction"] == 0
+    assert time_decision(test, 0.2, quiet)["why"] == "not significant"
+
+
+def test_noise_is_the_spread_of_repeated_identical_trials():
+    rows = [{"cell_id": "a", "trial": 0, "time": 1.0, "status": "EXACT"},
+            {"cell_id": "a", "trial": 0, "time": 1.1, "status": "EXACT", "repeat": 1},
+            {"cell_id": "b", "trial": 0, "time": 2.0, "status": "EXACT"},
+            {"cell_id": "b", "trial": 0, "time": 1.0, "status": "EXACT", "repeat": 1}]
+    noise = timing_noise(rows)
+    assert noise["a"] == [pytest.approx(math.log(1.1))] and noise["b"] == [pytest.approx(math.log(2.0))]
+    assert noise_threshold(noise, "a", "b")["noise"] == pytest.approx((math.log(1.1) + math.log(2)) / 2)
+
+
+def test_cost_verdicts_need_no_noise_rule_and_wall_time_is_selectable():
+    rows = synthetic_run(0.4, 0)
+    for r in rows:
+        r["cost"] = 1.0 if r["sampler"] == "a" else 2.0
+        r["wall_s"] = r["cpu_s"] * (10 if r["sampler"] == "a" else 1)  # a waited for a core
+    cost = {"text": "a is shorter", "metric": "cost", "lower": "a", "higher": "b"}
+    assert judge_claims(rows, [cost])[0]["verdict"] == "confirmed"
+    assert judge_claims(rows, [CLAIM], time="cpu")[0]["verdict"] == "confirmed"
+    assert judge_claims(rows, [CLAIM], time="wall")[0]["verdict"] == "contradicted"
+    summary = summarize(rows, "wall")
+    assert summary["time_label"] == "wall-clock time" and [c["trials"] for c in summary["cells"]] == [20, 20]

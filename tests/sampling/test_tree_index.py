@@ -1,0 +1,101 @@
+"""The bucket-grid index against the brute-force scan: same queries, same trees."""
+
+import math
+
+import numpy as np
+import pytest
+
+import navlab
+from navlab.sampling import PLANNERS, SAMPLERS
+from navlab.sampling import bucket_grid as G
+from navlab.sampling import tree_kernel as K
+from navlab.world import Bounds, Circle, Rectangle, World
+
+
+def _grid(xy, bounds, expected):
+    h, nx, ny = G.grid_shape(bounds, expected)
+    params = G.grid_params(bounds, h)
+    head = np.full(nx * ny, -1, dtype=np.int64)
+    nxt = np.full(len(xy), -1, dtype=np.int64)
+    G.rebuild(len(xy), xy, head, nxt, params, nx, ny)
+    return head, nxt, params, nx, ny
+
+
+def _brute_nearest(xy, q):
+    d2 = (xy[:, 0] - q[0]) ** 2 + (xy[:, 1] - q[1]) ** 2
+    j = int(np.argmin(d2))  # the first (lowest index) minimum
+    return j, d2[j]
+
+
+@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("expected", [1, 50, 5000])
+def test_queries_match_brute_force_with_ties_and_outside_points(seed, expected):
+    rng = np.random.default_rng(seed)
+    bounds = Bounds(-2.0, 15.0, -2.0, 15.0)
+    n = 400
+    # Lattice points make exact distance ties and points on cell borders;
+    # some nodes and queries lie outside the bounds; some nodes repeat.
+    xy = np.vstack((rng.integers(-4, 18, (n // 2, 2)).astype(float),
+                    rng.uniform(-3.0, 16.0, (n // 2, 2))))
+    xy[::37] = xy[1]
+    queries = np.vstack((rng.integers(-6, 20, (150, 2)).astype(float) + 0.5 * rng.integers(0, 2, (150, 2)),
+                         rng.uniform(-5.0, 20.0, (150, 2))))
+    head, nxt, params, nx, ny = _grid(xy, bounds, expected)
+    for q in queries:
+        j, d2 = G.nearest(q[0], q[1], xy, head, nxt, params, nx, ny)
+        assert (j, d2) == _brute_nearest(xy, q)
+        for r in (0.0, 1.0, math.sqrt(2.0), 3.7, 40.0):
+            out = np.zeros(n, dtype=np.int64)
+            m = G.near(q[0], q[1], r * r, xy, head, nxt, params, nx, ny, out)
+            d2_all = (xy[:, 0] - q[0]) ** 2 + (xy[:, 1] - q[1]) ** 2
+            assert sorted(out[:m]) == list(np.flatnonzero(d2_all <= r * r))
+
+
+def test_ranking_is_cost_then_index():
+    rng = np.random.default_rng(3)
+    for m in (0, 1, 5, K.RANK_SMALL, K.RANK_SMALL + 1, 200):
+        val = rng.integers(0, 6, m).astype(float)  # many exact ties
+        idx = rng.permutation(10 * m + 1)[:m].astype(np.int64)
+        pos = rng.permutation(m).astype(np.int64)
+        K._rank_by_cost(pos, m, val, idx)
+        assert list(pos) == list(np.lexsort((idx, val)))
+        pos = rng.permutation(m).astype(np.int64)
+        K._rank_by_index(pos, m, idx)
+        assert list(pos) == list(np.argsort(idx))
+
+
+def _same_tree(world, planner, sampler, seed, max_iter, **params):
+    runs = [navlab.plan(world, planner=planner, sampler=sampler, seed=seed, max_iter=max_iter,
+                        keep_tree=True, index=index, **params) for index in ("grid", "scan")]
+    a, b = runs
+    assert a.status is b.status and a.cost == b.cost
+    np.testing.assert_array_equal(a.path, b.path)
+    np.testing.assert_array_equal(a.tree["nodes"], b.tree["nodes"])
+    np.testing.assert_array_equal(a.tree["parent"], b.tree["parent"])
+    np.testing.assert_array_equal(a.stats["cost_trace"], b.stats["cost_trace"])
+    for key in ("iterations", "nodes", "collision_checks", "rewires", "first_solution_iteration"):
+        assert a.stats[key] == b.stats[key], key
+    return a
+
+
+LATTICE = World("lattice", Bounds(0, 8, 0, 8), (1.0, 1.0), (7.0, 7.0),
+                (Rectangle((3.0, 0.0), (4.0, 6.0)), Circle((6.0, 4.0), 1.0)), robot_radius=0.1)
+
+
+@pytest.mark.parametrize("sampler", SAMPLERS.names())
+@pytest.mark.parametrize("planner", PLANNERS.names())
+def test_grid_and_scan_grow_the_same_tree(planner, sampler):
+    for seed, scene in enumerate(("pythonrobotics", "clutter", "trap", "squarefield", "pythonrobotics")):
+        _same_tree(navlab.load_world(scene), planner, sampler, seed, 400)
+    # A coarse step on a small world: many equal distances and costs.
+    _same_tree(LATTICE, planner, sampler, 11, 300, expand_dis=1.0)
+
+
+def test_grid_and_scan_grow_the_same_tree_at_20k_nodes():
+    r = _same_tree(navlab.load_world("pythonrobotics"), "rrt_star", "uniform", 4, 30000)
+    assert r.stats["nodes"] > 19000 and r.stats["rewires"] > 0
+
+
+def test_bad_index_name():
+    with pytest.raises(ValueError, match="index"):
+        navlab.plan("pythonrobotics", planner="rrt_star", index="kdtree")

@@ -1,0 +1,198 @@
+"""``navlab.plan``: every planner on every kind of source, and its bad input."""
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+import navlab
+from navlab.grid import OccupancyGrid, save_map
+from navlab.result import Status
+from navlab.world import Bounds, Circle, World, WorldFormatError
+from navlab.world.sources import MissingQueryError, load_source, source_kind
+
+from .helpers import true_clearance
+
+PLANNERS = navlab.planner_names()
+TREE_BUDGET = {"max_iter": 1500}
+
+
+def small_map() -> OccupancyGrid:
+    """30 x 30 cells of 0.1 m with one block in the middle and an unknown patch."""
+    blocked = np.zeros((30, 30), dtype=bool)
+    blocked[12:18, 10:20] = True
+    unknown = np.zeros_like(blocked)
+    unknown[2:5, 25:28] = True
+    return OccupancyGrid(blocked, 0.1, (-1.0, -1.0, 0.0), unknown, name="small")
+
+
+MAP_QUERY = {"start": (-0.75, -0.75), "goal": (1.75, 1.75), "robot_radius": 0.05}
+
+
+@pytest.fixture(scope="module")
+def sources(tmp_path_factory):
+    d = tmp_path_factory.mktemp("sources")
+    world_file = d / "world.yaml"
+    world_file.write_text("bounds: {x: [0, 6], y: [0, 4]}\nstart: [0.5, 0.5]\ngoal: [5.5, 3.5]\n"
+                          "robot_radius: 0.1\nobstacles: [{type: circle, center: [3, 2], radius: 0.8}]\n")
+    ros_map = d / "small.yaml"
+    save_map(small_map(), ros_map)
+    movingai = d / "tiny.map"
+    rows = ["." * 20] * 8 + ["." * 5 + "@" * 10 + "." * 5] * 3 + ["." * 20] * 9
+    movingai.write_text("type octile\nheight 20\nwidth 20\nmap\n" + "\n".join(rows) + "\n")
+    world = World("obj", Bounds(0, 5, 0, 5), (0.5, 0.5), (4.5, 4.5), (Circle((2.5, 2.5), 0.7),), robot_radius=0.05)
+    return {
+        "scene": ("trap", {}),
+        "world_file": (str(world_file), {}),
+        "ros_map": (str(ros_map), MAP_QUERY),
+        "movingai_map": (str(movingai), {"start": (1.5, 1.5), "goal": (18.5, 18.5)}),
+        "world": (world, {}),
+        "occupancy": (small_map(), MAP_QUERY),
+    }
+
+
+KINDS = ["scene", "world_file", "ros_map", "movingai_map", "world", "occupancy"]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_source_kinds_are_recognised(sources, kind):
+    source, query = sources[kind]
+    assert source_kind(source) == kind
+    world = load_source(source, **query)
+    assert (world.occupancy is not None) == (kind in ("ros_map", "movingai_map", "occupancy"))
+
+
+@pytest.mark.parametrize("planner", PLANNERS)
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_planner_on_every_source(sources, kind, planner):
+    source, query = sources[kind]
+    grid = planner in ("astar", "dijkstra", "jps", "theta_star")
+    r = navlab.plan(source, planner=planner, seed=1, **query, **({} if grid else TREE_BUDGET))
+    world = load_source(source, **query)
+    assert r.status is Status.EXACT, r.reason
+    np.testing.assert_array_equal(r.path[0], world.start)
+    if world.goal_tolerance == 0:
+        np.testing.assert_array_equal(r.path[-1], world.goal)
+    assert np.all(world.bounds.contains(r.path))
+    length = float(np.sum(np.linalg.norm(np.diff(r.path, axis=0), axis=1)))
+    assert r.cost == pytest.approx(length, rel=1e-12, abs=1e-12)
+    assert r.stats["warmup_s"] >= 0 and r.stats["time_s"] > 0
+    assert r.params["planner"] == planner and r.params["robot_radius"] == world.robot_radius
+    if grid:
+        # the cell-level cost is kept, in cells, next to the metres
+        assert r.stats["cost_cells"] > 0
+    assert world.checker().path_free(r.path)
+    assert independent_clearance(world, r.path) >= world.robot_radius - 1e-9
+
+
+def independent_clearance(world, path) -> float:
+    """Smallest distance (shapely) from the path to an obstacle or a non-free map cell's square."""
+    legs = [shapely.LineString(path[i:i + 2]) for i in range(len(path) - 1)]
+    best = min(true_clearance(world, leg) for leg in legs)
+    grid = world.occupancy
+    if grid is not None:
+        assert grid.origin[2] == 0.0
+        jj, ii = np.nonzero(~grid.passable(world.allow_unknown))
+        x0, y0 = grid.origin[0] + ii * grid.resolution, grid.origin[1] + jj * grid.resolution
+        squares = shapely.box(x0, y0, x0 + grid.resolution, y0 + grid.resolution)
+        best = min(best, min(shapely.distance(squares, leg).min() for leg in legs))
+    if world.robot_radius == 0:
+        assert best > 0  # touching counts as collision
+    return best
+
+
+@pytest.mark.parametrize("planner", ["rrt", "astar"])
+def test_map_without_start_or_goal_names_the_missing_one(sources, planner):
+    source, _ = sources["ros_map"]
+    with pytest.raises(MissingQueryError, match="no start"):
+        navlab.plan(source, planner=planner, goal=(1.0, 1.0))
+    with pytest.raises(MissingQueryError, match="no goal"):
+        navlab.plan(small_map(), planner=planner, start=(1.0, 1.0))
+
+
+def test_start_and_goal_override_a_world_and_robot_radius_applies_everywhere(sources):
+    r = navlab.plan("trap", planner="astar", start=(1.0, 1.0), goal=(17.0, 11.0), robot_radius=0.5)
+    assert r.success and tuple(r.path[0]) == (1.0, 1.0) and tuple(r.path[-1]) == (17.0, 11.0)
+    assert r.params["robot_radius"] == 0.5
+    # 0.14 m from the block's edge: free for a point robot, not for a 0.2 m robot
+    near = {"start": (-0.75, -0.75), "goal": (0.55, 0.06)}
+    assert navlab.plan(small_map(), planner="astar", **near).success
+    r = navlab.plan(small_map(), planner="astar", robot_radius=0.2, **near)
+    assert r.status is Status.INVALID_GOAL and "within the robot radius 0.2 m of occupied cell (15, 12)" in r.reason
+
+
+@pytest.mark.parametrize("planner", ["rrt_star", "theta_star"])
+@pytest.mark.parametrize("start, goal, status, text", [
+    ((-1.5, 0.0), (1.5, 1.5), Status.INVALID_START, "outside the bounds x=[-1, 2] y=[-1, 2] (cell (-5, 10), outside the 30x30 map)"),
+    ((0.55, 0.55), (1.5, 1.5), Status.INVALID_START, "in occupied cell (15, 15)"),
+    ((-0.75, -0.75), (1.65, -0.65), Status.INVALID_GOAL, "in unknown cell (26, 3)"),
+    ((-0.75, -0.75), (0.55, 0.86), Status.INVALID_GOAL, "within the robot radius 0.1 m of occupied cell (15, 17)"),
+])
+def test_invalid_map_queries_name_the_cell_and_the_reason(planner, start, goal, status, text):
+    r = navlab.plan(small_map(), planner=planner, start=start, goal=goal, robot_radius=0.1, max_iter=50) \
+        if planner == "rrt_star" else \
+        navlab.plan(small_map(), planner=planner, start=start, goal=goal, robot_radius=0.1)
+    assert r.status is status and text in r.reason and len(r.path) == 0 and r.cost == math.inf
+
+
+def test_allow_unknown_lets_the_query_use_unknown_cells():
+    q = {"start": (-0.75, -0.75), "goal": (1.65, -0.65)}
+    assert navlab.plan(small_map(), planner="astar", **q).status is Status.INVALID_GOAL
+    assert navlab.plan(small_map(), planner="astar", allow_unknown=True, **q).success
+    assert navlab.plan(small_map(), planner="rrt", allow_unknown=True, max_iter=2000, **q).success
+    with pytest.raises(ValueError, match="allow_unknown applies to maps"):
+        navlab.plan("trap", planner="rrt", allow_unknown=True)
+
+
+@pytest.mark.parametrize("planner, params, text", [
+    ("astra", {}, "Did you mean 'astar'"),
+    ("rrtstar", {}, "Did you mean 'rrt_star'"),
+    ("astar", {"max_iter": 10}, "valid: allow_unknown, connectivity, heuristic, resolution, smooth, weight"),
+    ("astar", {"heuristc": "octile"}, "Did you mean 'heuristic'"),
+    ("rrt_star", {"resolution": 0.1}, "unknown parameter 'resolution' for planner 'rrt_star'"),
+    ("theta_star", {"connectivity": 6}, "connectivity must be 4 or 8"),
+])
+def test_unknown_planner_or_parameter_lists_the_valid_names(planner, params, text):
+    with pytest.raises(ValueError, match=text.replace("(", r"\(").replace(")", r"\)")):
+        navlab.plan("trap", planner=planner, **params)
+
+
+def test_a_sampler_with_a_grid_planner_is_refused():
+    with pytest.raises(ValueError, match="draws no samples"):
+        navlab.plan("trap", planner="astar", sampler="gaussian")
+
+
+def test_world_and_map_yaml_are_told_apart_by_content(tmp_path):
+    neither = tmp_path / "x.yaml"
+    neither.write_text("foo: 1\n")
+    with pytest.raises(WorldFormatError, match="neither a world file .* nor a map_server map"):
+        navlab.plan(str(neither))
+    odd = tmp_path / "x.txt"
+    odd.write_text("hello")
+    with pytest.raises(WorldFormatError, match="unknown source format"):
+        navlab.plan(str(odd))
+    with pytest.raises(WorldFormatError, match="no such file"):
+        navlab.plan(str(tmp_path / "missing.map"), start=(0, 0), goal=(1, 1))
+
+
+def test_same_seed_same_result_on_a_map():
+    a = navlab.plan(small_map(), planner="rrt_star", seed=4, max_iter=800, **MAP_QUERY)
+    b = navlab.plan(small_map(), planner="rrt_star", seed=4, max_iter=800, **MAP_QUERY)
+    np.testing.assert_array_equal(a.path, b.path)
+
+
+def test_warm_up_runs_before_the_timed_query_and_is_reported_apart(monkeypatch):
+    import time
+
+    import navlab.warmup
+
+    def slow_warm_up(planner, sampler, **kwargs):
+        time.sleep(0.3)  # a compile longer than the whole time budget
+        return 0.3
+
+    monkeypatch.setattr(navlab.warmup, "warm_up", slow_warm_up)
+    r = navlab.plan("trap", planner="rrt", max_time=0.2, max_iter=100000)
+    # had the budget started before the warm-up, no iteration would have run
+    assert r.success and r.stats["iterations"] > 0
+    assert r.stats["warmup_s"] == 0.3

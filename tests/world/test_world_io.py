@@ -137,7 +137,12 @@ def test_exponent_without_dot_is_a_number(tmp_path):
     (b"key: value\n  bad indent: 1\n", "not valid YAML"),
     (b"- 1\n- 2\n", "expected a mapping of world fields, got list"),
     (b"just text", "expected a mapping of world fields, got str"),
-    (b"[" * 5000 + b"]" * 5000, "nested too deeply"),
+    (b"[" * 5000 + b"]" * 5000, "nested too deeply|expected a mapping of world fields, got list"),
+    # libyaml crashed the process (a segmentation fault) on these:
+    (b"start: " + b"[" * 100000 + b"]" * 100000, "nested too deeply"),
+    (b"- " * 100000, "nested too deeply"),
+    (b"? " * 100000, "nested too deeply"),
+    (b"a: {" * 100000, "nested too deeply|not valid YAML"),
 ])
 def test_unreadable_files_give_one_error(tmp_path, content, expected):
     path = tmp_path / "w.yaml"

@@ -13,7 +13,8 @@ checked against these at the boundary (world and map files, the CLI, the
 from __future__ import annotations
 
 import math
-from typing import Any
+import os
+from typing import Any, Optional
 
 MAX_COORDINATE = 1.0e7  #: [m] largest |x| or |y| of any point, and largest length
 MIN_LENGTH = 1.0e-9  #: [m] smallest positive length (radius, resolution, tolerance)
@@ -42,3 +43,64 @@ def check_length(name: str, value: Any, allow_zero: bool = True) -> float:
     if 0 < v < MIN_LENGTH:
         raise ValueError(f"{name} = {v:g} is below the smallest supported length {MIN_LENGTH:g} m")
     return v
+
+
+def available_memory() -> Optional[int]:
+    """Bytes this process can still allocate, or None when unknown: the
+    least of the machine's ``MemAvailable``, the container's cgroup limit
+    (``memory.max`` minus ``memory.current``) and the address-space limit
+    (``ulimit -v``) minus what the process has mapped already."""
+    bounds = [_meminfo_available(), _cgroup_room(), _address_space_room()]
+    bounds = [b for b in bounds if b is not None]
+    return max(0, min(bounds)) if bounds else None
+
+
+def _meminfo_available() -> Optional[int]:
+    try:
+        with open("/proc/meminfo") as f:
+            for line in f:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    try:
+        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+    except (ValueError, OSError, AttributeError):
+        return None
+
+
+def _read_int(path: str) -> Optional[int]:
+    try:
+        with open(path) as f:
+            return int(f.read().split()[0])
+    except (OSError, ValueError, IndexError):
+        return None  # absent, or "max" (no limit)
+
+
+def _cgroup_room() -> Optional[int]:
+    limit, used = _read_int("/sys/fs/cgroup/memory.max"), _read_int("/sys/fs/cgroup/memory.current")
+    return None if limit is None or used is None else limit - used
+
+
+def _address_space_room() -> Optional[int]:
+    try:
+        import resource
+
+        soft, _ = resource.getrlimit(resource.RLIMIT_AS)
+        if soft == resource.RLIM_INFINITY:
+            return None
+        mapped = _read_int("/proc/self/statm")
+        return soft - (mapped or 0) * os.sysconf("SC_PAGE_SIZE")
+    except (ImportError, OSError, ValueError, AttributeError):
+        return None
+
+
+def check_memory(need: int, what: str) -> None:
+    """Refuse, with a ValueError, a request whose memory estimate ``need``
+    (bytes) exceeds what this process can have now: better one line before
+    starting than an out-of-memory kill later. ``what`` starts the message
+    and should name the field (``"max_iter=10**12 could grow a tree that"``)."""
+    have = available_memory()
+    if have is not None and need > have:
+        raise ValueError(f"{what} needs about {min(need, 10**300) / 2**30:.3g} GiB, more than the "
+                         f"{have / 2**30:.3g} GiB this machine has available")

@@ -41,7 +41,7 @@ def values_for(key):
         "weights": st.fixed_dictionaries({k: st.floats(0, 1) for k in ("goal", "uniform", "gaussian", "boundary")}),
     }.get(key, st.floats(-10, 10))
     wild_number = st.one_of(HUGE_INTS, NON_FINITE, EXTREME_FLOATS)
-    if key in COUNTS:  # never a count a process could try to allocate (those: test_fuzz_memory.py, xfail below)
+    if key in COUNTS:  # never a count a process could try to allocate (those: test_fuzz_memory.py, and test_huge_counts_are_refused_by_name)
         wild_number = st.one_of(st.sampled_from([-(10**30), -(2**63)]), NON_FINITE, EXTREME_FLOATS)
     return st.one_of(sane, wild_number, WRONG_TYPES)
 
@@ -65,20 +65,14 @@ def test_planner_parameters(planner, data):
     keys = sorted(set(parameters_of(PLANNERS.get(planner))) - {"sampler", "max_time"})
     key = data.draw(st.sampled_from(keys), label="key")
     value = data.draw(values_for(key), label="value")
-    assume(not (key == "batch_size" and value is None))  # xfailed below
     run_and_check(planner, "uniform", {key: value})
 
 
-@pytest.mark.xfail(strict=True, reason="batch_size=None: TypeError \"'<' not supported between int and NoneType\" "
-                                       "— owner tree")
 @pytest.mark.parametrize("planner", sorted(PLANNERS.names()))
 def test_batch_size_none_is_refused_by_name(planner):
     run_and_check(planner, "uniform", {"batch_size": None})
 
 
-@pytest.mark.xfail(strict=True, reason="max_iter = 10**12 or 10**20 reaches numpy ('Unable to allocate 14.6 TiB', "
-                                       "'Maximum allowed dimension exceeded') instead of a ValueError naming max_iter "
-                                       "— owner tree")
 @examples(10)
 @given(st.sampled_from(sorted(PLANNERS.names())), st.sampled_from(["max_iter", "batch_size"]),
        st.sampled_from([10**12, 10**20, 2**63, 10**400]))
@@ -94,9 +88,6 @@ def test_max_time(planner, value):
     run_and_check(planner, "uniform", {"max_time": value})
 
 
-@pytest.mark.xfail(strict=True, reason="sampler parameters of the wrong type fail only once sampling starts: "
-                                       "weights=5 TypeError, base=5 AttributeError, tolerance=5e-324 OverflowError "
-                                       "— owner mapcheck")
 @examples(80)
 @given(st.sampled_from(sorted(SAMPLERS.names())), st.data())
 @example("integration", None).via("issue 13: weights=5")
@@ -138,8 +129,6 @@ def test_simulation_from_any_finite_start(start):
     simulate(start)
 
 
-@pytest.mark.xfail(strict=True, reason="sim start heading inf gives 'math domain error' (no field named); NaN heading "
-                                       "runs and ends at pose (nan, nan) — owner dynamic")
 @examples(15)
 @given(st.tuples(st.one_of(st.floats(-4, 4), NON_FINITE), st.one_of(st.floats(-4, 4), NON_FINITE),
                  st.one_of(NON_FINITE, st.floats(-4, 4))))

@@ -165,11 +165,7 @@ def surface_points(draw, kind):
     return {"type": "polygon", "points": points}, draw(st.sampled_from(points + [[x0 + 1, y0]]))
 
 
-@pytest.mark.parametrize("kind", [
-    pytest.param("circle", marks=pytest.mark.xfail(
-        strict=True, reason="touching a circle is not a collision at robot radius 0 (rectangles and polygons: it is) "
-                            "— owner mapcheck")),
-    "rectangle", "polygon"])
+@pytest.mark.parametrize("kind", ["circle", "rectangle", "polygon"])
 @examples(10)
 @given(data=st.data())
 def test_touching_an_obstacle_is_a_collision_for_every_shape(kind, data):

@@ -24,7 +24,7 @@ import numpy as np
 import yaml
 
 from ..atomic import atomic_path
-from ..limits import MAX_COORDINATE, MIN_LENGTH
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 PathLike = Union[str, os.PathLike]
@@ -41,9 +41,22 @@ MAP_MODES = ("trinary", "scale", "raw")
 UNKNOWN, FREE, OCCUPIED = -1, 0, 100  #: nav_msgs/OccupancyGrid cell values
 
 
-def _too_big(path: Path, width: int, height: int) -> MapFormatError:
-    return MapFormatError(f"{path}: {width}x{height} = {width * height} cells is more than the "
-                          f"{MAX_CELLS:.0e} cells navlab reads (navlab.grid.MAX_CELLS)")
+#: Bytes a map pixel costs at the peak of loading (decoded image, cell values,
+#: the grid's arrays; measured 17 with ``mode: scale``).
+BYTES_PER_MAP_PIXEL = 18
+
+
+def _check_size(path: Path, width: int, height: int) -> None:
+    """Refuse, from the header and before decoding, a map over MAX_CELLS or
+    one whose loading would need more memory than the machine has."""
+    cells = width * height
+    if cells > MAX_CELLS:
+        raise MapFormatError(f"{path}: width {width} x height {height} = {cells} cells is more than the "
+                             f"{MAX_CELLS:.0e} cells navlab reads (navlab.grid.MAX_CELLS)")
+    try:
+        check_memory(cells * BYTES_PER_MAP_PIXEL, f"the {width}x{height} image (width x height)")
+    except ValueError as exc:
+        raise MapFormatError(f"{path}: {exc}") from None
 
 
 # -- PGM ---------------------------------------------------------------------------
@@ -73,8 +86,7 @@ def _pgm_header(path: Path, f) -> Tuple[bytes, int, int, int]:
         raise MapFormatError(f"{path}: bad PGM header values {tokens}") from None
     if width <= 0 or height <= 0 or not 0 < maxval < 65536:
         raise MapFormatError(f"{path}: bad PGM size {width}x{height} or maxval {maxval}")
-    if width * height > MAX_CELLS:
-        raise _too_big(path, width, height)
+    _check_size(path, width, height)
     f.seek(pos + 1)  # the single whitespace after maxval
     return magic, width, height, maxval
 
@@ -132,8 +144,7 @@ def _read_image(path: Path) -> _Image:
         try:
             with Image.open(path) as img:
                 width, height = img.size
-                if width * height > MAX_CELLS:
-                    raise _too_big(path, width, height)
+                _check_size(path, width, height)
                 img.load()
                 if img.mode == "P" or img.mode.startswith("I") or img.mode == "F":
                     # palettes and 16-bit/float grey: through RGBA (keeps transparency)
@@ -391,8 +402,7 @@ def load_movingai_map(path: PathLike) -> OccupancyGrid:
                     raise MapFormatError(f"{p}: header '{key}' must be a positive integer, got {text!r}")
                 size[key] = int(text)
             height, width = size["height"], size["width"]
-            if width * height > MAX_CELLS:
-                raise _too_big(p, width, height)
+            _check_size(p, width, height)
             rows = f.read((width + 2) * (height + 1)).splitlines()
             extra = f.read(1)
     except OSError as exc:

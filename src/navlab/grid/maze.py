@@ -6,7 +6,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from ..limits import check_length
+from ..limits import available_memory, check_length
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 #: Bytes a maze cell costs while it is carved: three bool arrays and, at
@@ -15,23 +15,6 @@ BYTES_PER_MAZE_CELL = 130
 #: Bytes a map pixel costs at the peak of :func:`make_maze` and ``save_map``:
 #: the broadcast wall masks, the grid's two arrays and the flipped image.
 BYTES_PER_PIXEL = 12
-
-
-def available_memory() -> Optional[int]:
-    """Bytes of memory available now (Linux ``MemAvailable``), or None when unknown."""
-    try:
-        with open("/proc/meminfo") as f:
-            for line in f:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        pass
-    try:
-        import os
-
-        return os.sysconf("SC_AVPHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
-    except (ValueError, OSError, AttributeError):
-        return None
 
 
 def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolution: float) -> tuple:

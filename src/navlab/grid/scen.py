@@ -32,9 +32,11 @@ class Scenario:
 def read_scen(path) -> List[Scenario]:
     p = Path(path)
     try:
-        lines = p.read_text().splitlines()
+        lines = p.read_text(encoding="utf-8").splitlines()
     except OSError as exc:
         raise MapFormatError(f"{p}: cannot read: {exc.strerror}") from None
+    except UnicodeDecodeError as exc:
+        raise MapFormatError(f"{p}: not a text file (byte {exc.start} is not UTF-8)") from None
     if not lines or not lines[0].startswith("version"):
         raise MapFormatError(f"{p}: not a Moving AI scenario file (first line must be 'version ...')")
     out = []

@@ -19,6 +19,7 @@ from typing import Any, Dict, Optional, Union
 
 import numpy as np
 
+from ..limits import check_memory
 from ..registry import Registry, parameters_of
 from ..result import Result, Status
 from . import tree_kernel as K
@@ -33,12 +34,22 @@ RngLike = Union[None, int, np.random.Generator]
 INDEXES = ("grid", "scan")
 
 
+#: the largest count or time a planner accepts (int64 counters; ~3e11 years in seconds)
+MAX_COUNT = 2**62
+#: samples drawn and consumed at once; larger batches gain nothing and cost memory
+MAX_BATCH_SIZE = 65536
+
+
 def _check_positive(name: str, value: Any, integer: bool = False) -> None:
     if value is None:
         return
     kinds = (int,) if integer else (int, float)
-    if isinstance(value, bool) or not isinstance(value, kinds) or not value > 0 or not math.isfinite(value):
+    if isinstance(value, bool) or not isinstance(value, kinds) or not value > 0 or (
+            isinstance(value, float) and not math.isfinite(value)):
         raise ValueError(f"{name} must be a positive {'integer' if integer else 'number'}, got {value!r}")
+    if value > MAX_COUNT:  # the compiled loops count in int64
+        shown = f"{value:.3g}" if value < 1e300 else f"a number of {len(str(int(value)))} digits"
+        raise ValueError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown}")
 
 
 def rrt_star_gamma(world) -> float:
@@ -103,7 +114,12 @@ class TreePlanner:
         _check_positive("expand_dis", self.expand_dis)
         _check_positive("max_iter", self.max_iter, integer=True)
         _check_positive("max_time", self.max_time)
+        if self.batch_size is None:
+            raise ValueError("batch_size must be a positive integer, got None")
         _check_positive("batch_size", self.batch_size, integer=True)
+        if self.batch_size > MAX_BATCH_SIZE:
+            raise ValueError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
+                             f"got {self.batch_size}")
         if self.index not in INDEXES:
             raise ValueError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
 
@@ -154,6 +170,11 @@ class TreePlanner:
             return invalid
 
         max_iter = params["max_iter"]
+        if self.max_time is None:
+            # Only max_iter bounds the tree: refuse one that cannot fit (with a
+            # time budget, the tree only grows as far as the time allows).
+            check_memory((max_iter + 1) * K.Tree.bytes_per_node(),
+                         f"max_iter={max_iter} with no max_time could grow a tree that")
         tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid")
         fparams = self._fparams(world, params)
         geom = checker.geometry

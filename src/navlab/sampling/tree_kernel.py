@@ -103,6 +103,14 @@ class Tree:
     def size(self) -> int:
         return int(self.istate[S_NODES])
 
+    @classmethod
+    def bytes_per_node(cls) -> int:
+        """Bytes one node costs in the arrays, counted twice (a doubling
+        copies them) plus the bucket grid's and the trace's share."""
+        records = sum(np.dtype(dtype).itemsize * width for _, dtype, _, width, _ in cls._RECORDS)
+        arrays = sum(np.dtype(cls._DTYPES.get(name, np.float64)).itemsize for name, _ in cls._NODE_ARRAYS)
+        return 2 * (records + arrays) + 32
+
     def reserve(self, new_nodes: int, new_iterations: int) -> None:
         """Make room for ``new_nodes`` more nodes and ``new_iterations`` more
         trace entries (doubling), and rebuild the grid if the tree doubled."""

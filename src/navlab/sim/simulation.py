@@ -26,6 +26,9 @@ from ..sensors.timing import DelayLine, SensorTiming
 from .plant import Plant
 from .scene import Scene
 
+#: simulation steps the logs hold at first (they double as the run goes on)
+INITIAL_LOG_ROWS = 4096
+
 
 class SimStatus(enum.Enum):
     REACHED = "reached"
@@ -179,10 +182,12 @@ class Simulation:
         entropy = int(seed) if isinstance(seed, (int, np.integer)) else 0
         timing_rng = np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=(4,)))
         n_max = int(math.ceil(self.max_time / self.dt)) + 1
-        true = np.empty((n_max, 3))
-        odo = np.empty((n_max, 3))
-        cmds = np.zeros((n_max, 3))
-        scans = np.empty((n_max, self.lidar.beams)) if (self.record_scans and self.lidar) else None
+        # The logs grow by doubling: memory follows the run, not max_time.
+        rows = min(n_max, INITIAL_LOG_ROWS)
+        true = np.empty((rows, 3))
+        odo = np.empty((rows, 3))
+        cmds = np.zeros((rows, 3))
+        scans = np.empty((rows, self.lidar.beams)) if (self.record_scans and self.lidar) else None
         scene = self.scene
         scene.set_time(0.0)
         plant = Plant(scene, self.robot, self.start, self.encoders, self.compass)
@@ -196,6 +201,10 @@ class Simulation:
         n = 1  # states recorded
         wall0 = time.perf_counter()
         while n < n_max:
+            if n == len(true):
+                rows = min(2 * n, n_max)
+                true, odo, cmds = _grown(true, rows), _grown(odo, rows), _grown(cmds, rows)
+                scans = None if scans is None else _grown(scans, rows)
             t = (n - 1) * dt
             scene.set_time(t)
             if odom_line.due(t):
@@ -237,3 +246,10 @@ class Simulation:
         if self.scene.is_grid:
             return math.nan
         return float(np.min(self.scene.clearances(result.true_poses, result.t)))
+
+
+def _grown(log: np.ndarray, rows: int) -> np.ndarray:
+    """``log`` copied into a zeroed array of ``rows`` rows."""
+    out = np.zeros((rows,) + log.shape[1:], dtype=log.dtype)
+    out[: len(log)] = log
+    return out

@@ -102,5 +102,10 @@ def check_memory(need: int, what: str) -> None:
     and should name the field (``"max_iter=10**12 could grow a tree that"``)."""
     have = available_memory()
     if have is not None and need > have:
-        raise ValueError(f"{what} needs about {min(need, 10**300) / 2**30:.3g} GiB, more than the "
-                         f"{have / 2**30:.3g} GiB this machine has available")
+        raise ValueError(f"{what} needs about {_bytes(need)}, more than the {_bytes(have)} this machine has available")
+
+
+def _bytes(n: int) -> str:
+    """``n`` bytes for a person: MiB below a GiB, else GiB."""
+    n = min(n, 10**300)
+    return f"{n / 2**20:.3g} MiB" if n < 2**30 else f"{n / 2**30:.3g} GiB"

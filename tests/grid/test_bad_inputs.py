@@ -72,12 +72,24 @@ def test_huge_png_refused_from_its_header(tmp_path, size):
 
 def test_huge_pgm_and_map_refused_before_allocating(tmp_path):
     (tmp_path / "big.pgm").write_bytes(b"P5\n100000 100000\n255\n" + bytes(10))
-    with pytest.raises(MapFormatError, match="100000x100000"):
+    with pytest.raises(MapFormatError, match="width 100000 x height 100000"):
         load_map(ros_yaml(tmp_path, image="big.pgm"))
     (tmp_path / "big.map").write_text("type octile\nheight 3\nwidth 100000000000\nmap\n...\n")
     with pytest.raises(MapFormatError, match="100000000000"):
         load_map(tmp_path / "big.map")
     assert_one_line_exit_2(run("grid", "plan", tmp_path / "big.map", "--start", 0, 0, "--goal", 1, 1), "big.map")
+
+
+def test_a_map_beyond_the_memory_available_is_refused_from_its_header(tmp_path, monkeypatch):
+    """Within MAX_CELLS, but the machine (here: 10 MiB free) cannot hold it decoded."""
+    import navlab.limits
+
+    monkeypatch.setattr(navlab.limits, "available_memory", lambda: 10 * 2**20)
+    (tmp_path / "big.pgm").write_bytes(b"P5\n2000 2000\n255\n" + bytes(10))  # 4e6 px, header only
+    with pytest.raises(MapFormatError, match=r"big.pgm: the 2000x2000 image .* needs about 68.7 MiB, more than the 10 MiB"):
+        load_map(ros_yaml(tmp_path, image="big.pgm"))
+    (tmp_path / "small.pgm").write_bytes(b"P5\n20 20\n255\n" + bytes(400))
+    assert load_map(ros_yaml(tmp_path, image="small.pgm")).blocked.shape == (20, 20)
 
 
 @pytest.mark.parametrize("rows, message", [

@@ -91,3 +91,21 @@ def test_stats_keys_are_the_same_whatever_the_status(planner):
     for name, r in results.items():
         assert set(r.stats) == keys, name
         assert r.stats["time_s"] >= 0 and len(r.stats["cost_trace"]) == r.stats["iterations"]
+
+
+@pytest.mark.parametrize("planner", PLANNERS.names())
+def test_max_iter_beyond_memory_without_max_time_is_refused_by_name(planner, monkeypatch):
+    """Only max_iter bounds the tree then: one that could not fit is refused before planning."""
+    import navlab.limits
+
+    monkeypatch.setattr(navlab.limits, "available_memory", lambda: 100 * 2**20)  # a 100 MiB machine
+    fits = 100 * 2**20 // K.Tree.bytes_per_node() - 1
+    with pytest.raises(ValueError, match=r"max_iter=%d with no max_time .* more than the 100 MiB" % (fits + 1)):
+        navlab.plan("pythonrobotics", planner=planner, max_iter=fits + 1)
+    r = navlab.plan("pythonrobotics", planner=planner, max_iter=fits + 1, max_time=0.01)
+    assert r.stats["iterations"] <= fits + 1
+    for bad in (None, 0, 65537, 2.5):
+        with pytest.raises(ValueError, match="batch_size"):
+            navlab.plan("pythonrobotics", planner=planner, max_iter=10, batch_size=bad)
+    with pytest.raises(ValueError, match="max_iter must be at most"):
+        navlab.plan("pythonrobotics", planner=planner, max_iter=10**400, max_time=0.01)

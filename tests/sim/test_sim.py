@@ -11,6 +11,7 @@ from navlab.control import GotoWaypoint, PotentialField
 from navlab.robots import DiffDrive, Omni3
 from navlab.sensors import Lidar
 from navlab.sim import SimStatus, Simulation
+from navlab.sim.runner import simulate
 from navlab.sim.experiments import seed002, seed004, seed004_world
 from navlab.world import load_world
 
@@ -89,3 +90,23 @@ def test_cli_experiment_json_and_bad_input(tmp_path):
                                str(tmp_path / "run.png"), "--max-time", "3"])
     assert res.exit_code == 1 and "TIMEOUT" in res.output
     assert gif.read_bytes()[:3] == b"GIF" and (tmp_path / "run.png").exists()
+
+
+def test_logs_grow_with_the_run_not_with_max_time(monkeypatch):
+    """A max_time of 10⁶ s would be 2·10⁷ rows up front; the logs double as the run goes on."""
+    import tracemalloc
+
+    from navlab.sim import simulation
+
+    short = simulate("one_obstacle", max_time=60.0)
+    monkeypatch.setattr(simulation, "INITIAL_LOG_ROWS", 16)  # so that this run grows them several times
+    tracemalloc.start()
+    try:
+        long = simulate("one_obstacle", max_time=1e6)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert peak < 64 * 2**20
+    assert long[0].steps == short[0].steps > 4 * simulation.INITIAL_LOG_ROWS  # the logs did grow, and lost nothing
+    for name in ("true_poses", "odom_poses", "commands", "t"):
+        assert np.array_equal(getattr(long[0], name), getattr(short[0], name)), name

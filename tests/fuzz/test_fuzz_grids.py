@@ -10,7 +10,6 @@ import math
 import warnings
 
 import numpy as np
-import pytest
 import yaml
 from hypothesis import assume, example, given
 from hypothesis import strategies as st

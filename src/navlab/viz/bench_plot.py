@@ -1,7 +1,7 @@
 """Benchmark figures: cost and time box plots, convergence curves and one
 example tree per cell, each world on one figure. A group is a cell: planner,
 sampler and swept values. Every figure is saved through
-:func:`navlab.atomic.atomic_path` (whole or not at all)."""
+:func:`.save.save_figure` (whole or not at all)."""
 
 from __future__ import annotations
 
@@ -9,8 +9,8 @@ from typing import Any, Dict, List, Sequence, Tuple
 
 import numpy as np
 
-from ..atomic import atomic_path
 from .plot import _pyplot, draw_path, draw_tree, draw_world
+from .save import save_figure
 
 Rows = List[Dict[str, Any]]
 #: PNG compression: level 1 writes several times faster than the default and
@@ -19,8 +19,7 @@ PNG = {"compress_level": 1}
 
 
 def _save(fig, out: str, dpi: int) -> None:
-    with atomic_path(out) as tmp:
-        fig.savefig(tmp, dpi=dpi, pil_kwargs=PNG)
+    save_figure(fig, out, dpi=dpi, pil_kwargs=PNG)
 
 
 def box_plots(world: str, groups: Dict[str, Rows], out: str, time_label: str = "time [s]") -> None:

@@ -6,7 +6,7 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from .plot import _pyplot, save_figure
+from .plot import _pyplot, finish_figure
 
 
 def draw_grid(ax, grid) -> None:
@@ -49,4 +49,4 @@ def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[
     ax.set_title(title or f"{grid.name}: {result.params.get('algorithm')} — {result.status.name}")
     if ax.get_legend_handles_labels()[0]:  # no legend (and no matplotlib warning) when nothing is labelled
         ax.legend(loc="best", fontsize=8)
-    return save_figure(fig, out)
+    return finish_figure(fig, out)

@@ -6,6 +6,8 @@ from typing import Optional
 
 import numpy as np
 
+from .save import save_figure
+
 
 def _pyplot():
     import matplotlib
@@ -16,22 +18,16 @@ def _pyplot():
     return plt
 
 
-def save_figure(fig, out: Optional[str], dpi: int = 110):
+def finish_figure(fig, out: Optional[str], dpi: int = 110):
     """Write ``fig`` to ``out`` (when given) and release it; return it.
 
-    The file appears whole or not at all (:func:`navlab.atomic.atomic_path`);
-    a write that fails (disk full, no permission) is one ``ValueError``
-    naming the file.
+    The file appears whole or not at all (:func:`.save.save_figure`); a
+    write that fails (disk full, no permission) is one ``ValueError`` naming
+    the file.
     """
     if out:
-        from pathlib import Path
-
-        from ..atomic import atomic_path
-
-        fmt = Path(out).suffix.lstrip(".").lower() or "png"
         try:
-            with atomic_path(out) as tmp:
-                fig.savefig(tmp, dpi=dpi, bbox_inches="tight", format=fmt)
+            save_figure(fig, out, dpi=dpi, bbox_inches="tight")
         except OSError as exc:
             raise ValueError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
         finally:
@@ -131,4 +127,4 @@ def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = N
         what += f" + {result.params['sampler']}"
     ax.set_title(title or f"{world.name}: {what} — {result.status.name}")
     ax.legend(loc="upper left", fontsize=8)
-    return save_figure(fig, out)
+    return finish_figure(fig, out)

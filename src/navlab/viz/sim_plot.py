@@ -7,7 +7,7 @@ from typing import Optional
 
 import numpy as np
 
-from .plot import _pyplot, draw_path, draw_world, save_figure
+from .plot import _pyplot, draw_path, draw_world, finish_figure
 
 
 def _draw_scene(ax, scene_world) -> None:
@@ -83,7 +83,7 @@ def plot_run(scene_world, result, out: Optional[str] = None, raw_path=None, titl
     ax.set_title(title or f"{result.status.name} in {result.time_s:.1f} s, final error "
                  f"{1000 * result.error_true:.0f} mm")
     ax.legend(loc="best", fontsize=8)
-    return save_figure(fig, out)
+    return finish_figure(fig, out)
 
 
 def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = 10, max_frames: int = 150,

@@ -6,11 +6,13 @@ do not depend on which executor computed them (seeds travel with the trials).
 from __future__ import annotations
 
 import os
+import tempfile
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Dict, Iterator, List, Optional
 
 from ..registry import Registry
+from ..warmup import claim_warm_up_role
 from .experiment import ExperimentError
 from .trial import error_fields, identity_fields, run_trial
 
@@ -44,8 +46,14 @@ def process(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[s
     jobs = jobs or os.cpu_count() or 1
     queue = list(reversed(specs))
     in_doubt: List[Spec] = []
+    with tempfile.TemporaryDirectory(prefix="navlab-pool-") as folder:
+        yield from _pool_rounds(queue, in_doubt, jobs, trial, os.path.join(folder, "warm-up.lock"))
+
+
+def _pool_rounds(queue: List[Spec], in_doubt: List[Spec], jobs: int, trial: Callable[[Spec], Dict[str, Any]],
+                 lock_path: str) -> Iterator[Dict[str, Any]]:
     while queue:
-        with ProcessPoolExecutor(jobs) as pool:
+        with ProcessPoolExecutor(jobs, initializer=claim_warm_up_role, initargs=(lock_path,)) as pool:
             running: Dict[Any, Spec] = {}
             try:
                 while queue or running:

@@ -286,9 +286,15 @@ def _rank_by_cost(pos, m, val, idx):
                 b -= 1
             pos[b + 1] = p
         return
+    # One sort (stable mergesort of float64 keys; indices < 2**53 are exact
+    # as floats) and element-wise copies: each further numba sort kind or key
+    # type, and each slice assignment (its shape-mismatch message), adds
+    # most of a second of compile time to every fresh process.
     p = pos[:m].copy()
-    p = p[np.argsort(idx[p])]  # node indices are distinct: any sort is stable here
-    pos[:m] = p[np.argsort(val[p], kind="mergesort")]
+    p = p[np.argsort(idx[p].astype(np.float64), kind="mergesort")]
+    p = p[np.argsort(val[p], kind="mergesort")]  # stable: equal costs stay in index order
+    for k in range(m):
+        pos[k] = p[k]
 
 
 @njit(cache=True)
@@ -304,7 +310,9 @@ def _rank_by_index(pos, m, idx):
             pos[b + 1] = p
         return
     p = pos[:m].copy()
-    pos[:m] = p[np.argsort(idx[p])]
+    p = p[np.argsort(idx[p].astype(np.float64), kind="mergesort")]  # the sort _rank_by_cost compiles
+    for k in range(m):
+        pos[k] = p[k]
 
 
 @njit(cache=True)

@@ -16,20 +16,29 @@ import math
 import os
 from typing import Any, Optional
 
+import numpy as np
+
 MAX_COORDINATE = 1.0e7  #: [m] largest |x| or |y| of any point, and largest length
 MIN_LENGTH = 1.0e-9  #: [m] smallest positive length (radius, resolution, tolerance)
 
 
-def check_coordinate(name: str, value: Any) -> float:
-    """``value`` as a float if it is a finite number within ±MAX_COORDINATE, else ValueError naming ``name``."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
+def finite_number(name: str, value: Any) -> float:
+    """``value`` as a float if it is a finite real number (Python or numpy;
+    not a bool, not a string), else ValueError naming ``name``."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise ValueError(f"{name} must be a number, got {value!r}")
     try:
         v = float(value)
     except OverflowError:
-        raise ValueError(f"{name} is too large (|{name}| ≤ {MAX_COORDINATE:g} m)") from None
+        raise ValueError(f"{name} is too large (|{name}| ≤ {MAX_COORDINATE:g})") from None
     if not math.isfinite(v):
         raise ValueError(f"{name} must be finite, got {value!r}")
+    return v
+
+
+def check_coordinate(name: str, value: Any) -> float:
+    """``value`` as a float if it is a finite number within ±MAX_COORDINATE, else ValueError naming ``name``."""
+    v = finite_number(name, value)
     if abs(v) > MAX_COORDINATE:
         raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
     return v

@@ -35,7 +35,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
-from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
+from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values, pairwise
 
 #: a time ratio within a third of 1 is never a verdict: below what a shared machine keeps stable
 MIN_TIME_EFFECT = math.log(4 / 3)
@@ -187,15 +187,9 @@ def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
                     noise: Dict[str, List[float]]) -> List[Dict[str, Any]]:
     """Every pair of groups compared on ``metric``, Holm over the pairs, with
     the noise rule for times."""
-    names = list(groups)
-    out = []
-    for i, a in enumerate(names):
-        for b in names[i + 1:]:
-            out.append({"a": a, "b": b, "metric": metric,
-                        **compare(metric_values(groups[a], metric), metric_values(groups[b], metric))})
-    for row, p in zip(out, holm([r["p"] for r in out])):
-        row["p_holm"] = p
-        row["magnitude"] = magnitude(row["delta"])
+    out = pairwise(groups, metric)
+    for row in out:
+        p = row["p_holm"]
         if metric in TIME_METRICS:
             limit = noise_threshold(noise, _world_cells(groups, row["a"], row["b"]))
             decision = time_decision(row, p, limit)

@@ -24,7 +24,7 @@ import numpy as np
 import yaml
 
 from ..atomic import atomic_path
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 PathLike = Union[str, os.PathLike]
@@ -265,15 +265,10 @@ def _number(meta: Dict[str, Any], key: str, source: Path, default: Any = None) -
             value = float(value)
         except ValueError:
             pass
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise MapFormatError(f"{source}: field '{key}' must be a number, got {value!r}")
     try:
-        v = float(value)
-    except OverflowError:
-        raise MapFormatError(f"{source}: field '{key}' is too large") from None
-    if not math.isfinite(v):
-        raise MapFormatError(f"{source}: field '{key}' must be finite, got {value!r}")
-    return v
+        return finite_number(f"field '{key}'", value)
+    except ValueError as exc:
+        raise MapFormatError(f"{source}: {exc}") from None
 
 
 def _origin(meta: Dict[str, Any], source: Path) -> Tuple[float, float, float]:

@@ -16,7 +16,7 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, finite_number
 
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
@@ -34,18 +34,6 @@ def _read_only(values: Any, dtype, name: str) -> np.ndarray:
         raise ValueError(f"{name} must be an array of {np.dtype(dtype).name}: {exc}") from None
     out.flags.writeable = False
     return out.view()  # a view of a read-only base can never be made writeable again
-
-
-def _finite_number(name: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValueError(f"{name} must be a number, got {value!r}")
-    try:
-        v = float(value)
-    except OverflowError:
-        raise ValueError(f"{name} is too large, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return v
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,7 +83,7 @@ class OccupancyGrid:
         if blocked.size > MAX_CELLS:
             raise ValueError(f"blocked has {blocked.size} cells, more than the {MAX_CELLS:.0e} navlab supports")
         put(self, "blocked", blocked)
-        resolution = _finite_number("resolution", self.resolution)
+        resolution = finite_number("resolution", self.resolution)
         if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
             raise ValueError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
                              f"got {self.resolution!r}")
@@ -110,7 +98,7 @@ class OccupancyGrid:
             raise ValueError(f"origin must be (x, y, yaw), got {self.origin!r}")
         x = check_coordinate("origin x", origin[0])
         y = check_coordinate("origin y", origin[1])
-        yaw = _finite_number("origin yaw", origin[2])
+        yaw = finite_number("origin yaw", origin[2])
         put(self, "origin", (x, y, yaw))
         unknown = np.zeros(blocked.shape, bool) if self.unknown is None else self.unknown
         unknown = _read_only(unknown, bool, "unknown")

@@ -125,3 +125,30 @@ def test_parse_params_passes_any_yaml_value_on(value):
 def test_parse_params_bad_items_are_usage_errors(item):
     with pytest.raises(click.BadParameter):
         parse_params((item,))
+
+
+@pytest.mark.parametrize("args, message", [
+    (["plan", "trap", "--max-iter", "-5"], "Error: Invalid value for '--max-iter': -5 is not in the range x>=1. "
+                                           "(see 'navlab plan --help')"),
+    (["plan"], "Error: Missing argument 'SOURCE'. (see 'navlab plan --help')"),
+    (["plan", "trap", "--seed", "-1"], "Error: Invalid value for '--seed': -1 is not in the range x>=0."),
+    (["grid", "maze", "--cells", "0", "10"], "(see 'navlab grid maze --help')"),
+    (["sim", "--robot", "tank"], "Error: Invalid value for '--robot': 'tank' is not one of"),
+    (["plan", "trap", "--param", "a\nb"], "Error: Invalid value for --param: expected key=value, got 'a\\nb'"),
+    (["plan", "trap", "--planner", "astar", "--param", "smooth=maybe"], "Error: smooth must be true or false"),
+])
+def test_usage_errors_are_one_line_naming_the_flag(args, message):
+    """click prints usage, a hint and the error on three lines; navlab prints one."""
+    result = CliRunner().invoke(main, args, prog_name="navlab")
+    assert result.exit_code == 2
+    lines = result.output.split("\n")
+    assert len([x for x in lines if x.strip()]) == 1 and lines[0].startswith("Error: ") and message in lines[0], \
+        result.output
+
+
+def test_numbers_in_exponent_notation_are_numbers():
+    """PyYAML (YAML 1.1) reads 1e-3 as a string; every user means the number."""
+    assert parse_params(("expand_dis=1e-3", "w=[1e2, 2E-1, x]", "name=e5", "n=5")) == {
+        "expand_dis": 1e-3, "w": [100.0, 0.2, "x"], "name": "e5", "n": 5}
+    result = CliRunner().invoke(main, ["plan", "trap", "--param", "expand_dis=1e-12"], prog_name="navlab")
+    assert result.exit_code == 2 and "expand_dis = 1e-12 is below the smallest supported length" in result.output

@@ -20,6 +20,27 @@ class NavlabGroup(click.Group):
     traceback.
     """
 
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+        """click's main, with its usage errors on one line (click prints the
+        usage and a hint on lines of their own): ``Error: <what> (see
+        'navlab plan --help')``, exit 2."""
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **extra)
+        try:
+            code = super().main(args, prog_name, complete_var, False, **extra)
+        except click.exceptions.UsageError as exc:
+            where = f" (see '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
+            message = " ".join(exc.format_message().splitlines())  # one line, even for a value holding newlines
+            click.echo(f"Error: {message}{where}", err=True)
+            sys.exit(exc.exit_code)
+        except click.exceptions.ClickException as exc:
+            exc.show()
+            sys.exit(exc.exit_code)
+        except click.exceptions.Abort:
+            click.echo("Aborted!", err=True)
+            sys.exit(1)
+        sys.exit(code if isinstance(code, int) else 0)
+
     def invoke(self, ctx):
         try:
             return super().invoke(ctx)
@@ -47,8 +68,10 @@ def main() -> None:
     Worlds are YAML world files or built-in scene names (see `navlab list`).
     Units are metres and radians unless a flag says otherwise.
 
-    Errors print one line (exit 2 for bad input, 1 for an internal error,
-    130 after Ctrl-C); set NAVLAB_DEBUG=1 to see the Python traceback.
+    Exit status: 0 on success; 1 when a plan or simulation ended without
+    reaching its goal (the output says why) or for an internal error (one
+    line, Error: internal error: ...); 2 for bad input (one line, Error:
+    ...); 130 after Ctrl-C. Set NAVLAB_DEBUG=1 to see Python tracebacks.
     """
 
 

@@ -69,7 +69,7 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
     if experiment or suite:
         data, where = experiment_data(experiment or suite)
     elif worlds and planners:
-        data, where = {"name": "custom"}, "flags"
+        data, where = {"name": "custom"}, "the command line"
     else:
         raise click.UsageError("give an experiment file, --suite NAME, or at least --world and --planner")
     if not isinstance(data, dict):

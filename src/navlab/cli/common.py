@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+import re
 from typing import Any, Dict, Tuple
 
 import click
@@ -62,6 +63,20 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
                            "(run with NAVLAB_DEBUG=1 for the traceback)")
 
 
+#: a number in exponent notation without a dot (1e-3), which YAML 1.1 (PyYAML) reads as a string
+_EXPONENT_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)[eE][+-]?\d+")
+
+
+def _exponent_numbers(value: Any) -> Any:
+    """``value`` with strings like ``1e-3`` (alone or in a list) read as the
+    numbers every user means by them (YAML 1.2 and Nav2's yaml-cpp agree)."""
+    if isinstance(value, str) and _EXPONENT_NUMBER.fullmatch(value.strip()):
+        return float(value)
+    if isinstance(value, list):
+        return [_exponent_numbers(v) for v in value]
+    return value
+
+
 def parse_params(items: Tuple[str, ...]) -> Dict[str, Any]:
     """``key=value`` pairs; values are read as YAML (numbers, lists, mappings).
 
@@ -74,9 +89,9 @@ def parse_params(items: Tuple[str, ...]) -> Dict[str, Any]:
         key, sep, value = item.partition("=")
         key = key.strip()
         if not sep or not key:
-            raise click.BadParameter(f"expected key=value, got '{item}'", param_hint="--param")
+            raise click.BadParameter(f"expected key=value, got {item!r}", param_hint="--param")
         try:
-            out[key] = yaml.safe_load(value)
+            out[key] = _exponent_numbers(yaml.safe_load(value))
         except yaml.YAMLError as exc:
             raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
                                      param_hint="--param") from None

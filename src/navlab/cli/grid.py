@@ -72,7 +72,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     else:
         click.echo(f"{grid.name}: {algorithm}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
         if result.success:
-            click.echo(f"  {len(result.cells)} cells, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
+            click.echo(f"  {len(result.cells)} waypoints, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
         if plot:
             click.echo(f"  plot written to {plot}")
@@ -154,7 +154,7 @@ def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0)
 @grid_group.command("maze")
 @click.option("--cells", nargs=2, type=click.IntRange(min=1), default=(10, 10), show_default=True, metavar="W H",
               help="Maze size in cells.")
-@click.option("--seed", type=int, default=0, show_default=True)
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True)
 @click.option("--cell-size", type=click.FloatRange(min=0, min_open=True), default=0.5, show_default=True,
               help="Distance between cell centres, m.")
 @click.option("--wall", type=click.FloatRange(min=0, min_open=True), default=0.1, show_default=True,

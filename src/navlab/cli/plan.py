@@ -27,7 +27,7 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 @click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iterations (default: the planner's).")
 @click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None,
               help="Time limit in seconds (starts after warm-up).")
-@click.option("--seed", type=int, default=0, show_default=True, help="Random seed (same seed, same result).")
+@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Random seed (same seed, same result).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
               help="Planner, sampler or grid setting, e.g. expand_dis=1.0 goal_sample_rate=0.05 "
                    "'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}' resolution=0.05 "
@@ -41,7 +41,12 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
              trace, plot) -> None:
     """Plan a path in SOURCE: a built-in scene name, a world YAML, a ROS map_server
     YAML (PGM/PNG) or a Moving AI .map. Maps have no start or goal: give
-    --start and --goal (metres, map frame)."""
+    --start and --goal (metres, map frame).
+
+    Exit status: 0 for an EXACT path; 1 when the planner answered without one
+    (APPROXIMATE, FAILED, INVALID_START, INVALID_GOAL: the first line says
+    why); 2 for bad input (one line, Error: ...).
+    """
     from ..planning import is_grid_planner, plan
     from ..world.sources import MissingQueryError, load_source
 

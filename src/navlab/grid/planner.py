@@ -225,6 +225,9 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
     if isinstance(weight, bool) or not isinstance(weight, (int, float)) or not weight >= 1 or not math.isfinite(weight):
         raise ValueError(f"weight must be a number >= 1, got {weight!r}")
+    for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
+        if not isinstance(value, (bool, np.bool_)):
+            raise ValueError(f"{flag} must be true or false, got {value!r}")
     if smooth_method not in ("bresenham", "supercover"):
         raise ValueError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
     if algorithm == "jps" and connectivity != 8:

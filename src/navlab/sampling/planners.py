@@ -19,7 +19,7 @@ from typing import Any, Dict, Optional, Union
 
 import numpy as np
 
-from ..limits import check_memory
+from ..limits import check_length, check_memory
 from ..registry import Registry, parameters_of
 from ..result import Result, Status
 from . import tree_kernel as K
@@ -112,6 +112,8 @@ class TreePlanner:
 
     def _validate(self) -> None:
         _check_positive("expand_dis", self.expand_dis)
+        if self.expand_dis is not None:
+            check_length("expand_dis", self.expand_dis, allow_zero=False)  # within [1e-9, 1e7] m
         _check_positive("max_iter", self.max_iter, integer=True)
         _check_positive("max_time", self.max_time)
         if self.batch_size is None:

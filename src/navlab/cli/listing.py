@@ -26,7 +26,7 @@ def first_paragraph(text: Optional[str]) -> str:
                 break
             continue
         paragraph.append(line.strip())
-    return " ".join(paragraph)
+    return " ".join(paragraph).replace("``", "")  # reST literals read as plain text in a terminal
 
 
 def _entry(name: str, description: str, details: str = "") -> Iterator[str]:
@@ -46,9 +46,18 @@ def _params(factory: Callable[..., Any], skip: Tuple[str, ...] = ()) -> str:
 
 
 def _from_registry(registry: Registry, params: bool = True) -> Iterator[str]:
+    """One entry per registered object, under its own name (the last it was
+    registered under), with its other names as aliases."""
+    names: Dict[int, List[str]] = {}
+    for name in registry:
+        names.setdefault(id(registry.get(name)), []).append(name)
     for name in registry:
         factory = registry.get(name)
-        yield from _entry(name, first_paragraph(factory.__doc__), _params(factory) if params else "")
+        if getattr(factory, "registered_name", name) != name:
+            continue  # an alias: listed with its object's own name
+        aliases = [n for n in names[id(factory)] if n != name]
+        description = first_paragraph(factory.__doc__) + (f" (alias: {', '.join(aliases)})" if aliases else "")
+        yield from _entry(name, description, _params(factory) if params else "")
 
 
 def _tree_planners() -> Iterator[str]:
@@ -81,7 +90,7 @@ def _scenes() -> Iterator[str]:
         w = factory()
         yield from _entry(name, first_paragraph(factory.__doc__),
                           f"start {w.start}, goal {w.goal}, robot radius {w.robot_radius} m, "
-                          f"{len(w.obstacles)} obstacles")
+                          f"{len(w.obstacles)} obstacle{'s' if len(w.obstacles) != 1 else ''}")
 
 
 def _controllers() -> Iterator[str]:
@@ -120,6 +129,7 @@ def _executors() -> Iterator[str]:
 
 
 def _experiments() -> Iterator[str]:
+    from ..sim import latency  # noqa: F401 - registers sensor-latency
     from ..sim.experiments import EXPERIMENTS
 
     yield from _from_registry(EXPERIMENTS)

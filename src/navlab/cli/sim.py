@@ -20,7 +20,8 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.argument("world", required=False)
 @click.option("--robot", type=click.Choice(["omni3", "diff"]), default="omni3", show_default=True)
 @click.option("--controller", default=None,
-              help="potential_field (omni3 default), goto_waypoint (diff default) or pure_pursuit.")
+              help="hybrid (omni3 default: a global plan, the potential field as local avoider), "
+                   "potential_field (seed 004's field alone), goto_waypoint (diff default) or pure_pursuit.")
 @click.option("--start", nargs=3, type=float, default=None, metavar="X Y THETA",
               help="Start pose [m, m, rad] (default: the world's start, heading 0).")
 @click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal [m] (default: the world's).")

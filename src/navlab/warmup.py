@@ -77,9 +77,12 @@ _SIBLINGS = {"helpers_first": False, "helpers_done": False, "lock": None}
 def claim_warm_up_role(lock_path: str) -> None:
     """Pool initializer: the worker that takes ``lock_path``'s lock first
     (and keeps it while it lives) compiles the tree helpers first."""
-    import fcntl
     import os
 
+    try:
+        import fcntl
+    except ImportError:  # not POSIX: every worker compiles everything, as before
+        return
     fd = os.open(lock_path, os.O_RDWR | os.O_CREAT, 0o600)
     try:
         fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)

@@ -23,3 +23,25 @@ def test_a_failed_write_leaves_the_old_file_and_no_temporary(tmp_path):
         tmp.write_text("half")
         raise OSError(28, "No space left on device")
     assert target.read_text() == "old" and sorted(p.name for p in tmp_path.iterdir()) == ["plot.png"]
+
+
+def test_a_fifo_is_refused_and_a_symlink_kept(tmp_path):
+    """Renaming over a FIFO or a device would replace it with a plain file."""
+    import errno
+    import os
+
+    import pytest
+
+    from navlab.atomic import write_text_atomic
+
+    fifo = tmp_path / "f.png"
+    os.mkfifo(fifo)
+    with pytest.raises(OSError) as err:
+        write_text_atomic(fifo, "x")
+    assert err.value.errno == errno.EEXIST and err.value.filename == str(fifo)
+    assert fifo.is_fifo() and sorted(os.listdir(tmp_path)) == ["f.png"]
+    real = tmp_path / "real.txt"
+    real.write_text("old")
+    (tmp_path / "link.txt").symlink_to(real)
+    write_text_atomic(tmp_path / "link.txt", "new")
+    assert (tmp_path / "link.txt").is_symlink() and real.read_text() == "new"

@@ -9,6 +9,7 @@ name only ever holds a complete file.
 from __future__ import annotations
 
 import contextlib
+import errno
 import os
 import tempfile
 from pathlib import Path
@@ -29,6 +30,12 @@ def atomic_path(target: Union[str, os.PathLike]) -> Iterator[Path]:
     ...     fig.savefig(tmp)
     """
     target = Path(target)
+    if target.is_symlink():
+        target = Path(os.path.realpath(target))  # replace the file the link points to, keep the link
+    if target.exists() and not target.is_file():
+        # a device, a FIFO, a socket or a folder: renaming over it would replace it with a plain file
+        raise IsADirectoryError(errno.EISDIR, "is a folder", str(target)) if target.is_dir() else \
+            OSError(errno.EEXIST, "exists and is not a regular file (navlab writes files only)", str(target))
     fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix or ".tmp",
                                     dir=target.parent if str(target.parent) else ".")
     os.close(fd)

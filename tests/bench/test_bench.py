@@ -198,3 +198,14 @@ def test_ompl_anchor_rows(tmp_path):
     assert rows[1]["status"] == "EXACT" and rows[0]["status"] in ("EXACT", "APPROXIMATE")
     assert all(r["cost"] >= 21.9987 - 1e-6 for r in rows if r["success"])  # never below the true optimum
     assert rows[0]["iterations"] >= 2000 or rows[0]["time_s"] >= 5.0
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"grid": {k: list(range(10)) for k in "abcdefgh"}}, r"the experiment has [0-9.]+e\+08 cells"),
+    ({"trials": 10**9}, "'trials': 1000000000 trials in each of"),
+    ({"budget": 5}, "'budget' must be a mapping"),
+])
+def test_runs_too_big_to_hold_are_refused_before_building_cells(change, message):
+    """An 8-parameter sweep of 10 values once grew to 15 GB before anything ran."""
+    with pytest.raises(ExperimentError, match=message):
+        load_experiment({**TINY, **change})

@@ -23,6 +23,7 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
+import math
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple, Union
@@ -33,6 +34,10 @@ import yaml
 from ..registry import suggest
 
 OMPL_PREFIX = "ompl:"
+#: the most cells (combinations) and trials one run may have: each trial is a
+#: row kept in memory and in results.jsonl
+MAX_CELLS = 10_000
+MAX_TRIALS = 1_000_000
 FIELDS = ("name", "description", "worlds", "planners", "samplers", "params", "grid", "budget", "trials", "seed",
           "claims", "study")
 #: fields that describe an experiment without changing its results
@@ -254,6 +259,8 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
     for key in ("worlds", "planners"):
         if key not in data:
             raise ExperimentError(f"missing field '{key}'")
+    if not isinstance(data.get("budget") or {}, dict):
+        raise ExperimentError(f"'budget' must be a mapping (max_iter, max_time), got {data['budget']!r}")
     budget = dict(data.get("budget") or {})
     for key in budget:
         if key not in BUDGET_FIELDS:
@@ -361,6 +368,15 @@ def validate(exp: Experiment) -> None:
 
     if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
         raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
+    # Counted before the cells are built: a grid of 8 parameters × 10 values is 10⁸ cells.
+    cells = len(exp.worlds) * len(exp.planners) * max(len(exp.samplers), 1) * math.prod(
+        len(v) for v in exp.grid.values())
+    if cells > MAX_CELLS:
+        raise ExperimentError(f"the experiment has {cells:.3g} cells (worlds × planners × samplers × grid values), "
+                              f"more than the {MAX_CELLS} a run supports; sweep fewer values")
+    if cells * exp.trials > MAX_TRIALS:
+        raise ExperimentError(f"'trials': {exp.trials} trials in each of {cells} cells is {cells * exp.trials:.3g} "
+                              f"trials, more than the {MAX_TRIALS:.0e} a run supports")
     if isinstance(exp.seed, bool) or not isinstance(exp.seed, int) or exp.seed < 0:
         raise ExperimentError(f"'seed' must be a non-negative integer, got {exp.seed!r}")
     for key, values in exp.grid.items():

@@ -32,7 +32,8 @@ EXIT_INTERRUPTED = 130
 @click.option("--seed", type=click.IntRange(min=0), default=None, help="Base seed of the per-trial seeds.")
 @click.option("--executor", type=click.Choice(["process", "serial", "dask"]), default="process", show_default=True,
               help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")
-@click.option("--jobs", "-j", type=click.IntRange(min=1), default=None, help="Workers (default: all cores).")
+@click.option("--jobs", "-j", type=click.IntRange(1, 256), default=None,
+              help="Worker processes, 1 to 256 (default: all cores).")
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
 @click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")
 @click.option("--overwrite", is_flag=True, help="Discard the results in --out and start again.")
@@ -84,7 +85,10 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
         data["params"] = {**(data.get("params") or {}), **parse_params(params)}
     if grid:
         data["grid"] = {**(data.get("grid") or {}), **parse_params(grid)}
-    budget = dict(data.get("budget") or {})
+    budget = data.get("budget") or {}
+    if not isinstance(budget, dict):
+        raise click.UsageError(f"{where}: 'budget' must be a mapping (max_iter, max_time), got {budget!r}")
+    budget = dict(budget)
     if max_iter is not None:
         budget["max_iter"] = max_iter
     if max_time is not None:

@@ -110,3 +110,23 @@ def test_logs_grow_with_the_run_not_with_max_time(monkeypatch):
     assert long[0].steps == short[0].steps > 4 * simulation.INITIAL_LOG_ROWS  # the logs did grow, and lost nothing
     for name in ("true_poses", "odom_poses", "commands", "t"):
         assert np.array_equal(getattr(long[0], name), getattr(short[0], name)), name
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"dt": 1e-300}, "below the smallest supported step"),
+    ({"max_time": float("inf")}, "max_time must be a positive, finite number"),
+    ({"max_time": 1e300}, "steps, more than the 1e+08 a run supports"),
+])
+def test_runs_that_could_not_end_are_refused(kwargs, message):
+    """--dt 1e-300 ran for ever and --max-time inf was an internal OverflowError."""
+    with pytest.raises(ValueError, match=message):
+        simulate("one_obstacle", **kwargs)
+
+
+def test_lidar_beams_are_bounded():
+    """10⁹ beams took 16 GB in the ROS sim node before this."""
+    from navlab.sensors.lidar import MAX_BEAMS
+
+    with pytest.raises(ValueError, match=f"from 1 to {MAX_BEAMS}"):
+        Lidar(beams=10**9)
+    assert Lidar(beams=MAX_BEAMS).angles.shape == (MAX_BEAMS,)

@@ -64,6 +64,9 @@ class GaussianNoise(NoiseModel):
         return self.sigma_m + self.relative * ranges
 
 
+#: the most beams a scan may have (a 0.001° step; real 2-D LiDARs have a few thousand)
+MAX_BEAMS = 360_000
+
 @dataclass
 class Lidar:
     """A planar scanning range finder at the robot's centre.
@@ -94,8 +97,8 @@ class Lidar:
     angles: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        if not isinstance(self.beams, int) or self.beams < 1:
-            raise ValueError(f"beams must be a positive integer, got {self.beams!r}")
+        if isinstance(self.beams, bool) or not isinstance(self.beams, int) or not 1 <= self.beams <= MAX_BEAMS:
+            raise ValueError(f"beams must be an integer from 1 to {MAX_BEAMS}, got {self.beams!r}")
         if not 0 < self.fov <= 2 * math.pi + 1e-12:
             raise ValueError(f"fov must be in (0, 2π], got {self.fov!r}")
         if not 0 <= self.range_min < self.range_max:

@@ -28,6 +28,10 @@ from .scene import Scene
 
 #: simulation steps the logs hold at first (they double as the run goes on)
 INITIAL_LOG_ROWS = 4096
+#: [s] the smallest time step (a tenth of a millisecond: far below any robot's control period)
+MIN_DT = 1e-4
+#: the most steps one run may take (max_time / dt): about two hours of computing at 0.08 ms a step
+MAX_STEPS = 100_000_000
 
 
 class SimStatus(enum.Enum):
@@ -145,8 +149,13 @@ class Simulation:
                  lidar_timing: Optional[SensorTiming] = None, odometry_timing: Optional[SensorTiming] = None) -> None:
         if not (isinstance(dt, (int, float)) and dt > 0 and math.isfinite(dt)):
             raise ValueError(f"time step dt must be a positive number of seconds, got {dt!r}")
-        if not max_time > 0:
-            raise ValueError(f"max_time must be positive, got {max_time!r}")
+        if dt < MIN_DT:
+            raise ValueError(f"time step dt = {dt:g} s is below the smallest supported step, {MIN_DT:g} s")
+        if not (isinstance(max_time, (int, float)) and max_time > 0 and math.isfinite(max_time)):
+            raise ValueError(f"max_time must be a positive, finite number of seconds, got {max_time!r}")
+        if max_time / dt > MAX_STEPS:
+            raise ValueError(f"max_time / dt = {max_time / dt:.3g} steps, more than the {MAX_STEPS:.0e} a run "
+                             f"supports; lower max_time or raise dt")
         if controller.needs_scan and lidar is None:
             raise ValueError(f"controller {type(controller).__name__} reads LiDAR points: give a lidar")
         if controller.needs_path and path is None:

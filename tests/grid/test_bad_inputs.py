@@ -233,3 +233,20 @@ def _map(tmp_path, blocked):
     path = tmp_path / "f.map"
     path.write_text(f"type octile\nheight {len(rows)}\nwidth {len(rows[0])}\nmap\n" + "\n".join(rows) + "\n")
     return path
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"cell_size": float("inf")}, "cell_size must be finite"),
+    ({"resolution": float("nan")}, "resolution must be finite"),
+    ({"cell_size": 1e300}, r"cell_size = 1e\+300 is out of range"),
+    ({"wall": 1.0, "cell_size": 0.5}, r"wall \(1 m\) must be thinner than cell_size \(0.5 m\)"),
+    ({"cell_size": 1e6, "wall": 1e5, "resolution": 1e5}, "m across, more than the 1e\\+07 m navlab supports"),
+])
+def test_maze_sizes_out_of_range_are_named(kwargs, message):
+    """cell_size=inf was an internal OverflowError; 1e6 m cells made a map navlab plan refused."""
+    from navlab.grid.maze import make_maze, maze_size
+
+    with pytest.raises(ValueError, match=message):
+        maze_size(10, 10, **{"cell_size": 0.5, "wall": 0.1, "resolution": 0.05, **kwargs})
+    with pytest.raises(ValueError, match=message):
+        make_maze(10, 10, **kwargs)

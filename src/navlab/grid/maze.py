@@ -6,7 +6,7 @@ from typing import Callable, Optional
 
 import numpy as np
 
-from ..limits import available_memory, check_length
+from ..limits import MAX_COORDINATE, available_memory, check_length
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 #: Bytes a maze cell costs while it is carved: three bool arrays and, at
@@ -22,6 +22,14 @@ def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolut
     most MAX_CELLS pixels, walls and corridors at least a pixel wide, and an
     estimate of the memory it needs below what the machine has available.
     Raises ValueError naming the parameter, before anything is allocated."""
+    cell_size, wall, resolution = (check_length(name, v, allow_zero=False) for name, v in
+                                   (("cell_size", cell_size), ("wall", wall), ("resolution", resolution)))
+    if wall >= cell_size:
+        raise ValueError(f"wall ({wall:g} m) must be thinner than cell_size ({cell_size:g} m)")
+    extent = max(cells_x, cells_y) * cell_size + wall
+    if extent > MAX_COORDINATE:
+        raise ValueError(f"a {cells_x}x{cells_y}-cell maze of {cell_size:g} m cells is {extent:.3g} m across, more "
+                         f"than the {MAX_COORDINATE:g} m navlab supports")
     if wall < resolution:
         raise ValueError(f"resolution {resolution:g} m is coarser than the {wall:g} m wall: walls would vanish "
                          f"from the map; use a resolution of at most {wall:g} m")
@@ -32,7 +40,7 @@ def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolut
     nx = int(round((cells_x * cell_size + wall) / resolution))
     ny = int(round((cells_y * cell_size + wall) / resolution))
     if nx * ny > MAX_CELLS:
-        raise ValueError(f"a {cells_x}x{cells_y}-cell maze at {resolution:g} m is a {nx}x{ny}-pixel map, more than "
+        raise ValueError(f"a {cells_x}x{cells_y}-cell maze at {resolution:g} m is a {nx:.3g}x{ny:.3g}-pixel map, more than "
                          f"the {MAX_CELLS:.0e} cells navlab supports; use fewer cells or a coarser resolution")
     need = cells_x * cells_y * BYTES_PER_MAZE_CELL + nx * ny * BYTES_PER_PIXEL
     have = available_memory()
@@ -120,10 +128,6 @@ def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0
             raise ValueError(f"{name} must be a positive integer, got {v!r}")
     if cells_x * cells_y > MAX_CELLS:
         raise ValueError(f"a {cells_x}x{cells_y}-cell maze has more than the {MAX_CELLS:.0e} cells navlab supports")
-    cell_size, wall, resolution = (check_length(name, v, allow_zero=False) for name, v in
-                                   (("cell_size", cell_size), ("wall", wall), ("resolution", resolution)))
-    if wall >= cell_size:
-        raise ValueError(f"wall ({wall} m) must be thinner than cell_size ({cell_size} m)")
     nx, ny = maze_size(cells_x, cells_y, cell_size, wall, resolution)
     rng = np.random.default_rng(seed)
     east, north = maze_walls(cells_x, cells_y, rng, progress)

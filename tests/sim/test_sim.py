@@ -130,3 +130,22 @@ def test_lidar_beams_are_bounded():
     with pytest.raises(ValueError, match=f"from 1 to {MAX_BEAMS}"):
         Lidar(beams=10**9)
     assert Lidar(beams=MAX_BEAMS).angles.shape == (MAX_BEAMS,)
+
+
+def test_an_experiment_records_a_world_without_a_path_and_goes_on(monkeypatch):
+    """random-clutter --runs 200 stopped at world 195 (no path for the hybrid's plan) as if it were bad input."""
+    from navlab.sim import experiments, runner
+
+    real = runner.simulate
+
+    def simulate_or_no_path(world, controller=None, **kwargs):
+        if controller == "hybrid" and world.name.endswith("_1"):
+            raise runner.NoPathError("no path for the robot from (1.0, 1.0) to (9.0, 9.0): APPROXIMATE")
+        return real(world, controller=controller, **kwargs)
+
+    monkeypatch.setattr(runner, "simulate", simulate_or_no_path)
+    rows = experiments.hybrid_vs_field(runs=2)
+    assert [r["status"] for r in rows][2:] == [rows[2]["status"], "NO_PATH"] and len(rows) == 4
+    assert "APPROXIMATE" in rows[3]["reason"]
+    hybrid = next(line for line in experiments.hybrid_table(rows).splitlines() if line.split()[0] == "hybrid")
+    assert int(hybrid.split()[3]) == 1  # counted under "other"

@@ -21,6 +21,11 @@ from .simulation import SimResult, Simulation
 DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint"}
 
 
+class NoPathError(ValueError):
+    """The global planner found no path for the robot (an answer about the
+    world, not bad input: an experiment records it and goes on)."""
+
+
 def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None, start=None, goal=None,
              planner: Optional[str] = None, lidar: Optional[str] = None, robot_params: Optional[Dict] = None,
              controller_params: Optional[Dict] = None, dt: float = 0.05, max_time: Optional[float] = None,
@@ -90,5 +95,5 @@ def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: 
             raise ValueError(f"the {label} is in collision: {scene.describe(p)}")
     path = _plan_path(scene_world, robot.radius, start, goal, planner, sampler)
     if not isinstance(path, np.ndarray):
-        raise ValueError(f"no path for the robot from {start[:2]} to {goal}: {path.status.name} {path.reason}")
+        raise NoPathError(f"no path for the robot from {start[:2]} to {goal}: {path.status.name} {path.reason}")
     return path

@@ -59,6 +59,8 @@ def test_queries_listed_in_the_experiment_and_trials_cycle_through_them(movingai
     ({"map": "ROOM", "queries": [[1, 2, 3]]}, r"query 0 must be \[start x"),
     ({"map": "ROOM", "scen": "ROOM.scen", "queries": 0}, "positive integer"),
     ({"map": "ROOM", "qeries": 2}, "(?i)did you mean 'queries'"),
+    ({"map": "ROOM", "queries": [[0.3, 0.3, 1e300, 4.8]]}, r"query 0 goal x = 1e\+300 is out of range"),
+    ({"map": "ROOM", "queries": [[1, 1, 2, 2]], "robot_radius": -1}, "robot_radius must be non-negative"),
 ])
 def test_bad_map_worlds_are_refused_before_anything_runs(movingai, world, message):
     world = {k: (str(movingai / "room.map") + v[4:] if isinstance(v, str) and v.startswith("ROOM") else v)

@@ -26,6 +26,7 @@ from typing import Any, Dict, List, Optional
 
 import numpy as np
 
+from ..limits import check_coordinate, check_length
 from .experiment import ExperimentError
 
 MAP_FIELDS = ("map", "scen", "queries", "name", "robot_radius")
@@ -62,15 +63,21 @@ def map_entry(entry: Dict[str, Any], folder: Optional[Path] = None) -> Dict[str,
                                   "or 'queries' as a list of [start x, start y, goal x, goal y] in metres")
         chosen = []
         for k, q in enumerate(queries):
-            if not isinstance(q, (list, tuple)) or len(q) != 4 or not all(
-                    isinstance(v, (int, float)) and not isinstance(v, bool) and np.isfinite(v) for v in q):
+            if not isinstance(q, (list, tuple)) or len(q) != 4:
                 raise ExperimentError(f"{path}: query {k} must be [start x, start y, goal x, goal y] in metres, "
                                       f"got {q!r}")
-            chosen.append({"index": k, "start": [float(q[0]), float(q[1])], "goal": [float(q[2]), float(q[3])],
-                           "optimum": None})
+            try:
+                q = [check_coordinate(f"query {k} {axis}", v)
+                     for axis, v in zip(("start x", "start y", "goal x", "goal y"), q)]
+            except ValueError as exc:
+                raise ExperimentError(f"{path}: {exc}") from None
+            chosen.append({"index": k, "start": q[:2], "goal": q[2:], "optimum": None})
     out = {"name": str(entry.get("name") or Path(path).stem), "map": str(path), "queries": chosen}
     if entry.get("robot_radius") is not None:
-        out["robot_radius"] = float(entry["robot_radius"])
+        try:
+            out["robot_radius"] = check_length("robot_radius", entry["robot_radius"])
+        except ValueError as exc:
+            raise ExperimentError(f"{path}: {exc}") from None
     return out
 
 

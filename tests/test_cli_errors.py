@@ -136,6 +136,10 @@ def test_parse_params_bad_items_are_usage_errors(item):
     (["sim", "--robot", "tank"], "Error: Invalid value for '--robot': 'tank' is not one of"),
     (["plan", "trap", "--param", "a\nb"], "Error: Invalid value for --param: expected key=value, got 'a\\nb'"),
     (["plan", "trap", "--planner", "astar", "--param", "smooth=maybe"], "Error: smooth must be true or false"),
+    (["plan", "trap", "--param", "a=1", "--param", "a=2"], "Error: Invalid value for --param: 'a' is given twice"),
+    (["sim", "one_obstacle", "--lidar-timing", "rate=10,rate=20"], "Invalid value for --lidar-timing: 'rate' is"),
+    (["sim", "one_obstacle", "--odom-timing", "="], "Invalid value for --odom-timing: expected key=value"),
+    (["plan", "trap", "--max-iter", "20", "--plot", "x.txt"], "x.txt: cannot write the figure: Format 'txt'"),
 ])
 def test_usage_errors_are_one_line_naming_the_flag(args, message):
     """click prints usage, a hint and the error on three lines; navlab prints one."""

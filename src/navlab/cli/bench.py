@@ -84,7 +84,7 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
     if params:
         data["params"] = {**(data.get("params") or {}), **parse_params(params)}
     if grid:
-        data["grid"] = {**(data.get("grid") or {}), **parse_params(grid)}
+        data["grid"] = {**(data.get("grid") or {}), **parse_params(grid, "--grid")}
     budget = data.get("budget") or {}
     if not isinstance(budget, dict):
         raise click.UsageError(f"{where}: 'budget' must be a mapping (max_iter, max_time), got {budget!r}")

@@ -77,7 +77,7 @@ def _exponent_numbers(value: Any) -> Any:
     return value
 
 
-def parse_params(items: Tuple[str, ...]) -> Dict[str, Any]:
+def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any]:
     """``key=value`` pairs; values are read as YAML (numbers, lists, mappings).
 
     Values are passed on as read (a huge integer, ``.inf``, a list): the
@@ -88,13 +88,15 @@ def parse_params(items: Tuple[str, ...]) -> Dict[str, Any]:
     for item in items:
         key, sep, value = item.partition("=")
         key = key.strip()
+        if key in out:
+            raise click.BadParameter(f"'{key}' is given twice", param_hint=flag)
         if not sep or not key:
-            raise click.BadParameter(f"expected key=value, got {item!r}", param_hint="--param")
+            raise click.BadParameter(f"expected key=value, got {item!r}", param_hint=flag)
         try:
             out[key] = _exponent_numbers(yaml.safe_load(value))
         except yaml.YAMLError as exc:
             raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
-                                     param_hint="--param") from None
+                                     param_hint=flag) from None
         except RecursionError:
-            raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint="--param") from None
+            raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint=flag) from None
     return out

@@ -85,10 +85,11 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
 
     result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
                                         planner=planner, sampler=sampler, lidar=lidar,
-                                        robot_params=parse_params(robot_params),
-                                        controller_params=parse_params(controller_params), dt=dt,
+                                        robot_params=parse_params(robot_params, "--robot-param"),
+                                        controller_params=parse_params(controller_params, "--controller-param"), dt=dt,
                                         max_time=max_time, seed=seed,
-                                        lidar_timing=_timing(lidar_timing), odometry_timing=_timing(odom_timing))
+                                        lidar_timing=_timing(lidar_timing, "--lidar-timing"),
+                                        odometry_timing=_timing(odom_timing, "--odom-timing"))
     if plot:
         from ..viz.sim_plot import plot_run
 
@@ -120,11 +121,11 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
         sys.exit(1)
 
 
-def _timing(items):
+def _timing(items, flag: str):
     """``rate=10,latency=0.5`` (or the flag repeated) as a mapping; None when not given."""
     if not items:
         return None
-    return parse_params(tuple(part for item in items for part in item.split(",") if part.strip()))
+    return parse_params(tuple(part for item in items for part in item.split(",") if part.strip()), flag)
 
 
 def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:

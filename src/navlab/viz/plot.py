@@ -30,6 +30,8 @@ def finish_figure(fig, out: Optional[str], dpi: int = 110):
             save_figure(fig, out, dpi=dpi, bbox_inches="tight")
         except OSError as exc:
             raise ValueError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
+        except ValueError as exc:  # matplotlib: "Format 'txt' is not supported (supported formats: ...)"
+            raise ValueError(f"{out}: cannot write the figure: {exc}") from None
         finally:
             _pyplot().close(fig)
     return fig

@@ -87,6 +87,9 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
       "-p", 'weights:="{goal: 0.2, uniforn: 0.8}"'], "Did you mean 'uniform'"),
     (["ros", "pathplanner", "--ros-args", "-p", "weights:={goal: 0.2}"], "bad ROS arguments"),
     (["ros", "demo", "--robot", "diff", "--map", "trap"], "plans on a map"),
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "seed:=-5"], "parameter seed must be a non-negative"),
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "dt:=1e-300"], "below the smallest supported step"),
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "lidar_beams:=1000000000"], "beams must be an integer"),
 ])
 def test_node_commands_refuse_bad_settings_in_one_line(args, message):
     proc = run_isolated(navlab_cmd(*args), timeout=60)

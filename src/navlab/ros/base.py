@@ -52,6 +52,8 @@ def coerce(param: Param, value: Any) -> Any:
         return float(value)
     if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
         raise ValueError(f"parameter {param.name} must be {kind.__name__}, got {value!r}")
+    if param.name == "seed" and value < 0:  # numpy's generators take non-negative seeds only
+        raise ValueError(f"parameter seed must be a non-negative integer, got {value!r}")
     return value
 
 

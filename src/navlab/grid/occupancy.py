@@ -16,7 +16,7 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, finite_number
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number
 
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
@@ -186,6 +186,7 @@ class OccupancyGrid:
 
         if isinstance(radius, bool) or not isinstance(radius, (int, float)) or not (radius >= 0 and math.isfinite(radius)):
             raise ValueError(f"inflation radius must be a non-negative number of metres, got {radius!r}")
+        radius = check_length("inflation radius", radius)  # within navlab's 1e7 m
         if radius == 0 or not self.blocked.any():
             return self
         dist = distance_transform_edt(~self.blocked) * self.resolution

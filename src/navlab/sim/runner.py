@@ -41,7 +41,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
 
     for name, values in (("start", start), ("goal", goal)):
         for axis, v in zip("xyθ", values or ()):
-            check_coordinate(f"{name} {axis}", v)
+            check_coordinate(f"{name} {axis}", v, "rad" if axis == "θ" else "m")
     scene_world = load_scene_world(world)
     bot = make_robot(robot, **(robot_params or {}))
     ctrl = make_controller(controller or DEFAULT_CONTROLLER[robot], **(controller_params or {}))

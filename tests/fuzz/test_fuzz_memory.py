@@ -20,10 +20,6 @@ SRC = str(Path(__file__).resolve().parents[2] / "src")
 ADDRESS_SPACE_LIMIT = 3 * 2**29  # [bytes] the child's virtual memory, 1.5 GiB (navlab itself maps ~0.5 GiB)
 
 
-def xfail(reason, owner):
-    return pytest.mark.xfail(strict=True, reason=f"{reason} — owner {owner}")
-
-
 # name: (code run in the child with D = a folder of prepared files, the field the error must name, marks)
 CASES = {
     "world file over the size limit": ("navlab.load_world(D / 'big.yaml')", "MiB", ()),

@@ -184,9 +184,7 @@ class OccupancyGrid:
         blocked cell's centre also blocked (Euclidean distance transform)."""
         from scipy.ndimage import distance_transform_edt
 
-        if isinstance(radius, bool) or not isinstance(radius, (int, float)) or not (radius >= 0 and math.isfinite(radius)):
-            raise ValueError(f"inflation radius must be a non-negative number of metres, got {radius!r}")
-        radius = check_length("inflation radius", radius)  # within navlab's 1e7 m
+        radius = check_length("inflation radius", radius)  # a finite, non-negative number within 1e7 m
         if radius == 0 or not self.blocked.any():
             return self
         dist = distance_transform_edt(~self.blocked) * self.resolution

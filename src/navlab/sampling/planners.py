@@ -40,8 +40,8 @@ MAX_COUNT = 2**62
 MAX_BATCH_SIZE = 65536
 
 
-def _check_positive(name: str, value: Any, integer: bool = False) -> None:
-    if value is None:
+def _check_positive(name: str, value: Any, integer: bool = False, required: bool = False) -> None:
+    if value is None and not required:
         return
     kinds = (int,) if integer else (int, float)
     if isinstance(value, bool) or not isinstance(value, kinds) or not value > 0 or (
@@ -111,14 +111,11 @@ class TreePlanner:
         return {k: getattr(self, k) for k in parameters_of(type(self))}
 
     def _validate(self) -> None:
-        _check_positive("expand_dis", self.expand_dis)
         if self.expand_dis is not None:
-            check_length("expand_dis", self.expand_dis, allow_zero=False)  # within [1e-9, 1e7] m
+            check_length("expand_dis", self.expand_dis, allow_zero=False)  # a positive length within [1e-9, 1e7] m
         _check_positive("max_iter", self.max_iter, integer=True)
         _check_positive("max_time", self.max_time)
-        if self.batch_size is None:
-            raise ValueError("batch_size must be a positive integer, got None")
-        _check_positive("batch_size", self.batch_size, integer=True)
+        _check_positive("batch_size", self.batch_size, integer=True, required=True)
         if self.batch_size > MAX_BATCH_SIZE:
             raise ValueError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
                              f"got {self.batch_size}")

@@ -25,6 +25,7 @@ import math
 import numpy as np
 from numba import njit
 
+from ..arrays import grown
 from ..world.geometry import segment_free
 from . import bucket_grid as G
 
@@ -116,23 +117,24 @@ class Tree:
         trace entries (doubling), and rebuild the grid if the tree doubled."""
         n = int(self.istate[S_NODES])
         need = min(n + new_nodes, self.max_nodes)
-        if need > self.capacity:
+        reallocated = need > self.capacity
+        if reallocated:
             cap = min(max(2 * self.capacity, need, min(INITIAL_CAPACITY, self.max_nodes)), self.max_nodes)
             for name, fill in self._NODE_ARRAYS:
-                setattr(self, name, _grown(getattr(self, name), cap, fill))
+                setattr(self, name, grown(getattr(self, name), cap, fill))
             for name, _, fill, _, _ in self._RECORDS:
-                self._set_record(name, _grown(getattr(self, name), cap, fill))
+                self._set_record(name, grown(getattr(self, name), cap, fill))
             self.capacity = cap
         t = int(self.istate[S_TRACE])
         if t + new_iterations > len(self.trace_iter):
             cap = max(2 * len(self.trace_iter), t + new_iterations, 64)
-            self.trace_iter = np.concatenate((self.trace_iter[:t], np.zeros(cap - t, dtype=np.int64)))
-            self.trace_cost = np.concatenate((self.trace_cost[:t], np.zeros(cap - t)))
+            self.trace_iter = grown(self.trace_iter[:t], cap)
+            self.trace_cost = grown(self.trace_cost[:t], cap)
         if self.use_grid and n > 0:
             if n >= G.REBUILD_GROWTH * self.grid.built_at:
                 self.grid.rebuild(self.xy, self.cost, self.next_in_cell, self.grid_slot, n,
                                   min(G.REBUILD_GROWTH * n, self.max_nodes))
-            else:
+            elif reallocated:  # the grid links the tree's per-node arrays: give it the new ones
                 self.grid.with_nodes(self.next_in_cell, self.grid_slot)
 
     def record_cost(self, iteration: int) -> None:
@@ -172,12 +174,6 @@ class Tree:
             out.append(self.xy[node])
             node = int(self.parent[node])
         return np.array(out[::-1])
-
-
-def _grown(old: np.ndarray, capacity: int, fill) -> np.ndarray:
-    new = np.full((capacity,) + old.shape[1:], fill, dtype=old.dtype)
-    new[: len(old)] = old
-    return new
 
 
 @njit(cache=True)

@@ -19,6 +19,7 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
+from ..arrays import grown
 from ..control.base import REACHED, STALLED, Controller
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
@@ -212,8 +213,8 @@ class Simulation:
         while n < n_max:
             if n == len(true):
                 rows = min(2 * n, n_max)
-                true, odo, cmds = _grown(true, rows), _grown(odo, rows), _grown(cmds, rows)
-                scans = None if scans is None else _grown(scans, rows)
+                true, odo, cmds = grown(true, rows), grown(odo, rows), grown(cmds, rows)
+                scans = None if scans is None else grown(scans, rows)
             t = (n - 1) * dt
             scene.set_time(t)
             if odom_line.due(t):
@@ -255,10 +256,3 @@ class Simulation:
         if self.scene.is_grid:
             return math.nan
         return float(np.min(self.scene.clearances(result.true_poses, result.t)))
-
-
-def _grown(log: np.ndarray, rows: int) -> np.ndarray:
-    """``log`` copied into a zeroed array of ``rows`` rows."""
-    out = np.zeros((rows,) + log.shape[1:], dtype=log.dtype)
-    out[: len(log)] = log
-    return out

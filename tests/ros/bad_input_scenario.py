@@ -22,7 +22,7 @@ from rclpy.parameter import Parameter
 from navlab.grid import OccupancyGrid, save_map
 from navlab.ros import convert as C
 from navlab.ros.astar_pathplanner import AStarPathPlanner
-from navlab.ros.base import MAP_QOS
+from navlab.ros.base import MAP_QOS, PLAN_QOS
 from navlab.ros.goto_waypoint import GotoWaypointNode
 from navlab.ros.potential_field_navigator import PotentialFieldNavigator
 from navlab.ros.sim import SimNode
@@ -39,7 +39,10 @@ class Probe(Node):
         self.map_pub = self.create_publisher(GridMsg, "map", MAP_QOS)
         self.goal_pub = self.create_publisher(PoseStamped, "goal_pose", 10)
         self.odom_pub = self.create_publisher(Odometry, "odom", 10)
-        self.plan_pub = self.create_publisher(Path, "plan", 10)
+        self.plan_pub = self.create_publisher(Path, "plan", PLAN_QOS)
+        self.volatile_plan_pub = self.create_publisher(Path, "volatile_plan", 10)  # as nav2's planner_server
+        self.late_cmds = []
+        self.create_subscription(Twist, "late_cmd_vel", self.late_cmds.append, 10)
         self.cmd_pub = self.create_publisher(Twist, "sim_cmd_vel", 10)
         self.nav_cmds = []
         self.create_subscription(Twist, "nav_cmd_vel", self.nav_cmds.append, 10)
@@ -132,6 +135,30 @@ def main(workdir):
     plans = len(probe.plans)
     probe.goal(1.0, 2.5)
     out["plans_after_bad_maps"] = spin(3.0, lambda: len(probe.plans) > plans)
+    # 3b. a follower started after the last plan went out still follows it (/plan is latched), and one
+    #     told to take a volatile /plan (as nav2's planner_server publishes it) follows such a publisher
+    late = GotoWaypointNode(cli_args=["--ros-args", "-r", "__node:=late_follower", "-r", "cmd_vel:=late_cmd_vel"])
+    volatile = GotoWaypointNode(cli_args=["--ros-args", "-r", "__node:=volatile_follower", "-r",
+                                          "cmd_vel:=late_cmd_vel", "-r", "plan:=volatile_plan", "-p",
+                                          "qos_overrides./volatile_plan.subscription.durability:=volatile"])
+    ex.add_node(late)
+    connected(probe.odom_pub, 4)  # the planner and three followers
+    for _ in range(5):
+        probe.odom_pub.publish(odom)
+        spin(0.05)
+    out["late_follower_moves"] = sum(c.linear.x > 0 for c in probe.late_cmds)
+    ex.remove_node(late)
+    late.destroy_node()
+    ex.add_node(volatile)
+    connected(probe.volatile_plan_pub)
+    probe.volatile_plan_pub.publish(C.path_to_msg(np.array([[0.5, 0.5], [1.5, 0.5]])))
+    probe.late_cmds.clear()
+    for _ in range(5):
+        probe.odom_pub.publish(odom)
+        spin(0.05)
+    out["volatile_follower_moves"] = sum(c.linear.x > 0 for c in probe.late_cmds)
+    ex.remove_node(volatile)
+    volatile.destroy_node()
     # 4. the follower on the planned path, then /odom stops: it stops the robot
     n, cmds = len(probe.logs), len(probe.cmds)
     for _ in range(5):

@@ -46,6 +46,12 @@ def test_malformed_maps_are_refused_and_the_planner_keeps_working(seen):
     assert seen["plans_after_bad_maps"]
 
 
+def test_a_follower_started_after_the_plan_still_follows_it(seen):
+    """/plan is latched; a volatile /plan is followed when the QoS override says so."""
+    assert seen["late_follower_moves"] > 0
+    assert seen["volatile_follower_moves"] > 0
+
+
 def test_follower_stops_the_robot_when_odometry_is_lost(seen):
     assert seen["commands_while_odom"] > 0
     assert seen["stops_after_odom_loss"] >= 1 and seen["moves_after_odom_loss"] == 0

@@ -20,9 +20,13 @@ from .convert import stamp_seconds
 
 #: /map is latched: late subscribers get the last map (as nav2's map_server).
 MAP_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE)
+#: /plan is latched too: a follower whose process starts (or is discovered)
+#: after the planner answered the goal still gets the path; without it the
+#: robot never moves (a CI run lost the only plan this way).
+PLAN_QOS = MAP_QOS
 #: /scan as drivers publish it (best effort, keep the latest few).
 SCAN_QOS = qos_profile_sensor_data
-#: /odom, /cmd_vel, /plan, /goal_pose
+#: /odom, /cmd_vel, /goal_pose
 DEFAULT_QOS = 10
 #: the sim's 50 Hz streams (/odom, /ground_truth, /tf, /clock) on the writer
 #: side: a reliable reader that falls behind for a moment (a bag recorder

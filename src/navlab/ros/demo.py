@@ -6,7 +6,8 @@ goal and judged from ``/odom``.
 - ``omni3`` (seed 004): sim + potential_field_navigator on a world or map
   (the ``one_obstacle`` scene by default).
 
-A mission node publishes the goal once the pipeline listens, follows
+A mission node publishes the goal once the pipeline listens (the goal's
+listener and, in the diff pipeline, the /plan follower), follows
 ``/odom``, ``/ground_truth``, ``/plan``, ``/cmd_vel`` and every node's
 warnings and errors on ``/rosout``, and ends the run when the robot has
 stopped within ``tolerance`` of the goal, or when the simulated-time budget
@@ -163,7 +164,10 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
     nodes, recorder = [], None
     try:
         executor = SingleThreadedExecutor()
-        mission = Mission(goal, tolerance, max_time, parameter_overrides=[Parameter("use_sim_time", value=True)])
+        # the diff pipeline answers a goal on /plan: its follower must listen before the goal goes out
+        followed = ("/plan",) if any(name == "goto_waypoint" for name, _ in specs) else ()
+        mission = Mission(goal, tolerance, max_time, followed=followed,
+                          parameter_overrides=[Parameter("use_sim_time", value=True)])
         executor.add_node(mission)
         if record:
             from .record import BagRecorder
@@ -233,9 +237,10 @@ def _drain(executor, recorder, quiet: float = 0.3, limit: float = 10.0) -> None:
 class Mission(NavlabNode):
     """The mission node (see the module docstring)."""
 
-    def __init__(self, goal, tolerance: float, max_time: float, **kwargs) -> None:
+    def __init__(self, goal, tolerance: float, max_time: float, followed: Sequence[str] = (), **kwargs) -> None:
         super().__init__("navlab_mission", **kwargs)
         self.goal, self.tolerance, self.max_time = np.asarray(goal, float), tolerance, max_time
+        self.followed = tuple(followed)
         self.goal_pub = self.create_publisher(PoseStamped, "goal_pose", DEFAULT_QOS)
         self.create_subscription(Odometry, "odom", self.on_odom, DEFAULT_QOS)
         self.create_subscription(Odometry, "ground_truth", self.on_truth, DEFAULT_QOS)
@@ -257,7 +262,7 @@ class Mission(NavlabNode):
 
     def send_goal_when_heard(self) -> None:
         # the goal goes out once the robot is heard and someone listens for it
-        if self.sent_at is None and self.odom is not None and self.goal_listeners():
+        if self.sent_at is None and self.odom is not None and self.goal_listeners() and self.followers():
             msg = PoseStamped()
             msg.header.frame_id = "map"
             msg.header.stamp = self.get_clock().now().to_msg()
@@ -271,6 +276,14 @@ class Mission(NavlabNode):
         goal sent before the match would be lost)."""
         names = [info.node_name for info in self.get_subscriptions_info_by_topic("/goal_pose")]
         return any(n != "navlab_recorder" for n in names) and self.goal_pub.get_subscription_count() >= len(names)
+
+    def followers(self) -> bool:
+        """Whether every topic the pipeline answers a goal on (``followed``:
+        the diff pipeline's /plan) has a listener of its own: a follower
+        whose process starts late would otherwise miss the only plan and
+        the robot would never move."""
+        return all(any(info.node_name not in (self.get_name(), "navlab_recorder")
+                       for info in self.get_subscriptions_info_by_topic(topic)) for topic in self.followed)
 
     def on_odom(self, msg) -> None:
         self.odom = np.array(pose_from_msg(msg.pose.pose))

@@ -5,10 +5,15 @@ angular.z) until the last pose is reached, then zero velocity."""
 from __future__ import annotations
 
 from nav_msgs.msg import Path
+from rclpy.qos import QoSPolicyKind
+from rclpy.qos_overriding_options import QoSOverridingOptions
 
-from .base import DEFAULT_QOS, Param, node_main
+from .base import PLAN_QOS, Param, node_main
 from .convert import path_from_msg
 from .drive_node import ODOM_TIMEOUT, DriveNode
+
+#: the /plan subscription's policies settable as qos_overrides./plan.subscription.<policy>
+PLAN_QOS_OVERRIDES = (QoSPolicyKind.DURABILITY, QoSPolicyKind.RELIABILITY, QoSPolicyKind.HISTORY, QoSPolicyKind.DEPTH)
 
 
 class GotoWaypointNode(DriveNode):
@@ -24,7 +29,10 @@ class GotoWaypointNode(DriveNode):
 
     def __init__(self, **kwargs) -> None:
         super().__init__("goto_waypoint", **kwargs)
-        self.create_subscription(Path, "plan", self.on_plan, DEFAULT_QOS)
+        # latched like the pathplanner's /plan; a volatile publisher (nav2's planner_server,
+        # `ros2 topic pub`) needs -p qos_overrides./plan.subscription.durability:=volatile
+        self.create_subscription(Path, "plan", self.on_plan, PLAN_QOS,
+                                 qos_overriding_options=QoSOverridingOptions(PLAN_QOS_OVERRIDES))
 
     def on_plan(self, msg) -> None:
         try:

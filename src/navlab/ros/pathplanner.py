@@ -21,7 +21,7 @@ from nav_msgs.msg import OccupancyGrid as GridMsg
 from nav_msgs.msg import Odometry, Path
 from visualization_msgs.msg import MarkerArray
 
-from .base import DEFAULT_QOS, MAP_QOS, NavlabNode, Param, node_main
+from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, NavlabNode, Param, node_main
 from .convert import grid_from_msg, path_to_msg, pose_from_msg, tree_to_markers
 from .core import GoalPlanner
 
@@ -48,7 +48,7 @@ class PathPlanner(NavlabNode):
         self.core = GoalPlanner(self.log, p["algorithm"], p["sampler"],
                                 p["seed"], p["inflation_radius"], p["allow_unknown"],
                                 on_tree=self.keep_tree if p["publish_tree"] else None, **self.planner_params())
-        self.publisher = self.create_publisher(Path, "plan", DEFAULT_QOS)
+        self.publisher = self.create_publisher(Path, "plan", PLAN_QOS)
         self.tree_publisher = self.create_publisher(MarkerArray, "plan_tree", DEFAULT_QOS)
         self.create_subscription(GridMsg, "map", self.on_map, MAP_QOS)
         self.create_subscription(PoseStamped, "goal_pose", self.on_goal, DEFAULT_QOS)

@@ -14,7 +14,7 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from visualization_msgs.msg import MarkerArray
 
-from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, NavlabNode
+from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, SCAN_QOS, NavlabNode
 from .convert import tf_message_type
 
 #: the navlab pipeline's topics: message class and subscription QoS
@@ -23,7 +23,7 @@ TOPICS: Dict[str, Tuple[type, object]] = {
     "/goal_pose": (PoseStamped, DEFAULT_QOS),
     "/odom": (Odometry, DEFAULT_QOS),
     "/ground_truth": (Odometry, DEFAULT_QOS),
-    "/plan": (PathMsg, DEFAULT_QOS),
+    "/plan": (PathMsg, PLAN_QOS),
     "/plan_tree": (MarkerArray, DEFAULT_QOS),
     "/cmd_vel": (Twist, DEFAULT_QOS),
     "/scan": (LaserScan, SCAN_QOS),

@@ -60,29 +60,34 @@ class Tree:
         Answer nearest / near-set queries with the bucket grid (else by scan).
     """
 
-    #: The fields the loop touches together for one node share a record (a
-    #: row of one array; the names are column views): rewiring walks
-    #: subtrees in random index order, and at 10⁶ nodes each separate array
-    #: would cost its own cache miss per node visited.
-    _RECORDS = (("node_f", np.float64, 0.0, 3, (("xy", slice(0, 2)), ("cost", 2))),
-                ("node_i", np.int64, -1, 5, (("parent", 0), ("child", 1), ("sibling", 2), ("goal_slot", 3),
-                                             ("grid_slot", 4))))
-    #: other per-node arrays and their fill value
-    _NODE_ARRAYS = (("goal_node", -1), ("goal_extra", 0.0), ("next_in_cell", -1), ("scratch_idx", 0),
-                    ("scratch_val", 0.0), ("scratch_dist", 0.0), ("scratch_cost", 0.0), ("scratch_state", 0),
-                    ("scratch_cand", 0), ("scratch_stack", 0))
-    _DTYPES = {"goal_node": np.int64, "next_in_cell": np.int64, "scratch_idx": np.int64, "scratch_state": np.int8,
-               "scratch_cand": np.int64, "scratch_stack": np.int64}
+    #: The fields the loop touches together for one node share one 64-byte
+    #: record, aligned to a cache line (a row of one int64 array; the float
+    #: fields are columns of its float64 view): rewiring walks subtrees in
+    #: random index order, and at 10⁶ nodes every separate array, or a record
+    #: straddling two lines, costs its own cache miss per node visited.
+    _FLOAT_FIELDS = (("xy", slice(0, 2)), ("cost", 2))
+    _INT_FIELDS = (("parent", 3), ("child", 4), ("sibling", 5), ("goal_slot", 6), ("grid_slot", 7))
+    _RECORD_WIDTH = 8
+    #: other per-node arrays whose contents are kept, and their fill value
+    _NODE_ARRAYS = (("goal_node", -1), ("goal_extra", 0.0), ("next_in_cell", -1))
+    #: per-node work space of one iteration: never read before written, so
+    #: neither filled nor copied when the tree grows (its pages stay untouched
+    #: until a large near set or subtree needs them)
+    _SCRATCH = (("scratch_idx", np.int64), ("scratch_val", np.float64), ("scratch_dist", np.float64),
+                ("scratch_cost", np.float64), ("scratch_state", np.int8), ("scratch_cand", np.int64),
+                ("scratch_stack", np.int64))
+    _DTYPES = {"goal_node": np.int64, "next_in_cell": np.int64}
 
     def __init__(self, start, bounds, max_nodes: int, use_grid: bool = True) -> None:
         self.bounds = bounds
         self.max_nodes = int(max_nodes)
         self.use_grid = bool(use_grid)
         self.capacity = 0
-        for name, dtype, fill, width, _ in self._RECORDS:
-            self._set_record(name, np.full((0, width), fill, dtype=dtype))
+        self._set_record(_aligned_records(0, self._RECORD_WIDTH))
         for name, fill in self._NODE_ARRAYS:
             setattr(self, name, np.full(0, fill, dtype=self._DTYPES.get(name, np.float64)))
+        for name, dtype in self._SCRATCH:
+            setattr(self, name, np.empty(0, dtype=dtype))
         self.trace_iter = np.zeros(0, dtype=np.int64)
         self.trace_cost = np.zeros(0)
         self.istate = np.zeros(N_ISTATE, dtype=np.int64)
@@ -95,10 +100,22 @@ class Tree:
         self.xy[0] = start
         self.istate[S_NODES] = 1
 
-    def _set_record(self, name: str, array: np.ndarray) -> None:
-        setattr(self, name, array)
-        for field, column in dict((r[0], r[4]) for r in self._RECORDS)[name]:
-            setattr(self, field, array[:, column])
+    def _set_record(self, record: np.ndarray) -> None:
+        self.record = record
+        floats = record.view(np.float64)
+        for field, column in self._FLOAT_FIELDS:
+            setattr(self, field, floats[:, column])
+        for field, column in self._INT_FIELDS:
+            setattr(self, field, record[:, column])
+
+    def _grow_record(self, rows: int) -> None:
+        new = _aligned_records(rows, self._RECORD_WIDTH)
+        old = len(self.record)
+        new[:old] = self.record
+        first_int = self._INT_FIELDS[0][1]
+        new[old:, :first_int] = 0  # 0.0 in the float fields
+        new[old:, first_int:] = -1
+        self._set_record(new)
 
     @property
     def size(self) -> int:
@@ -108,9 +125,9 @@ class Tree:
     def bytes_per_node(cls) -> int:
         """Bytes one node costs in the arrays, counted twice (a doubling
         copies them) plus the bucket grid's and the trace's share."""
-        records = sum(np.dtype(dtype).itemsize * width for _, dtype, _, width, _ in cls._RECORDS)
         arrays = sum(np.dtype(cls._DTYPES.get(name, np.float64)).itemsize for name, _ in cls._NODE_ARRAYS)
-        return 2 * (records + arrays) + 32
+        scratch = sum(np.dtype(dtype).itemsize for _, dtype in cls._SCRATCH)
+        return 2 * (8 * cls._RECORD_WIDTH + arrays + scratch) + 32
 
     def reserve(self, new_nodes: int, new_iterations: int) -> None:
         """Make room for ``new_nodes`` more nodes and ``new_iterations`` more
@@ -122,8 +139,9 @@ class Tree:
             cap = min(max(2 * self.capacity, need, min(INITIAL_CAPACITY, self.max_nodes)), self.max_nodes)
             for name, fill in self._NODE_ARRAYS:
                 setattr(self, name, grown(getattr(self, name), cap, fill))
-            for name, _, fill, _, _ in self._RECORDS:
-                self._set_record(name, grown(getattr(self, name), cap, fill))
+            for name, dtype in self._SCRATCH:
+                setattr(self, name, np.empty(cap, dtype=dtype))
+            self._grow_record(cap)
             self.capacity = cap
         t = int(self.istate[S_TRACE])
         if t + new_iterations > len(self.trace_iter):
@@ -174,6 +192,15 @@ class Tree:
             out.append(self.xy[node])
             node = int(self.parent[node])
         return np.array(out[::-1])
+
+
+def _aligned_records(rows: int, width: int) -> np.ndarray:
+    """An uninitialised C-contiguous ``(rows, width)`` int64 array whose rows
+    start on 64-byte boundaries (numpy aligns only to 16 bytes)."""
+    line = 64 // 8
+    flat = np.empty(rows * width + line, dtype=np.int64)
+    skip = (-flat.ctypes.data % 64) // 8
+    return flat[skip: skip + rows * width].reshape(rows, width)
 
 
 @njit(cache=True)

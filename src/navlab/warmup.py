@@ -46,9 +46,8 @@ def _warm_tree(planner: str, sampler: str, on_map: bool) -> None:
 
 
 def _warm_tree_helpers() -> None:
-    """Compile the tree loop's helpers (bucket grid, candidate ranking, cost
-    propagation) with exactly the argument types the loop passes them: taken
-    from a real :class:`~navlab.sampling.tree_kernel.Tree`'s arrays."""
+    """Compile the tree loop's helpers (bucket grid, cost propagation) with
+    exactly the argument types the loop passes them: taken from a real :class:`~navlab.sampling.tree_kernel.Tree`'s arrays."""
     from .sampling import bucket_grid as G
     from .sampling import tree_kernel as K
     from .world import Bounds
@@ -59,8 +58,6 @@ def _warm_tree_helpers() -> None:
     G.nearest(0.25, 0.25, tree.xy, grid)
     G.near(0.25, 0.25, 0.01, tree.xy, tree.cost, grid, tree.scratch_idx, tree.scratch_dist, tree.scratch_cost)
     zero = np.int64(0)  # not a Python 0: numba would compile a literal-0 variant the loop never calls
-    K._rank_by_cost(tree.scratch_cand, zero, tree.scratch_val, tree.scratch_idx)
-    K._rank_by_index(tree.scratch_cand, zero, tree.scratch_idx)
     G.insert(zero, tree.xy, tree.cost, grid)  # the root a second time: a throwaway tree
     K._shift_subtree(tree.child, tree.sibling, tree.cost, zero, -0.0, tree.scratch_stack, tree.goal_slot,
                      tree.goal_extra, tree.istate, tree.best_cost, True, grid)

@@ -58,17 +58,19 @@ def test_queries_match_brute_force_with_ties_and_outside_points(seed, expected):
             np.testing.assert_array_equal(cost[:m][order], idx[:m][order])
 
 
-def test_ranking_is_cost_then_index():
+def _popped(m, val, idx, by_cost, rng):
+    heap = rng.permutation(m).astype(np.int64)
+    K._heap_build(heap, m, val, idx, by_cost)
+    return [int(K._heap_pop(heap, k, val, idx, by_cost)) for k in range(m, 0, -1)]
+
+
+def test_candidates_come_by_cost_then_index():
     rng = np.random.default_rng(3)
-    for m in (0, 1, 5, K.RANK_SMALL, K.RANK_SMALL + 1, 200):
+    for m in (0, 1, 2, 5, 24, 25, 200):
         val = rng.integers(0, 6, m).astype(float)  # many exact ties
         idx = rng.permutation(10 * m + 1)[:m].astype(np.int64)
-        pos = rng.permutation(m).astype(np.int64)
-        K._rank_by_cost(pos, m, val, idx)
-        assert list(pos) == list(np.lexsort((idx, val)))
-        pos = rng.permutation(m).astype(np.int64)
-        K._rank_by_index(pos, m, idx)
-        assert list(pos) == list(np.argsort(idx))
+        assert _popped(m, val, idx, True, rng) == list(np.lexsort((idx, val)))
+        assert _popped(m, val, idx, False, rng) == list(np.argsort(idx))
 
 
 def _same_tree(world, planner, sampler, seed, max_iter, **params):

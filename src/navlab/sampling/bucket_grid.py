@@ -64,8 +64,11 @@ BLOCK_SLACK = 2
 # Float parameter slots of a grid.
 G_X0, G_Y0, G_H, G_INV_H, G_MARGIN = range(5)
 N_GPARAMS = 5
-# Integer slots: cells along x and y.
-D_NX, D_NY = range(2)
+# Integer slots: cells along x and y, coarse cells along x and y.
+D_NX, D_NY, D_CX, D_CY = range(4)
+#: a coarse cell is COARSE × COARSE cells; its node count lets the nearest
+#: query skip empty regions (a sample deep inside an obstacle) in steps
+COARSE = 8
 # Per-cell bookkeeping columns: first slot of the block, next free slot, overflow list head.
 M_START, M_FILL, M_HEAD = range(3)
 
@@ -90,7 +93,7 @@ class BucketGrid:
         """Index nodes 0..n-1 with cells and blocks sized for ``expected`` nodes."""
         h, nx, ny = grid_shape(self.bounds, expected)
         gparams = grid_params(self.bounds, h)
-        dims = np.array([nx, ny], dtype=np.int64)
+        dims = np.array([nx, ny, -(-nx // COARSE), -(-ny // COARSE)], dtype=np.int64)
         cells = _cells_of(xy, n, gparams, dims)
         counts = np.bincount(cells, minlength=nx * ny)
         room = np.ceil(counts * (expected / max(n, 1))).astype(np.int64) + BLOCK_SLACK
@@ -102,7 +105,7 @@ class BucketGrid:
         total = int(meta[-1, M_START])
         # Unused slots lie at infinity: a row's run of slots is scanned whole.
         self.arrays = (meta, np.full((total, 3), np.inf), np.full(total, -1, dtype=np.int64), next_node, slot,
-                       gparams, dims)
+                       gparams, dims, np.zeros(dims[D_CX] * dims[D_CY], dtype=np.int64))
         _fill(n, xy, cost, cells, self.arrays)
         self.built_at = n
 
@@ -119,7 +122,7 @@ def _empty_arrays(bounds) -> tuple:
     return (meta, np.empty((0, 3)), np.empty(0, dtype=np.int64), np.full(0, -1, dtype=np.int64),
             np.full(0, -1, dtype=np.int64),
             grid_params(bounds, max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin, 1e-300)),
-            np.ones(2, dtype=np.int64))
+            np.ones(4, dtype=np.int64), np.zeros(1, dtype=np.int64))
 
 
 def grid_shape(bounds, nodes_expected: int):
@@ -178,7 +181,9 @@ def _fill(n, xy, cost, cells, grid):
 
 @njit(cache=True, inline="always")
 def _put(k, x, y, c, cell, grid):
-    meta, block, block_id, next_node, slot, gparams, dims = grid
+    meta, block, block_id, next_node, slot, gparams, dims, coarse = grid
+    nx = dims[D_NX]
+    coarse[(cell // nx) // COARSE * dims[D_CX] + (cell % nx) // COARSE] += 1
     s = meta[cell, M_FILL]
     if s < meta[cell + 1, M_START]:
         block[s, 0] = x
@@ -201,16 +206,18 @@ def insert(k, xy, cost, grid):
 
 
 @njit(cache=True, inline="always")
-def set_cost(k, value, grid):
-    """Keep the block's copy of node k's cost (the tree's ``cost[k]``) current."""
-    s = grid[4][k]
+def set_cost(k, value, block, slot):
+    """Keep the block's copy of node k's cost (the tree's ``cost[k]``)
+    current; ``block`` and ``slot`` are the grid's arrays 1 and 4, taken out
+    of the grid's tuple once by the caller (taking them out per node costs a
+    reference-count update per array, more than the write)."""
+    s = slot[k]
     if s >= 0:
-        grid[1][s, 2] = value
+        block[s, 2] = value
 
 
 @njit(cache=True, inline="always")
-def _nearest_in_cell(qx, qy, xy, cell, grid, best, best_d2):
-    meta, block, block_id, next_node, slot, gparams, dims = grid
+def _nearest_in_cell(qx, qy, xy, cell, meta, block, block_id, next_node, best, best_d2):
     for s in range(meta[cell, M_START], meta[cell, M_FILL]):
         dx = block[s, 0] - qx
         dy = block[s, 1] - qy
@@ -230,29 +237,107 @@ def _nearest_in_cell(qx, qy, xy, cell, grid, best, best_d2):
     return best, best_d2
 
 
+@njit(cache=True, inline="always")
+def _gap(v, k, n, v0, h, margin):
+    """Distance from coordinate v to cell k's extent along one axis, less the
+    margin (never below 0): a lower bound. Border cells reach to infinity."""
+    g = 0.0
+    if k > 0 and v < v0 + k * h:
+        g = v0 + k * h - v
+    elif k < n - 1 and v > v0 + (k + 1) * h:
+        g = v - (v0 + (k + 1) * h)
+    return max(g - margin, 0.0)
+
+
+@njit(cache=True, inline="always")
+def _chord(v, g, rho, lo, hi, v0, inv_h, n, margin):
+    """The cells lo..hi along a row (or column) at gap g from the query, cut
+    to the chord of the disc of radius rho (inf: no cut) across it."""
+    if rho < np.inf:
+        half = math.sqrt(max(rho * rho - g * g, 0.0)) + margin
+        lo = max(lo, _cell_index(v - half, v0, inv_h, n))
+        hi = min(hi, _cell_index(v + half, v0, inv_h, n))
+    return lo, hi
+
+
+@njit(cache=True)
+def _first_ring(cx, cy, dims, coarse):
+    """A ring of cells around (cx, cy) inside which every cell is empty:
+    the coarse cells around the query's are searched ring by ring for a
+    node, and cells within COARSE · (R - 1) of (cx, cy) lie in coarse cells
+    nearer than the first non-empty coarse ring R."""
+    ncx, ncy = dims[D_CX], dims[D_CY]
+    kx, ky = cx // COARSE, cy // COARSE
+    big = 0
+    while True:
+        for j in range(max(ky - big, 0), min(ky + big, ncy - 1) + 1):
+            step = 1 if (j == ky - big or j == ky + big) else 2 * big
+            for i in range(kx - big, kx + big + 1, max(step, 1)):
+                if 0 <= i < ncx and coarse[j * ncx + i] > 0:
+                    return 0 if big == 0 else COARSE * (big - 1) + 1
+        if kx - big <= 0 and ky - big <= 0 and kx + big >= ncx - 1 and ky + big >= ncy - 1:
+            return 0  # no node at all: the plain search finds none either
+        big += 1
+
+
+@njit(cache=True, inline="always")
+def _coarse_empty(i, j, dims, coarse):
+    return coarse[(j // COARSE) * dims[D_CX] + i // COARSE] == 0
+
+
 @njit(cache=True)
 def nearest(qx, qy, xy, grid):
     """Index and squared distance of the node nearest to (qx, qy); the lowest
-    index among equally near nodes, as a forward linear scan returns."""
-    gparams, dims = grid[5], grid[6]
+    index among equally near nodes, as a forward linear scan returns.
+
+    Rings of cells around the query's cell are visited outwards until the
+    distance to the unvisited rings provably exceeds the best distance found.
+    Inside a ring, only the cells the disc of that best distance can reach
+    are read, and runs of cells in empty coarse cells are stepped over; the
+    search starts at the first ring that can hold a node.
+    """
+    meta, block, block_id, next_node, slot, gparams, dims, coarse = grid
     nx, ny = dims[D_NX], dims[D_NY]
     x0, y0, h, inv_h, margin = gparams[G_X0], gparams[G_Y0], gparams[G_H], gparams[G_INV_H], gparams[G_MARGIN]
     cx = _cell_index(qx, x0, inv_h, nx)
     cy = _cell_index(qy, y0, inv_h, ny)
     best = -1
     best_d2 = np.inf
-    r = 0
+    r = _first_ring(cx, cy, dims, coarse)
     while True:
         ilo, ihi, jlo, jhi = cx - r, cx + r, cy - r, cy + r
-        for j in range(max(jlo, 0), min(jhi, ny - 1) + 1):
-            if j == jlo or j == jhi:  # the ring's bottom and top rows: all their cells
-                for i in range(max(ilo, 0), min(ihi, nx - 1) + 1):
-                    best, best_d2 = _nearest_in_cell(qx, qy, xy, j * nx + i, grid, best, best_d2)
-            else:  # rows in between: only the ring's two end cells are new
-                if ilo >= 0:
-                    best, best_d2 = _nearest_in_cell(qx, qy, xy, j * nx + ilo, grid, best, best_d2)
-                if ihi <= nx - 1:
-                    best, best_d2 = _nearest_in_cell(qx, qy, xy, j * nx + ihi, grid, best, best_d2)
+        # The ring's bottom and top rows, all their cells the disc reaches.
+        for t in range(2 if r > 0 else 1):
+            j = jlo if t == 0 else jhi
+            if 0 <= j < ny:
+                rho = math.sqrt(best_d2) + margin
+                g = _gap(qy, j, ny, y0, h, margin)
+                if g <= rho:
+                    a, b = _chord(qx, g, rho, max(ilo, 0), min(ihi, nx - 1), x0, inv_h, nx, margin)
+                    i = a
+                    while i <= b:
+                        if _coarse_empty(i, j, dims, coarse):
+                            i = (i // COARSE + 1) * COARSE
+                            continue
+                        best, best_d2 = _nearest_in_cell(qx, qy, xy, j * nx + i, meta, block, block_id, next_node,
+                                                        best, best_d2)
+                        i += 1
+        # Its left and right columns between them.
+        if r > 0:
+            for i in (ilo, ihi):
+                if 0 <= i < nx:
+                    rho = math.sqrt(best_d2) + margin
+                    g = _gap(qx, i, nx, x0, h, margin)
+                    if g <= rho:
+                        a, b = _chord(qy, g, rho, max(jlo + 1, 0), min(jhi - 1, ny - 1), y0, inv_h, ny, margin)
+                        j = a
+                        while j <= b:
+                            if _coarse_empty(i, j, dims, coarse):
+                                j = (j // COARSE + 1) * COARSE
+                                continue
+                            best, best_d2 = _nearest_in_cell(qx, qy, xy, j * nx + i, meta, block, block_id, next_node,
+                                                        best, best_d2)
+                            j += 1
         if ilo <= 0 and jlo <= 0 and ihi >= nx - 1 and jhi >= ny - 1:
             return best, best_d2
         # Every unvisited cell lies beyond one of the visited block's inner edges.
@@ -281,7 +366,7 @@ def near(qx, qy, r2, xy, cost, grid, out_idx, out_d2, out_cost):
     cell's block is read only as far as it is filled: at 10⁶ nodes the query
     costs the memory it reads.
     """
-    meta, block, block_id, next_node, slot, gparams, dims = grid
+    meta, block, block_id, next_node, slot, gparams, dims, coarse = grid
     nx, ny = dims[D_NX], dims[D_NY]
     x0, y0, h, inv_h, margin = gparams[G_X0], gparams[G_Y0], gparams[G_H], gparams[G_INV_H], gparams[G_MARGIN]
     r = math.sqrt(r2) + margin

@@ -40,8 +40,6 @@ N_FPARAMS = 9
 
 #: nodes the arrays hold at first (they double when needed)
 INITIAL_CAPACITY = 1024
-#: candidate lists up to this long are ranked by insertion sort (no allocation)
-RANK_SMALL = 24
 
 
 class Tree:
@@ -232,6 +230,7 @@ def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_ext
                    use_grid, grid):
     """Add delta (< 0) to the cost of root's subtree; goal candidates in it
     are offered as the new best (costs only fall, so no other can become it)."""
+    block, slot = grid[1], grid[4]
     top = 0
     stack[top] = root
     top += 1
@@ -240,7 +239,7 @@ def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_ext
         u = stack[top]
         cost[u] += delta
         if use_grid:
-            G.set_cost(u, cost[u], grid)
+            G.set_cost(u, cost[u], block, slot)
         if goal_slot[u] >= 0:
             _offer_goal(goal_slot[u], cost[u] + goal_extra[goal_slot[u]], istate, best_cost)
         c = child[u]
@@ -296,46 +295,46 @@ def add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fp
     return True
 
 
-@njit(cache=True)
-def _rank_by_cost(pos, m, val, idx):
-    """Sort ``pos[:m]`` by (val[pos], idx[pos]): cheapest first, the lower
-    node index first among equal costs."""
-    if m <= RANK_SMALL:
-        for a in range(1, m):
-            p = pos[a]
-            b = a - 1
-            while b >= 0 and (val[pos[b]] > val[p] or (val[pos[b]] == val[p] and idx[pos[b]] > idx[p])):
-                pos[b + 1] = pos[b]
-                b -= 1
-            pos[b + 1] = p
-        return
-    # One sort (stable mergesort of float64 keys; indices < 2**53 are exact
-    # as floats) and element-wise copies: each further numba sort kind or key
-    # type, and each slice assignment (its shape-mismatch message), adds
-    # most of a second of compile time to every fresh process.
-    p = pos[:m].copy()
-    p = p[np.argsort(idx[p].astype(np.float64), kind="mergesort")]
-    p = p[np.argsort(val[p], kind="mergesort")]  # stable: equal costs stay in index order
-    for k in range(m):
-        pos[k] = p[k]
+@njit(cache=True, inline="always")
+def _before(a, b, val, idx, by_cost):
+    """Whether candidate a comes first: by ``val`` (when ``by_cost``), then
+    by node index (distinct, so the order is total and any correct ordering
+    gives the same sequence)."""
+    if by_cost and val[a] != val[b]:
+        return val[a] < val[b]
+    return idx[a] < idx[b]
 
 
-@njit(cache=True)
-def _rank_by_index(pos, m, idx):
-    """Sort ``pos[:m]`` by idx[pos] (distinct)."""
-    if m <= RANK_SMALL:
-        for a in range(1, m):
-            p = pos[a]
-            b = a - 1
-            while b >= 0 and idx[pos[b]] > idx[p]:
-                pos[b + 1] = pos[b]
-                b -= 1
-            pos[b + 1] = p
-        return
-    p = pos[:m].copy()
-    p = p[np.argsort(idx[p].astype(np.float64), kind="mergesort")]  # the sort _rank_by_cost compiles
-    for k in range(m):
-        pos[k] = p[k]
+@njit(cache=True, inline="always")
+def _sift_down(heap, root, m, val, idx, by_cost):
+    while True:
+        first = 2 * root + 1
+        if first >= m:
+            return
+        if first + 1 < m and _before(heap[first + 1], heap[first], val, idx, by_cost):
+            first += 1
+        if not _before(heap[first], heap[root], val, idx, by_cost):
+            return
+        heap[root], heap[first] = heap[first], heap[root]
+        root = first
+
+
+@njit(cache=True, inline="always")
+def _heap_build(heap, m, val, idx, by_cost):
+    """Order ``heap[:m]`` (positions into ``val``/``idx``) as a binary heap,
+    the first candidate at the top: cheapest by ``val`` then lowest index
+    when ``by_cost``, else lowest index."""
+    for root in range(m // 2 - 1, -1, -1):
+        _sift_down(heap, root, m, val, idx, by_cost)
+
+
+@njit(cache=True, inline="always")
+def _heap_pop(heap, m, val, idx, by_cost):
+    """Take the first of the ``m`` candidates off the heap (``m - 1`` remain)."""
+    top = heap[0]
+    heap[0] = heap[m - 1]
+    _sift_down(heap, 0, m - 1, val, idx, by_cost)
+    return top
 
 
 @njit(cache=True)
@@ -438,9 +437,12 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                     m += 1
             # Choose parent: the candidates cheaper than through the nearest
             # node, cheapest first (lower index on a tie); the first free wins.
-            _rank_by_cost(cand, m, near_val, near_idx)
-            for t in range(m):
-                o = cand[t]
+            # A heap, not a sort: usually the first candidate is free, and at
+            # 10⁶ nodes there are a hundred of them.
+            _heap_build(cand, m, near_val, near_idx, True)
+            while m > 0:
+                o = _heap_pop(cand, m, near_val, near_idx, True)
+                m -= 1
                 j = near_idx[o]
                 istate[S_EDGE_CHECKS] += 1
                 if segment_free(xy[j, 0], xy[j, 1], nx, ny, geom):
@@ -467,9 +469,10 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 if j != best_parent and near_state[o] != 2 and best_c + near_dist[o] < near_cost[o] - 1e-12:
                     cand[m] = o
                     m += 1
-            _rank_by_index(cand, m, near_idx)
-            for t in range(m):
-                o = cand[t]
+            _heap_build(cand, m, near_val, near_idx, False)
+            while m > 0:
+                o = _heap_pop(cand, m, near_val, near_idx, False)
+                m -= 1
                 j = near_idx[o]
                 new_c = best_c + near_dist[o]
                 if new_c >= cost[j] - 1e-12:

@@ -47,7 +47,8 @@ def _warm_tree(planner: str, sampler: str, on_map: bool) -> None:
 
 def _warm_tree_helpers() -> None:
     """Compile the tree loop's helpers (bucket grid, cost propagation) with
-    exactly the argument types the loop passes them: taken from a real :class:`~navlab.sampling.tree_kernel.Tree`'s arrays."""
+    exactly the argument types the loop passes them: taken from a real
+    :class:`~navlab.sampling.tree_kernel.Tree`'s arrays."""
     from .sampling import bucket_grid as G
     from .sampling import tree_kernel as K
     from .world import Bounds

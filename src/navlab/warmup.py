@@ -56,8 +56,9 @@ def _warm_tree_helpers() -> None:
     tree = K.Tree((0.5, 0.5), Bounds(0.0, 1.0, 0.0, 1.0), max_nodes=64)
     tree.reserve(1, 1)  # builds the bucket grid over the root
     grid = tree.grid.arrays
-    G.nearest(0.25, 0.25, tree.xy, grid)
-    G.near(0.25, 0.25, 0.01, tree.xy, tree.cost, grid, tree.scratch_idx, tree.scratch_dist, tree.scratch_cost)
+    G.nearest(0.25, 0.25, tree.xy, tree.cost, grid)
+    G.near(0.25, 0.25, 0.01, tree.xy, tree.cost, grid, tree.scratch_idx, tree.scratch_dist, tree.scratch_cost,
+           tree.scratch_x, tree.scratch_y)
     zero = np.int64(0)  # not a Python 0: numba would compile a literal-0 variant the loop never calls
     G.insert(zero, tree.xy, tree.cost, grid)  # the root a second time: a throwaway tree
     K._shift_subtree(tree.child, tree.sibling, tree.cost, zero, -0.0, tree.scratch_stack, tree.goal_slot,

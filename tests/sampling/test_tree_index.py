@@ -45,17 +45,21 @@ def test_queries_match_brute_force_with_ties_and_outside_points(seed, expected):
                          rng.uniform(-5.0, 20.0, (150, 2))))
     grid = _grid(xy, bounds, expected)
     assert expected > 200 or np.any(grid[0][:, G.M_HEAD] >= 0)  # some overflow lists are in use
+    node_cost = np.arange(n, dtype=float)
     for q in queries:
-        j, d2 = G.nearest(q[0], q[1], xy, grid)
+        j, d2, x, y, c = G.nearest(q[0], q[1], xy, node_cost, grid)
         assert (j, d2) == _brute_nearest(xy, q)
+        assert (x, y, c) == (xy[j, 0], xy[j, 1], node_cost[j])
         for r in (0.0, 1.0, math.sqrt(2.0), 3.7, 40.0):
-            idx, d2, cost = np.zeros(n, dtype=np.int64), np.zeros(n), np.zeros(n)
-            m = G.near(q[0], q[1], r * r, xy, np.arange(n, dtype=float), grid, idx, d2, cost)
+            idx, d2, cost, xs, ys = np.zeros(n, dtype=np.int64), np.zeros(n), np.zeros(n), np.zeros(n), np.zeros(n)
+            m = G.near(q[0], q[1], r * r, xy, node_cost, grid, idx, d2, cost, xs, ys)
             d2_all = (xy[:, 0] - q[0]) ** 2 + (xy[:, 1] - q[1]) ** 2
             order = np.argsort(idx[:m])
-            assert list(idx[:m][order]) == list(np.flatnonzero(d2_all <= r * r))
-            np.testing.assert_array_equal(d2[:m][order], d2_all[idx[:m][order]])
-            np.testing.assert_array_equal(cost[:m][order], idx[:m][order])
+            found = idx[:m][order]
+            assert list(found) == list(np.flatnonzero(d2_all <= r * r))
+            np.testing.assert_array_equal(d2[:m][order], d2_all[found])
+            np.testing.assert_array_equal(cost[:m][order], found)
+            np.testing.assert_array_equal(np.column_stack((xs[:m], ys[:m]))[order], xy[found])
 
 
 def _popped(m, val, idx, by_cost, rng):

@@ -72,7 +72,8 @@ class Tree:
     #: neither filled nor copied when the tree grows (its pages stay untouched
     #: until a large near set or subtree needs them)
     _SCRATCH = (("scratch_idx", np.int64), ("scratch_val", np.float64), ("scratch_dist", np.float64),
-                ("scratch_cost", np.float64), ("scratch_state", np.int8), ("scratch_cand", np.int64),
+                ("scratch_cost", np.float64), ("scratch_x", np.float64), ("scratch_y", np.float64),
+                ("scratch_state", np.int8), ("scratch_cand", np.int64),
                 ("scratch_stack", np.int64))
     _DTYPES = {"goal_node": np.int64, "next_in_cell": np.int64}
 
@@ -174,7 +175,7 @@ class Tree:
         return grow(samples, it0, geom, self.xy, self.parent, self.cost, self.child, self.sibling,
                     self.goal_node, self.goal_extra, self.goal_slot, self.trace_iter, self.trace_cost, self.istate,
                     self.best_cost, fparams, mode, self.scratch_idx, self.scratch_val, self.scratch_dist,
-                    self.scratch_cost, self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid,
+                    self.scratch_cost, self.scratch_x, self.scratch_y, self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid,
                     self.grid.arrays)
 
     def nodes(self) -> np.ndarray:
@@ -338,7 +339,7 @@ def _heap_pop(heap, m, val, idx, by_cost):
 
 
 @njit(cache=True)
-def _nearest_scan(qx, qy, xy, n):
+def _nearest_scan(qx, qy, xy, cost, n):
     nearest = 0
     best_d2 = np.inf
     for j in range(n):
@@ -348,11 +349,11 @@ def _nearest_scan(qx, qy, xy, n):
         if d2 < best_d2:
             best_d2 = d2
             nearest = j
-    return nearest, best_d2
+    return nearest, best_d2, xy[nearest, 0], xy[nearest, 1], cost[nearest]
 
 
 @njit(cache=True)
-def _near_scan(qx, qy, r2, xy, cost, n, out_idx, out_d2, out_cost):
+def _near_scan(qx, qy, r2, xy, cost, n, out_idx, out_d2, out_cost, out_x, out_y):
     m = 0
     for j in range(n):
         dx = xy[j, 0] - qx
@@ -362,6 +363,8 @@ def _near_scan(qx, qy, r2, xy, cost, n, out_idx, out_d2, out_cost):
             out_idx[m] = j
             out_d2[m] = d2
             out_cost[m] = cost[j]
+            out_x[m] = xy[j, 0]
+            out_y[m] = xy[j, 1]
             m += 1
     return m
 
@@ -369,7 +372,7 @@ def _near_scan(qx, qy, r2, xy, cost, n, out_idx, out_d2, out_cost):
 @njit(cache=True)
 def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_extra,
          goal_slot, trace_iter, trace_cost, istate, best_cost, fparams, mode, near_idx, near_val, near_dist,
-         near_cost, near_state, cand, stack, use_grid, grid):
+         near_cost, near_x, near_y, near_state, cand, stack, use_grid, grid):
     """Consume ``samples`` as iterations ``it0, it0 + 1, ...``.
 
     The arrays must have room for one node and one trace entry per sample.
@@ -384,9 +387,9 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         qy = samples[i, 1]
         n = istate[S_NODES]
         if use_grid:
-            nearest, best_d2 = G.nearest(qx, qy, xy, grid)
+            nearest, best_d2, px, py, pc = G.nearest(qx, qy, xy, cost, grid)
         else:
-            nearest, best_d2 = _nearest_scan(qx, qy, xy, n)
+            nearest, best_d2, px, py, pc = _nearest_scan(qx, qy, xy, cost, n)
         d = math.sqrt(best_d2)
         if d <= 1e-12:
             continue
@@ -403,8 +406,6 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
             step = min(d, step_max)
         if step <= 1e-12:
             continue
-        px = xy[nearest, 0]
-        py = xy[nearest, 1]
         nx = px + (qx - px) / d * step
         ny = py + (qy - py) / d * step
         istate[S_EDGE_CHECKS] += 1
@@ -414,7 +415,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         xy[k, 0] = nx
         xy[k, 1] = ny
         best_parent = nearest
-        best_c = cost[nearest] + step
+        best_c = pc + step
         n_near = 0
         best_before = best_cost[0]
         if mode == MODE_RRT_STAR:
@@ -423,9 +424,9 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
             # Grid and scan return the same set in different orders; nothing
             # below depends on the order (candidates are ranked explicitly).
             if use_grid:
-                n_near = G.near(nx, ny, r2, xy, cost, grid, near_idx, near_dist, near_cost)
+                n_near = G.near(nx, ny, r2, xy, cost, grid, near_idx, near_dist, near_cost, near_x, near_y)
             else:
-                n_near = _near_scan(nx, ny, r2, xy, cost, n, near_idx, near_dist, near_cost)
+                n_near = _near_scan(nx, ny, r2, xy, cost, n, near_idx, near_dist, near_cost, near_x, near_y)
             m = 0
             for o in range(n_near):
                 j = near_idx[o]
@@ -445,7 +446,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 m -= 1
                 j = near_idx[o]
                 istate[S_EDGE_CHECKS] += 1
-                if segment_free(xy[j, 0], xy[j, 1], nx, ny, geom):
+                if segment_free(near_x[o], near_y[o], nx, ny, geom):
                     near_state[o] = 1
                     best_parent = j
                     best_c = near_val[o]
@@ -479,7 +480,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                     continue
                 if near_state[o] == 0 and j != nearest:
                     istate[S_EDGE_CHECKS] += 1
-                    if not segment_free(nx, ny, xy[j, 0], xy[j, 1], geom):
+                    if not segment_free(nx, ny, near_x[o], near_y[o], geom):
                         continue
                 _remove_child(child, sibling, parent[j], j)
                 parent[j] = k

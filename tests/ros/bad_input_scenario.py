@@ -100,6 +100,12 @@ def main(workdir):
                 return True
         return False
 
+    def drive_a_little():
+        """Five /odom messages 50 ms apart: a follower with a plan answers each."""
+        for _ in range(5):
+            probe.odom_pub.publish(odom)
+            spin(0.05)
+
     def connected(pub, n=1):
         return spin(5.0, lambda: pub.get_subscription_count() >= n)
 
@@ -143,9 +149,7 @@ def main(workdir):
                                           "qos_overrides./volatile_plan.subscription.durability:=volatile"])
     ex.add_node(late)
     connected(probe.odom_pub, 4)  # the planner and three followers
-    for _ in range(5):
-        probe.odom_pub.publish(odom)
-        spin(0.05)
+    drive_a_little()
     out["late_follower_moves"] = sum(c.linear.x > 0 for c in probe.late_cmds)
     ex.remove_node(late)
     late.destroy_node()
@@ -153,17 +157,13 @@ def main(workdir):
     connected(probe.volatile_plan_pub)
     probe.volatile_plan_pub.publish(C.path_to_msg(np.array([[0.5, 0.5], [1.5, 0.5]])))
     probe.late_cmds.clear()
-    for _ in range(5):
-        probe.odom_pub.publish(odom)
-        spin(0.05)
+    drive_a_little()
     out["volatile_follower_moves"] = sum(c.linear.x > 0 for c in probe.late_cmds)
     ex.remove_node(volatile)
     volatile.destroy_node()
     # 4. the follower on the planned path, then /odom stops: it stops the robot
     n, cmds = len(probe.logs), len(probe.cmds)
-    for _ in range(5):
-        probe.odom_pub.publish(odom)
-        spin(0.05)
+    drive_a_little()
     moving = [c for c in probe.cmds[cmds:] if c.linear.x > 0]
     out["commands_while_odom"] = len(moving)
     cmds = len(probe.cmds)

@@ -287,6 +287,24 @@ def _coarse_empty(i, j, dims, coarse):
     return coarse[(j // COARSE) * dims[D_CX] + i // COARSE] == 0
 
 
+@njit(cache=True, inline="always")
+def _nearest_along(line, a, b, along_x, qx, qy, xy, cost, grid, best, best_d2, bx, by, bc):
+    """The nearest-node search over cells a..b of one row (``along_x``, the
+    row ``line``) or one column, stepping over runs in empty coarse cells."""
+    meta, block, block_id, next_node, slot, gparams, dims, coarse = grid
+    nx = dims[D_NX]
+    t = a
+    while t <= b:
+        i, j = (t, line) if along_x else (line, t)
+        if _coarse_empty(i, j, dims, coarse):
+            t = (t // COARSE + 1) * COARSE
+            continue
+        best, best_d2, bx, by, bc = _nearest_in_cell(qx, qy, xy, cost, j * nx + i, meta, block, block_id,
+                                                     next_node, best, best_d2, bx, by, bc)
+        t += 1
+    return best, best_d2, bx, by, bc
+
+
 @njit(cache=True)
 def nearest(qx, qy, xy, cost, grid):
     """Index, squared distance, position and cost of the node nearest to
@@ -319,14 +337,8 @@ def nearest(qx, qy, xy, cost, grid):
                 g = _gap(qy, j, ny, y0, h, margin)
                 if g <= rho:
                     a, b = _chord(qx, g, rho, max(ilo, 0), min(ihi, nx - 1), x0, inv_h, nx, margin)
-                    i = a
-                    while i <= b:
-                        if _coarse_empty(i, j, dims, coarse):
-                            i = (i // COARSE + 1) * COARSE
-                            continue
-                        best, best_d2, bx, by, bc = _nearest_in_cell(qx, qy, xy, cost, j * nx + i, meta, block,
-                                                                    block_id, next_node, best, best_d2, bx, by, bc)
-                        i += 1
+                    best, best_d2, bx, by, bc = _nearest_along(j, a, b, True, qx, qy, xy, cost, grid,
+                                                               best, best_d2, bx, by, bc)
         # Its left and right columns between them.
         if r > 0:
             for i in (ilo, ihi):
@@ -335,14 +347,8 @@ def nearest(qx, qy, xy, cost, grid):
                     g = _gap(qx, i, nx, x0, h, margin)
                     if g <= rho:
                         a, b = _chord(qy, g, rho, max(jlo + 1, 0), min(jhi - 1, ny - 1), y0, inv_h, ny, margin)
-                        j = a
-                        while j <= b:
-                            if _coarse_empty(i, j, dims, coarse):
-                                j = (j // COARSE + 1) * COARSE
-                                continue
-                            best, best_d2, bx, by, bc = _nearest_in_cell(qx, qy, xy, cost, j * nx + i, meta, block,
-                                                                    block_id, next_node, best, best_d2, bx, by, bc)
-                            j += 1
+                        best, best_d2, bx, by, bc = _nearest_along(i, a, b, False, qx, qy, xy, cost, grid,
+                                                                   best, best_d2, bx, by, bc)
         if ilo <= 0 and jlo <= 0 and ihi >= nx - 1 and jhi >= ny - 1:
             return best, best_d2, bx, by, bc
         # Every unvisited cell lies beyond one of the visited block's inner edges.

@@ -275,15 +275,19 @@ class Mission(NavlabNode):
         count), and the publisher is matched to every discovered listener (a
         goal sent before the match would be lost)."""
         names = [info.node_name for info in self.get_subscriptions_info_by_topic("/goal_pose")]
-        return any(n != "navlab_recorder" for n in names) and self.goal_pub.get_subscription_count() >= len(names)
+        return bool(self._acting(names)) and self.goal_pub.get_subscription_count() >= len(names)
+
+    def _acting(self, names: Sequence[str]) -> List[str]:
+        """The listeners that act on what they hear: not this node, not a bag recorder."""
+        return [n for n in names if n not in (self.get_name(), "navlab_recorder")]
 
     def followers(self) -> bool:
         """Whether every topic the pipeline answers a goal on (``followed``:
         the diff pipeline's /plan) has a listener of its own: a follower
         whose process starts late would otherwise miss the only plan and
         the robot would never move."""
-        return all(any(info.node_name not in (self.get_name(), "navlab_recorder")
-                       for info in self.get_subscriptions_info_by_topic(topic)) for topic in self.followed)
+        return all(self._acting([info.node_name for info in self.get_subscriptions_info_by_topic(topic)])
+                   for topic in self.followed)
 
     def on_odom(self, msg) -> None:
         self.odom = np.array(pose_from_msg(msg.pose.pose))

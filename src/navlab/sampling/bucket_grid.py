@@ -385,19 +385,11 @@ def near(qx, qy, r2, xy, cost, grid, out_idx, out_d2, out_cost, out_x, out_y):
     jhi = _cell_index(qy + r, y0, inv_h, ny)
     m = 0
     for j in range(jlo, jhi + 1):
-        # The row's y-distance from the query (border rows reach to infinity),
-        # less the margin: the chord is never cut shorter than the true one.
-        dy = 0.0
-        if j > 0 and qy < y0 + j * h:
-            dy = y0 + j * h - qy
-        elif j < ny - 1 and qy > y0 + (j + 1) * h:
-            dy = qy - (y0 + (j + 1) * h)
-        dy = max(dy - margin, 0.0)
-        if dy > r:
+        # The row cut to the disc's chord (never shorter than the true one).
+        g = _gap(qy, j, ny, y0, h, margin)
+        if g > r:
             continue
-        half = math.sqrt(r * r - dy * dy) + margin
-        ilo = _cell_index(qx - half, x0, inv_h, nx)
-        ihi = _cell_index(qx + half, x0, inv_h, nx)
+        ilo, ihi = _chord(qx, g, r, 0, nx - 1, x0, inv_h, nx, margin)
         for c in range(j * nx + ilo, j * nx + ihi + 1):
             for s in range(meta[c, M_START], meta[c, M_FILL]):
                 dx = block[s, 0] - qx

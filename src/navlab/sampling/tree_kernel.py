@@ -175,8 +175,8 @@ class Tree:
         return grow(samples, it0, geom, self.xy, self.parent, self.cost, self.child, self.sibling,
                     self.goal_node, self.goal_extra, self.goal_slot, self.trace_iter, self.trace_cost, self.istate,
                     self.best_cost, fparams, mode, self.scratch_idx, self.scratch_val, self.scratch_dist,
-                    self.scratch_cost, self.scratch_x, self.scratch_y, self.scratch_state, self.scratch_cand, self.scratch_stack, self.use_grid,
-                    self.grid.arrays)
+                    self.scratch_cost, self.scratch_x, self.scratch_y, self.scratch_state, self.scratch_cand,
+                    self.scratch_stack, self.use_grid, self.grid.arrays)
 
     def nodes(self) -> np.ndarray:
         return self.xy[: self.size].copy()

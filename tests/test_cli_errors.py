@@ -140,6 +140,8 @@ def test_parse_params_bad_items_are_usage_errors(item):
     (["sim", "one_obstacle", "--lidar-timing", "rate=10,rate=20"], "Invalid value for --lidar-timing: 'rate' is"),
     (["sim", "one_obstacle", "--odom-timing", "="], "Invalid value for --odom-timing: expected key=value"),
     (["plan", "trap", "--max-iter", "20", "--plot", "x.txt"], "x.txt: cannot write the figure: Format 'txt'"),
+    (["plan", "trap", "--max-iter", "100", "--param", "max_iter=200"],
+     "Error: --max-iter 100 and --param max_iter=200 disagree: give one"),
 ])
 def test_usage_errors_are_one_line_naming_the_flag(args, message):
     """click prints usage, a hint and the error on three lines; navlab prints one."""

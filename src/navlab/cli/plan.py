@@ -39,8 +39,8 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
               help="Write a PNG of the world or map, tree, path, start and goal.")
 def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_time, seed, params, as_json,
              trace, plot) -> None:
-    """Plan a path in SOURCE: a built-in scene name, a world YAML, a ROS map_server
-    YAML (PGM/PNG) or a Moving AI .map. Maps have no start or goal: give
+    """Plan a path in SOURCE: a built-in scene name (navlab list), a world
+    YAML, a ROS map_server YAML (PGM/PNG) or a Moving AI .map. Maps have no start or goal: give
     --start and --goal (metres, map frame).
 
     Exit status: 0 for an EXACT path; 1 when the planner answered without one
@@ -53,6 +53,9 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     settings = parse_params(params)
     for flag, value in (("max_iter", max_iter), ("max_time", max_time)):
         if value is not None:
+            if flag in settings and settings[flag] != value:
+                raise click.UsageError(f"--{flag.replace('_', '-')} {value:g} and --param {flag}={settings[flag]} "
+                                       f"disagree: give one")
             settings[flag] = value
     grid = is_grid_planner(planner)
     if sampler is None:

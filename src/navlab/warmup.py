@@ -61,7 +61,7 @@ def _warm_tree_helpers() -> None:
            tree.scratch_x, tree.scratch_y)
     zero = np.int64(0)  # not a Python 0: numba would compile a literal-0 variant the loop never calls
     G.insert(zero, tree.xy, tree.cost, grid)  # the root a second time: a throwaway tree
-    K._shift_subtree(tree.child, tree.sibling, tree.cost, zero, -0.0, tree.scratch_stack, tree.goal_slot,
+    K._shift_subtree(tree.child, tree.sibling, tree.cost, zero, -0.0, tree.scratch_queue, tree.goal_slot,
                      tree.goal_extra, tree.istate, tree.best_cost, True, grid)
 
 

@@ -74,7 +74,7 @@ class Tree:
     _SCRATCH = (("scratch_idx", np.int64), ("scratch_val", np.float64), ("scratch_dist", np.float64),
                 ("scratch_cost", np.float64), ("scratch_x", np.float64), ("scratch_y", np.float64),
                 ("scratch_state", np.int8), ("scratch_cand", np.int64),
-                ("scratch_stack", np.int64))
+                ("scratch_queue", np.int64))
     _DTYPES = {"goal_node": np.int64, "next_in_cell": np.int64}
 
     def __init__(self, start, bounds, max_nodes: int, use_grid: bool = True) -> None:
@@ -176,7 +176,7 @@ class Tree:
                     self.goal_node, self.goal_extra, self.goal_slot, self.trace_iter, self.trace_cost, self.istate,
                     self.best_cost, fparams, mode, self.scratch_idx, self.scratch_val, self.scratch_dist,
                     self.scratch_cost, self.scratch_x, self.scratch_y, self.scratch_state, self.scratch_cand,
-                    self.scratch_stack, self.use_grid, self.grid.arrays)
+                    self.scratch_queue, self.use_grid, self.grid.arrays)
 
     def nodes(self) -> np.ndarray:
         return self.xy[: self.size].copy()
@@ -227,27 +227,32 @@ def _remove_child(child, sibling, p, k):
 
 
 @njit(cache=True)
-def _shift_subtree(child, sibling, cost, root, delta, stack, goal_slot, goal_extra, istate, best_cost,
+def _shift_subtree(child, sibling, cost, root, delta, queue, goal_slot, goal_extra, istate, best_cost,
                    use_grid, grid):
     """Add delta (< 0) to the cost of root's subtree; goal candidates in it
     are offered as the new best (costs only fall, so no other can become it)."""
     block, slot = grid[1], grid[4]
-    top = 0
-    stack[top] = root
-    top += 1
-    while top > 0:
-        top -= 1
-        u = stack[top]
+    # Breadth first over the first-child / next-sibling links: a queue of
+    # known nodes, so consecutive visits do not wait on each other's cache
+    # misses (a stack walking each sibling chain would, one miss at a time).
+    queue[0] = root
+    head, tail = 0, 1
+    while head < tail:
+        u = queue[head]
+        head += 1
         cost[u] += delta
         if use_grid:
             G.set_cost(u, cost[u], block, slot)
         if goal_slot[u] >= 0:
             _offer_goal(goal_slot[u], cost[u] + goal_extra[goal_slot[u]], istate, best_cost)
         c = child[u]
-        while c >= 0:
-            stack[top] = c
-            top += 1
-            c = sibling[c]
+        if c >= 0:
+            queue[tail] = c
+            tail += 1
+        s = sibling[u]
+        if s >= 0 and u != root:
+            queue[tail] = s
+            tail += 1
 
 
 @njit(cache=True, inline="always")
@@ -372,7 +377,7 @@ def _near_scan(qx, qy, r2, xy, cost, n, out_idx, out_d2, out_cost, out_x, out_y)
 @njit(cache=True)
 def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_extra,
          goal_slot, trace_iter, trace_cost, istate, best_cost, fparams, mode, near_idx, near_val, near_dist,
-         near_cost, near_x, near_y, near_state, cand, stack, use_grid, grid):
+         near_cost, near_x, near_y, near_state, cand, queue, use_grid, grid):
     """Consume ``samples`` as iterations ``it0, it0 + 1, ...``.
 
     The arrays must have room for one node and one trace entry per sample.
@@ -486,7 +491,7 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
                 parent[j] = k
                 sibling[j] = child[k]
                 child[k] = j
-                _shift_subtree(child, sibling, cost, j, new_c - cost[j], stack, goal_slot, goal_extra,
+                _shift_subtree(child, sibling, cost, j, new_c - cost[j], queue, goal_slot, goal_extra,
                                istate, best_cost, use_grid, grid)
                 istate[S_REWIRES] += 1
         if add_goal_candidate(k, geom, xy, goal_node, goal_extra, goal_slot, istate, fparams, mode):

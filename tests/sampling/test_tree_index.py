@@ -62,6 +62,26 @@ def test_queries_match_brute_force_with_ties_and_outside_points(seed, expected):
             np.testing.assert_array_equal(np.column_stack((xs[:m], ys[:m]))[order], xy[found])
 
 
+@pytest.mark.parametrize("seed", range(4))
+def test_node_within_never_claims_a_node_that_is_not_there(seed):
+    rng = np.random.default_rng(seed)
+    bounds = Bounds(-2.0, 15.0, -2.0, 15.0)
+    # Nodes in two clusters, so that many queries are far from every node.
+    n = 3000
+    xy = np.vstack((rng.uniform(-2.0, 4.0, (n // 2, 2)), rng.uniform(9.0, 15.0, (n // 2, 2))))
+    grid = _grid(xy, bounds, 40 * n)  # cells sized for a bigger tree: coarse cells of about 1 m
+    queries = rng.uniform(-5.0, 18.0, (400, 2))
+    proved = possible = 0
+    for q in queries:
+        nearest = np.sqrt(((xy - q) ** 2).sum(axis=1)).min()
+        for reach in (0.5, 1.0, 2.0, 4.8, 9.0):
+            possible += nearest <= reach
+            if G.node_within(q[0], q[1], reach, grid):
+                assert nearest <= reach
+                proved += 1
+    assert proved > 0.5 * possible, (proved, possible)  # it does prove something (not at reaches below a coarse cell)
+
+
 def _popped(m, val, idx, by_cost, rng):
     heap = rng.permutation(m).astype(np.int64)
     K._heap_build(heap, m, val, idx, by_cost)
@@ -107,6 +127,16 @@ def test_grid_and_scan_grow_the_same_tree(planner, sampler):
 def test_grid_and_scan_grow_the_same_tree_at_20k_nodes():
     r = _same_tree(navlab.load_world("pythonrobotics"), "rrt_star", "uniform", 4, 30000)
     assert r.stats["nodes"] > 19000 and r.stats["rewires"] > 0
+
+
+@pytest.mark.parametrize("planner", ["rrt", "rrt_star"])
+def test_blocked_samples_are_skipped_alike_by_grid_and_scan(planner):
+    # A long step: the grid's coarse cells soon prove a node within it, so
+    # the grid skips blocked samples before any search; the scan decides by
+    # its nearest node. Same tree, same counts.
+    world = navlab.load_world("trap")
+    r = _same_tree(world, planner, "uniform", 3, 6000, expand_dis=0.5 * world.bounds.diagonal)
+    assert r.stats["collision_checks"] > r.stats["edge_checks"]  # point checks were made
 
 
 def test_bad_index_name():

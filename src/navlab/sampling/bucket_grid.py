@@ -41,6 +41,10 @@ block is still right of the block's right edge). Distance bounds subtract a
 margin far above floating-point rounding, so a node whose cell index rounded
 the other way is never skipped.
 
+The coarse counts also answer a cheaper question, :func:`node_within`: is
+some node surely within a distance (a coarse cell holding nodes lies wholly
+inside it)? The tree loop asks it for samples in collision.
+
 Its weakness is a tree much denser in one part of the bounds than elsewhere
 (informed sampling in a thin ellipse): cells there hold more nodes than the
 target. The queries stay exact; only their cost grows.
@@ -280,6 +284,40 @@ def _first_ring(cx, cy, dims, coarse):
         if kx - big <= 0 and ky - big <= 0 and kx + big >= ncx - 1 and ky + big >= ncy - 1:
             return 0  # no node at all: the plain search finds none either
         big += 1
+
+
+@njit(cache=True)
+def node_within(qx, qy, reach, grid):
+    """Whether a node provably lies within ``reach`` of (qx, qy): some coarse
+    cell holding a node lies wholly within that distance. False proves
+    nothing. Rings of coarse cells are searched outwards, as far as a ring
+    can still lie within reach."""
+    dims, coarse, gparams = grid[6], grid[7], grid[5]
+    ncx, ncy = dims[D_CX], dims[D_CY]
+    x0, y0, h, margin = gparams[G_X0], gparams[G_Y0], gparams[G_H], gparams[G_MARGIN]
+    side = COARSE * h
+    nx, ny = dims[D_NX], dims[D_NY]
+    kx = _cell_index(qx, x0, gparams[G_INV_H], nx) // COARSE
+    ky = _cell_index(qy, y0, gparams[G_INV_H], ny) // COARSE
+    big = 0
+    # A cell of ring `big` reaches at least big · side from the query.
+    while big * side <= reach:
+        for j in range(max(ky - big, 0), min(ky + big, ncy - 1) + 1):
+            step = 1 if (j == ky - big or j == ky + big) else 2 * big
+            for i in range(kx - big, kx + big + 1, max(step, 1)):
+                if 0 <= i < ncx and coarse[j * ncx + i] > 0:
+                    # Nodes of this coarse cell lie within its cells' extent
+                    # (the tree's nodes are inside the bounds the cells cover).
+                    ax, bx = x0 + i * side, x0 + min((i + 1) * COARSE, nx) * h
+                    ay, by = y0 + j * side, y0 + min((j + 1) * COARSE, ny) * h
+                    fx = max(abs(qx - ax), abs(qx - bx))
+                    fy = max(abs(qy - ay), abs(qy - by))
+                    if math.sqrt(fx * fx + fy * fy) + margin <= reach:
+                        return True
+        if kx - big <= 0 and ky - big <= 0 and kx + big >= ncx - 1 and ky + big >= ncy - 1:
+            return False
+        big += 1
+    return False
 
 
 @njit(cache=True, inline="always")

@@ -199,7 +199,7 @@ class TreePlanner:
                 first_time = time.perf_counter() - t0
             if tree.istate[K.S_DONE]:
                 break
-        checker.add_counts(segments=int(tree.istate[K.S_EDGE_CHECKS]))
+        checker.add_counts(points=int(tree.istate[K.S_POINT_CHECKS]), segments=int(tree.istate[K.S_EDGE_CHECKS]))
         return self._result(world, tree, it, checker, params, time.perf_counter() - t0, first_time)
 
     def _result(self, world, tree, iterations, checker, params, elapsed, first_time) -> Result:

@@ -2,8 +2,18 @@
 
 Python draws a batch of samples (any sampler), this loop consumes it: nearest
 node, steer, exact edge check, and for RRT* choose-parent and rewire with cost
-propagation. State lives in arrays owned by :class:`Tree`, which Python grows
-(by doubling) between batches so that a batch always fits: memory follows the
+propagation. Two shortcuts give the same tree with less memory traffic:
+
+- a sample in collision is rejected before any search when a node provably
+  lies within the step (the new node would be the sample itself, since a
+  step to a sample within reach lands on it exactly);
+- RRT* asks the grid for the sample's near set first: when not empty it
+  holds the nearest node, and it is the new node's near set as well.
+
+The point check of each sample is counted with the collision checks.
+
+State lives in arrays owned by :class:`Tree`, which Python grows (by
+doubling) between batches so that a batch always fits: memory follows the
 tree actually grown, not ``max_iter``. A batch boundary changes nothing: the
 same seed gives the same tree bit for bit whatever the batch size.
 
@@ -32,8 +42,9 @@ from . import bucket_grid as G
 MODE_RRT, MODE_RRT_STAR, MODE_GROWTH = 0, 1, 2
 
 # Integer state slots.
-S_NODES, S_EDGE_CHECKS, S_GOALS, S_FIRST_ITER, S_DONE, S_IN, S_OUT, S_REWIRES, S_BEST, S_TRACE = range(10)
-N_ISTATE = 10
+S_NODES, S_EDGE_CHECKS, S_GOALS, S_FIRST_ITER, S_DONE, S_IN, S_OUT, S_REWIRES, S_BEST, S_TRACE, S_POINT_CHECKS = \
+    range(11)
+N_ISTATE = 11
 # Float parameter slots.
 P_STEP, P_GAMMA, P_GX, P_GY, P_GTOL, P_CONNECT, P_CAP, P_SX, P_SY = range(9)
 N_FPARAMS = 9
@@ -343,6 +354,23 @@ def _heap_pop(heap, m, val, idx, by_cost):
     return top
 
 
+@njit(cache=True, inline="always")
+def _near_r2(n, gamma, step_max):
+    """The squared RRT* near radius with n nodes in the tree."""
+    radius = min(gamma * math.sqrt(math.log(n + 1) / (n + 1)), step_max)
+    return radius * radius
+
+
+@njit(cache=True, inline="always")
+def _nearest_of(m, d2, idx):
+    """Position of the nearest of m found nodes (lowest index on a tie)."""
+    best = 0
+    for o in range(1, m):
+        if d2[o] < d2[best] or (d2[o] == d2[best] and idx[o] < idx[best]):
+            best = o
+    return best
+
+
 @njit(cache=True)
 def _nearest_scan(qx, qy, xy, cost, n):
     nearest = 0
@@ -391,12 +419,36 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         qx = samples[i, 0]
         qy = samples[i, 1]
         n = istate[S_NODES]
-        if use_grid:
+        # A sample in collision with a node within the step becomes the new
+        # node itself, so the iteration adds nothing: know that before the
+        # nearest search, which is costliest for such samples (deep inside an
+        # obstacle, far from every node). The bucket grid's coarse counts
+        # often prove a node within reach; otherwise the search decides.
+        blocked = False
+        if mode != MODE_GROWTH:
+            istate[S_POINT_CHECKS] += 1
+            blocked = not segment_free(qx, qy, qx, qy, geom)
+            if blocked and use_grid and G.node_within(qx, qy, step_max, grid):
+                continue
+        # RRT* asks for the near set of the new node, which at all but the
+        # first few hundred iterations is the sample itself; and the sample's
+        # near set, when not empty, holds its nearest node. So the grid asks
+        # the near query first and the nearest query only when it came back empty.
+        near_at_sample = False
+        n_near = 0
+        if use_grid and mode == MODE_RRT_STAR and not blocked:
+            n_near = G.near(qx, qy, _near_r2(n, gamma, step_max), xy, cost, grid, near_idx, near_dist, near_cost,
+                            near_x, near_y)
+            near_at_sample = True
+        if n_near > 0:
+            o = _nearest_of(n_near, near_dist, near_idx)
+            nearest, best_d2, px, py, pc = near_idx[o], near_dist[o], near_x[o], near_y[o], near_cost[o]
+        elif use_grid:
             nearest, best_d2, px, py, pc = G.nearest(qx, qy, xy, cost, grid)
         else:
             nearest, best_d2, px, py, pc = _nearest_scan(qx, qy, xy, cost, n)
         d = math.sqrt(best_d2)
-        if d <= 1e-12:
+        if d <= 1e-12 or (blocked and d <= step_max):
             continue
         if mode == MODE_GROWTH:
             # Seed 003: step = (share of samples in this sample's area) · d_PR.
@@ -411,8 +463,11 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
             step = min(d, step_max)
         if step <= 1e-12:
             continue
-        nx = px + (qx - px) / d * step
-        ny = py + (qy - py) / d * step
+        if step == d:  # the sample itself, exactly
+            nx, ny = qx, qy
+        else:
+            nx = px + (qx - px) / d * step
+            ny = py + (qy - py) / d * step
         istate[S_EDGE_CHECKS] += 1
         if not segment_free(px, py, nx, ny, geom):
             continue
@@ -421,17 +476,16 @@ def grow(samples, it0, geom, xy, parent, cost, child, sibling, goal_node, goal_e
         xy[k, 1] = ny
         best_parent = nearest
         best_c = pc + step
-        n_near = 0
         best_before = best_cost[0]
         if mode == MODE_RRT_STAR:
-            radius = min(gamma * math.sqrt(math.log(n + 1) / (n + 1)), step_max)
-            r2 = radius * radius
             # Grid and scan return the same set in different orders; nothing
             # below depends on the order (candidates are ranked explicitly).
-            if use_grid:
-                n_near = G.near(nx, ny, r2, xy, cost, grid, near_idx, near_dist, near_cost, near_x, near_y)
-            else:
-                n_near = _near_scan(nx, ny, r2, xy, cost, n, near_idx, near_dist, near_cost, near_x, near_y)
+            if not (near_at_sample and nx == qx and ny == qy):
+                r2 = _near_r2(n, gamma, step_max)
+                if use_grid:
+                    n_near = G.near(nx, ny, r2, xy, cost, grid, near_idx, near_dist, near_cost, near_x, near_y)
+                else:
+                    n_near = _near_scan(nx, ny, r2, xy, cost, n, near_idx, near_dist, near_cost, near_x, near_y)
             m = 0
             for o in range(n_near):
                 j = near_idx[o]

@@ -139,6 +139,14 @@ def test_blocked_samples_are_skipped_alike_by_grid_and_scan(planner):
     assert r.stats["collision_checks"] > r.stats["edge_checks"]  # point checks were made
 
 
+def test_a_tree_past_the_index_limit_is_refused_before_allocating():
+    tree = K.Tree((0.0, 0.0), Bounds(0, 1, 0, 1), max_nodes=2**40)
+    tree.istate[K.S_NODES] = G.MAX_NODES - 10
+    with pytest.raises(MemoryError, match="2147483647 nodes"):
+        tree.reserve(64, 64)
+    assert tree.capacity < 10**4  # nothing was allocated
+
+
 def test_bad_index_name():
     with pytest.raises(ValueError, match="index"):
         navlab.plan("pythonrobotics", planner="rrt_star", index="kdtree")

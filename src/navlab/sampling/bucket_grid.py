@@ -65,6 +65,11 @@ REBUILD_GROWTH = 2
 #: free slots every cell's block gets beyond its share of the expected growth
 BLOCK_SLACK = 2
 
+#: node indices in the blocks are int32 (a slot is 28 bytes, not 32: at 10⁶
+#: nodes a query costs the memory it reads); a tree that large would need
+#: some 600 GB
+MAX_NODES = 2**31 - 1
+
 # Float parameter slots of a grid.
 G_X0, G_Y0, G_H, G_INV_H, G_MARGIN = range(5)
 N_GPARAMS = 5
@@ -107,8 +112,8 @@ class BucketGrid:
         meta[:, M_FILL] = meta[:, M_START]
         meta[:, M_HEAD] = -1
         total = int(meta[-1, M_START])
-        # Unused slots lie at infinity: a row's run of slots is scanned whole.
-        self.arrays = (meta, np.full((total, 3), np.inf), np.full(total, -1, dtype=np.int64), next_node, slot,
+        # Slots past a block's fill are never read, so never written before use.
+        self.arrays = (meta, np.empty((total, 3)), np.empty(total, dtype=np.int32), next_node, slot,
                        gparams, dims, np.zeros(dims[D_CX] * dims[D_CY], dtype=np.int64))
         _fill(n, xy, cost, cells, self.arrays)
         self.built_at = n
@@ -123,7 +128,7 @@ class BucketGrid:
 def _empty_arrays(bounds) -> tuple:
     meta = np.zeros((2, 3), dtype=np.int64)
     meta[:, M_HEAD] = -1
-    return (meta, np.empty((0, 3)), np.empty(0, dtype=np.int64), np.full(0, -1, dtype=np.int64),
+    return (meta, np.empty((0, 3)), np.empty(0, dtype=np.int32), np.full(0, -1, dtype=np.int64),
             np.full(0, -1, dtype=np.int64),
             grid_params(bounds, max(bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin, 1e-300)),
             np.ones(4, dtype=np.int64), np.zeros(1, dtype=np.int64))

@@ -144,6 +144,9 @@ class Tree:
         trace entries (doubling), and rebuild the grid if the tree doubled."""
         n = int(self.istate[S_NODES])
         need = min(n + new_nodes, self.max_nodes)
+        if need > G.MAX_NODES:
+            raise MemoryError(f"the tree would grow past {G.MAX_NODES} nodes, the most its index holds; "
+                              "give max_iter or max_time a smaller value")
         reallocated = need > self.capacity
         if reallocated:
             cap = min(max(2 * self.capacity, need, min(INITIAL_CAPACITY, self.max_nodes)), self.max_nodes)

@@ -25,6 +25,26 @@ def test_a_huge_max_iter_allocates_only_what_the_tree_uses():
     assert small.capacity == 11  # never beyond max_iter + 1
 
 
+def test_a_tree_reserved_whole_is_allocated_once_and_written_as_it_grows():
+    tree = K.Tree((0.0, 0.0), Bounds(0, 10, 0, 10), max_nodes=5000, reserve_all=True)
+    record = tree.record
+    assert len(tree.xy) == 5000 and tree.capacity == K.INITIAL_CAPACITY
+    tree.reserve(3000, 3000)
+    assert tree.record is record and 3001 <= tree.capacity <= 5000
+    assert np.all(tree.goal_slot[: tree.capacity] == -1)
+
+
+@pytest.mark.parametrize("planner", PLANNERS.names())
+def test_a_tree_reserved_whole_grows_as_a_doubled_one(planner):
+    # Without max_time the planner reserves the whole tree; with one, the arrays double.
+    world = navlab.load_world("clutter")
+    a = navlab.plan(world, planner=planner, seed=4, max_iter=3000, keep_tree=True)
+    b = navlab.plan(world, planner=planner, seed=4, max_iter=3000, max_time=1e6, keep_tree=True)
+    assert a.stats["iterations"] == b.stats["iterations"] and a.cost == b.cost
+    np.testing.assert_array_equal(a.tree["nodes"], b.tree["nodes"])
+    np.testing.assert_array_equal(a.tree["parent"], b.tree["parent"])
+
+
 @pytest.mark.parametrize("planner", PLANNERS.names())
 def test_max_iter_far_above_max_time_returns_with_small_memory(planner):
     world = navlab.load_world("pythonrobotics")

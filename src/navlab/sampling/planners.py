@@ -174,7 +174,8 @@ class TreePlanner:
             # time budget, the tree only grows as far as the time allows).
             check_memory((max_iter + 1) * K.Tree.bytes_per_node(),
                          f"max_iter={max_iter} with no max_time could grow a tree that")
-        tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid")
+        tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid",
+                      reserve_all=self.max_time is None)
         fparams = self._fparams(world, params)
         geom = checker.geometry
         if K.add_goal_candidate(0, geom, tree.xy, tree.goal_node, tree.goal_extra, tree.goal_slot, tree.istate,

@@ -296,7 +296,9 @@ def node_within(qx, qy, reach, grid):
     """Whether a node provably lies within ``reach`` of (qx, qy): some coarse
     cell holding a node lies wholly within that distance. False proves
     nothing. Rings of coarse cells are searched outwards, as far as a ring
-    can still lie within reach."""
+    can still lie within reach. Assumes every node lies inside the bounds
+    (the tree's do: an edge check refuses any point outside them); a node
+    outside would count as lying in its border cell."""
     dims, coarse, gparams = grid[6], grid[7], grid[5]
     ncx, ncy = dims[D_CX], dims[D_CY]
     x0, y0, h, margin = gparams[G_X0], gparams[G_Y0], gparams[G_H], gparams[G_MARGIN]

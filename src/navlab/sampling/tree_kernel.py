@@ -10,17 +10,19 @@ propagation. Two shortcuts give the same tree with less memory traffic:
 - RRT* asks the grid for the sample's near set first: when not empty it
   holds the nearest node, and it is the new node's near set as well.
 
-The point check of each sample is counted with the collision checks.
+The point check of each sample (not made by growth-ratio RRT) is counted with
+the collision checks.
 
-State lives in arrays owned by :class:`Tree`, which Python grows (by
-doubling) between batches so that a batch always fits: memory follows the
-tree actually grown, not ``max_iter``. A batch boundary changes nothing: the
+State lives in arrays owned by :class:`Tree`, which Python grows between
+batches so that a batch always fits: with a time budget by doubling (memory
+follows the tree actually grown, not ``max_iter``), without one allocated
+once for ``max_iter + 1`` nodes and written as the tree grows. A batch boundary changes nothing: the
 same seed gives the same tree bit for bit whatever the batch size.
 
 Nearest-neighbour and near-set queries go through a uniform bucket grid
 (:mod:`.bucket_grid`, which says why that structure) or, with
 ``use_grid=False``, through the brute-force scan over the node array. Both
-return the same nodes in the same order, so both grow the same tree; the scan
+return the same nodes (in different orders, which nothing depends on), so both grow the same tree; the scan
 stays as the reference the tests compare the grid against.
 
 The best-cost trace is stored as change points (iteration, new best cost),
@@ -65,7 +67,8 @@ class Tree:
         The world's bounds (the bucket grid covers them).
     max_nodes : int
         Nodes the tree can ever hold (``max_iter + 1``); the arrays never grow
-        beyond it, and start at ``min(max_nodes, INITIAL_CAPACITY)``.
+        beyond it, and start at ``min(max_nodes, INITIAL_CAPACITY)`` (all of
+        them with ``reserve_all``).
     use_grid : bool
         Answer nearest / near-set queries with the bucket grid (else by scan).
     reserve_all : bool
@@ -101,6 +104,9 @@ class Tree:
         self.capacity = 0  # rows initialised
         self.reserved = 0  # rows allocated
         self.first_rows = self.max_nodes if reserve_all else min(INITIAL_CAPACITY, self.max_nodes)
+        if self.first_rows > G.MAX_NODES:
+            raise MemoryError(f"the tree would grow past {G.MAX_NODES} nodes, the most its index holds; "
+                              "give max_iter or max_time a smaller value")
         self._set_record(_aligned_records(0, self._RECORD_WIDTH))
         for name, fill in self._NODE_ARRAYS:
             setattr(self, name, np.full(0, fill, dtype=self._DTYPES.get(name, np.float64)))
@@ -154,14 +160,15 @@ class Tree:
     @classmethod
     def bytes_per_node(cls) -> int:
         """Bytes one node costs in the arrays, counted twice (a doubling
-        copies them) plus the bucket grid's and the trace's share."""
+        copies them; a tree reserved whole needs about half, so this errs
+        on the safe side) plus the bucket grid's and the trace's share."""
         arrays = sum(np.dtype(cls._DTYPES.get(name, np.float64)).itemsize for name, _ in cls._NODE_ARRAYS)
         scratch = sum(np.dtype(dtype).itemsize for _, dtype in cls._SCRATCH)
         return 2 * (8 * cls._RECORD_WIDTH + arrays + scratch) + 32
 
     def reserve(self, new_nodes: int, new_iterations: int) -> None:
         """Make room for ``new_nodes`` more nodes and ``new_iterations`` more
-        trace entries (doubling), and rebuild the grid if the tree doubled."""
+        trace entries, and rebuild the grid if the tree doubled."""
         n = int(self.istate[S_NODES])
         need = min(n + new_nodes, self.max_nodes)
         if need > G.MAX_NODES:

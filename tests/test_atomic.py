@@ -45,3 +45,23 @@ def test_a_fifo_is_refused_and_a_symlink_kept(tmp_path):
     (tmp_path / "link.txt").symlink_to(real)
     write_text_atomic(tmp_path / "link.txt", "new")
     assert (tmp_path / "link.txt").is_symlink() and real.read_text() == "new"
+
+
+def test_a_file_the_writer_made_executable_stays_executable(tmp_path):
+    """A compiler writing its binary to the temporary name sets execute bits:
+    the rename must keep them (the benchmarks' OMPL driver, built this way, failed
+    with PermissionError on a fresh machine when they were stripped)."""
+    import os
+    import stat
+
+    from navlab.atomic import atomic_path
+
+    target = tmp_path / "tool"
+    with atomic_path(target) as tmp:
+        tmp.write_text("#!/bin/sh\necho ok\n")
+        os.chmod(tmp, 0o755)
+    assert target.stat().st_mode & stat.S_IXUSR
+    plain = tmp_path / "plain.txt"
+    with atomic_path(plain) as tmp:
+        tmp.write_text("x")
+    assert not plain.stat().st_mode & 0o111

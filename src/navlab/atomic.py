@@ -42,15 +42,26 @@ def atomic_path(target: Union[str, os.PathLike]) -> Iterator[Path]:
     tmp = Path(tmp_name)
     try:
         yield tmp
-        # mkstemp makes the file private (0600); give it the mode a plain open() would have
-        umask = os.umask(0)
-        os.umask(umask)
-        os.chmod(tmp, 0o666 & ~umask)
+        os.chmod(tmp, _public_mode(tmp))
         os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(OSError):
             tmp.unlink()
         raise
+
+
+def _public_mode(path: Path) -> int:
+    """The mode a plain ``open()`` (or, for an executable, a linker) would have given.
+
+    mkstemp makes the file private (0600). A writer that made it executable (a
+    compiler writing a binary to the temporary name) keeps its execute bits:
+    stripping them made the benchmarks' compiled OMPL driver fail with
+    ``PermissionError`` on a fresh machine.
+    """
+    umask = os.umask(0)
+    os.umask(umask)
+    executable = os.stat(path).st_mode & 0o111
+    return (0o666 | (0o111 if executable else 0)) & ~umask
 
 
 def write_text_atomic(target: Union[str, os.PathLike], text: str) -> None:

@@ -41,6 +41,7 @@ from typing import Dict, List, Optional, Tuple
 import numpy as np
 
 import navlab
+from conditions import load_line, spread
 from navlab.atomic import atomic_path
 from navlab.world.geometry import point_segment_dist2
 
@@ -245,7 +246,7 @@ def speed(world, driver: Optional[str], sizes: List[int], runs: List[int]) -> No
     print(f"\nRRT*, uniform sampling, scene pythonrobotics (optimum {OPTIMUM} m); medians of runs alternating "
           "navlab / OMPL C++ (exact checkers)")
     print(f"{'iterations':>10} {'runs':>4} {'navlab ms':>10} {'OMPL C++ ms':>12} {'OMPL/navlab':>11} "
-          f"{'navlab us/it':>12} {'OMPL us/it':>10} {'navlab cost':>11} {'OMPL cost':>10}")
+          f"{'range':>12} {'navlab us/it':>12} {'OMPL us/it':>10} {'navlab cost':>11} {'OMPL cost':>10}")
     per_it = {}
     for size, data in rows.items():
         t_nav = statistics.median(t for t, _ in data["navlab"])
@@ -255,10 +256,13 @@ def speed(world, driver: Optional[str], sizes: List[int], runs: List[int]) -> No
         if data["ompl"]:
             t_ompl = statistics.median(t for t, _ in data["ompl"])
             c_ompl = statistics.median(c for _, c in data["ompl"])
-            line += f"{t_ompl * 1e3:>12.1f} {t_ompl / t_nav:>10.2f}x {t_nav / size * 1e6:>12.2f} " \
+            # the range of the per-run ratios (each OMPL run over the navlab run beside it)
+            ratios = [o / n for (o, _), (n, _) in zip(data["ompl"], data["navlab"])]
+            line += f"{t_ompl * 1e3:>12.1f} {t_ompl / t_nav:>10.2f}x {spread(ratios, 1, 'x'):>12} " \
+                    f"{t_nav / size * 1e6:>12.2f} " \
                     f"{t_ompl / size * 1e6:>10.2f} {c_nav:>11.4f} {c_ompl:>10.4f}"
         else:
-            line += f"{'-':>12} {'-':>11} {t_nav / size * 1e6:>12.2f} {'-':>10} {c_nav:>11.4f} {'-':>10}"
+            line += f"{'-':>12} {'-':>11} {'-':>12} {t_nav / size * 1e6:>12.2f} {'-':>10} {c_nav:>11.4f} {'-':>10}"
         print(line)
         if max(data["clip"]) > 1e-9:
             print(f"  navlab paths clipping an obstacle at {size}: {max(data['clip']):.3g} m deep")
@@ -303,6 +307,7 @@ def main() -> None:
     runs = runs * len(sizes) if len(runs) == 1 else runs
     if len(runs) != len(sizes):
         ap.error("--runs: give one number, or one per size")
+    print(load_line("at start"))
     world = navlab.load_world("pythonrobotics")
     for planner in ("rrt_star", "informed_rrt_star"):
         navlab.plan(world, planner=planner, max_iter=200)  # compile / load the kernels first
@@ -317,6 +322,7 @@ def main() -> None:
     budgets = [float(b) for b in args.budgets.split(",") if b]
     if budgets:
         anytime(world, driver, budgets, args.anytime_runs)
+    print(load_line("at end"))
 
 
 if __name__ == "__main__":

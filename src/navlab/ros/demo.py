@@ -268,7 +268,10 @@ class Mission(NavlabNode):
             msg.header.stamp = self.get_clock().now().to_msg()
             msg.pose = pose_msg(self.goal[0], self.goal[1], 0.0)
             self.goal_pub.publish(msg)
-            self.sent_at = self.t
+            # the goal's own stamp, not the last odometry heard: under load the
+            # odometry queue lags the clock, and the run's time was counted from
+            # a moment before the goal existed (a 1.8 s gap seen on a busy machine)
+            self.sent_at = max(self.t, stamp_seconds(msg.header.stamp))
 
     def goal_listeners(self) -> bool:
         """Whether a node that acts on goals listens (a bag recorder does not

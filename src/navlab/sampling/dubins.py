@@ -1,0 +1,148 @@
+"""Dubins paths: the shortest forward-only paths at a bounded curvature.
+
+Dubins (1957) showed that the shortest path between two poses of a car that
+only drives forward with turning radius r is one of six words: CSC (LSL, RSR,
+LSR, RSL) or CCC (RLR, LRL), C an arc of radius r and S a straight segment.
+Each word's three lengths have a closed form in the goal's coordinates seen
+from the start, scaled by r (Shkel and Lumelsky, "Classification of the Dubins
+set", Robotics and Autonomous Systems 34, 2001): with d the scaled distance and
+α, β the start and goal headings measured from the line joining them. navlab
+solves all six and keeps the shortest, so no classification table is needed.
+
+Lengths agree with OMPL's ``DubinsStateSpace`` to 1e-9 relative on random pairs
+(``tests/sampling/test_curves.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Tuple
+
+import numpy as np
+from numba import njit
+
+from .curves import LEFT, RIGHT, STRAIGHT, CurvePath, check_pose, check_turning_radius
+
+TWO_PI = 2.0 * math.pi
+#: an angle this close below 0 or 2π is 0: rounding, not a loop around the circle
+ANGLE_SNAP = 1e-9
+
+#: the six words, in the order the kernel numbers them
+WORDS = np.array([[LEFT, STRAIGHT, LEFT], [RIGHT, STRAIGHT, RIGHT], [LEFT, STRAIGHT, RIGHT],
+                  [RIGHT, STRAIGHT, LEFT], [RIGHT, LEFT, RIGHT], [LEFT, RIGHT, LEFT]], dtype=np.int64)
+
+
+@njit(cache=True, inline="always")
+def _mod2pi(a: float) -> float:
+    """``a`` in [0, 2π), with values within ANGLE_SNAP of a full turn taken as 0."""
+    m = a - TWO_PI * math.floor(a / TWO_PI)
+    return 0.0 if m < ANGLE_SNAP or m > TWO_PI - ANGLE_SNAP else m
+
+
+@njit(cache=True)
+def solve(d: float, alpha: float, beta: float) -> Tuple[int, float, float, float]:
+    """The shortest of the six words for scaled distance ``d`` and headings
+    ``alpha``, ``beta`` (radians, from the start-to-goal line).
+
+    Returns ``(word, t, p, q)``: the index into :data:`WORDS` and the three
+    segment lengths in units of the turning radius.
+    """
+    sa, ca, sb, cb = math.sin(alpha), math.cos(alpha), math.sin(beta), math.cos(beta)
+    cab = math.cos(alpha - beta)
+    best, bt, bp, bq = -1, 0.0, 0.0, 0.0
+    best_len = math.inf
+    for word in range(6):
+        ok = True
+        t = p = q = 0.0
+        if word == 0:  # LSL
+            sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
+            ok = sq >= 0.0
+            if ok:
+                theta = math.atan2(cb - ca, d + sa - sb)
+                t, p, q = _mod2pi(theta - alpha), math.sqrt(sq), _mod2pi(beta - theta)
+        elif word == 1:  # RSR
+            sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
+            ok = sq >= 0.0
+            if ok:
+                theta = math.atan2(ca - cb, d - sa + sb)
+                t, p, q = _mod2pi(alpha - theta), math.sqrt(sq), _mod2pi(theta - beta)
+        elif word == 2:  # LSR
+            sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
+            ok = sq >= 0.0
+            if ok:
+                p = math.sqrt(sq)
+                theta = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
+                t, q = _mod2pi(theta - alpha), _mod2pi(theta - beta)
+        elif word == 3:  # RSL
+            sq = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
+            ok = sq >= 0.0
+            if ok:
+                p = math.sqrt(sq)
+                theta = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
+                t, q = _mod2pi(alpha - theta), _mod2pi(beta - theta)
+        elif word == 4:  # RLR
+            c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
+            ok = abs(c) <= 1.0
+            if ok:
+                p = TWO_PI - math.acos(c)
+                t = _mod2pi(alpha - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
+                q = _mod2pi(alpha - beta - t + p)
+        else:  # LRL
+            c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
+            ok = abs(c) <= 1.0
+            if ok:
+                p = TWO_PI - math.acos(c)
+                t = _mod2pi(-alpha + math.atan2(cb - ca, d + sa - sb) + 0.5 * p)
+                q = _mod2pi(beta - alpha - t + p)
+        if ok and t + p + q < best_len:
+            best, bt, bp, bq, best_len = word, t, p, q, t + p + q
+    return best, bt, bp, bq
+
+
+@njit(cache=True)
+def _normalised(x0: float, y0: float, th0: float, x1: float, y1: float, th1: float,
+                radius: float) -> Tuple[float, float, float]:
+    dx, dy = x1 - x0, y1 - y0
+    d = math.sqrt(dx * dx + dy * dy) / radius
+    theta = math.atan2(dy, dx) if d > 0.0 else 0.0
+    return d, _mod2pi(th0 - theta), _mod2pi(th1 - theta)
+
+
+@njit(cache=True)
+def distances(starts: np.ndarray, goals: np.ndarray, radius: float) -> np.ndarray:
+    """Dubins path lengths [m] from each ``starts[i]`` to ``goals[i]`` ((N, 3) poses)."""
+    n = starts.shape[0]
+    out = np.empty(n)
+    for i in range(n):
+        d, a, b = _normalised(starts[i, 0], starts[i, 1], starts[i, 2], goals[i, 0], goals[i, 1], goals[i, 2],
+                              radius)
+        _, t, p, q = solve(d, a, b)
+        out[i] = (t + p + q) * radius
+    return out
+
+
+def shortest(start, goal, turning_radius: float) -> CurvePath:
+    """The shortest forward-only path from pose ``start`` to pose ``goal``.
+
+    Parameters
+    ----------
+    start, goal : sequence of 3 floats
+        ``(x, y, θ)`` [m, m, rad].
+    turning_radius : float
+        The smallest radius the robot can turn on [m], > 0.
+
+    Returns
+    -------
+    CurvePath
+        Its word (e.g. ``"LSR"``), segment lengths [m] and :meth:`~CurvePath.sample`.
+    """
+    s = check_pose("start", start)
+    g = check_pose("goal", goal)
+    r = check_turning_radius(turning_radius)
+    word, t, p, q = solve(*_normalised(*s, *g, r))
+    return CurvePath.of_word(s, WORDS[word], np.array((t, p, q)) * r, r)
+
+
+def distance(start, goal, turning_radius: float) -> float:
+    """The length [m] of :func:`shortest`."""
+    return shortest(start, goal, turning_radius).length

@@ -1,0 +1,113 @@
+"""Dubins and Reeds–Shepp shortest paths against OMPL, hand-derived optima and
+their own geometry (every path reaches its goal and never turns tighter than r)."""
+
+import math
+
+import numpy as np
+import pytest
+
+from navlab.sampling import dubins, reeds_shepp
+
+SOLVERS = [dubins, reeds_shepp]
+
+
+def random_pairs(n, seed=0, span=10.0):
+    rng = np.random.default_rng(seed)
+    a = np.column_stack([rng.uniform(-span, span, (n, 2)), rng.uniform(-math.pi, math.pi, n)])
+    b = np.column_stack([rng.uniform(-span, span, (n, 2)), rng.uniform(-math.pi, math.pi, n)])
+    return a, b
+
+
+@pytest.mark.parametrize("name", ["DubinsStateSpace", "ReedsSheppStateSpace"])
+@pytest.mark.parametrize("radius", [0.5, 1.0, 3.0])
+def test_lengths_equal_ompl_on_10000_random_pairs(name, radius):
+    ob = pytest.importorskip("ompl.base")
+    ours_module = dubins if name.startswith("Dubins") else reeds_shepp
+    space = getattr(ob, name)(radius)
+    s1, s2 = space.allocState(), space.allocState()
+    a, b = random_pairs(10_000, seed=int(radius * 10))
+    ref = np.empty(len(a))
+    for i in range(len(a)):
+        s1.setX(a[i, 0]), s1.setY(a[i, 1]), s1.setYaw(a[i, 2])
+        s2.setX(b[i, 0]), s2.setY(b[i, 1]), s2.setYaw(b[i, 2])
+        ref[i] = space.distance(s1, s2)
+    ours = ours_module.distances(a, b, radius)
+    np.testing.assert_allclose(ours, ref, rtol=1e-9, atol=0)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_every_path_reaches_its_goal_within_the_curvature_bound(solver):
+    a, b = random_pairs(400, seed=3, span=4.0)
+    radius = 0.8
+    words = set()
+    for start, goal in zip(a, b):
+        path = solver.shortest(start, goal, radius)
+        words.add(path.word)
+        end = np.array(path.end)
+        assert np.hypot(*(end[:2] - goal[:2])) < 1e-9 * max(1.0, path.length)
+        assert abs((end[2] - goal[2] + math.pi) % (2 * math.pi) - math.pi) < 1e-9
+        poses, direction = path.sample(0.05)
+        steps = np.hypot(*np.diff(poses[:, :2], axis=0).T)
+        assert steps.max() <= 0.05 + 1e-12
+        assert np.allclose(poses[0], start) and np.allclose(poses[-1, :2], goal[:2])
+        # curvature: an arc of chord c turning by Δθ has radius c / (2 sin(Δθ/2)) ≥ r
+        turn = np.abs(np.diff(poses[:, 2]))
+        arcs = turn > 1e-12
+        radii = steps[arcs] / (2 * np.sin(turn[arcs] / 2))
+        assert radii.size == 0 or radii.min() >= radius * (1 - 1e-9)
+        if solver is dubins:
+            assert (direction == 1).all()
+    # the random pairs exercise most words, not one family
+    assert len(words) >= (5 if solver is dubins else 12)
+
+
+def test_reeds_shepp_is_never_longer_than_dubins_nor_shorter_than_the_straight_line():
+    a, b = random_pairs(2000, seed=5)
+    rs, db = reeds_shepp.distances(a, b, 1.0), dubins.distances(a, b, 1.0)
+    line = np.hypot(*(b[:, :2] - a[:, :2]).T)
+    assert (rs <= db * (1 + 1e-12)).all()
+    assert (rs >= line * (1 - 1e-12)).all() and (db >= line * (1 - 1e-12)).all()
+    assert (rs < db - 1e-6).mean() > 0.3  # reversing pays off often
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+def test_hand_derived_optima(solver):
+    r = 2.0
+    # straight ahead: the distance itself
+    assert solver.distance((0, 0, 0), (5, 0, 0), r) == pytest.approx(5.0, rel=1e-12)
+    # a left half turn onto the parallel lane 2r to the left: half a circle, π r
+    path = solver.shortest((0, 0, 0), (0, 2 * r, math.pi), r)
+    assert path.length == pytest.approx(math.pi * r, rel=1e-12) and path.word == "L"
+    # the same pose: nothing to drive
+    assert solver.distance((1, 2, 0.3), (1, 2, 0.3), r) == pytest.approx(0.0, abs=1e-9)
+
+
+def test_reeds_shepp_reverses_straight_back_and_dubins_must_loop():
+    r = 1.0
+    back = reeds_shepp.shortest((0, 0, 0), (-1.5, 0, 0), r)
+    assert back.word == "S" and back.segments[0] == pytest.approx(-1.5) and back.cusps == 0
+    # forward only, the shortest way to a pose 1.5 m behind is a loop: longer than 2πr
+    assert dubins.distance((0, 0, 0), (-1.5, 0, 0), r) > 2 * math.pi * r
+
+
+def test_a_sideways_shift_needs_a_cusp():
+    path = reeds_shepp.shortest((0, 0, 0), (0, 0.5, 0), 1.0)
+    assert path.cusps >= 1
+    _, direction = path.sample(0.01)
+    assert (direction == 1).any() and (direction == -1).any()
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("radius,field", [(0, "turning_radius"), (-1, "turning_radius"),
+                                          (float("nan"), "turning_radius"), ("1", "turning_radius")])
+def test_a_bad_turning_radius_is_named(solver, radius, field):
+    with pytest.raises(ValueError, match=field):
+        solver.shortest((0, 0, 0), (1, 1, 0), radius)
+
+
+@pytest.mark.parametrize("solver", SOLVERS)
+@pytest.mark.parametrize("goal,field", [((1, 1, float("nan")), "goal theta"), ((1, float("inf"), 0), "goal y"),
+                                        ((1, 1), "goal"), (None, "goal")])
+def test_a_bad_pose_is_named(solver, goal, field):
+    with pytest.raises(ValueError, match=field):
+        solver.shortest((0, 0, 0), goal, 1.0)

@@ -50,6 +50,9 @@ class Result:
     tree: Optional[Any] = None
     params: Dict[str, Any] = field(default_factory=dict)
     cells: Optional[np.ndarray] = None  #: grid planners: (N, 2) int cells (x, y)
+    #: SE(2) planners: (N,) +1 where the robot arrives at the waypoint driving forward, −1 in reverse
+    #: (their ``path`` is (N, 3) poses x, y, θ)
+    direction: Optional[np.ndarray] = None
 
     @property
     def success(self) -> bool:
@@ -68,6 +71,8 @@ class Result:
         }
         if self.cells is not None:
             out["cells"] = self.cells.tolist()
+        if self.direction is not None:
+            out["direction"] = self.direction.tolist()
         return out
 
 

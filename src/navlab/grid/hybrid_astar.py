@@ -1,0 +1,629 @@
+"""Hybrid A*: heading-aware search on an occupancy grid for car-like robots.
+
+Dolgov, Thrun, Montemerlo and Diebel ("Path planning for autonomous vehicles
+in unknown semi-structured environments", IJRR 29(5), 2010; first at the
+2008 Urban Challenge workshop) search a lattice of *continuous* poses merged
+per discrete state (cell, heading bin): each expansion drives three motion
+primitives (straight, full left, full right at the minimum turning radius;
+and the same in reverse for Reeds–Shepp motion), so every stored pose is
+exactly reachable by the car. Nav2's ``SmacPlannerHybrid`` keeps the same
+shape; navlab follows it:
+
+- primitives change the heading by whole bins (72 by default, 5°): an arc
+  of radius r turning k bins, k the smallest giving a chord of at least
+  √2 cells, and a straight segment of the same length;
+- the heuristic is the larger of the obstacle-free non-holonomic distance
+  (the exact Dubins or Reeds–Shepp length, :mod:`navlab.sampling.dubins`,
+  :mod:`navlab.sampling.reeds_shepp`) and the holonomic-with-obstacles
+  distance (an 8-connected Dijkstra field from the goal over the cells the
+  robot's inscribed circle fits in);
+- travel costs multiply a primitive's length by penalties for turning and
+  reversing, and add one for changing direction (Nav2's defaults);
+- an analytic expansion tries the exact Dubins/Reeds–Shepp path to the goal
+  from nodes near it; the search ends when one is collision-free;
+- a smoother replaces stretches of the path with shorter Dubins/Reeds–Shepp
+  paths where they are collision-free, so the curvature bound 1/r holds
+  exactly after smoothing.
+
+**Collision checking is certified, not sampled.** For every start heading bin
+and primitive, the cells any point of the footprint can cover while driving
+the primitive are precomputed (:func:`swept_cells`): the footprint is traced at
+poses no more than ``δ`` apart (no footprint point moves more than δ between
+two), each copy grown by δ/2 (so the union covers the motion between samples)
+and by one cell diagonal (the node's pose may lie anywhere in its cell, and a
+cell is kept when any part of it can be touched). A primitive is free when
+none of those cells is blocked, so a returned path never overlaps a blocked
+cell; the check is conservative by at most ``√2·res + δ/2`` (δ = res/2 by
+default). Analytic and smoothed segments use per-bin footprints grown also by
+``R·sin(Δθ/2)`` (R the footprint's circumscribed radius), which covers any
+heading within the bin. Every returned path is checked once more that way.
+"""
+
+from __future__ import annotations
+
+import functools
+import heapq
+import math
+import time
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+from numba import njit, types
+from numba.typed import Dict as TypedDict
+from shapely.geometry import Point, Polygon
+
+from ..limits import check_length, finite_number
+from ..result import Result, Status
+from ..sampling import dubins, reeds_shepp
+from ..sampling.curves import MAX_SEGMENTS, NOP, CurvePath, check_pose, check_turning_radius, trace_word
+from .occupancy import OccupancyGrid
+
+MOTIONS = ("dubins", "reeds_shepp")
+DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
+    "heading_bins": 72,
+    "reverse_penalty": 2.0,
+    "change_penalty": 0.0,
+    "non_straight_penalty": 1.2,
+    "analytic_expansion_max_length": 3.0,  # [m]
+    "max_expansions": 200_000,
+}
+
+
+# ---------------------------------------------------------------------------
+# footprint and its cells
+# ---------------------------------------------------------------------------
+def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple[np.ndarray, float]:
+    """The robot's outline in body coordinates: ``(vertices (K, 2), 0.0)`` for a
+    polygon ``footprint`` ((K, 2) vertices, or a Footprint), or ``(empty, radius)``
+    for a disc of ``robot_radius`` (a point robot when both are None)."""
+    if footprint is not None and robot_radius is not None:
+        raise ValueError("give footprint or robot_radius, not both")
+    if footprint is not None and hasattr(footprint, "vertices"):  # navlab.world.footprint.Footprint
+        if footprint.vertices is None:
+            return np.empty((0, 2)), check_length("footprint radius", footprint.radius)
+        footprint = footprint.vertices
+    if footprint is None:
+        return np.empty((0, 2)), check_length("robot_radius", 0.0 if robot_radius is None else robot_radius)
+    vertices = np.asarray(footprint, dtype=float)
+    if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3 or not np.isfinite(vertices).all():
+        raise ValueError("footprint must be 3 or more finite (x, y) vertices in body coordinates")
+    poly = Polygon(vertices)
+    if not poly.is_valid or poly.area <= 0:
+        raise ValueError("footprint must be a simple polygon (its edges must not cross)")
+    if not poly.covers(Point(0.0, 0.0)):
+        raise ValueError("footprint must contain the robot's origin (0, 0)")
+    return vertices, 0.0
+
+
+@njit(cache=True)
+def _near_outline(px: float, py: float, vertices: np.ndarray, disc: float, margin: float) -> bool:
+    """Whether point (px, py) lies within ``margin`` of the outline (inside counts)."""
+    if vertices.shape[0] == 0:
+        return px * px + py * py <= (disc + margin) ** 2
+    inside = False
+    k = vertices.shape[0]
+    best = math.inf
+    for i in range(k):
+        ax, ay = vertices[i, 0], vertices[i, 1]
+        bx, by = vertices[(i + 1) % k, 0], vertices[(i + 1) % k, 1]
+        if (ay > py) != (by > py) and px < ax + (py - ay) * (bx - ax) / (by - ay):
+            inside = not inside
+        ex, ey = bx - ax, by - ay
+        t = ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey)
+        t = min(1.0, max(0.0, t))
+        dx, dy = px - ax - t * ex, py - ay - t * ey
+        best = min(best, dx * dx + dy * dy)
+    return inside or best <= margin * margin
+
+
+@njit(cache=True)
+def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.ndarray, margin: float,
+                   res: float) -> np.ndarray:
+    """Offsets (dx, dy) of the cells, relative to the cell whose centre is the
+    origin, with a centre within ``margin`` of the outline at any of ``poses``."""
+    span = int(math.ceil((reach + margin + np.abs(poses[:, :2]).max()) / res)) + 1
+    size = 2 * span + 1
+    hit = np.zeros((size, size), dtype=np.bool_)
+    local = np.empty(2)
+    for p in range(poses.shape[0]):
+        c, s = math.cos(poses[p, 2]), math.sin(poses[p, 2])
+        for iy in range(size):
+            for ix in range(size):
+                if hit[iy, ix]:
+                    continue
+                # the cell centre in the body frame of this pose
+                wx, wy = (ix - span) * res - poses[p, 0], (iy - span) * res - poses[p, 1]
+                local[0], local[1] = c * wx + s * wy, -s * wx + c * wy
+                if local[0] * local[0] + local[1] * local[1] > (reach + margin) ** 2:
+                    continue
+                if _near_outline(local[0], local[1], vertices, disc, margin):
+                    hit[iy, ix] = True
+    ys, xs = np.nonzero(hit)
+    out = np.empty((xs.shape[0], 2), dtype=np.int64)
+    out[:, 0] = xs - span
+    out[:, 1] = ys - span
+    return out
+
+
+def _pack(groups) -> Tuple[np.ndarray, np.ndarray]:
+    """Ragged lists of (K_i, 2) offsets as (flat offsets, start index per group + end)."""
+    starts = np.zeros(len(groups) + 1, dtype=np.int64)
+    for i, g in enumerate(groups):
+        starts[i + 1] = starts[i] + len(g)
+    flat = np.concatenate(groups) if groups else np.empty((0, 2), np.int64)
+    return np.ascontiguousarray(flat, dtype=np.int64), starts
+
+
+class Lattice:
+    """The motion primitives and their precomputed swept cells for one robot
+    outline, turning radius, resolution, heading count and first heading.
+
+    Built from hashable settings only, so it is cached by content (:func:`lattice_for`).
+    """
+
+    def __init__(self, vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float,
+                 resolution: float, bins: int, reverse: bool, theta0: float) -> None:
+        verts = np.array(vertices, dtype=float).reshape(-1, 2)
+        res, r = resolution, turning_radius
+        self.bins, self.resolution, self.turning_radius, self.theta0 = bins, res, r, theta0
+        self.step = 2.0 * math.pi / bins
+        chord = 2.0 * r * math.sin(self.step / 2.0)
+        self.k = max(1, math.ceil(math.sqrt(2.0) * res / chord - 1e-12))  # bins turned per arc primitive
+        self.length = r * self.step * self.k  # every primitive's length [m]
+        reach = max(disc, float(np.hypot(*verts.T).max()) if len(verts) else 0.0)
+        self.circumscribed = reach
+        # δ: no footprint point moves more than this between two traced poses
+        self.delta = 0.5 * res
+        self.ds = self.delta / (1.0 + reach / r)
+        diag = math.sqrt(2.0) * res
+        directions = (1.0, -1.0) if reverse else (1.0,)
+        prims = [(kind, d * self.length) for d in directions for kind in (2, 1, 3)]  # straight, left, right
+        self.prim_kind = np.array([p[0] for p in prims], dtype=np.int64)
+        self.prim_len = np.array([p[1] for p in prims])
+        n = len(prims)
+        self.dx, self.dy = np.empty((bins, n)), np.empty((bins, n))
+        self.dbin = np.empty(n, dtype=np.int64)
+        swept = []
+        for b in range(bins):
+            theta = theta0 + b * self.step
+            for j, (kind, s) in enumerate(prims):
+                poses, _ = trace_word(0.0, 0.0, theta, np.array([kind]), np.array([s]), r, self.ds)
+                self.dx[b, j], self.dy[b, j] = poses[-1, 0], poses[-1, 1]
+                self.dbin[j] = round((poses[-1, 2] - theta) / self.step)
+                swept.append(_cells_touched(verts, disc, reach, poses, diag + 0.5 * self.delta, res))
+        self.swept, self.swept_start = _pack(swept)
+        # per-bin outlines for any heading within the bin (analytic and smoothed segments)
+        margin = diag + 0.5 * self.delta + reach * math.sin(self.step / 2.0)
+        self.pose_cells, self.pose_start = _pack([
+            _cells_touched(verts, disc, reach, np.array([[0.0, 0.0, theta0 + b * self.step]]), margin, res)
+            for b in range(bins)])
+
+
+@functools.lru_cache(maxsize=16)
+def lattice_for(vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float, resolution: float,
+                bins: int, reverse: bool, theta0: float) -> Lattice:
+    """:class:`Lattice` cached by its settings."""
+    return Lattice(vertices, disc, turning_radius, resolution, bins, reverse, theta0)
+
+
+# ---------------------------------------------------------------------------
+# compiled search
+# ---------------------------------------------------------------------------
+@njit(cache=True)
+def _free_cells(blocked: np.ndarray, cx: int, cy: int, offsets: np.ndarray, lo: int, hi: int) -> bool:
+    h, w = blocked.shape
+    for i in range(lo, hi):
+        x, y = cx + offsets[i, 0], cy + offsets[i, 1]
+        if x < 0 or y < 0 or x >= w or y >= h or blocked[y, x]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def _pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start) -> bool:
+    cx, cy = int(math.floor(x / res)), int(math.floor(y / res))
+    b = int(round((theta - theta0) / step)) % bins
+    return _free_cells(blocked, cx, cy, pose_cells, pose_start[b], pose_start[b + 1])
+
+
+@njit(cache=True)
+def _curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, step, bins, pose_cells,
+                pose_start) -> bool:
+    poses, _ = trace_word(x, y, theta, kinds, lengths, radius, ds)
+    for i in range(poses.shape[0]):
+        if not _pose_free(blocked, res, poses[i, 0], poses[i, 1], poses[i, 2], theta0, step, bins, pose_cells,
+                          pose_start):
+            return False
+    return True
+
+
+@njit(cache=True)
+def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.ndarray:
+    """Shortest 8-connected distances [m] from cell (gx, gy) over ``passable``
+    cells (Dijkstra; diagonal steps only between two free orthogonal cells)."""
+    h, w = passable.shape
+    dist = np.full((h, w), np.inf)
+    dist[gy, gx] = 0.0
+    heap = [(0.0, gy * w + gx)]
+    diag = math.sqrt(2.0) * res
+    while heap:
+        d, v = heapq.heappop(heap)
+        y, x = v // w, v % w
+        if d > dist[y, x]:
+            continue
+        for dy in (-1, 0, 1):
+            for dx in (-1, 0, 1):
+                if dx == 0 and dy == 0:
+                    continue
+                nx, ny = x + dx, y + dy
+                if nx < 0 or ny < 0 or nx >= w or ny >= h or not passable[ny, nx]:
+                    continue
+                if dx != 0 and dy != 0 and not (passable[y, nx] and passable[ny, x]):
+                    continue
+                nd = d + (diag if dx != 0 and dy != 0 else res)
+                if nd < dist[ny, nx]:
+                    dist[ny, nx] = nd
+                    heapq.heappush(heap, (nd, ny * w + nx))
+    return dist
+
+
+@njit(cache=True)
+def _nonholonomic(x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
+    if reverse:
+        dx, dy = gx - x, gy - y
+        c, s = math.cos(theta), math.sin(theta)
+        return reeds_shepp._shortest_into((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius, gtheta - theta,
+                                          seg, kinds, lengths) * radius
+    d, a, b = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
+    _, t, p, q = dubins.solve(d, a, b)
+    return (t + p + q) * radius
+
+
+@njit(cache=True)
+def _search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
+            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, pose_cells, pose_start, ds,
+            hfield, penalties, analytic_max, max_expansions, use_analytic):
+    """The Hybrid A* loop. Returns (status, nodes arrays, goal node, analytic word, expansions)."""
+    h, w = blocked.shape
+    nprim = prim_kind.shape[0]
+    cap = 1024
+    nx = np.empty(cap)
+    ny = np.empty(cap)
+    nb = np.empty(cap, dtype=np.int64)
+    ng = np.empty(cap)
+    nparent = np.empty(cap, dtype=np.int64)
+    nprim_of = np.empty(cap, dtype=np.int64)
+    closed = np.zeros(cap, dtype=np.bool_)
+    index = TypedDict.empty(key_type=types.int64, value_type=types.int64)  # discrete state -> node
+    seg = np.zeros(MAX_SEGMENTS)
+    akinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
+    alens = np.zeros(MAX_SEGMENTS)
+    best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
+    best_lens = np.zeros(MAX_SEGMENTS)
+    straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
+
+    nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
+    count = 1
+    index[(int(sy // res) * w + int(sx // res)) * bins + sbin] = 0
+    heap = [(0.0, 0)]
+    expansions = 0
+    while heap:
+        f, v = heapq.heappop(heap)
+        if closed[v]:
+            continue
+        closed[v] = True
+        expansions += 1
+        x, y, b = nx[v], ny[v], nb[v]
+        theta = theta0 + b * step
+        # analytic expansion near the goal: the exact obstacle-free path, if it is free
+        if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
+            for i in range(MAX_SEGMENTS):
+                akinds[i] = NOP
+                alens[i] = 0.0
+            if reverse:
+                dxg, dyg = gx - x, gy - y
+                c, s = math.cos(theta), math.sin(theta)
+                reeds_shepp._shortest_into((c * dxg + s * dyg) / radius, (-s * dxg + c * dyg) / radius,
+                                           gtheta - theta, seg, best_kinds, best_lens)
+                for i in range(MAX_SEGMENTS):
+                    akinds[i] = best_kinds[i]
+                    alens[i] = best_lens[i] * radius
+            else:
+                d, a, bb = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
+                word, t, p, q = dubins.solve(d, a, bb)
+                for i in range(3):
+                    akinds[i] = dubins.WORDS[word, i]
+                alens[0], alens[1], alens[2] = t * radius, p * radius, q * radius
+            if _curve_free(blocked, res, x, y, theta, akinds, alens, radius, ds, theta0, step, bins, pose_cells,
+                           pose_start):
+                return 1, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, alens, \
+                    expansions
+        elif not use_analytic:
+            if int(x // res) == int(gx // res) and int(y // res) == int(gy // res) and \
+                    (b - int(round((gtheta - theta0) / step))) % bins == 0:
+                return 1, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, alens, \
+                    expansions
+        if expansions >= max_expansions:
+            break
+        cx, cy = int(x // res), int(y // res)
+        for j in range(nprim):
+            if not _free_cells(blocked, cx, cy, swept, swept_start[b * nprim + j], swept_start[b * nprim + j + 1]):
+                continue
+            x2, y2 = x + pdx[b, j], y + pdy[b, j]
+            b2 = (b + pdbin[j]) % bins
+            cx2, cy2 = int(x2 // res), int(y2 // res)
+            if cx2 < 0 or cy2 < 0 or cx2 >= w or cy2 >= h:
+                continue
+            length = abs(prim_len[j])
+            cost = length * (straight_pen if prim_kind[j] == 2 else turn_pen)
+            backwards = prim_len[j] < 0
+            if backwards:
+                cost *= reverse_pen
+            if nprim_of[v] >= 0 and (prim_len[nprim_of[v]] < 0) != backwards:
+                cost += change_pen
+            g2 = ng[v] + cost
+            key = (cy2 * w + cx2) * bins + b2
+            u = index[key] if key in index else -1
+            if u >= 0 and (closed[u] or ng[u] <= g2):
+                continue
+            if u < 0:
+                if count == cap:
+                    cap *= 2
+                    nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
+                    nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
+                u = count
+                count += 1
+                index[key] = u
+                closed[u] = False
+            nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
+            h2 = max(hfield[cy2, cx2], _nonholonomic(x2, y2, theta0 + b2 * step, gx, gy, gtheta, radius, reverse,
+                                                     seg, best_kinds, best_lens))
+            heapq.heappush(heap, (g2 + h2, u))
+    return 0, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, expansions
+
+
+@njit(cache=True)
+def _grow(a, cap):
+    out = np.empty(cap, dtype=a.dtype)
+    out[:a.shape[0]] = a
+    return out
+
+
+# ---------------------------------------------------------------------------
+# the planner
+# ---------------------------------------------------------------------------
+def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion: str = "reeds_shepp",
+                footprint=None, robot_radius: Optional[float] = None,
+                heading_bins: int = DEFAULTS["heading_bins"], reverse_penalty: float = DEFAULTS["reverse_penalty"],
+                change_penalty: float = DEFAULTS["change_penalty"],
+                non_straight_penalty: float = DEFAULTS["non_straight_penalty"],
+                analytic_expansion: bool = True,
+                analytic_expansion_max_length: float = DEFAULTS["analytic_expansion_max_length"],
+                max_expansions: int = DEFAULTS["max_expansions"], smooth: bool = True,
+                waypoint_spacing: Optional[float] = None) -> Result:
+    """Plan a car-like robot's path between poses on an occupancy grid (Hybrid A*).
+
+    Parameters
+    ----------
+    grid : OccupancyGrid
+        Blocked (and unknown) cells are obstacles; so is everything outside it.
+    start, goal : (x, y, θ)
+        Poses in world coordinates [m, m, rad].
+    turning_radius : float
+        The robot's minimum turning radius [m].
+    motion : {"reeds_shepp", "dubins"}
+        Forward and reverse, or forward only.
+    footprint : (K, 2) array or Footprint, optional
+        The robot's outline in body coordinates [m]; or ``robot_radius`` for a disc.
+    heading_bins : int
+        Heading resolution (72: 5°, Nav2's default).
+    reverse_penalty, change_penalty, non_straight_penalty : float
+        Travel-cost factors (≥ 1 for the two multipliers; ≥ 0 for the change penalty).
+    analytic_expansion : bool
+        Try the exact Dubins/Reeds–Shepp path to the goal from nodes within
+        ``analytic_expansion_max_length`` of it [m]. Without it the search ends
+        in the goal's cell and heading bin (the path then ends there, not at the goal).
+    max_expansions : int
+        Give up (``FAILED``) after this many expansions.
+    smooth : bool
+        Shorten the path with collision-free Dubins/Reeds–Shepp shortcuts.
+    waypoint_spacing : float, optional
+        Spacing of the returned poses [m]; the grid's resolution by default.
+
+    Returns
+    -------
+    Result
+        ``path`` (N, 3) poses ``(x, y, θ)``, ``direction`` (N,) +1 forward / −1
+        reverse, ``cost`` the length driven [m], ``stats`` with ``expansions``,
+        ``nodes``, ``cusps``, ``time_s`` and the penalised search cost ``g``.
+    """
+    t0 = time.perf_counter()
+    if motion not in MOTIONS:
+        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}")
+    r = check_turning_radius(turning_radius)
+    sx, sy, st = check_pose("start", start)
+    gx, gy, gt = check_pose("goal", goal)
+    if isinstance(heading_bins, bool) or not isinstance(heading_bins, (int, np.integer)) or not 4 <= heading_bins <= 1440:
+        raise ValueError(f"heading_bins must be a whole number from 4 to 1440, got {heading_bins!r}")
+    for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
+                             ("change_penalty", change_penalty, 0.0)):
+        if finite_number(name, value) < low:
+            raise ValueError(f"{name} must be at least {low:g}, got {value!r}")
+    analytic_max = check_length("analytic_expansion_max_length", analytic_expansion_max_length)
+    if isinstance(max_expansions, bool) or not isinstance(max_expansions, (int, np.integer)) or max_expansions < 1:
+        raise ValueError(f"max_expansions must be a positive whole number, got {max_expansions!r}")
+    vertices, disc = robot_outline(footprint, robot_radius)
+    res = grid.resolution
+    spacing = res if waypoint_spacing is None else check_length("waypoint_spacing", waypoint_spacing, allow_zero=False)
+    params: Dict[str, Any] = {"planner": "hybrid_astar", "motion": motion, "turning_radius": r,
+                              "heading_bins": int(heading_bins), "reverse_penalty": float(reverse_penalty),
+                              "change_penalty": float(change_penalty),
+                              "non_straight_penalty": float(non_straight_penalty),
+                              "analytic_expansion": bool(analytic_expansion),
+                              "analytic_expansion_max_length": analytic_max, "max_expansions": int(max_expansions),
+                              "smooth": bool(smooth), "resolution": res}
+    # the search runs in the grid's own frame: metres from the corner of cell (0, 0), along its axes
+    yaw = grid.origin[2]
+    c, s = math.cos(yaw), math.sin(yaw)
+    ox, oy = grid.origin[0], grid.origin[1]
+
+    def to_local(x, y, th):
+        return c * (x - ox) + s * (y - oy), -s * (x - ox) + c * (y - oy), th - yaw
+
+    lsx, lsy, lst = to_local(sx, sy, st)
+    lgx, lgy, lgt = to_local(gx, gy, gt)
+    lattice = lattice_for(tuple(map(tuple, vertices.tolist())), disc, r, res, int(heading_bins),
+                          motion == "reeds_shepp", lst)
+    blocked = np.ascontiguousarray(grid.blocked | grid.unknown)
+    stats: Dict[str, Any] = {"expansions": 0, "nodes": 0, "cusps": 0, "time_s": 0.0, "g": math.inf, "word": "",
+                             "segments": []}
+
+    def finish(status, reason, path=None, direction=None, cost=math.inf):
+        stats["time_s"] = time.perf_counter() - t0
+        return Result(status=status, path=np.empty((0, 3)) if path is None else path, cost=cost, stats=stats,
+                      reason=reason, params=params,
+                      direction=np.empty(0, np.int8) if direction is None else direction)
+
+    common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
+    for label, pose, status in (("start", (lsx, lsy, lst), Status.INVALID_START),
+                                ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL)):
+        hit = first_overlap(blocked, res, vertices, disc, np.array([pose]), 0.0)
+        if hit is not None:
+            what = "leaves the map at" if hit[0] in (-1, grid.width) or hit[1] in (-1, grid.height) else \
+                "overlaps the blocked or unknown cell"
+            return finish(status, f"the robot's footprint at the {label} pose {what} {hit} (x, y)")
+    # holonomic heuristic over the cells the inscribed circle fits in (admissible for the centre's path)
+    inscribed = Polygon(vertices).exterior.distance(Point(0, 0)) if len(vertices) else disc
+    from scipy.ndimage import distance_transform_edt
+    clearance = distance_transform_edt(~blocked) * res
+    passable = clearance > max(0.0, inscribed - math.sqrt(2.0) * res)
+    gcx, gcy = int(lgx // res), int(lgy // res)
+    hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
+    penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
+    found, nx, ny, nb, parent, prim, last, akinds, alens, expansions = _search(
+        blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
+        motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
+        lattice.swept, lattice.swept_start, lattice.pose_cells, lattice.pose_start, lattice.ds, hfield, penalties,
+        analytic_max, int(max_expansions), bool(analytic_expansion))
+    stats["expansions"], stats["nodes"] = int(expansions), int(len(nx))
+    if not found:
+        why = "the search space is exhausted" if expansions < max_expansions else \
+            f"max_expansions ({max_expansions}) reached"
+        extra = " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')" \
+            if motion == "dubins" else ""
+        return finish(Status.FAILED, f"no collision-free path: {why}{extra}")
+    # the chain of primitives, then the analytic tail, as (kind, signed length) segments from the start
+    chain = []
+    v = last
+    while parent[v] >= 0:
+        chain.append(prim[v])
+        v = parent[v]
+    segments = [(int(lattice.prim_kind[j]), float(lattice.prim_len[j])) for j in reversed(chain)]
+    segments += [(int(k), float(s)) for k, s in zip(akinds, alens) if k != NOP and abs(s) > 1e-12 * r]
+    g_cost = float(sum(abs(s) for _, s in segments))
+    if smooth:
+        segments = _shortcut(segments, (lsx, lsy, lst), r, motion, blocked, lattice, common)
+    segments = _merged(segments)
+    kinds = np.array([k for k, _ in segments], dtype=np.int64)
+    lengths = np.array([s for _, s in segments])
+    traced, _ = trace_word(lsx, lsy, lst, kinds, lengths, r, lattice.ds)
+    hit = first_overlap(blocked, res, vertices, disc, traced, 0.5 * lattice.delta)
+    if hit is not None:
+        return finish(Status.FAILED, f"internal check: the path found overlaps cell {hit}; please report it")
+    poses, direction = trace_word(lsx, lsy, lst, kinds, lengths, r, spacing)
+    world = np.column_stack([ox + c * poses[:, 0] - s * poses[:, 1], oy + s * poses[:, 0] + c * poses[:, 1],
+                             poses[:, 2] + yaw])
+    length = float(np.abs(lengths).sum())
+    stats["g"] = g_cost
+    stats["word"] = "".join({1: "L", 2: "S", 3: "R"}[int(k)] for k in kinds)
+    stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
+    stats["cusps"] = int(np.count_nonzero(np.diff(np.sign(lengths[lengths != 0])) != 0)) if len(lengths) else 0
+    return finish(Status.EXACT, "", world, direction, length)
+
+
+def first_overlap(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: float, poses: np.ndarray,
+                  grow: float) -> Optional[Tuple[int, int]]:
+    """The first cell (x, y) a footprint at any of ``poses`` (grid frame) overlaps,
+    grown by ``grow`` metres; None when it overlaps none. Outside the map counts,
+    as the cell just beyond the edge.
+
+    Shapely decides (touching counts), on the blocked cells as squares grown by
+    ``grow`` on every side: a superset of the footprint's own growth by ``grow``,
+    so with poses spaced so no footprint point moves more than 2·grow between
+    two, the motion between them is covered too.
+    """
+    import shapely
+
+    h, w = blocked.shape
+    if len(vertices):
+        c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+        xs = poses[:, :1] + c * vertices[:, 0] - s * vertices[:, 1]
+        ys = poses[:, 1:2] + s * vertices[:, 0] + c * vertices[:, 1]
+        shapes = shapely.polygons(np.stack([xs, ys], axis=-1))
+    else:
+        shapes = shapely.buffer(shapely.points(poses[:, :2]), disc, quad_segs=16) if disc > 0 \
+            else shapely.points(poses[:, :2])
+    # the map's edge as a ring of blocked cells around it
+    padded = np.ones((h + 2, w + 2), dtype=bool)
+    padded[1:-1, 1:-1] = blocked
+    x0, y0, x1, y1 = shapely.total_bounds(shapes)
+    lo_x, lo_y = max(0, int((x0 - grow) // res) + 1 - 1), max(0, int((y0 - grow) // res) + 1 - 1)
+    hi_x, hi_y = min(w + 1, int((x1 + grow) // res) + 2), min(h + 1, int((y1 + grow) // res) + 2)
+    ys_, xs_ = np.nonzero(padded[lo_y:hi_y + 1, lo_x:hi_x + 1])
+    if len(xs_) == 0:
+        return None
+    cx, cy = xs_ + lo_x - 1, ys_ + lo_y - 1  # cells in the grid's numbering
+    boxes = shapely.box(cx * res - grow, cy * res - grow, (cx + 1) * res + grow, (cy + 1) * res + grow)
+    tree = shapely.STRtree(boxes)
+    pairs = tree.query(shapes, predicate="intersects")
+    if pairs.shape[1] == 0:
+        return None
+    first = pairs[:, np.argmin(pairs[0])]
+    return int(cx[first[1]]), int(cy[first[1]])
+
+
+def _merged(segments):
+    """Consecutive segments of the same kind and direction as one (LLL → L)."""
+    out = []
+    for kind, length in segments:
+        if out and out[-1][0] == kind and (out[-1][1] < 0) == (length < 0):
+            out[-1] = (kind, out[-1][1] + length)
+        else:
+            out.append((kind, length))
+    return out
+
+
+def _cell_mask(shape, x, y) -> np.ndarray:
+    mask = np.zeros(shape, dtype=bool)
+    if 0 <= y < shape[0] and 0 <= x < shape[1]:
+        mask[y, x] = True
+    return mask
+
+
+def _shortcut(segments, start, r, motion, blocked, lattice, common):
+    """Greedy smoothing: from each waypoint, jump to the farthest later waypoint
+    whose exact Dubins/Reeds–Shepp path is shorter and collision-free."""
+    solver = reeds_shepp if motion == "reeds_shepp" else dubins
+    # waypoints: the pose after each segment
+    poses = [start]
+    for kind, s in segments:
+        poses.append(CurvePath(poses[-1], {1: "L", 2: "S", 3: "R"}[kind], (s,), r).end)
+    # cumulative length along the original path
+    acc = np.concatenate([[0.0], np.cumsum([abs(s) for _, s in segments])])
+    out = []
+    i, n = 0, len(poses) - 1
+    while i < n:
+        jumped = False
+        for j in range(n, i + 1, -1):
+            path = solver.shortest(poses[i], poses[j], r)
+            if path.length >= acc[j] - acc[i] - 1e-9:
+                continue
+            kinds, lengths = path._codes()
+            if _curve_free(blocked, common[0], *poses[i], kinds, lengths, r, lattice.ds, *common[1:]):
+                out.extend(zip(kinds.tolist(), lengths.tolist()))
+                i, jumped = j, True
+                break
+        if not jumped:
+            out.append(segments[i])
+            i += 1
+    return out

@@ -1,0 +1,133 @@
+"""Hybrid A* against independent geometry: shapely at 1 mm, the curvature bound,
+the Reeds–Shepp lower bound, and the scenes that need heading."""
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from navlab.grid.hybrid_astar import plan_hybrid
+from navlab.grid.occupancy import OccupancyGrid
+from navlab.result import Status
+from navlab.sampling import reeds_shepp
+from navlab.sampling.curves import CurvePath
+
+RES = 0.05
+ROBOT = [[-0.45, -0.31], [-0.45, 0.31], [0.45, 0.31], [0.45, -0.31]]  # 0.9 x 0.62 m (navigation2 #5884)
+
+
+def carve(width_m, height_m, *rooms):
+    """A grid blocked everywhere but the given (x0, x1, y0, y1) rectangles [m]."""
+    blocked = np.ones((round(height_m / RES), round(width_m / RES)), bool)
+    for x0, x1, y0, y1 in rooms:
+        blocked[round(y0 / RES):round(y1 / RES), round(x0 / RES):round(x1 / RES)] = False
+    return OccupancyGrid(blocked, resolution=RES)
+
+
+def aisle():
+    """An L-shaped aisle 1.1 m wide with a 90° turn."""
+    return carve(6, 6, (0.5, 4.6, 1.0, 2.1), (3.5, 4.6, 1.0, 5.5))
+
+
+def retrace(result, start):
+    """The exact path from the segments the planner reports, traced at 1 mm."""
+    word, segments = result.stats["word"], result.stats["segments"]
+    path = CurvePath(tuple(start), word, tuple(segments), result.params["turning_radius"])
+    return path, path.sample(0.001)[0]
+
+
+def assert_clear(grid, poses, outline):
+    """No footprint along ``poses`` overlaps a blocked cell or leaves the map (shapely, touching counts)."""
+    c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+    v = np.asarray(outline, float)
+    xs = poses[:, :1] + c * v[:, 0] - s * v[:, 1]
+    ys = poses[:, 1:2] + s * v[:, 0] + c * v[:, 1]
+    shapes = shapely.polygons(np.stack([xs, ys], axis=-1))
+    ys_, xs_ = np.nonzero(grid.blocked)
+    walls = shapely.union_all(shapely.box(xs_ * RES, ys_ * RES, (xs_ + 1) * RES, (ys_ + 1) * RES))
+    inside = shapely.box(0, 0, grid.width * RES, grid.height * RES)
+    assert not shapely.intersects(shapes, walls).any()
+    assert shapely.within(shapes, inside).all()
+
+
+def assert_curvature(poses, radius):
+    steps = np.hypot(*np.diff(poses[:, :2], axis=0).T)
+    turn = np.abs(np.diff(poses[:, 2]))
+    arcs = (turn > 1e-12) & (steps > 0)
+    assert (steps[arcs] / (2 * np.sin(turn[arcs] / 2)) >= radius * (1 - 1e-6)).all()
+
+
+@pytest.mark.parametrize("motion", ["reeds_shepp", "dubins"])
+@pytest.mark.parametrize("radius", [0.5, 1.0])
+def test_the_narrow_aisle_of_navigation2_5884(motion, radius):
+    grid, start, goal = aisle(), (1.2, 1.55, 0.0), (4.05, 4.6, math.pi / 2)
+    result = plan_hybrid(grid, start, goal, radius, motion=motion, footprint=ROBOT)
+    assert result.status is Status.EXACT, result.reason
+    path, poses = retrace(result, start)
+    assert np.allclose(path.end[:2], goal[:2], atol=1e-9)
+    assert abs((path.end[2] - goal[2] + math.pi) % (2 * math.pi) - math.pi) < 1e-9
+    assert_clear(grid, poses, ROBOT)
+    assert_curvature(poses, radius)
+    assert result.cost == pytest.approx(path.length) and result.cost >= reeds_shepp.distance(start, goal, radius)
+    assert result.path.shape[1] == 3 and len(result.direction) == len(result.path)
+
+
+def test_parking_in_reverse_needs_reeds_shepp():
+    """A bay open only to the south, whose goal faces north: driving in forward
+    would leave the car facing south, so it must back in."""
+    grid = carve(8, 8, (0.5, 7.5, 0.5, 3.5), (3.5, 4.7, 3.5, 6.0))
+    start, goal = (1.5, 2.0, 0.0), (4.1, 5.0, -math.pi / 2)
+    result = plan_hybrid(grid, start, goal, 1.0, motion="reeds_shepp", footprint=ROBOT)
+    assert result.status is Status.EXACT, result.reason
+    path, poses = retrace(result, start)
+    assert path.cusps >= 1 and (result.direction == -1).any()
+    assert_clear(grid, poses, ROBOT)
+    assert_curvature(poses, 1.0)
+
+
+def test_dubins_cannot_reach_a_goal_only_reachable_in_reverse():
+    """The car faces the end of a dead-end corridor; the goal is behind it, facing the same way."""
+    grid = carve(6, 2, (0.5, 5.5, 0.4, 1.6))
+    start, goal = (4.0, 1.0, 0.0), (2.0, 1.0, 0.0)
+    failed = plan_hybrid(grid, start, goal, 1.0, motion="dubins", footprint=ROBOT, max_expansions=20_000)
+    assert failed.status is Status.FAILED and "reverse" in failed.reason
+    backed = plan_hybrid(grid, start, goal, 1.0, motion="reeds_shepp", footprint=ROBOT)
+    assert backed.status is Status.EXACT and backed.cost == pytest.approx(2.0, abs=1e-6)
+    assert (backed.direction[1:] == -1).all()
+
+
+def test_an_obstacle_free_query_costs_the_exact_reeds_shepp_distance():
+    grid = OccupancyGrid(np.zeros((200, 200), bool), resolution=RES)
+    for start, goal in [((2, 5, 0), (6, 5.5, 1.0)), ((3, 3, 1.5), (7, 7, -2.0)), ((5, 5, 0), (4, 5, 0))]:
+        result = plan_hybrid(grid, start, goal, 1.0, robot_radius=0.2)
+        assert result.status is Status.EXACT
+        assert result.cost >= reeds_shepp.distance(start, goal, 1.0) - 1e-9
+        if math.dist(start[:2], goal[:2]) < 3.0:  # in analytic reach from the start: exactly the optimum
+            assert result.cost == pytest.approx(reeds_shepp.distance(start, goal, 1.0), rel=1e-9)
+
+
+def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
+    grid = aisle()
+    result = plan_hybrid(grid, (1.2, 1.2, 0.0), (4.05, 4.6, math.pi / 2), 0.5, footprint=ROBOT)
+    assert result.status is Status.INVALID_START and "cell (" in result.reason
+    # a footprint larger than the map leaves it
+    tiny = OccupancyGrid(np.zeros((10, 10), bool), resolution=RES)
+    result = plan_hybrid(tiny, (0.25, 0.25, 0), (0.3, 0.3, 0), 0.5, footprint=ROBOT)
+    assert result.status is Status.INVALID_START and "leaves the map" in result.reason
+
+
+@pytest.mark.parametrize("kwargs,field", [
+    ({"turning_radius": 0}, "turning_radius"), ({"turning_radius": -1}, "turning_radius"),
+    ({"turning_radius": float("nan")}, "turning_radius"), ({"goal": (4, 4, float("inf"))}, "goal theta"),
+    ({"start": (1, 1)}, "start"), ({"motion": "car"}, "motion"),
+    ({"footprint": [[1, 1], [2, 1], [2, 2]]}, "origin"),
+    ({"footprint": [[-1, -1], [1, 1], [1, -1], [-1, 1]]}, "cross"),
+    ({"footprint": [[0, 0], [1, float("nan")], [1, 1]]}, "finite"), ({"heading_bins": 3}, "heading_bins"),
+    ({"reverse_penalty": 0.5}, "reverse_penalty")])
+def test_bad_input_is_named(kwargs, field):
+    args = {"grid": aisle(), "start": (1.2, 1.55, 0.0), "goal": (4.05, 4.6, 1.5), "turning_radius": 0.5,
+            "footprint": ROBOT}
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=field):
+        plan_hybrid(**args)

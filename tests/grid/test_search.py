@@ -9,6 +9,7 @@ from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
 
 from navlab import Status
 from navlab.grid import OccupancyGrid, line_of_sight, plan, plan_world
+from navlab.grid.planner import pool_for
 
 
 def explicit_graph(blocked, connectivity):
@@ -199,25 +200,24 @@ def test_every_status_carries_the_same_stats_keys():
 def test_large_grid_reuses_search_state():
     grid = OccupancyGrid(np.zeros((5000, 5000), dtype=bool))
     r1 = plan(grid, (10, 10), (60, 40))
-    arrays = [id(a) for a in (grid._cache[("searcher", False)].g, grid._cache[("searcher", False)].mark)]
+    (searcher,) = pool_for(grid, False)._idle
+    arrays = [id(a) for a in (searcher.g, searcher.mark)]
     r2 = plan(grid, (4000, 4000), (4010, 4990), algorithm="jps")
     assert r1.success and r2.success and r2.stats["expanded"] < 100
-    assert arrays == [id(a) for a in (grid._cache[("searcher", False)].g, grid._cache[("searcher", False)].mark)]
+    assert pool_for(grid, False)._idle == [searcher] and arrays == [id(a) for a in (searcher.g, searcher.mark)]
 
 
 def test_open_lists_grow_when_full_and_the_query_is_rerun():
     """An open list or stack that fills up mid-query is grown and the query
     rerun: the answer is the same optimum as with room to spare."""
-    from navlab.grid.planner import searcher_for
-
     blocked = np.random.default_rng(3).random((60, 60)) < 0.3
     blocked[30, :] = blocked[:, 2] = blocked[:, 57] = False
     for algo in ("astar", "dijkstra", "jps", "theta_star"):
         roomy = plan(OccupancyGrid(blocked), (2, 5), (57, 55), algorithm=algo)
         cramped = OccupancyGrid(blocked)
-        s = searcher_for(cramped, False)
-        s.heap, s.stack = s.heap[:2], s.stack[:2]
-        s._pool(3)
+        with pool_for(cramped, False).lease() as s:
+            s.heap, s.stack = s.heap[:2], s.stack[:2]
+            s._pool(3)
         r = plan(cramped, (2, 5), (57, 55), algorithm=algo)
         assert roomy.status == r.status == Status.EXACT and np.array_equal(r.cells, roomy.cells)
         assert s.key.size > 3 and s.stack.size > 2  # it did run out of room

@@ -24,10 +24,12 @@ optimality for fewer expansions), as does weighted A* (cost ≤ weight × optimu
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
+import threading
 import time
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, Iterator, Tuple
 
 import numpy as np
 
@@ -50,8 +52,8 @@ for _name, _doc in (("dijkstra", "uniform-cost search (no heuristic)"),
     GRID_ALGORITHMS.register(_name)(_doc)
 
 
-class GridSearcher:
-    """Search state for one grid, allocated once and reused by every query."""
+class PaddedGrid:
+    """A grid's passable cells with a blocked border, flattened: read-only, shared by every query."""
 
     def __init__(self, passable: np.ndarray) -> None:
         h, w = passable.shape
@@ -59,6 +61,23 @@ class GridSearcher:
         padded = np.zeros((h + 2, w + 2), dtype=np.uint8)
         padded[1:-1, 1:-1] = passable
         self.free = padded.ravel()
+        self.free.flags.writeable = False
+
+    def index(self, x: int, y: int) -> int:
+        return (y + 1) * self.stride + (x + 1)
+
+
+class GridSearcher:
+    """Scratch state for one query at a time on one grid (g, parents, marks, open lists).
+
+    Queries lease one from the grid's :class:`SearcherPool`, so threads planning
+    on the same grid never share it; a searcher is reused by later queries,
+    so only the first query on a grid (per concurrent thread) pays for its arrays.
+    """
+
+    def __init__(self, grid: PaddedGrid) -> None:
+        self.stride = grid.stride
+        self.free = grid.free
         n = self.free.size
         self.g = np.empty(n)
         self.parent = np.empty(n, dtype=np.int32)
@@ -119,11 +138,37 @@ def astar_kernel(connectivity: int, hcode: int, any_angle: bool):
     return K.make_astar(connectivity, hcode, any_angle)
 
 
-def searcher_for(grid: OccupancyGrid, allow_unknown: bool) -> GridSearcher:
-    key = ("searcher", allow_unknown)
-    if key not in grid._cache:
-        grid._cache[key] = GridSearcher(grid.passable(allow_unknown))
-    return grid._cache[key]
+class SearcherPool:
+    """The searchers of one grid: a query leases one for its whole length
+    (search, path tracing, smoothing) and gives it back. Thread-safe: two
+    threads planning on the same grid at once each get their own."""
+
+    def __init__(self, passable: np.ndarray) -> None:
+        self.grid = PaddedGrid(passable)
+        self._idle: list = []
+        self._lock = threading.Lock()
+
+    @contextlib.contextmanager
+    def lease(self) -> Iterator[GridSearcher]:
+        with self._lock:
+            searcher = self._idle.pop() if self._idle else None
+        if searcher is None:
+            searcher = GridSearcher(self.grid)
+        try:
+            yield searcher
+        finally:
+            with self._lock:
+                self._idle.append(searcher)
+
+
+def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
+    """The grid's searcher pool (kept in the immutable grid's cache)."""
+    key = ("searchers", allow_unknown)
+    pool = grid._cache.get(key)
+    if pool is None:
+        # setdefault is atomic: two threads' first queries end up sharing one pool
+        pool = grid._cache.setdefault(key, SearcherPool(grid.passable(allow_unknown)))
+    return pool
 
 
 def _cell(value, what: str) -> Tuple[int, int]:
@@ -164,7 +209,7 @@ def line_of_sight(grid: OccupancyGrid, a, b, method: str = "supercover", allow_u
     (ax, ay), (bx, by) = _cell(a, "a"), _cell(b, "b")
     if not (grid.contains([[ax, ay]])[0] and grid.contains([[bx, by]])[0]):
         return False
-    s = searcher_for(grid, allow_unknown)
+    s = pool_for(grid, allow_unknown).grid
     if s.free[s.index(ax, ay)] == 0:
         return False
     fn = K.los_bresenham if method == "bresenham" else K.los_supercover
@@ -235,29 +280,31 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     params: Dict[str, Any] = {"algorithm": algorithm, "heuristic": heuristic, "connectivity": connectivity,
                               "smooth": smooth, "weight": weight, "allow_unknown": allow_unknown}
     s_cell, g_cell = _cell(start, "start"), _cell(goal, "goal")
-    s = searcher_for(grid, allow_unknown)
+    pool = pool_for(grid, allow_unknown)
     for label, cell, status in (("start", s_cell, Status.INVALID_START), ("goal", g_cell, Status.INVALID_GOAL)):
         if not (0 <= cell[0] < grid.width and 0 <= cell[1] < grid.height):
             return Result(status=status, params=params, stats=_stats(t0), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
-        if s.free[s.index(*cell)] == 0:
+        if pool.grid.free[pool.grid.index(*cell)] == 0:
             kind = "unknown" if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
     code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
-    b = s.index(*g_cell)
-    status, expanded = s.search(algorithm, s.index(*s_cell), b, connectivity, code,
-                                float(weight) if algorithm == "astar" else 1.0)
-    if status != 1:
-        return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded),
-                      cells=np.empty((0, 2), dtype=np.int64),
-                      reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
-    cells = K.trace_path(s.parent, b, s.stride, algorithm == "jps")
+    b = pool.grid.index(*g_cell)
+    with pool.lease() as s:  # the search state belongs to this call until the path is read out
+        status, expanded = s.search(algorithm, pool.grid.index(*s_cell), b, connectivity, code,
+                                    float(weight) if algorithm == "astar" else 1.0)
+        if status != 1:
+            return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded),
+                          cells=np.empty((0, 2), dtype=np.int64),
+                          reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
+        cells = K.trace_path(s.parent, b, s.stride, algorithm == "jps")
     raw = None
     raw_cost = path_cost(cells)
     if smooth and len(cells) > 2:
         raw = cells
-        cells = K.smooth_path(s.free, s.stride, np.ascontiguousarray(cells), smooth_method == "bresenham")
+        cells = K.smooth_path(pool.grid.free, pool.grid.stride, np.ascontiguousarray(cells),
+                              smooth_method == "bresenham")
     cost = path_cost(cells) if raw is not None else raw_cost
     stats = _stats(t0, expanded, cost, raw_cost, grid.resolution)
     return Result(status=Status.EXACT, path=grid.cell_to_world(cells), cost=stats["length_m"], stats=stats,

@@ -19,7 +19,18 @@ work); times are not. A time verdict is therefore held to two tests:
    from the machine, which every cell of the run shares).
 
 Only then is a time claim *confirmed* or *contradicted*; otherwise it is *not
-shown* and the report says whether the difference was within the noise. The
+shown* and the report says whether the difference was within the noise.
+
+Verdicts only on solved trials
+------------------------------
+A planner that did not reach the goal has no path cost, and its time is the
+time it took to give up: comparing it with a planner that succeeded says
+nothing about either. Every cost and time comparison (claims and pairwise
+tables) therefore uses only the trials that reached the goal, and on map
+experiments with several queries per world only the queries both sides solved.
+A verdict needs at least :data:`MIN_SOLVED` such trials on each side;
+otherwise it is *not shown* with the counts ("not shown: boundary solved 0/20,
+integration 20/20"). Every verdict carries both sides' success rates. The
 floor keeps verdicts off the knife edge: the three runs in docs/bench.md are
 the acceptance test. Trials are run interleaved across cells (trial 0 of every
 cell, then trial 1, ...), so a load that changes during a run slows every cell
@@ -31,11 +42,11 @@ from __future__ import annotations
 
 import math
 from collections import Counter, defaultdict
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values, pairwise
+from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
 
 #: a time ratio within a third of 1 is never a verdict: below what a shared machine keeps stable
 MIN_TIME_EFFECT = math.log(4 / 3)
@@ -48,6 +59,8 @@ TIME_LABELS = {"cpu": "thread CPU time", "wall": "wall-clock time"}
 TIME_METRICS = ("time", "time_s")
 #: reasons listed per cell in the report
 TOP_REASONS = 3
+#: a cost or time verdict needs at least this many solved trials on each side
+MIN_SOLVED = 5
 
 
 def group_of(row: Dict[str, Any]) -> str:
@@ -155,6 +168,32 @@ def _too_few(test: Dict[str, Any]) -> str:
     return f"too few trials to compare ({test.get('n_a', 0)} and {test.get('n_b', 0)} with a value)"
 
 
+def solved_text(rows: List[Dict[str, Any]]) -> str:
+    """``solved/ran`` of a group's trials (errors do not count as run)."""
+    ran = sum(r.get("status") != "ERROR" for r in rows)
+    return f"{sum(bool(r.get('success')) for r in rows)}/{ran}"
+
+
+def judged_values(rows_a: List[Dict[str, Any]], rows_b: List[Dict[str, Any]],
+                  metric: str) -> Tuple[List[float], List[float], str]:
+    """The values a verdict on ``metric`` compares: solved trials only, and on
+    map experiments only the queries both groups solved; with a reason when a
+    side has fewer than :data:`MIN_SOLVED` (then no verdict may be drawn)."""
+    solved_a = [r for r in rows_a if r.get("success")]
+    solved_b = [r for r in rows_b if r.get("success")]
+    if any(r.get("query") is not None for r in solved_a + solved_b):
+        common = {r.get("query") for r in solved_a} & {r.get("query") for r in solved_b}
+        solved_a = [r for r in solved_a if r.get("query") in common]
+        solved_b = [r for r in solved_b if r.get("query") in common]
+    va = [r[metric] for r in solved_a if r.get(metric) is not None]
+    vb = [r[metric] for r in solved_b if r.get(metric) is not None]
+    short = ""
+    if min(len(va), len(vb)) < MIN_SOLVED:
+        short = (f"a cost or time verdict needs {MIN_SOLVED} solved trials on each side; "
+                 f"solved: {solved_text(rows_a)} and {solved_text(rows_b)}")
+    return va, vb, short
+
+
 def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
     """Everything a report needs, as JSON-ready data. Cells are keyed by
     world, planner, sampler and swept values; ``time`` picks CPU or wall time."""
@@ -187,10 +226,21 @@ def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
                     noise: Dict[str, List[float]]) -> List[Dict[str, Any]]:
     """Every pair of groups compared on ``metric``, Holm over the pairs, with
     the noise rule for times."""
-    out = pairwise(groups, metric)
-    for row in out:
-        p = row["p_holm"]
-        if metric in TIME_METRICS:
+    names = list(groups)
+    out = []
+    for i, a in enumerate(names):
+        for b in names[i + 1:]:
+            va, vb, short = judged_values(groups[a], groups[b], metric)
+            test = compare(va, vb) if not short else {"n_a": len(va), "n_b": len(vb), "p": None, "delta": None,
+                                                      "median_a": _median(va), "median_b": _median(vb)}
+            out.append({"a": a, "b": b, "metric": metric, "short": short,
+                        "solved": [solved_text(groups[a]), solved_text(groups[b])], **test})
+    for row, p in zip(out, holm([r["p"] for r in out])):
+        row["p_holm"] = p
+        row["magnitude"] = magnitude(row["delta"])
+        if row["short"]:
+            decision = {"direction": 0, "why": row["short"]}
+        elif metric in TIME_METRICS:
             limit = noise_threshold(noise, _world_cells(groups, row["a"], row["b"]))
             decision = time_decision(row, p, limit)
             row.update(noise=limit["noise"], threshold_ratio=math.exp(limit["threshold"]))
@@ -200,6 +250,10 @@ def pairwise_judged(groups: Dict[str, List[Dict[str, Any]]], metric: str,
         row["direction"] = decision["direction"]
         row["why"] = decision["why"]
     return out
+
+
+def _median(values: List[float]) -> Optional[float]:
+    return float(np.median(values)) if values else None
 
 
 def _world_cells(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> List[str]:
@@ -232,10 +286,16 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
                         gb = _partner(ga, low, high, groups)
                         if gb is None:
                             continue
-                        tests.append((claim, metric, low, high, ga, gb,
-                                      compare(metric_values(groups[ga], metric), metric_values(groups[gb], metric))))
+                        va, vb, short = judged_values(groups[ga], groups[gb], metric)
+                        test = compare(va, vb) if not short else {
+                            "n_a": len(va), "n_b": len(vb), "p": None, "delta": None,
+                            "median_a": _median(va), "median_b": _median(vb)}
+                        tests.append((claim, metric, low, high, ga, gb, {**test, "short": short}))
         for (claim, metric, low, high, ga, gb, test), p in zip(tests, holm([t[-1]["p"] for t in tests])):
-            if metric == "time":
+            if test["short"]:
+                limit = {"noise": None, "threshold": None}
+                decision = {"direction": 0, "ratio": None, "why": test["short"]}
+            elif metric == "time":
                 limit = noise_threshold(noise, _world_cells(groups, ga, gb))
                 decision = time_decision(test, p, limit)
             else:
@@ -249,7 +309,8 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
                              "noise": limit["noise"],
                              "threshold_ratio": math.exp(limit["threshold"]) if limit["threshold"] else None,
                              "median_lower": test["median_a"], "median_higher": test["median_b"],
-                             "n": [test["n_a"], test["n_b"]]})
+                             "n": [test["n_a"], test["n_b"]],
+                             "solved": [solved_text(groups[ga]), solved_text(groups[gb])]})
     return verdicts
 
 
@@ -273,24 +334,45 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         out[v["claim"]].append(v)
     lines = {}
     for claim, vs in out.items():
-        confirmed = sorted({v["world"] for v in vs if v["verdict"] == "confirmed"})
-        contradicted = sorted({v["world"] for v in vs if v["verdict"] == "contradicted"})
+        confirmed = _where(vs, "confirmed")
+        contradicted = _where(vs, "contradicted")
+        unsolved = [f"{v['world']} ({v['lower']} solved {v['solved'][0]}, {v['higher']} {v['solved'][1]})"
+                    for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)]
         worlds = sorted({v["world"] for v in vs})
-        if len(confirmed) == len(worlds) and all(v["verdict"] == "confirmed" for v in vs):
-            lines[claim] = "confirmed in every world"
+        if all(v["verdict"] == "confirmed" for v in vs):
+            line = f"confirmed in every world: {confirmed}"
         elif contradicted:
-            lines[claim] = (f"contradicted in {', '.join(contradicted)}"
-                            + (f"; confirmed in {', '.join(confirmed)}" if confirmed else ""))
+            line = f"contradicted in {contradicted}" + (f"; confirmed in {confirmed}" if confirmed else "")
         elif confirmed:
-            lines[claim] = f"confirmed in {', '.join(confirmed)} only; not shown elsewhere"
+            line = f"confirmed in {confirmed} only; not shown elsewhere"
         else:
-            lines[claim] = "not shown in any world"
+            line = f"not shown in any of {', '.join(worlds)}"
+        if unsolved:
+            line += f"; too few solved trials to judge in {'; '.join(unsolved)}"
+        lines[claim] = line
     return lines
+
+
+def _where(verdicts: List[Dict[str, Any]], verdict: str) -> str:
+    """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``."""
+    return ", ".join(f"{v['world']} ({v['solved'][0]} vs {v['solved'][1]} solved)" if v.get("solved") else v["world"]
+                     for v in verdicts if v["verdict"] == verdict)
+
+
+def _too_few_solved(verdict: Dict[str, Any]) -> bool:
+    return "solved trials on each side" in (verdict.get("why") or "")
 
 
 def reference_table(study: Dict[str, Any], summary: Dict[str, Any]) -> Optional[List[List[Any]]]:
     """The document's numbers beside ours: per reference entry and metric,
-    [world, group, metric, document value, our mean, our median]."""
+    [world, group, reading, metric, document value, our mean, our median, agrees].
+
+    An entry may name its ``reading`` of the document (where the document says
+    two things, e.g. a table and a conclusion that disagree). ``solved`` is the
+    share of trials that found a path (a table of means over every trial
+    implies 1.0); for it, ``agrees`` says whether our success rate is the
+    document's (within 0.1).
+    """
     refs = study.get("reference") or []
     if not refs:
         return None
@@ -298,12 +380,18 @@ def reference_table(study: Dict[str, Any], summary: Dict[str, Any]) -> Optional[
     for ref in refs:
         cells = [c for c in summary["cells"] if c["world"] == ref["world"] and _matches(c["group"], ref["group"])]
         for metric, value in ref.items():
-            if metric in ("world", "group"):
+            if metric in ("world", "group", "reading"):
+                continue
+            if metric == "solved":
+                ours = cells[0].get("success_rate") if cells else None
+                agrees = None if ours is None else ("yes" if abs(ours - value) <= 0.1 else "no")
+                table.append([ref["world"], cells[0]["group"] if cells else ref["group"], ref.get("reading", ""),
+                              metric, value, ours, ours, agrees])
                 continue
             key = "time" if metric in TIME_METRICS else metric
             ours = cells[0].get(key, {}) if cells else {}
-            table.append([ref["world"], cells[0]["group"] if cells else ref["group"], metric, value,
-                          ours.get("mean"), ours.get("median")])
+            table.append([ref["world"], cells[0]["group"] if cells else ref["group"], ref.get("reading", ""),
+                          metric, value, ours.get("mean"), ours.get("median"), None])
     return table
 
 

@@ -13,7 +13,7 @@ import math
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
-from .analysis import by_world, overall_verdicts, reference_table, side_by_side
+from .analysis import MIN_SOLVED, by_world, overall_verdicts, reference_table, side_by_side
 
 Block = Tuple[str, Any]
 
@@ -59,8 +59,9 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
 
     swept = summary.get("swept") or []
     blocks.append(("h2", "Summary per cell"))
-    blocks.append(("p", "Cost over successful trials; time over every trial that ran. CI: 95% t-interval "
-                        "of the mean."))
+    blocks.append(("p", "Cost and time over the trials that reached the goal (a failed trial has no path, "
+                        "and its time is the time it took to give up); iterations over every trial that ran. "
+                        "CI: 95% t-interval of the mean."))
     header = (["world", "planner", "sampler"] + swept
               + ["success", "cost mean", "cost 95% CI", "cost median", "cost min", "cost max", "cost std",
                  "time mean [s]", "time median [s]", "first solution it. (median)"])
@@ -100,22 +101,30 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
     if ref:
         blocks.append(("h2", "The document's numbers beside ours"))
         blocks.append(("p", "The document's value (its mean unless stated) beside our mean and median over "
-                            "the cell's trials. Times are not comparable in size (different software and "
-                            "machines), only in order."))
-        blocks.append(("table", (["world", "cell", "metric", "document", "ours (mean)", "ours (median)"],
-                                 [[r[0], r[1], r[2], fmt(r[3]), fmt(r[4], 4), fmt(r[5], 4)] for r in ref])))
+                            "the cell's solved trials. The worlds are navlab's reconstructions (the document "
+                            "gives their names and pictures, not their geometry), so costs are comparable in "
+                            "order of magnitude only; times are not comparable in size (different software "
+                            "and machines), only in order. Where the document says two things (a reading), "
+                            "the 'solved' rows say which one our run agrees with."))
+        blocks.append(("table", (["world", "cell", "reading", "metric", "document", "ours (mean)", "ours (median)",
+                                  "agrees"],
+                                 [[r[0], r[1], r[2] or "-", r[3], fmt(r[4]), fmt(r[5], 4), fmt(r[6], 4),
+                                   r[7] or "-"] for r in ref])))
 
     verdicts = summary.get("claims") or []
     if verdicts:
         blocks.append(("h2", "The claims, tested"))
-        blocks.append(("p", "Each claim per world: Mann–Whitney U (two-sided), Holm-corrected over the claims "
-                            "tested in that world, α = 0.05; δ is Cliff's delta of the first group against the "
-                            "second (negative: the first is lower). For times, " + summary.get("rule", "") + "; "
-                            "the ratio is median (lower) / median (higher)."))
+        blocks.append(("p", "Each claim per world, over the trials that reached the goal (on maps, the queries "
+                            "both sides solved); a verdict needs at least " + str(MIN_SOLVED) + " solved trials on "
+                            "each side, else it is 'not shown' with the counts. Mann–Whitney U (two-sided), "
+                            "Holm-corrected over the claims tested in that world, α = 0.05; δ is Cliff's delta of "
+                            "the first group against the second (negative: the first is lower). For times, "
+                            + summary.get("rule", "") + "; the ratio is median (lower) / median (higher)."))
         blocks.append(("table", (["claim", "overall"], [[k, v] for k, v in overall_verdicts(verdicts).items()])))
-        blocks.append(("table", (["world", "claim", "verdict", "median (lower)", "median (higher)", "ratio",
-                                  "needed (noise ε)", "δ", "p (Holm)"],
+        blocks.append(("table", (["world", "claim", "solved (lower, higher)", "verdict", "median (lower)",
+                                  "median (higher)", "ratio", "needed (noise ε)", "δ", "p (Holm)"],
                                  [[v["world"], f"{v['claim']} ({v['lower']} < {v['higher']})",
+                                   ", ".join(v.get("solved") or []),
                                    v["verdict"] + (f" ({v['why']})" if v.get("why") and v["verdict"] == "not shown"
                                                    else ""),
                                    fmt(v["median_lower"], 4), fmt(v["median_higher"], 4), fmt(v.get("ratio"), 3),
@@ -134,8 +143,10 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
             if not comps:
                 continue
             blocks.append(("h3", f"Pairwise comparisons of {'path cost' if metric == 'cost' else 'time'}"))
-            blocks.append(("table", (["A", "B", "median A", "median B", "δ (A vs B)", "p", "p (Holm)", "verdict"],
-                                     [[c["a"], c["b"], fmt(c["median_a"], 4), fmt(c["median_b"], 4),
+            blocks.append(("table", (["A", "B", "solved A, B", "median A", "median B", "δ (A vs B)", "p",
+                                      "p (Holm)", "verdict"],
+                                     [[c["a"], c["b"], ", ".join(c.get("solved") or []),
+                                       fmt(c["median_a"], 4), fmt(c["median_b"], 4),
                                        f"{fmt(c['delta'], 2)} ({c['magnitude']})", fmt(c["p"], 3),
                                        fmt(c["p_holm"], 3), _verdict(c)] for c in comps])))
         names = list(groups)

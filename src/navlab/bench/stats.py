@@ -1,7 +1,7 @@
 """Summaries and comparisons of trial rows.
 
-Costs are summarised over successful trials only (a failed trial has no
-path length); times over every trial that ran. Comparisons use the
+Costs and times are summarised over successful trials only (a failed trial
+has no path length, and its time is the time it took to give up). Comparisons use the
 two-sided Mann–Whitney U test (no normality assumed: planner costs are
 skewed) with Cliff's delta as effect size, and Holm's correction across the
 comparisons made within one environment.
@@ -45,8 +45,9 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
             "max": float(np.max(x)), "std": std, "ci95": ci}
 
 
-#: metrics that exist only for trials that found a path
-SUCCESS_ONLY = ("cost", "first_solution_iteration", "vs_optimum", "vs_theta")
+#: metrics described over the trials that found a path only: a path metric has no
+#: value otherwise, and a failed trial's time is the time it took to give up
+SUCCESS_ONLY = ("cost", "first_solution_iteration", "vs_optimum", "vs_theta", "time", "cpu_s", "wall_s", "time_s")
 
 
 def metric_values(rows: List[Dict[str, Any]], metric: str) -> List[float]:

@@ -1,0 +1,86 @@
+"""Verdicts only on solved trials: a side that solved nothing gets no verdict,
+and costs are compared on the queries both sides solved."""
+
+import numpy as np
+import pytest
+
+from navlab.bench.analysis import MIN_SOLVED, judge_claims, overall_verdicts, reference_table, summarize
+
+TIME = {"text": "boundary is faster than integration", "metric": "time_s", "lower": "boundary",
+        "higher": "integration"}
+COST = {"text": "integration gives shorter paths", "metric": "cost", "lower": "integration", "higher": "boundary"}
+
+
+def rows_of(sampler, solved, n=20, time=1.0, cost=10.0, query=None, world="trap"):
+    out = []
+    rng = np.random.default_rng(hash(sampler) % 2**32)
+    for i in range(n):
+        ok = i < solved
+        out.append({"trial_id": f"{sampler}-{i}", "cell_id": sampler, "trial": i, "world": world,
+                    "planner": "rrt_star", "sampler": sampler, "status": "EXACT" if ok else "APPROXIMATE",
+                    "success": ok, "cost": cost * (1 + 0.01 * rng.random()) if ok else None,
+                    "cpu_s": time * (1 + 0.01 * rng.random()), "query": None if query is None else query(i)})
+    return out
+
+
+def test_a_side_that_solved_nothing_gets_no_time_verdict_and_the_counts_say_why():
+    # boundary gives up fast without a path; integration solves every trial, slowly
+    rows = rows_of("boundary", 0, time=0.1) + rows_of("integration", 20, time=1.0)
+    v, = judge_claims(rows, [TIME])
+    assert v["verdict"] == "not shown" and v["solved"] == ["0/20", "20/20"]
+    assert "0/20" in v["why"] and str(MIN_SOLVED) in v["why"]
+    line = overall_verdicts([v])[TIME["text"]]
+    assert "not shown" in line and "boundary solved 0/20" in line
+
+
+def test_too_few_solved_trials_on_one_side_is_not_a_verdict():
+    rows = rows_of("boundary", MIN_SOLVED - 1, time=0.1) + rows_of("integration", 20, time=1.0)
+    assert judge_claims(rows, [TIME])[0]["verdict"] == "not shown"
+    rows = rows_of("boundary", MIN_SOLVED, time=0.1) + rows_of("integration", 20, time=1.0)
+    v, = judge_claims(rows, [TIME])
+    assert v["verdict"] == "confirmed" and v["n"] == [MIN_SOLVED, 20]
+
+
+def test_time_verdicts_ignore_the_failed_trials_time():
+    # integration's failed trials ran to the iteration cap (slow); its solved ones are as fast as boundary's
+    rows = rows_of("boundary", 20, time=1.0)
+    integ = rows_of("integration", 20, time=1.0)
+    for r in integ[10:]:
+        r.update(success=False, status="APPROXIMATE", cost=None, cpu_s=9.0)
+    v, = judge_claims(rows + integ, [TIME])
+    assert v["verdict"] == "not shown" and v["n"] == [20, 10]
+
+
+def test_costs_on_maps_are_compared_on_the_queries_both_solved():
+    # six queries; astar solves all, rrt solves only the three short ones. On those three they are equal,
+    # so no cost difference may be shown even though astar's mean over all six is far larger.
+    def q(i):
+        return i % 6
+
+    astar = rows_of("astar", 18, n=18, cost=5.0, query=q)
+    for r in astar:
+        if r["query"] >= 3:
+            r["cost"] = 50.0
+    rrt = rows_of("rrt", 18, n=18, cost=5.0, query=q)
+    for r in rrt:
+        if r["query"] >= 3:
+            r.update(success=False, status="APPROXIMATE", cost=None)
+    claim = {"text": "rrt is shorter", "metric": "cost", "lower": "rrt", "higher": "astar"}
+    v, = judge_claims(astar + rrt, [claim])
+    assert v["n"] == [9, 9] and v["verdict"] != "confirmed"
+    summary = summarize(astar + rrt)
+    (pair,) = summary["comparisons"]["trap"]["cost"]
+    assert pair["n_a"] == pair["n_b"] == 9 and not pair["significant"]
+
+
+def test_the_report_shows_both_readings_of_the_seed_and_which_agrees():
+    rows = rows_of("boundary", 0) + rows_of("integration", 20)
+    summary = summarize(rows)
+    study = {"reference": [{"world": "trap", "group": "boundary", "reading": "Tables I-VI", "cost": 20.76,
+                            "solved": 1.0},
+                           {"world": "trap", "group": "boundary", "reading": "conclusion", "solved": 0.0}]}
+    table = reference_table(study, summary)
+    solved = {r[2]: r[7] for r in table if r[3] == "solved"}
+    assert solved == {"Tables I-VI": "no", "conclusion": "yes"}
+    cost_row = next(r for r in table if r[3] == "cost")
+    assert cost_row[5] is None  # boundary has no solved trial: no cost to put beside the document's

@@ -348,7 +348,7 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         else:
             line = f"not shown in any of {', '.join(worlds)}"
         if unsolved:
-            line += f"; too few solved trials to judge in {'; '.join(unsolved)}"
+            line += f"; too few solved trials to judge in {', '.join(unsolved)}"
         lines[claim] = line
     return lines
 

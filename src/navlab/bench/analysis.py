@@ -208,6 +208,7 @@ def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
                           "sampler": first["sampler"], "swept": dict(first.get("swept") or {}),
                           **cell_summary(members), **failures(members),
                           "warmup_s": sum(r.get("warmup_s") or 0.0 for r in members),
+                          "params_used": next((r["params_used"] for r in members if r.get("params_used")), {}),
                           "timing_noise": float(np.median(noise[first["cell_id"]])) if noise.get(first["cell_id"]) else None})
     comparisons = {world: {m: pairwise_judged(groups, m, noise) for m in ("cost", "time")}
                    for world, groups in worlds.items()}

@@ -76,6 +76,16 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
                         fmt(t["mean"], 4), fmt(t["median"], 4), fmt(c["first_solution_iteration"]["median"], 0)])
     blocks.append(("table", (header, table)))
 
+    if any(c.get("params_used") for c in cells):
+        blocks.append(("h2", "Parameters each cell used"))
+        blocks.append(("p", "What the planner ran with, derived values included (a default that depends on the "
+                            "world, such as expand_dis, is shown as computed); every row of results.jsonl holds "
+                            "them under params_used, and results.csv as columns."))
+        blocks.append(("table", (["world", "cell", "parameters"],
+                                 [[c["world"], c["group"], ", ".join(f"{k}={fmt(v, 4)}"
+                                                                     for k, v in sorted(c["params_used"].items()))]
+                                  for c in cells])))
+
     if any(c.get("vs_optimum", {}).get("n") or c.get("vs_theta", {}).get("n") for c in cells):
         blocks.append(("h2", "Path length against the optimum and against Theta*"))
         blocks.append(("p", "Per map query: the path's length over the stored Moving AI optimum (8-connected "

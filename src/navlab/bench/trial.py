@@ -189,7 +189,10 @@ def error_fields(message: str) -> Dict[str, Any]:
 def result_fields(result: Result) -> Dict[str, Any]:
     stats = result.stats
     out = {"status": result.status.name, "success": result.success, "cost": _jsonable(result.cost)
-           if result.success else None, "reason": result.reason}
+           if result.success else None, "reason": result.reason,
+           # what the planner actually ran with, derived values included (expand_dis, sigma, ...),
+           # as `navlab plan --json` shows them; ``params`` above is what the experiment asked for
+           "params_used": {k: _jsonable(v) for k, v in result.params.items() if k not in ("seed", "world")}}
     for key in ("time_s", "iterations", "nodes", "collision_checks", "first_solution_iteration",
                 "first_solution_time_s"):
         out[key] = _jsonable(stats.get(key))

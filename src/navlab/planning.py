@@ -101,7 +101,7 @@ def tree_query(world, planner: str, sampler: str, seed: Any, params: dict) -> Re
     to_planner, to_sampler = split_params(planner, sampler, params)
     samp = build_sampler(sampler, to_sampler)
     result = make_planner(planner, sampler=samp, **to_planner).plan(world, seed)
-    result.params.update({k: v for k, v in samp.get_params().items() if k != "base"})
+    result.params.update(samp.resolved_params(world))
     return result
 
 

@@ -26,6 +26,7 @@ from typing import Any, Dict, List, Optional
 from ..atomic import write_text_atomic
 from .analysis import by_world, judge_claims, summarize, timed
 from .executors import EXECUTORS, check_executor
+from .export import write_csv
 from .experiment import OMPL_PREFIX, Experiment
 from .report import build, to_html, to_markdown
 from .store import OutputError, ResultStore, read_rows, write_error
@@ -121,6 +122,10 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
                                time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
                                plot_jobs=1 if executor == "serial" else min(phases["workers"], os.cpu_count() or 1))
+        try:  # the same trials as one flat table, for pandas, R or a spreadsheet
+            write_csv(store.results_path, store.folder / "results.csv")
+        except OSError as exc:
+            raise write_error(store.folder / "results.csv", exc) from None
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 

@@ -16,7 +16,47 @@ from .common import parse_params
 EXIT_INTERRUPTED = 130
 
 
-@click.command("bench")
+class BenchCommand(click.Command):
+    """``navlab bench`` with one sub-verb: ``navlab bench export DIR`` converts
+    a results folder (an experiment file named ``export`` is ``./export``)."""
+
+    def parse_args(self, ctx, args):
+        if args[:1] == ["export"]:
+            ctx.meta["navlab.bench.export"] = args[1:]
+            return []
+        return super().parse_args(ctx, args)
+
+    def invoke(self, ctx):
+        if "navlab.bench.export" in ctx.meta:
+            return export_cmd.main(ctx.meta["navlab.bench.export"], prog_name="navlab bench export",
+                                   standalone_mode=False)
+        return super().invoke(ctx)
+
+
+@click.command("export")
+@click.argument("folder", type=click.Path(file_okay=False))
+@click.option("--format", "fmt", type=click.Choice(["csv", "parquet"]), default="csv", show_default=True,
+              help="csv, or parquet (needs the parquet extra: pip install 'navlab[parquet]').")
+@click.option("--out", type=click.Path(dir_okay=False), default=None,
+              help="Output file (default: FOLDER/results.csv or results.parquet).")
+def export_cmd(folder, fmt, out) -> None:
+    """Convert a results folder's results.jsonl into one flat table: a row per
+    trial, the parameters asked for (params.*) and used (params_used.*) as
+    columns. navlab bench writes results.csv by itself; this converts any
+    results folder, older ones included, and writes Parquet.
+
+    \b
+    Examples:
+      navlab bench export bench-results/samplers
+      navlab bench export bench-results/samplers --format parquet
+    """
+    from ..bench.export import export
+
+    target = export(folder, fmt, out)
+    click.echo(f"wrote {target}")
+
+
+@click.command("bench", cls=BenchCommand)
 @click.argument("experiment", required=False)
 @click.option("--suite", default=None, help="A built-in suite. " + suite_help() + ".")
 @click.option("--out", type=click.Path(file_okay=False), default=None,
@@ -48,7 +88,9 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
     changed by flags, or an experiment made of flags alone (--world, --planner).
 
     Rows go to OUT/results.jsonl as trials finish; OUT/report.md and
-    OUT/report.html summarise them. Exit status 1 when a trial errored,
+    OUT/report.html summarise them, and OUT/results.csv holds the same trials
+    as one flat table (navlab bench export DIR --format csv|parquet converts
+    any results folder). Exit status 1 when a trial errored,
     2 for bad input (nothing runs), 130 when stopped by Ctrl-C (the finished
     trials are kept: rerun with --resume).
 

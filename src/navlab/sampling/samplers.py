@@ -68,6 +68,11 @@ class Sampler:
     def get_params(self) -> Dict[str, Any]:
         return {k: getattr(self, k) for k in parameters_of(type(self))}
 
+    def resolved_params(self, world) -> Dict[str, Any]:
+        """The settings this sampler uses on ``world``: defaults that depend on
+        the world (a Gaussian sigma, a bisection tolerance) as computed."""
+        return self.get_params()
+
     def __repr__(self) -> str:
         args = ", ".join(f"{k}={v!r}" for k, v in self.get_params().items())
         return f"{type(self).__name__}({args})"
@@ -136,6 +141,10 @@ class GoalBiasSampler(Sampler):
             raise ValueError(f"base must be a sampler name or a Sampler, got {base!r}")
         self.base = base
 
+    def resolved_params(self, world) -> Dict[str, Any]:
+        # the base sampler's settings too (a goal-biased Gaussian's sigma), under their own names
+        return {**self._base.resolved_params(world), "goal_sample_rate": self.goal_sample_rate}
+
     def _sample(self, world, rng, n, checker, region, deadline):
         is_goal = rng.random(n) < self.goal_sample_rate
         out = np.empty((n, 2))
@@ -194,8 +203,15 @@ class GaussianSampler(Sampler):
         self.sigma = _length("sigma", sigma)
         self.max_rounds = _count("max_rounds", max_rounds, MAX_ROUNDS)
 
+    def resolved_params(self, world) -> Dict[str, Any]:
+        return {**self.get_params(), "sigma": self.sigma_on(world)}
+
+    def sigma_on(self, world) -> float:
+        """``sigma``, or its default: 2% of the world's diagonal."""
+        return self.sigma or 0.02 * world.bounds.diagonal
+
     def _sample(self, world, rng, n, checker, region, deadline):
-        sigma = self.sigma or 0.02 * world.bounds.diagonal
+        sigma = self.sigma_on(world)
         parts, found = [], 0
         for _ in range(self.max_rounds):
             m = max(4 * (n - found), 16)
@@ -249,10 +265,17 @@ class BoundarySampler(Sampler):
         self.tolerance = _length("tolerance", tolerance)
         self.max_rounds = _count("max_rounds", max_rounds, MAX_ROUNDS)
 
+    def resolved_params(self, world) -> Dict[str, Any]:
+        return {**self.get_params(), "tolerance": self.tolerance_on(world)}
+
+    def tolerance_on(self, world) -> float:
+        """``tolerance``, or its default: 0.1% of the world's diagonal."""
+        return self.tolerance or 1e-3 * world.bounds.diagonal
+
     def _sample(self, world, rng, n, checker, region, deadline):
         if not checker.has_obstacles:
             return region.draw(rng, n)
-        tol = self.tolerance or 1e-3 * world.bounds.diagonal
+        tol = self.tolerance_on(world)
         parts, found = [], 0
         for _ in range(self.max_rounds):
             seeds = -(-(n - found) // self.directions) + 1
@@ -325,6 +348,10 @@ class IntegrationSampler(Sampler):
             "gaussian": GaussianSampler(sigma=sigma),
             "boundary": BoundarySampler(directions=directions, tolerance=tolerance),
         }
+
+    def resolved_params(self, world) -> Dict[str, Any]:
+        return {**self.get_params(), "sigma": self._parts["gaussian"].sigma_on(world),
+                "tolerance": self._parts["boundary"].tolerance_on(world)}
 
     def _sample(self, world, rng, n, checker, region, deadline):
         names = [k for k in self.COMPONENTS if self.weights.get(k, 0.0) > 0]

@@ -11,7 +11,10 @@ from navlab.control import GotoWaypoint, PotentialField
 from navlab.robots import DiffDrive, Omni3
 from navlab.sensors import Lidar
 from navlab.sim import SimStatus, Simulation
+from navlab.control.base import make_controller
+from navlab.robots.kinematics import make_robot
 from navlab.sim.runner import simulate
+from navlab.world import load_world
 from navlab.sim.experiments import seed002, seed004, seed004_world
 from navlab.world import load_world
 
@@ -149,3 +152,35 @@ def test_an_experiment_records_a_world_without_a_path_and_goes_on(monkeypatch):
     assert "APPROXIMATE" in rows[3]["reason"]
     hybrid = next(line for line in experiments.hybrid_table(rows).splitlines() if line.split()[0] == "hybrid")
     assert int(hybrid.split()[3]) == 1  # counted under "other"
+
+
+def test_reached_is_judged_on_the_true_pose_not_the_controllers_estimate():
+    """A controller that says REACHED where the robot is not (its estimate is
+    wrong) ends OFF_GOAL with the distance; `navlab sim clutter --dt 2.0`
+    printed REACHED with the true pose 12.13 m from the goal."""
+    from navlab.control.base import REACHED, Command, Controller
+    from navlab.sim.simulation import GOAL_TOLERANCE, SimStatus
+
+    class Deluded(Controller):
+        def reset(self, goal, path=None):
+            pass
+
+        def command(self, t, pose, points=None):
+            return Command(status=REACHED)
+
+    world = load_world("squarefield")
+    far = Simulation(world, make_robot("diff"), Deluded(), (*world.start, 0.0), world.goal).run()
+    assert far.status is SimStatus.OFF_GOAL and "m from it" in far.reason
+    near_goal = (world.goal[0] - GOAL_TOLERANCE / 2, world.goal[1], 0.0)
+    near = Simulation(world, make_robot("diff"), Deluded(), near_goal, world.goal).run()
+    assert near.status is SimStatus.REACHED
+
+
+@pytest.mark.parametrize("dt", [0.2000001, 2.0, 1e308])
+def test_a_time_step_past_the_largest_is_refused(dt):
+    from navlab.sim.simulation import MAX_DT
+
+    world = load_world("squarefield")
+    with pytest.raises(ValueError, match=f"above the largest supported step, {MAX_DT:g} s"):
+        Simulation(world, make_robot("diff"), make_controller("pure_pursuit"), (*world.start, 0.0), world.goal,
+                   dt=dt)

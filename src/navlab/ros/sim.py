@@ -36,7 +36,7 @@ from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
 from ..sim.plant import Plant
 from ..sim.scene import Scene, load_scene_world
-from ..sim.simulation import MIN_DT
+from ..sim.simulation import MAX_DT, MIN_DT
 from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, STREAM_QOS, NavlabNode, Param, node_main
 from .convert import odometry_msg, scan_to_msg, tf_message_type, time_msg, transform_msg, twist_from_msg
 
@@ -79,6 +79,8 @@ class SimNode(NavlabNode):
                 raise ValueError(f"{name} must be positive, got {p[name]!r}")
         if p["dt"] < MIN_DT:
             raise ValueError(f"dt = {p['dt']:g} s is below the smallest supported step, {MIN_DT:g} s")
+        if p["dt"] > MAX_DT:
+            raise ValueError(f"dt = {p['dt']:g} s is above the largest supported step, {MAX_DT:g} s")
         world = load_scene_world(p["world"])
         self.robot = make_robot(p["robot"])
         start = (p["x"], p["y"], p["yaw"])

@@ -31,12 +31,22 @@ from .scene import Scene
 INITIAL_LOG_ROWS = 4096
 #: [s] the smallest time step (a tenth of a millisecond: far below any robot's control period)
 MIN_DT = 1e-4
+#: [s] the largest time step. The motion within a step is integrated exactly, but the controller
+#: acts once a step: at 2 s a robot at 0.5 m/s drives a metre blind, past goals and gaps, and a
+#: sensor at 10 Hz (the LiDAR's default) would be read once in twenty scans. 0.2 s (5 Hz control)
+#: is the slowest rate at which the followers and the potential field still stop inside their goal
+#: radius on the built-in scenes.
+MAX_DT = 0.2
+#: [m] the run is REACHED only when the *true* pose ends this close to the goal (the controller
+#: judges its own, odometry, estimate): beyond it the status is OFF_GOAL
+GOAL_TOLERANCE = 0.3
 #: the most steps one run may take (max_time / dt): about two hours of computing at 0.08 ms a step
 MAX_STEPS = 100_000_000
 
 
 class SimStatus(enum.Enum):
-    REACHED = "reached"
+    REACHED = "reached"  #: the controller stopped at the goal and the true pose is within the tolerance
+    OFF_GOAL = "off_goal"  #: the controller stopped at its estimate of the goal, but the robot is not there
     COLLIDED = "collided"
     TIMEOUT = "timeout"
     STALLED = "stalled"
@@ -152,6 +162,9 @@ class Simulation:
             raise ValueError(f"time step dt must be a positive number of seconds, got {dt!r}")
         if dt < MIN_DT:
             raise ValueError(f"time step dt = {dt:g} s is below the smallest supported step, {MIN_DT:g} s")
+        if dt > MAX_DT:
+            raise ValueError(f"time step dt = {dt:g} s is above the largest supported step, {MAX_DT:g} s "
+                             "(the controller acts once a step: a longer step drives blind past goals and gaps)")
         if not (isinstance(max_time, (int, float)) and max_time > 0 and math.isfinite(max_time)):
             raise ValueError(f"max_time must be a positive, finite number of seconds, got {max_time!r}")
         if max_time / dt > MAX_STEPS:
@@ -232,7 +245,14 @@ class Simulation:
                 points = lidar_line.read(t)
             command = self.controller.command(t, odom_line.read(t), points)
             if command.status == REACHED:
-                status, reason = SimStatus.REACHED, ""
+                # the controller judged its estimate; the run is judged on where the robot really is
+                off = float(np.hypot(*(plant.pose[:2] - self.goal[:2])))
+                if off <= GOAL_TOLERANCE:
+                    status, reason = SimStatus.REACHED, ""
+                else:
+                    status, reason = SimStatus.OFF_GOAL, (
+                        f"the controller stopped at its estimate of the goal, but the robot is {off:.3g} m from it "
+                        f"(more than {GOAL_TOLERANCE:g} m: odometry drift, or a time step too long to stop in)")
                 break
             if command.status == STALLED:
                 status, reason = SimStatus.STALLED, "no progress towards the goal (a local minimum?)"

@@ -46,14 +46,26 @@ def test_two_runs_on_one_folder_leave_no_duplicate_trials(tmp_path):
     assert len(ids) == 12 + 4 and not [t for t, n in Counter(ids).items() if n > 1]
 
 
+def hold_lock(folder):
+    """Another process holding the folder's lock (a record lock is per process)."""
+    import subprocess
+    import sys
+
+    holder = subprocess.Popen([sys.executable, "-c", "import sys, time; from navlab.bench.store import FolderLock; "
+                               f"FolderLock(__import__('pathlib').Path({str(folder)!r})); print('held', flush=True); "
+                               "sys.stdin.read()"], stdin=subprocess.PIPE, stdout=subprocess.PIPE, text=True)
+    assert holder.stdout.readline().strip() == "held"
+    return holder
+
+
 def test_a_held_folder_is_refused_naming_the_holder(tmp_path):
-    lock = FolderLock(tmp_path)
+    holder = hold_lock(tmp_path)
     try:
         for flags in ({}, {"resume": True}, {"overwrite": True}):
-            with pytest.raises(ExperimentError, match=f"in use by another navlab bench run \\(pid {os.getpid()}\\)"):
+            with pytest.raises(ExperimentError, match=f"in use by another navlab bench run \\(pid {holder.pid}\\)"):
                 run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False, **flags)
     finally:
-        lock.release()
+        holder.communicate("")
     assert run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False, plots=False).ran == 4
 
 

@@ -5,8 +5,13 @@ do not depend on which executor computed them (seeds travel with the trials).
 
 from __future__ import annotations
 
+import glob
 import os
+import shutil
+import signal
 import tempfile
+import threading
+import time
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from typing import Any, Callable, Dict, Iterator, List, Optional
@@ -46,14 +51,81 @@ def process(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[s
     jobs = jobs or os.cpu_count() or 1
     queue = list(reversed(specs))
     in_doubt: List[Spec] = []
-    with tempfile.TemporaryDirectory(prefix="navlab-pool-") as folder:
+    remove_abandoned_pool_folders()
+    with tempfile.TemporaryDirectory(prefix=POOL_PREFIX) as folder:
+        with open(os.path.join(folder, OWNER_FILE), "w") as f:
+            f.write(str(os.getpid()))
         yield from _pool_rounds(queue, in_doubt, jobs, trial, os.path.join(folder, "warm-up.lock"))
+
+
+#: the process pool's scratch folders in the temporary directory, and the file naming their owner
+POOL_PREFIX, OWNER_FILE = "navlab-pool-", "owner.pid"
+#: [s] how often a worker looks whether its parent is still there
+PARENT_POLL_S = 1.0
+
+
+def remove_abandoned_pool_folders() -> int:
+    """Delete pool folders left by runs that were killed (their owner pid is gone); returns how many."""
+    removed = 0
+    for folder in glob.glob(os.path.join(tempfile.gettempdir(), POOL_PREFIX + "*")):
+        try:
+            with open(os.path.join(folder, OWNER_FILE)) as f:
+                owner = int(f.read().strip())
+        except (OSError, ValueError):
+            continue  # not ours to judge (no owner recorded yet, or unreadable)
+        if not _alive(owner):
+            shutil.rmtree(folder, ignore_errors=True)
+            removed += 1
+    return removed
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True  # someone else's process
+    return True
+
+
+def _worker_start(lock_path: str, parent: int) -> None:
+    """Pool worker set-up: die with the parent, then the warm-up role.
+
+    A killed ``navlab bench`` left its workers running with PPID 1 (and, with
+    the old flock, holding the folder's lock). Linux's PR_SET_PDEATHSIG sends
+    the worker SIGKILL when its parent dies; a watchdog thread that polls the
+    parent's pid covers other systems and a parent that died before the
+    signal was armed.
+    """
+    _die_with_parent()
+    if os.getppid() != parent:
+        os._exit(1)
+    threading.Thread(target=_watch_parent, args=(parent,), daemon=True, name="navlab-parent-watch").start()
+    claim_warm_up_role(lock_path)
+
+
+def _die_with_parent() -> None:
+    try:
+        import ctypes
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        libc.prctl(1, signal.SIGKILL, 0, 0, 0)  # PR_SET_PDEATHSIG = 1
+    except (OSError, AttributeError):
+        pass  # not Linux: the watchdog alone
+
+
+def _watch_parent(parent: int) -> None:
+    while True:
+        time.sleep(PARENT_POLL_S)
+        if os.getppid() != parent:
+            os._exit(1)
 
 
 def _pool_rounds(queue: List[Spec], in_doubt: List[Spec], jobs: int, trial: Callable[[Spec], Dict[str, Any]],
                  lock_path: str) -> Iterator[Dict[str, Any]]:
     while queue:
-        with ProcessPoolExecutor(jobs, initializer=claim_warm_up_role, initargs=(lock_path,)) as pool:
+        with ProcessPoolExecutor(jobs, initializer=_worker_start, initargs=(lock_path, os.getpid())) as pool:
             running: Dict[Any, Spec] = {}
             try:
                 while queue or running:

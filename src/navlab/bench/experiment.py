@@ -29,15 +29,17 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
-import yaml
 
 from ..registry import suggest
+from ..yamlio import read_yaml
 
 OMPL_PREFIX = "ompl:"
 #: the most cells (combinations) and trials one run may have: each trial is a
 #: row kept in memory and in results.jsonl
 MAX_CELLS = 10_000
 MAX_TRIALS = 1_000_000
+#: [bytes] largest experiment file read
+MAX_FILE_BYTES = 2 * 2**20
 FIELDS = ("name", "description", "worlds", "planners", "samplers", "params", "grid", "budget", "trials", "seed",
           "claims", "study")
 #: fields that describe an experiment without changing its results
@@ -202,12 +204,9 @@ def experiment_data(source: Union[str, Path]) -> Tuple[Dict[str, Any], str]:
     world paths in a file are made relative to the file's folder)."""
     from .suites import find_suite, suite_names
 
-    if Path(source).is_file():
+    if Path(source).exists():
         where = str(source)
-        try:
-            data = yaml.safe_load(Path(source).read_text())
-        except (yaml.YAMLError, UnicodeDecodeError) as exc:
-            raise ExperimentError(f"{where}: not valid YAML: {exc}") from None
+        data = read_yaml(source, ExperimentError, MAX_FILE_BYTES, what="experiment file")
         if isinstance(data, dict):
             data.setdefault("name", Path(source).stem)
             if isinstance(data.get("worlds"), (list, str, dict)):
@@ -407,4 +406,45 @@ def validate(exp: Experiment) -> None:
         params = {**routed_params(cell.planner.name, cell.params, cell.planner.params), **cell.sampler.params,
                   **exp.budget}
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
-        make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
+        planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
+        try:
+            planner.check_fits()  # a budget no trial could run: refused now, not as a run of ERROR rows
+        except ValueError as exc:
+            raise ExperimentError(f"budget: {exc}") from None
+    _check_unique_cells(exp)
+    _check_claim_groups(exp)
+
+
+def _check_unique_cells(exp: Experiment) -> None:
+    """Refuse an experiment naming the same cell twice (``worlds: [trap, trap]``,
+    ``grid: {expand_dis: [1, 1]}``): its trials would share trial ids and count twice."""
+    for what, values in (("worlds", exp.worlds), ("planners", [p.title for p in exp.planners]),
+                         ("samplers", [s.title for s in exp.samplers])):
+        twice = sorted({v for v in values if values.count(v) > 1})
+        if twice:
+            raise ExperimentError(f"'{what}' names {', '.join(map(repr, twice))} twice: each cell runs once "
+                                  f"(use 'trials' for more runs)")
+    for key, values in exp.grid.items():
+        hashes = [stable_hash(v) for v in values]
+        for v, h in zip(values, hashes):
+            if hashes.count(h) > 1:
+                raise ExperimentError(f"grid '{key}' lists {v!r} twice: each cell runs once (use 'trials' for "
+                                      f"more runs)")
+    ids = [c.cell_id for c in exp.cells()]
+    if len(set(ids)) != len(ids):
+        twice = next(c.label for c in exp.cells() if ids.count(c.cell_id) > 1)
+        raise ExperimentError(f"the cell {twice} is named twice: each cell runs once")
+
+
+def _check_claim_groups(exp: Experiment) -> None:
+    """Every name a claim compares must name a group of the experiment: a
+    planner, a sampler, a swept ``key=value``, or a whole group label."""
+    names = {p.title for p in exp.planners} | {s.title for s in exp.samplers} | {"-"}
+    names |= {f"{k}={v}" for k, values in exp.grid.items() for v in values}
+    for claim in exp.claims:
+        for side in ("lower", "higher"):
+            for name in claim[side] if isinstance(claim[side], list) else [claim[side]]:
+                if str(name) not in names and " / " not in str(name):
+                    raise ExperimentError(f"claim '{claim['text']}': '{side}' names {name!r}, which is no planner, "
+                                          f"sampler or swept value of this experiment; valid: "
+                                          f"{', '.join(sorted(names - {'-'}))}." + suggest(str(name), sorted(names)))

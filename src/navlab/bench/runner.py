@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -87,6 +88,13 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
     run_trials = EXECUTORS.get(executor)
     phases: Dict[str, Any] = {}
     with ResultStore(out, experiment, resume=resume, overwrite=overwrite) as store:
+        if store.taken_over_from:
+            print(f"{store.folder}: took over the lock of run pid {store.taken_over_from}, which is gone "
+                  "(killed before it could release it)", file=sys.stderr)
+        if store.rejected:
+            print(f"{store.results_path}: {store.rejected} line(s) that are not trial rows were set aside in "
+                  f"{store.folder / 'results.rejected.jsonl'} (with the reason); their trials run again",
+                  file=sys.stderr)
         specs = experiment.trial_specs()
         done = store.finished()
         todo = interleave([s for s in specs if s["trial_id"] not in done])

@@ -2,10 +2,14 @@
 ``results.jsonl`` (one row per finished trial, appended and flushed as each
 trial ends, so a killed run loses only the trials in flight).
 
-One run at a time: the folder is locked (an OS file lock on ``.lock``, held
-until the run ends; the kernel drops it when the process dies, so a killed
-run never leaves a stale lock) and a second run is refused with the holder's
-pid. ``experiment.json`` is replaced atomically. A last line cut short (a
+One run at a time: the folder is locked (a POSIX record lock on ``.lock``,
+held by the run's main process until it ends; the kernel drops it when that
+process dies, pool workers never hold it, so a killed run never leaves a stale
+lock) and a second run is refused with the holder's pid. A run whose ``.lock``
+is deleted under it stops before its next row, so two runs never write the
+same trials. Lines of ``results.jsonl`` that are not trial rows (not UTF-8, not
+an object, no ``trial_id``, text where a number belongs) are moved to
+``results.rejected.jsonl`` with the reason, and counted. ``experiment.json`` is replaced atomically. A last line cut short (a
 kill, a full disk) is moved to ``results.torn.jsonl`` before anything is
 appended, so the next row starts on a line of its own.
 """
@@ -17,7 +21,7 @@ import fcntl
 import json
 import os
 from pathlib import Path
-from typing import Any, Dict, Iterator, List, Optional
+from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
 from .experiment import DESCRIPTIVE, Experiment, ExperimentError
@@ -25,6 +29,7 @@ from .experiment import DESCRIPTIVE, Experiment, ExperimentError
 EXPERIMENT_FILE = "experiment.json"
 RESULTS_FILE = "results.jsonl"
 TORN_FILE = "results.torn.jsonl"
+REJECTED_FILE = "results.rejected.jsonl"
 LOCK_FILE = ".lock"
 
 
@@ -38,30 +43,57 @@ def write_error(path, exc: OSError) -> OutputError:
 
 
 class FolderLock:
-    """An exclusive, non-blocking ``flock`` on ``folder/.lock`` that records
-    the holder's pid; :meth:`release` (or the process's end) frees it."""
+    """An exclusive, non-blocking POSIX record lock (``lockf``) on ``folder/.lock``
+    that records the holder's pid.
+
+    A record lock belongs to the process that took it: pool workers forked
+    from it do not hold it (with ``flock`` they inherited it, so a killed run's
+    orphaned workers kept the folder locked), and the kernel drops it when the
+    holder dies. A lock file naming a pid that is gone is taken over with a
+    line saying so (:attr:`taken_over_from`). :meth:`release` empties the file.
+    """
 
     def __init__(self, folder: Path) -> None:
         self.path = folder / LOCK_FILE
+        self.taken_over_from: Optional[str] = None
         try:
             self._fd: Optional[int] = os.open(self.path, os.O_RDWR | os.O_CREAT, 0o644)
         except OSError as exc:
             raise write_error(self.path, exc) from None
+        holder = os.pread(self._fd, 32, 0).decode(errors="replace").strip()
         try:
-            fcntl.flock(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+            fcntl.lockf(self._fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except OSError as exc:
-            holder = os.pread(self._fd, 32, 0).decode(errors="replace").strip() or "unknown"
             os.close(self._fd)
             self._fd = None
             if exc.errno in (errno.EAGAIN, errno.EACCES, errno.EWOULDBLOCK):
-                raise ExperimentError(f"'{folder}' is in use by another navlab bench run (pid {holder}); "
+                raise ExperimentError(f"'{folder}' is in use by another navlab bench run (pid {holder or 'unknown'}); "
                                       "wait for it to end or use another --out") from None
             raise
+        if holder and holder != str(os.getpid()):
+            self.taken_over_from = holder  # its run was killed: the kernel dropped the lock with it
         os.ftruncate(self._fd, 0)
         os.pwrite(self._fd, f"{os.getpid()}\n".encode(), 0)
+        self._inode = os.fstat(self._fd).st_ino
+
+    def check(self) -> None:
+        """Raise OutputError if the lock file was removed or replaced during the run:
+        another run may then hold a new lock on the folder, and both would write rows."""
+        try:
+            same = os.stat(self.path).st_ino == self._inode
+        except OSError:
+            same = False
+        if not same:
+            raise OutputError(f"'{self.path}' was removed during the run, so another run could start in the same "
+                              "folder: stopping here (the finished trials are kept; --resume continues)")
 
     def release(self) -> None:
         if self._fd is not None:
+            try:
+                if os.fstat(self._fd).st_ino == self._inode:
+                    os.ftruncate(self._fd, 0)  # a clean end leaves no holder behind
+            except OSError:
+                pass
             os.close(self._fd)  # closing the descriptor drops the lock
             self._fd = None
 
@@ -98,7 +130,11 @@ class ResultStore:
         except OSError as exc:
             raise write_error(self.folder, exc) from None
         self._lock: Optional[FolderLock] = FolderLock(self.folder)
+        #: pid of a killed run whose lock this run took over (None when the folder was free)
+        self.taken_over_from = self._lock.taken_over_from
         self._file = None
+        #: lines of results.jsonl set aside (into results.rejected.jsonl) as not being trial rows
+        self.rejected = 0
         try:
             _cut_torn_tail(self.results_path)
             if overwrite:
@@ -106,7 +142,8 @@ class ResultStore:
                 (self.folder / TORN_FILE).unlink(missing_ok=True)
                 old_rows = []
             else:
-                old_rows = list(read_rows(self.results_path)) if self.results_path.exists() else []
+                old_rows, self.rejected = _set_aside_bad_rows(self.results_path) if self.results_path.exists() \
+                    else ([], 0)
                 _check_reuse(self.folder, experiment, old_rows, resume)
             #: torn last lines cut from results.jsonl over the folder's life (kept in results.torn.jsonl)
             self.torn = _count_lines(self.folder / TORN_FILE)
@@ -129,6 +166,8 @@ class ResultStore:
         """Write one row and flush it to disk (one line, whole or torn: never
         two rows on one line)."""
         line = json.dumps(row, separators=(",", ":")) + "\n"
+        if self._lock is not None:
+            self._lock.check()
         try:
             if self._file is None:
                 self._file = open(self.results_path, "a", encoding="utf-8")
@@ -181,7 +220,14 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
     without ``resume``."""
     meta_path = folder / EXPERIMENT_FILE
     if meta_path.exists():
-        old = json.loads(meta_path.read_text())
+        try:
+            old = json.loads(meta_path.read_text(encoding="utf-8"))
+            if not isinstance(old, dict) or not isinstance(old.get("experiment", {}), dict):
+                raise ValueError("not an object with 'fingerprint' and 'experiment'")
+        except (ValueError, UnicodeDecodeError, OSError) as exc:
+            raise ExperimentError(f"'{meta_path}' is damaged ({str(exc).splitlines()[0][:120]}), so the results "
+                                  "beside it cannot be matched to this experiment: restore it, use another --out, "
+                                  "or --overwrite to start again") from None
         if old.get("fingerprint") != experiment.fingerprint():
             raise ExperimentError(
                 f"'{folder}' holds results of a different experiment ('{old.get('experiment', {}).get('name')}'; "
@@ -233,17 +279,64 @@ def _count_lines(path: Path) -> int:
         return 0
 
 
-def read_rows(path) -> Iterator[Dict[str, Any]]:
-    """Rows of a results file; a line that is not JSON (cut short by a kill) is skipped."""
-    with open(path, encoding="utf-8") as f:
-        for line in f:
-            line = line.strip()
+#: row fields that hold a number (or null) in every trial row
+NUMERIC_FIELDS = ("cost", "time_s", "cpu_s", "wall_s", "warmup_s", "iterations", "nodes", "collision_checks",
+                  "trial", "seed")
+
+
+def row_problem(row: Any) -> Optional[str]:
+    """Why a parsed line is not a trial row (None when it is one)."""
+    if not isinstance(row, dict):
+        return f"not a JSON object but {type(row).__name__}"
+    if not isinstance(row.get("trial_id"), str) or not row["trial_id"]:
+        return "no trial_id"
+    if not isinstance(row.get("status", ""), str):
+        return "status is not text"
+    for key in NUMERIC_FIELDS:
+        value = row.get(key)
+        if value is not None and (isinstance(value, bool) or not isinstance(value, (int, float))):
+            return f"{key} is {type(value).__name__}, not a number"
+    return None
+
+
+def read_rows(path, rejected: Optional[List[Tuple[bytes, str]]] = None) -> Iterator[Dict[str, Any]]:
+    """Trial rows of a results file. A line that is not one (cut short by a
+    kill, not UTF-8, not a JSON object, no trial_id, text where a number
+    belongs) is skipped, and appended to ``rejected`` with why when given."""
+    with open(path, "rb") as f:
+        for raw in f:
+            line = raw.strip()
             if not line:
                 continue
             try:
-                yield json.loads(line)
+                row = json.loads(line.decode("utf-8"))
+                problem = row_problem(row)
+            except UnicodeDecodeError:
+                problem = "not UTF-8 text"
             except json.JSONDecodeError:
-                continue
+                problem = "not JSON"
+            if problem is None:
+                yield row
+            elif rejected is not None:
+                rejected.append((line, problem))
+
+
+def _set_aside_bad_rows(path: Path) -> Tuple[List[Dict[str, Any]], int]:
+    """The trial rows of ``path``; lines that are not trial rows are moved to
+    results.rejected.jsonl (each with why) and ``path`` rewritten without them."""
+    rejected: List[Tuple[bytes, str]] = []
+    rows = list(read_rows(path, rejected))
+    if rejected:
+        side = path.parent / REJECTED_FILE
+        try:
+            with open(side, "ab") as f:
+                for line, why in rejected:
+                    f.write(json.dumps({"why": why, "line": line.decode("utf-8", errors="replace")}).encode()
+                            + b"\n")
+            write_text_atomic(path, "".join(json.dumps(r, separators=(",", ":")) + "\n" for r in rows))
+        except OSError as exc:
+            raise write_error(side, exc) from None
+    return rows, len(rejected)
 
 
 def _differences(a: Dict[str, Any], b: Dict[str, Any]) -> List[str]:

@@ -25,6 +25,7 @@ import yaml
 
 from ..atomic import atomic_path
 from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number
+from ..yamlio import read_yaml, regular_file
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 PathLike = Union[str, os.PathLike]
@@ -40,6 +41,9 @@ MAP_RULES = ("nav2", "ros1")
 MAP_MODES = ("trinary", "scale", "raw")
 UNKNOWN, FREE, OCCUPIED = -1, 0, 100  #: nav_msgs/OccupancyGrid cell values
 
+
+#: [bytes] largest map_server YAML read (a dozen fields; a 200 MB one took 105 s to refuse)
+MAX_MAP_YAML_BYTES = 2**20
 
 #: Bytes a map pixel costs at the peak of loading (decoded image, cell values,
 #: the grid's arrays; measured 17 with ``mode: scale``).
@@ -133,6 +137,7 @@ class _Image:
 
 
 def _read_image(path: Path) -> _Image:
+    regular_file(path, str(path), MapFormatError, "map image")  # a FIFO would block the read for ever
     if path.suffix.lower() == ".pgm":
         gray = read_pgm(path)
         return _Image(gray, gray, 1, None)
@@ -332,12 +337,8 @@ def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
     if rule not in MAP_RULES:
         raise ValueError(f"rule must be one of {', '.join(MAP_RULES)}, got {rule!r}")
     src = Path(yaml_path)
-    try:
-        meta = yaml.safe_load(src.read_text(encoding="utf-8"))
-    except OSError as exc:
-        raise MapFormatError(f"{src}: cannot read: {exc.strerror or exc}") from None
-    except (yaml.YAMLError, UnicodeDecodeError) as exc:
-        raise MapFormatError(f"{src}: not valid YAML: {exc}") from None
+    # a map YAML is a dozen fields: a megabyte is generous (a 200 MB one took 105 s to refuse)
+    meta = read_yaml(src, MapFormatError, MAX_MAP_YAML_BYTES, what="map YAML file")
     if not isinstance(meta, dict):
         raise MapFormatError(f"{src}: expected a mapping of map fields")
     image = _image_path(meta, src)
@@ -373,6 +374,7 @@ def load_movingai_map(path: PathLike) -> OccupancyGrid:
     are read.
     """
     p = Path(path)
+    regular_file(p, str(p), MapFormatError, "Moving AI map")
     try:
         with open(p, "r", encoding="latin-1", newline=None) as f:
             header: Dict[str, str] = {}

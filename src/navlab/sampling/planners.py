@@ -122,6 +122,15 @@ class TreePlanner:
         if self.index not in INDEXES:
             raise ValueError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
 
+    def check_fits(self, max_iter: Optional[int] = None) -> None:
+        """Refuse (ValueError naming max_iter) a budget whose tree could not fit in
+        this machine's memory. Only max_iter bounds the tree without max_time;
+        with a time budget the tree only grows as far as the time allows."""
+        if self.max_time is None:
+            max_iter = max_iter or self.max_iter or self.default_max_iter
+            check_memory((max_iter + 1) * K.Tree.bytes_per_node(),
+                         f"max_iter={max_iter} with no max_time could grow a tree that")
+
     def resolved_params(self, world) -> Dict[str, Any]:
         """Settings with the world-derived defaults filled in."""
         params = self.get_params()
@@ -169,11 +178,7 @@ class TreePlanner:
             return invalid
 
         max_iter = params["max_iter"]
-        if self.max_time is None:
-            # Only max_iter bounds the tree: refuse one that cannot fit (with a
-            # time budget, the tree only grows as far as the time allows).
-            check_memory((max_iter + 1) * K.Tree.bytes_per_node(),
-                         f"max_iter={max_iter} with no max_time could grow a tree that")
+        self.check_fits(max_iter)
         tree = K.Tree(world.start, world.bounds, max_nodes=max_iter + 1, use_grid=self.index == "grid",
                       reserve_all=self.max_time is None)
         fparams = self._fparams(world, params)

@@ -267,19 +267,16 @@ def load_scene_world(source: Any) -> Union[World, OccupancyGrid]:
         return source
     from pathlib import Path
 
-    import yaml
-
     from ..grid.mapio import load_map
     from ..world import load_world
+    from ..world.io import read_yaml_document
 
     path = Path(str(source))
     if path.suffix == ".map":
         return load_map(path)
-    if path.is_file() and path.suffix in (".yaml", ".yml"):
-        try:
-            data = yaml.safe_load(path.read_text())
-        except yaml.YAMLError:
-            data = None
+    if path.suffix in (".yaml", ".yml") and path.exists():
+        # read once, bounded (a FIFO, an alias bomb): the world reader's errors name the file
+        data = read_yaml_document(path)
         if isinstance(data, dict) and "image" in data:
             return load_map(path)
     return load_world(source)

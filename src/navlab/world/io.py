@@ -28,12 +28,12 @@ import re
 from pathlib import Path
 from typing import Any, Callable, Dict, Tuple, Union
 
-import numpy as np
 import yaml
 
 from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
+from ..yamlio import read_yaml
 from .motion import MotionFormatError, with_motion
 from .shapes import Circle, Obstacle, Point, Polygon, Rectangle
 from .world import Bounds, World
@@ -41,9 +41,6 @@ from .world import Bounds, World
 #: [bytes] largest world file read: about 40 000 obstacles, parsed in seconds and well under 256 MiB of
 #: memory (PyYAML needs ~80 bytes per byte of text); larger environments belong in an occupancy map
 MAX_FILE_BYTES = 2 * 2**20
-#: nesting beyond this is parsed by PyYAML's own parser: libyaml's recursion has no limit and crashes the
-#: process (a segmentation fault) on ~100 000 nested "[" or "- ", where Python raises RecursionError
-_C_PARSER_MAX_NESTING = 64
 
 
 class WorldFormatError(ValueError):
@@ -234,46 +231,20 @@ def world_from_dict(data: Any, source: str = "<dict>") -> World:
         raise WorldFormatError(f"{source}: nested too deeply to be a world file") from None
 
 
-def _loader_for(raw: bytes, text: str):
-    """libyaml's safe loader (four times faster) unless the text may nest deeper than it can take."""
-    c_loader = getattr(yaml, "CSafeLoader", None)
-    if c_loader is None:
-        return yaml.SafeLoader
-    b = np.frombuffer(raw, dtype=np.uint8)
-    step = (b == ord("[")).astype(np.int64) + (b == ord("{")) - (b == ord("]")) - (b == ord("}"))
-    flow = int(np.cumsum(step).max(initial=0))
-    block = max((line.count("- ") + line.count("? ") for line in text.splitlines()), default=0)
-    return c_loader if max(flow, block) <= _C_PARSER_MAX_NESTING else yaml.SafeLoader
-
-
 def read_yaml_document(path: Union[str, os.PathLike]) -> Any:
     """The YAML document in ``path`` (UTF-8, at most :data:`MAX_FILE_BYTES` = 2 MiB), or None when empty.
+
+    Read through :func:`navlab.yamlio.read_yaml`: a regular file only, aliases
+    counted at every use, no key given twice.
 
     Raises
     ------
     WorldFormatError
-        The file cannot be read (missing, a directory, no permission), is too
-        large, is not UTF-8 or is not YAML; the message names the file.
+        The file cannot be read (missing, a directory, a FIFO, no permission),
+        is too large (in bytes or once its aliases are expanded), is not UTF-8,
+        is not YAML or repeats a key; the message names the file.
     """
-    p = Path(path)
-    try:
-        with open(p, "rb") as f:
-            raw = f.read(MAX_FILE_BYTES + 1)
-    except OSError as exc:
-        raise WorldFormatError(f"{p}: cannot read: {exc.strerror or exc}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise WorldFormatError(f"{p}: larger than {MAX_FILE_BYTES // 2**20} MiB, the limit for a world file "
-                               "(use an occupancy map for larger environments)")
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise WorldFormatError(f"{p}: not a UTF-8 text file (byte {exc.start}); a world file is YAML text") from None
-    try:
-        return yaml.load(text, Loader=_loader_for(raw, text))  # noqa: S506 -- both loaders are safe ones
-    except yaml.YAMLError as exc:
-        raise WorldFormatError(f"{p}: not valid YAML: {_short(exc)}") from None
-    except RecursionError:
-        raise WorldFormatError(f"{p}: nested too deeply to be a world file") from None
+    return read_yaml(path, WorldFormatError, MAX_FILE_BYTES, what="world file")
 
 
 def read_world_file(path: Union[str, os.PathLike]) -> World:

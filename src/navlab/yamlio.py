@@ -1,0 +1,182 @@
+"""Reading YAML that navlab did not write: bounded in bytes, nodes and depth.
+
+World files, map_server YAML and experiment files are read by one function,
+:func:`read_yaml`, so every one of them gets the same limits:
+
+- only a regular file is opened (a FIFO would block for ever, a device
+  would never end), and at most ``max_bytes`` are read;
+- aliases cannot multiply a small file: the document's size *as expanded*
+  (each alias counted at every use) is computed on the composed node graph
+  before anything is built, and refused past :data:`MAX_NODES` (a 918 KB file
+  of aliased polygons expanded to 10.8 GB);
+- a key given twice in one mapping is an error naming it and its line
+  (``trials: 2`` then ``trials: 1000000`` silently kept the second);
+- nesting too deep for the parser is an error, not a ``RecursionError``.
+
+It imports nothing from navlab: callers pass the error type to raise.
+"""
+
+from __future__ import annotations
+
+import os
+import stat
+from pathlib import Path
+from typing import Any, Dict, Optional, Type, Union
+
+import numpy as np
+import yaml
+
+#: most nodes a document may expand to (scalars, sequences and mappings, aliases counted at each use);
+#: a 2 MiB file without aliases has fewer than this
+MAX_NODES = 1_000_000
+#: nesting beyond this is parsed by PyYAML's own parser: libyaml's recursion has no limit and crashes the
+#: process (a segmentation fault) on ~100 000 nested "[" or "- ", where Python raises RecursionError
+_C_PARSER_MAX_NESTING = 64
+
+
+def _unique_mapping(loader, node) -> Dict[Any, Any]:
+    """A mapping, refusing a key written twice in it (a key a merge (``<<``) brings
+    in may still be overridden: that is what merging is for)."""
+    written: Dict[Any, Any] = {}
+    for key_node, _ in node.value:
+        if key_node.tag == "tag:yaml.org,2002:merge":
+            continue
+        key = loader.construct_object(key_node, deep=True)
+        try:
+            hash(key)
+        except TypeError:
+            raise yaml.constructor.ConstructorError(None, None, "a mapping key must be plain text or a number",
+                                                    key_node.start_mark) from None
+        if key in written:
+            raise yaml.constructor.ConstructorError(
+                None, None, f"key '{key}' is given twice (first on line {written[key].line + 1}); keep one",
+                key_node.start_mark)
+        written[key] = key_node.start_mark
+    loader.flatten_mapping(node)
+    return {loader.construct_object(k, deep=True): loader.construct_object(v, deep=True) for k, v in node.value}
+
+
+def _loader_class(base: type) -> type:
+    cls = type(f"Strict{base.__name__}", (base,), {})
+    cls.add_constructor("tag:yaml.org,2002:map", _unique_mapping)
+    return cls
+
+
+_LOADERS = {base: _loader_class(base) for base in
+            (yaml.SafeLoader,) + ((yaml.CSafeLoader,) if hasattr(yaml, "CSafeLoader") else ())}
+
+
+def expanded_size(node) -> int:
+    """Nodes the document has once every alias is expanded, computed without expanding
+    (each distinct node's size once, by an explicit stack: no recursion limit)."""
+    size: Dict[int, int] = {}
+    stack = [(node, False)]
+    while stack:
+        current, done = stack.pop()
+        key = id(current)
+        if key in size:
+            continue
+        if isinstance(current, yaml.ScalarNode):
+            size[key] = 1
+            continue
+        children = [c for pair in current.value for c in pair] if isinstance(current, yaml.MappingNode) \
+            else list(current.value)
+        if done:
+            size[key] = 1 + sum(size[id(c)] for c in children)
+        else:
+            stack.append((current, True))
+            stack.extend((c, False) for c in children if id(c) not in size)
+    return size[id(node)]
+
+
+def _nesting(raw: bytes, text: str) -> int:
+    """An upper estimate of the document's nesting (flow brackets, block dashes on one line)."""
+    b = np.frombuffer(raw, dtype=np.uint8)
+    step = (b == ord("[")).astype(np.int64) + (b == ord("{")) - (b == ord("]")) - (b == ord("}"))
+    flow = int(np.cumsum(step).max(initial=0))
+    block = max((line.count("- ") + line.count("? ") for line in text.splitlines()), default=0)
+    return max(flow, block)
+
+
+def parse_yaml(raw: bytes, where: str, error: Type[Exception], what: str = "file",
+               max_nodes: int = MAX_NODES) -> Any:
+    """The YAML document in ``raw`` (UTF-8), with the limits above; ``error(message)`` otherwise."""
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise error(f"{where}: not a UTF-8 text file (byte {exc.start}); a {what} is YAML text") from None
+    base = yaml.CSafeLoader if hasattr(yaml, "CSafeLoader") and _nesting(raw, text) <= _C_PARSER_MAX_NESTING \
+        else yaml.SafeLoader
+    loader = _LOADERS[base](text)
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        size = expanded_size(node)
+        if size > max_nodes:
+            raise error(f"{where}: expands to {size:,} YAML nodes (aliases counted at each use), more than the "
+                        f"{max_nodes:,} a {what} may have")
+        return loader.construct_document(node)
+    except yaml.YAMLError as exc:
+        raise error(f"{where}: not valid YAML: {_one_line(exc)}") from None
+    except RecursionError:
+        raise error(f"{where}: nested too deeply to be a {what}") from None
+    finally:
+        loader.dispose()
+
+
+def regular_file(path: Union[str, os.PathLike], where: str, error: Type[Exception], what: str = "file") -> int:
+    """The size of ``path`` if it is a regular file; ``error(message)`` for a
+    missing path, a folder, or a FIFO, device or socket (which would block or never end)."""
+    try:
+        info = os.stat(path)
+    except OSError as exc:
+        raise error(f"{where}: cannot read: {exc.strerror or exc}") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise error(f"{where}: cannot read: is a folder, not a {what}")
+    if not stat.S_ISREG(info.st_mode):
+        raise error(f"{where}: not a regular file (a FIFO, device or socket); a {what} must be a file")
+    return info.st_size
+
+
+def read_bounded(path: Union[str, os.PathLike], where: str, error: Type[Exception], max_bytes: int,
+                 what: str = "file") -> bytes:
+    """At most ``max_bytes`` of a regular file; ``error(message)`` for anything
+    else (missing, a folder, a FIFO or device, unreadable, too large)."""
+    p = Path(path)
+    size = regular_file(p, where, error, what)
+    if size > max_bytes:
+        raise error(f"{where}: larger than {_size(max_bytes)}, the limit for a {what} ({size:,} bytes)")
+    try:
+        with open(p, "rb") as f:
+            raw = f.read(max_bytes + 1)
+    except OSError as exc:
+        raise error(f"{where}: cannot read: {exc.strerror or exc}") from None
+    if len(raw) > max_bytes:  # it grew while we looked
+        raise error(f"{where}: larger than {_size(max_bytes)}, the limit for a {what}")
+    return raw
+
+
+def read_yaml(path: Union[str, os.PathLike], error: Type[Exception], max_bytes: int, what: str = "file",
+              where: Optional[str] = None, max_nodes: int = MAX_NODES) -> Any:
+    """:func:`read_bounded`, then :func:`parse_yaml`."""
+    where = str(path) if where is None else where
+    return parse_yaml(read_bounded(path, where, error, max_bytes, what), where, error, what, max_nodes)
+
+
+def _size(n: int) -> str:
+    return f"{n // 2**20} MiB" if n >= 2**20 and n % 2**20 == 0 else f"{n:,} bytes"
+
+
+def _one_line(exc: Exception) -> str:
+    """A YAML error as one line: what is wrong and where (line, column)."""
+    mark = getattr(exc, "problem_mark", None)
+    problem = getattr(exc, "problem", None)
+    if problem and mark is not None:
+        context = getattr(exc, "context", None)
+        return " ".join(f"{context + ': ' if context else ''}{problem} (line {mark.line + 1}, column "
+                        f"{mark.column + 1})".split())[:300]
+    return " ".join(str(exc).split())[:300]
+
+
+__all__ = ["MAX_NODES", "expanded_size", "parse_yaml", "read_bounded", "read_yaml", "regular_file"]

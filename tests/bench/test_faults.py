@@ -1,0 +1,143 @@
+"""Faults a harness must survive: a killed main process, a stale or deleted lock,
+corrupted result files, abandoned pool folders."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+from collections import Counter
+
+import pytest
+
+from navlab.bench import load_experiment, run_experiment
+from navlab.bench.executors import OWNER_FILE, POOL_PREFIX, remove_abandoned_pool_folders
+from navlab.bench.experiment import ExperimentError
+from navlab.bench.store import LOCK_FILE, read_rows
+
+TINY = {"name": "tiny", "worlds": ["trap"], "planners": ["rrt"], "samplers": ["uniform", "goal_bias"],
+        "budget": {"max_iter": 200}, "trials": 2, "seed": 3}
+SLOW = "name: slow\nworlds: [trap, clutter]\nplanners: [rrt_star]\nsamplers: [uniform, gaussian]\n" \
+       "budget: {max_iter: 4000}\ntrials: 15\nseed: 5\n"
+
+
+def children_of(pid):
+    out = []
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                with open(f"/proc/{entry}/stat") as f:
+                    if int(f.read().rsplit(")", 1)[1].split()[1]) == pid:
+                        out.append(int(entry))
+            except (OSError, ValueError, IndexError):
+                pass
+    return out
+
+
+def alive(pid):
+    try:
+        with open(f"/proc/{pid}/stat") as f:
+            return f.read().rsplit(")", 1)[1].split()[0] != "Z"
+    except OSError:
+        return False
+
+
+def lines(path):
+    return sum(1 for line in open(path, "rb") if line.strip()) if path.exists() else 0
+
+
+def bench(*args, **kwargs):
+    return subprocess.Popen([sys.executable, "-m", "navlab", "bench", *map(str, args)], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE, text=True, **kwargs)
+
+
+def wait_for(predicate, timeout=120.0, step=0.05):
+    end = time.monotonic() + timeout
+    while time.monotonic() < end:
+        if predicate():
+            return True
+        time.sleep(step)
+    return False
+
+
+def test_a_sigkilled_run_leaves_no_worker_and_resumes_with_every_trial_once(tmp_path):
+    exp = tmp_path / "slow.yaml"
+    exp.write_text(SLOW)
+    out = tmp_path / "out"
+    run = bench(exp, "--out", out, "--jobs", 2, "-q", "--no-plots")
+    assert wait_for(lambda: lines(out / "results.jsonl") >= 4), run.communicate()
+    workers = children_of(run.pid)
+    assert workers, "the pool had no workers"
+    run.send_signal(signal.SIGKILL)
+    run.wait()
+    assert wait_for(lambda: not any(alive(w) for w in workers), timeout=10), "orphaned workers survived their parent"
+    again = bench(exp, "--out", out, "--jobs", 2, "-q", "--no-plots", "--resume")
+    stdout, stderr = again.communicate(timeout=600)
+    assert again.returncode == 0, stderr
+    ids = [r["trial_id"] for r in read_rows(out / "results.jsonl")]
+    assert not [t for t, n in Counter(ids).items() if n > 1]
+    assert len(ids) == 2 * 2 * 15 + 2 * 2 * 2  # every trial and noise repeat, once
+
+
+def test_a_lock_left_by_a_dead_run_is_taken_over_with_a_line(tmp_path, capsys):
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    (tmp_path / LOCK_FILE).write_text(dead.stdout)
+    run = run_experiment(load_experiment(dict(TINY)), tmp_path, executor="serial", progress=False, plots=False)
+    assert run.ran == 4 + 4
+    assert f"took over the lock of run pid {dead.stdout.strip()}" in capsys.readouterr().err
+    assert (tmp_path / LOCK_FILE).read_text() == ""  # released cleanly
+
+
+def test_a_lock_deleted_mid_run_stops_the_run_before_a_second_one_writes_duplicates(tmp_path):
+    exp = tmp_path / "slow.yaml"
+    exp.write_text(SLOW)
+    out = tmp_path / "out"
+    first = bench(exp, "--out", out, "--jobs", 1, "-q", "--no-plots")
+    assert wait_for(lambda: lines(out / "results.jsonl") >= 2)
+    (out / LOCK_FILE).unlink()
+    second = bench(exp, "--out", out, "--jobs", 1, "-q", "--no-plots", "--resume")
+    _, err_first = first.communicate(timeout=600)
+    _, err_second = second.communicate(timeout=600)
+    assert first.returncode == 2 and "was removed during the run" in err_first, err_first
+    assert second.returncode == 0, err_second
+    ids = [r["trial_id"] for r in read_rows(out / "results.jsonl")]
+    assert not [t for t, n in Counter(ids).items() if n > 1]
+
+
+def test_corrupted_result_lines_are_set_aside_with_a_count_and_rerun(tmp_path, capsys):
+    exp = load_experiment(dict(TINY))
+    run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False)
+    path = tmp_path / "results.jsonl"
+    rows = [json.loads(line) for line in path.read_text().splitlines()]
+    rows[1]["cost"] = "12 m"  # text where a number belongs
+    bad = [json.dumps(r) for r in rows[:2]] + ["[1, 2]", json.dumps({"status": "EXACT"})]
+    path.write_bytes(("\n".join(bad) + "\n").encode() + b"\xff\xfe not utf-8\n"
+                     + ("\n".join(json.dumps(r) for r in rows[2:]) + "\n").encode())
+    run = run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False, resume=True)
+    assert "4 line(s) that are not trial rows were set aside" in capsys.readouterr().err
+    assert run.ran == 1  # the row with the text cost runs again
+    rejected = [json.loads(line) for line in (tmp_path / "results.rejected.jsonl").read_text().splitlines()]
+    assert {r["why"] for r in rejected} >= {"cost is str, not a number", "not a JSON object but list",
+                                            "no trial_id", "not UTF-8 text"}
+    ids = [r["trial_id"] for r in read_rows(path)]
+    assert len(ids) == len(set(ids)) == 8
+
+
+def test_a_damaged_experiment_json_is_one_line_naming_it(tmp_path):
+    exp = load_experiment(dict(TINY))
+    run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False)
+    (tmp_path / "experiment.json").write_text('{"fingerprint": ')
+    with pytest.raises(ExperimentError, match="experiment.json' is damaged .*--overwrite"):
+        run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False, resume=True)
+
+
+def test_pool_folders_of_killed_runs_are_removed_and_live_ones_kept(tmp_path, monkeypatch):
+    monkeypatch.setattr("tempfile.tempdir", str(tmp_path))
+    dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
+    for name, owner in (("a", dead.stdout.strip()), ("b", str(os.getpid()))):
+        folder = tmp_path / f"{POOL_PREFIX}{name}"
+        folder.mkdir()
+        (folder / OWNER_FILE).write_text(owner)
+    assert remove_abandoned_pool_folders() == 1
+    assert sorted(p.name for p in tmp_path.iterdir()) == [f"{POOL_PREFIX}b"]

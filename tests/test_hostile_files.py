@@ -1,0 +1,146 @@
+"""Files small enough to pass the byte limits that would expand, repeat, block or recurse:
+aliases, duplicate keys, FIFOs and deep nesting, for world files, maps and experiments."""
+
+import os
+import threading
+
+import numpy as np
+import pytest
+
+import navlab
+from navlab.bench import load_experiment
+from navlab.bench.experiment import ExperimentError
+from navlab.grid import MapFormatError, load_map
+from navlab.world.io import WorldFormatError
+
+WORLD = "bounds: [0, 10, 0, 10]\nstart: [1, 1]\ngoal: [9, 9]\n"
+MAP_YAML = "image: m.pgm\nresolution: 0.1\norigin: [0, 0, 0]\noccupied_thresh: 0.65\nfree_thresh: 0.196\nnegate: 0\n"
+
+
+def alias_bomb(levels=6, fan=10):
+    """A few hundred bytes whose aliases expand to fan**levels nodes."""
+    lines = ["a0: &a0 [" + ", ".join(["1.0"] * fan) + "]"]
+    for i in range(1, levels):
+        lines.append(f"a{i}: &a{i} [" + ", ".join([f"*a{i - 1}"] * fan) + "]")
+    return "\n".join(lines) + "\n"
+
+
+def write_pgm(path):
+    path.write_bytes(b"P5\n4 4\n255\n" + bytes([254] * 16))
+
+
+@pytest.fixture
+def files(tmp_path):
+    write_pgm(tmp_path / "m.pgm")
+    return tmp_path
+
+
+def read_world(path):
+    return navlab.load_world(str(path))
+
+
+def read_map(path):
+    return load_map(path)
+
+
+def read_experiment(path):
+    return load_experiment(str(path))
+
+
+READERS = [(read_world, WorldFormatError, WORLD + "obstacles: []\n"),
+           (read_map, MapFormatError, MAP_YAML),
+           (read_experiment, ExperimentError, "worlds: [trap]\nplanners: [rrt]\ntrials: 1\n")]
+
+
+@pytest.mark.parametrize("reader,error,base", READERS)
+def test_aliases_that_expand_past_the_limit_are_refused_before_building(files, reader, error, base):
+    path = files / "bomb.yaml"
+    path.write_text(base + alias_bomb())
+    assert path.stat().st_size < 1000
+    with pytest.raises(error, match="expands to 1,2[0-9,]* YAML nodes .aliases counted at each use."):
+        reader(path)
+
+
+@pytest.mark.parametrize("reader,error,base", READERS)
+def test_a_key_given_twice_is_refused_naming_it(files, reader, error, base):
+    key, first = base.splitlines()[0].split(":", 1)
+    path = files / "twice.yaml"
+    path.write_text(base + f"{key}:{first}\n")
+    with pytest.raises(error, match=f"key '{key}' is given twice \\(first on line 1\\)"):
+        reader(path)
+
+
+def test_trials_given_twice_no_longer_starts_a_million_trials(tmp_path):
+    path = tmp_path / "e.yaml"
+    path.write_text("worlds: [trap]\nplanners: [rrt]\ntrials: 2\ntrials: 1000000\n")
+    with pytest.raises(ExperimentError, match="'trials' is given twice"):
+        load_experiment(str(path))
+
+
+@pytest.mark.parametrize("reader,error,base", READERS)
+def test_deep_nesting_is_a_clear_error(files, reader, error, base):
+    path = files / "deep.yaml"
+    path.write_text(base + "extra: " + "[" * 3000 + "]" * 3000 + "\n")
+    with pytest.raises(error, match="nested too deeply|unknown|expected"):
+        reader(path)
+
+
+@pytest.mark.parametrize("reader,error,base", READERS)
+def test_a_fifo_is_refused_without_blocking(files, reader, error, base):
+    fifo = files / "pipe.yaml"
+    os.mkfifo(fifo)
+    outcome = []
+
+    def read():
+        try:
+            reader(fifo)
+        except error as exc:
+            outcome.append(str(exc))
+
+    worker = threading.Thread(target=read, daemon=True)
+    worker.start()
+    worker.join(10)
+    assert outcome and "not a regular file" in outcome[0]
+
+
+def test_a_fifo_given_as_the_map_image_is_refused(files):
+    (files / "m.pgm").unlink()
+    os.mkfifo(files / "m.pgm")
+    (files / "map.yaml").write_text(MAP_YAML)
+    with pytest.raises(MapFormatError, match="not a regular file"):
+        load_map(files / "map.yaml")
+
+
+def test_a_large_map_yaml_is_refused_by_size(files):
+    path = files / "big.yaml"
+    path.write_text(MAP_YAML + "# " + "x" * (2**20) + "\n")
+    with pytest.raises(MapFormatError, match="larger than 1 MiB"):
+        load_map(path)
+
+
+@pytest.mark.parametrize("data,message", [
+    ({"worlds": ["trap", "trap"]}, "'worlds' names 'trap' twice"),
+    ({"grid": {"expand_dis": [1, 1]}}, "grid 'expand_dis' lists 1 twice"),
+    ({"samplers": ["uniform", "uniform"]}, "two planners or two samplers share a label"),
+    ({"claims": [{"text": "x", "metric": "cost", "lower": "gausian", "higher": "uniform"}]},
+     "'lower' names 'gausian'.*Did you mean 'gaussian'"),
+    ({"budget": {"max_iter": 10**12}}, "budget: max_iter=1000000000000 with no max_time could grow a tree"),
+])
+def test_experiments_that_would_run_a_cell_twice_or_never_are_refused(data, message):
+    base = {"worlds": ["trap"], "planners": ["rrt_star"], "samplers": ["uniform", "gaussian"], "trials": 1}
+    with pytest.raises(ExperimentError, match=message):
+        load_experiment({**base, **data})
+
+
+def test_a_claim_on_a_swept_value_is_accepted():
+    load_experiment({"worlds": ["trap"], "planners": ["rrt_star"], "trials": 1,
+                     "grid": {"expand_dis": [1, 2]},
+                     "claims": [{"text": "x", "metric": "cost", "lower": "expand_dis=1", "higher": "expand_dis=2"}]})
+
+
+def test_merge_keys_may_still_override():
+    from navlab.yamlio import parse_yaml
+
+    doc = parse_yaml(b"base: &b {x: 1, y: 2}\nother:\n  <<: *b\n  x: 3\n", "f", ValueError)
+    assert doc["other"] == {"x": 3, "y": 2}
+    assert np.isclose(doc["base"]["x"], 1)

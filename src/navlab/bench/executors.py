@@ -160,7 +160,7 @@ def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any
 
 
 #: seconds to wait for a Dask scheduler before giving up
-DASK_CONNECT_TIMEOUT = 10
+DASK_CONNECT_TIMEOUT = 5
 
 
 def check_executor(name: str, scheduler: Optional[str] = None) -> None:
@@ -181,13 +181,35 @@ def check_executor(name: str, scheduler: Optional[str] = None) -> None:
 
 
 def _client(scheduler):
+    """A Dask client, or one line within :data:`DASK_CONNECT_TIMEOUT` seconds.
+
+    Dask's own timeout does not cover every way an address can fail: a port
+    that answers in another protocol (SSH's banner was read as a 2.82 EiB
+    message length) or that accepts and never answers (an HTTP server) hung or
+    gave a baffling message. The connection is therefore made in a helper
+    thread and abandoned at the deadline.
+    """
+    from concurrent.futures import ThreadPoolExecutor
+    from concurrent.futures import TimeoutError as Late
+
     from distributed import Client
 
-    try:
+    if not isinstance(scheduler, str):  # a LocalCluster this process started
         return Client(scheduler, timeout=DASK_CONNECT_TIMEOUT)
-    except (OSError, TimeoutError, ValueError, TypeError) as exc:
-        detail = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-        raise ExperimentError(f"cannot reach scheduler {scheduler}: {detail}") from None
+    pool = ThreadPoolExecutor(1, thread_name_prefix="navlab-dask-connect")
+    attempt = pool.submit(Client, scheduler, timeout=DASK_CONNECT_TIMEOUT)
+    pool.shutdown(wait=False)
+    try:
+        return attempt.result(timeout=DASK_CONNECT_TIMEOUT + 1)
+    except Late:
+        raise ExperimentError(f"--scheduler {scheduler}: no Dask scheduler answered within "
+                              f"{DASK_CONNECT_TIMEOUT} s (is it a Dask scheduler's address, tcp://HOST:8786?)") from None
+    except Exception as exc:  # noqa: BLE001 - whatever the far end did, it is not a scheduler we can use
+        if isinstance(exc, MemoryError):  # another protocol's bytes read as a message length
+            detail = "it answered, but not in Dask's protocol"
+        else:
+            detail = str(exc).splitlines()[0][:200] if str(exc) else type(exc).__name__
+        raise ExperimentError(f"--scheduler {scheduler}: not a Dask scheduler, or not reachable ({detail})") from None
 
 
 @EXECUTORS.register("dask")

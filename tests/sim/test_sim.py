@@ -184,3 +184,25 @@ def test_a_time_step_past_the_largest_is_refused(dt):
     with pytest.raises(ValueError, match=f"above the largest supported step, {MAX_DT:g} s"):
         Simulation(world, make_robot("diff"), make_controller("pure_pursuit"), (*world.start, 0.0), world.goal,
                    dt=dt)
+
+
+def test_a_planner_that_finds_no_path_is_an_answer_exit_1_not_bad_input():
+    res = CliRunner().invoke(main, ["sim", "trap", "--robot", "diff", "--planner", "rrt", "--sampler", "boundary"])
+    assert res.exit_code == 1 and res.output.startswith("NO_PATH (") and "Error" not in res.output
+    res = CliRunner().invoke(main, ["sim", "trap", "--robot", "diff", "--planner", "rrt", "--sampler", "boundary",
+                                    "--json"])
+    assert res.exit_code == 1 and json.loads(res.output)["status"] == "NO_PATH"
+
+
+@pytest.mark.parametrize("planner", ["astar", "rrt_star"])
+def test_a_start_the_robot_fits_at_is_valid_for_a_star_and_rrt_star_alike(tmp_path, planner):
+    """The 10 x 10 maze's corner (0.35, 0.35): the diff robot (0.105 m) fits with 0.045 m to spare,
+    less than the 0.07 m planning margin. RRT* refused it (INVALID_START) while A* accepted it."""
+    from navlab.grid.maze import make_maze
+    from navlab.grid.mapio import save_map
+    from navlab.sim.replan import margin_room, plan_path
+
+    grid = make_maze(10, 10, seed=1, cell_size=0.5, wall=0.1, resolution=0.05)
+    assert 0 < margin_room(grid, 0.105, [(0.35, 0.35)]) < 0.07
+    path = plan_path(grid, 0.105, (0.35, 0.35, 0.0), (4.8, 4.8), planner)
+    assert isinstance(path, np.ndarray) and np.allclose(path[0], (0.35, 0.35)) and np.allclose(path[-1], (4.8, 4.8))

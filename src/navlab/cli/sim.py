@@ -81,15 +81,20 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
         return
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
-    from ..sim.runner import simulate
+    from ..sim.runner import NoPathError, simulate
 
-    result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
-                                        planner=planner, sampler=sampler, lidar=lidar,
-                                        robot_params=parse_params(robot_params, "--robot-param"),
-                                        controller_params=parse_params(controller_params, "--controller-param"), dt=dt,
-                                        max_time=max_time, seed=seed,
-                                        lidar_timing=_timing(lidar_timing, "--lidar-timing"),
-                                        odometry_timing=_timing(odom_timing, "--odom-timing"))
+    try:
+        result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
+                                            planner=planner, sampler=sampler, lidar=lidar,
+                                            robot_params=parse_params(robot_params, "--robot-param"),
+                                            controller_params=parse_params(controller_params, "--controller-param"),
+                                            dt=dt, max_time=max_time, seed=seed,
+                                            lidar_timing=_timing(lidar_timing, "--lidar-timing"),
+                                            odometry_timing=_timing(odom_timing, "--odom-timing"))
+    except NoPathError as exc:
+        # the planner's answer about this world, as `navlab plan` gives it: not bad input
+        click.echo(json.dumps({"status": "NO_PATH", "reason": str(exc)}) if as_json else f"NO_PATH ({exc})")
+        sys.exit(1)
     if plot:
         from ..viz.sim_plot import plot_run
 

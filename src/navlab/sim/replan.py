@@ -22,6 +22,9 @@ from ..world.shapes import Circle
 #: 0.05 m cell's diagonal for the grid's discretisation plus room for the
 #: follower's tracking error
 PLAN_MARGIN = 0.07
+#: a tree planner's iterations for a simulation's plan on a map, unless given: a maze's corridors
+#: need far more samples than the 5000 of a plan in the open (the README's 10 x 10 maze: 60 000)
+MAP_TREE_ITERATIONS = 60_000
 #: [m] sensed points farther than this from every static obstacle are news
 UNEXPLAINED = 0.05
 #: [m] radius of the obstacle a sensed point stands for in a replan
@@ -42,22 +45,35 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
     the failed planner Result. ``extra`` obstacles join a geometric world."""
     from ..planning import is_grid_planner
 
+    # A start (or goal) the robot itself fits at is valid for every planner, A* on the inflated grid
+    # and RRT* on exact geometry alike: the margin gives way there (a fixed margin made the same start
+    # INVALID_START for RRT* and not for A*, whose inflation is measured between cell centres)
+    room = margin_room(scene_world, robot_radius, [start[:2], goal])
     if isinstance(scene_world, OccupancyGrid) and is_grid_planner(planner or "astar"):
         from ..grid import plan_world
 
-        result = plan_world(scene_world.inflate(robot_radius + PLAN_MARGIN), start[:2], goal,
-                            algorithm=planner or "astar", smooth=True)
+        inflated = scene_world.inflate(robot_radius + PLAN_MARGIN)
+        ends = scene_world.world_to_cell(np.array([start[:2], goal], float))
+        inside = scene_world.contains(ends)
+        blocked = inflated.blocked.copy()
+        # the start and goal cells stay open where only the margin closed them (the robot fits there)
+        for (cx, cy), ok in zip(ends, inside):
+            if ok and not scene_world.blocked[cy, cx]:
+                blocked[cy, cx] = False
+        result = plan_world(inflated.with_blocked(blocked), start[:2], goal, algorithm=planner or "astar",
+                            smooth=True)
     elif isinstance(scene_world, OccupancyGrid):  # a tree planner on the map's exact cells
         from ..planning import plan
 
+        settings = {"max_iter": MAP_TREE_ITERATIONS, **(params or {})}
         result = plan(scene_world, planner=planner, sampler=sampler, start=tuple(start[:2]), goal=tuple(goal),
-                      seed=seed, robot_radius=robot_radius + PLAN_MARGIN, **(params or {}))
+                      seed=seed, robot_radius=robot_radius + min(PLAN_MARGIN, room), **settings)
     else:
         from ..planning import plan
 
         world = replace(scene_world, start=tuple(start[:2]), goal=tuple(goal),
                         obstacles=tuple(scene_world.obstacles) + tuple(extra),
-                        robot_radius=robot_radius + PLAN_MARGIN, goal_tolerance=0.0)
+                        robot_radius=robot_radius + min(PLAN_MARGIN, room), goal_tolerance=0.0)
         settings = dict(params or {})
         if is_grid_planner(planner or "rrt_star"):
             settings.setdefault("smooth", True)  # as on maps: a follower wants few waypoints, not every cell
@@ -67,6 +83,39 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
     path = np.asarray(result.path, float)
     path[0], path[-1] = start[:2], goal
     return path
+
+
+def margin_room(scene_world, robot_radius: float, points) -> float:
+    """How much the robot's disc may grow at every one of ``points`` before it
+    touches an obstacle (or, on a map, a blocked or unknown cell or the map's
+    edge), less a micrometre; 0 when it already touches."""
+    pts = np.asarray(points, float).reshape(-1, 2)
+    if isinstance(scene_world, OccupancyGrid):
+        res = scene_world.resolution
+        reach = robot_radius + PLAN_MARGIN + res
+        closed = scene_world.blocked | scene_world.unknown
+        best = np.inf
+        for p in pts:
+            (cx, cy), = scene_world.world_to_cell([p])
+            k = int(np.ceil(reach / res)) + 1
+            xs, ys = np.arange(cx - k, cx + k + 1), np.arange(cy - k, cy + k + 1)
+            gx, gy = np.meshgrid(xs, ys)
+            inside = (gx >= 0) & (gy >= 0) & (gx < scene_world.width) & (gy < scene_world.height)
+            hit = ~inside.copy()
+            hit[inside] = closed[gy[inside], gx[inside]]
+            if not hit.any():
+                continue
+            local = (p - np.asarray(scene_world.origin[:2])) @ scene_world._rotation() / res  # in cells
+            dx = np.maximum(0.0, np.maximum(gx[hit] - local[0], local[0] - gx[hit] - 1))
+            dy = np.maximum(0.0, np.maximum(gy[hit] - local[1], local[1] - gy[hit] - 1))
+            best = min(best, float(np.hypot(dx, dy).min()) * res)
+        clearance = best
+    else:
+        from .scene import Scene
+
+        # the disc's distance to the nearest obstacle (the bounds do not count)
+        clearance = robot_radius + float(np.min(Scene(scene_world, robot_radius).clearances(pts, np.zeros(len(pts)))))
+    return max(0.0, clearance - robot_radius - 1e-6) if np.isfinite(clearance) else PLAN_MARGIN
 
 
 class Replanner:

@@ -34,7 +34,7 @@ def _tiny_map_world():
 
 def _warm_tree(planner: str, sampler: str, on_map: bool) -> None:
     # tree_query, not plan: plan() warms up first, which would recurse here
-    from .planning import tree_query
+    from .queries import tree_query
     from .world import load_world
 
     if _SIBLINGS["helpers_first"] and not _SIBLINGS["helpers_done"]:

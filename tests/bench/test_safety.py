@@ -158,7 +158,7 @@ def test_missing_dask_and_an_unreachable_scheduler_are_one_line_exit_2(tmp_path,
     res = CliRunner().invoke(main, args[:-1] + [str(tmp_path / "b"), "--scheduler", "tcp://127.0.0.1:9"])
     assert res.exit_code == 2, res.output
     lines = res.output.strip().splitlines()
-    assert len(lines) == 1 and lines[0].startswith("Error: cannot reach scheduler tcp://127.0.0.1:9: ")
+    assert len(lines) == 1 and lines[0].startswith("Error: --scheduler tcp://127.0.0.1:9: not a Dask scheduler, or not reachable")
     assert not (tmp_path / "b" / "results.jsonl").exists()
 
 

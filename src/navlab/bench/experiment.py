@@ -31,6 +31,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 import numpy as np
 
 from ..registry import suggest
+from .errors import ExperimentError
 from ..yamlio import read_yaml
 
 OMPL_PREFIX = "ompl:"
@@ -50,10 +51,6 @@ NOISE_REPEATS = 2
 CLAIM_FIELDS = ("text", "metric", "lower", "higher")
 BUDGET_FIELDS = ("max_iter", "max_time")
 CLAIM_METRICS = ("cost", "time_s", "iterations", "first_solution_iteration", "vs_optimum", "vs_theta")
-
-
-class ExperimentError(ValueError):
-    """An experiment definition that cannot run; the message says where."""
 
 
 @dataclass(frozen=True)
@@ -314,7 +311,7 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
     """A cell's settings: the experiment's shared ``params`` and ``grid``
     values that apply to this kind of planner (grid settings to grid
     algorithms, the others to tree and OMPL planners), then its own."""
-    from ..planning import GRID_PARAMS
+    from ..queries import GRID_PARAMS
 
     grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
     return {**{k: v for k, v in shared.items() if (k in GRID_PARAMS) == grid}, **own}
@@ -357,7 +354,7 @@ def _component(entry: Any, what: str) -> Component:
 
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
-    from ..planning import build_sampler, is_grid_planner, split_grid_params, split_params
+    from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
     from ..sampling.planners import make_planner
     from .ompl_planners import check_ompl_name, ompl_available
 

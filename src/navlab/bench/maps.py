@@ -27,7 +27,7 @@ from typing import Any, Dict, List, Optional
 import numpy as np
 
 from ..limits import check_coordinate, check_length
-from .experiment import ExperimentError
+from .errors import ExperimentError
 
 MAP_FIELDS = ("map", "scen", "queries", "name", "robot_radius")
 

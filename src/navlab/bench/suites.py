@@ -67,7 +67,7 @@ def movingai_dir() -> Path:
     ExperimentError
         Not found (one line naming where it was looked for).
     """
-    from .experiment import ExperimentError
+    from .errors import ExperimentError
 
     for folder in _movingai_candidates():
         if folder.is_dir():

@@ -15,10 +15,8 @@ import ctypes
 import os
 import signal
 import sys
-from typing import Callable, List, Optional
+from typing import List, Optional
 
-#: set by the launcher to its pid: the child checks it is still its parent
-PARENT_ENV = "NAVLAB_LAUNCHER_PID"
 #: <linux/prctl.h>
 PR_SET_PDEATHSIG = 1
 #: exit status of a process ended by SIGINT, as a shell reports it
@@ -43,6 +41,8 @@ def die_with_parent(parent_pid: Optional[int], sig: int = signal.SIGTERM) -> boo
 
 def run_child(argv: List[str]) -> int:
     """Run node ``argv[0]`` with the ROS arguments that follow (see the module docstring)."""
+    from .launch import PARENT_ENV
+
     parent = os.environ.get(PARENT_ENV)
     if not die_with_parent(int(parent) if parent else None):
         return INTERRUPTED
@@ -57,25 +57,3 @@ def run_child(argv: List[str]) -> int:
         return run_node(node_class(name), [f"navlab-{name}", *argv[1:]])
     except KeyboardInterrupt:  # interrupted before rclpy took over the signals (imports, start-up)
         return INTERRUPTED
-
-
-def console_script(node: str) -> Callable[[], None]:
-    """The ``navlab-<node>`` console script: ``navlab ros <node> ARGS``."""
-
-    def main() -> None:
-        try:
-            from ..cli import main as navlab
-        except KeyboardInterrupt:  # Ctrl-C while importing
-            sys.exit(INTERRUPTED)
-        navlab(["ros", node, *sys.argv[1:]], prog_name=f"navlab-{node.replace('_', '-')}")
-
-    main.__doc__ = f"navlab ros {node}"
-    return main
-
-
-map_server = console_script("map_server")
-sim = console_script("sim")
-pathplanner = console_script("pathplanner")
-astar_pathplanner = console_script("astar_pathplanner")
-goto_waypoint = console_script("goto_waypoint")
-potential_field_navigator = console_script("potential_field_navigator")

@@ -25,6 +25,9 @@ NODES: Dict[str, Tuple[str, str]] = {
 NodeSpec = Tuple[str, Dict[str, Any]]
 
 #: a node process's first instructions: quiet on Ctrl-C from the start
+#: set by the launcher to its pid: the child checks it is still its parent
+PARENT_ENV = "NAVLAB_LAUNCHER_PID"
+
 #: (importing navlab takes a second or two), then navlab.ros.entry.run_child
 CHILD_BOOTSTRAP = ("import os, signal, sys; signal.signal(signal.SIGINT, lambda *_: os._exit(130)); "
                    "from navlab.ros.entry import run_child; sys.exit(run_child(sys.argv[1:]))")
@@ -100,7 +103,6 @@ class NodeProcesses:
         self.procs: List[Tuple[str, subprocess.Popen]] = []
 
     def __enter__(self) -> "NodeProcesses":
-        from .entry import PARENT_ENV
 
         env = {**os.environ, PARENT_ENV: str(os.getpid())}
         try:

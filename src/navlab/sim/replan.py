@@ -190,7 +190,7 @@ class Replanner:
         self.threat = None
         if len(ahead) < 2 or not self._tracks:
             return False
-        from .simulation import distance_to_polyline
+        from .polyline import distance_to_polyline
 
         reach = self.radius + 0.5 * PLAN_MARGIN
         here = np.asarray(pose[:2], float)

@@ -25,6 +25,7 @@ from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
 from ..sensors.timing import DelayLine, SensorTiming
 from .plant import Plant
+from .polyline import distance_to_polyline
 from .scene import Scene
 
 #: simulation steps the logs hold at first (they double as the run goes on)
@@ -112,16 +113,6 @@ class SimResult:
             out.update(t=self.t.tolist(), true_poses=self.true_poses.tolist(), odom_poses=self.odom_poses.tolist(),
                        commands=self.commands.tolist(), path=None if self.path is None else self.path.tolist())
         return out
-
-
-def distance_to_polyline(points: np.ndarray, path: np.ndarray) -> np.ndarray:
-    """Distance of each point to the nearest segment of a polyline."""
-    a, d = path[:-1], np.diff(path, axis=0)
-    rel = points[:, None, :] - a[None, :, :]
-    length2 = np.maximum((d * d).sum(axis=1), 1e-300)
-    u = np.clip((rel * d[None]).sum(axis=2) / length2, 0.0, 1.0)
-    gap = rel - u[..., None] * d[None]
-    return np.sqrt((gap * gap).sum(axis=2).min(axis=1))
 
 
 class Simulation:

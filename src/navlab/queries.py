@@ -1,0 +1,156 @@
+"""The two kinds of planning query, without warm-up: a tree planner on a
+world's exact checker (:func:`tree_query`) and a grid algorithm on its
+conservative raster (:func:`grid_query`), and how parameters are routed to a
+planner and its sampler by name.
+
+:func:`navlab.plan` warms the kernels up first and then calls these;
+:mod:`navlab.warmup` calls them directly (it is what warming up runs).
+"""
+
+from __future__ import annotations
+
+import time
+from typing import Any, Dict
+
+import numpy as np
+
+from .registry import UnknownNameError, parameters_of, suggest
+from .result import Result, Status
+from .sampling.planners import PLANNERS, make_planner
+from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
+
+#: settings of the grid algorithms, routed by name like sampler settings
+GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
+
+
+def planner_names() -> list[str]:
+    """Every planner ``navlab.plan`` accepts: tree planners and grid algorithms."""
+    from .grid.planner import GRID_ALGORITHMS
+
+    return sorted(PLANNERS.names() + GRID_ALGORITHMS.names())
+
+
+def is_grid_planner(name: str) -> bool:
+    """Whether ``name`` is a grid algorithm (else a tree planner); unknown names
+    raise :class:`~navlab.registry.UnknownNameError` listing both kinds."""
+    from .grid.planner import GRID_ALGORITHMS
+
+    if name in GRID_ALGORITHMS:
+        return True
+    if name in PLANNERS:
+        return False
+    valid = planner_names()
+    raise UnknownNameError(f"unknown planner '{name}'; valid: {', '.join(valid)}." + suggest(str(name), valid))
+
+
+def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
+    """Route keyword parameters to the tree planner or the sampler by name.
+
+    ``goal_sample_rate`` given with a sampler that has no such parameter wraps
+    that sampler in goal bias (with that probability the goal is returned).
+    """
+    planner_keys = set(parameters_of(PLANNERS.get(planner))) - {"sampler"}
+    sampler_keys = set(parameters_of(SAMPLERS.get(sampler)))
+    to_planner, to_sampler = {}, {}
+    for key, value in params.items():
+        if key in planner_keys:
+            to_planner[key] = value
+        elif key in sampler_keys or key == "goal_sample_rate":
+            to_sampler[key] = value
+        else:
+            valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
+            raise ValueError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
+                             f"valid: {', '.join(valid)}." + suggest(key, valid))
+    return to_planner, to_sampler
+
+
+def split_grid_params(planner: str, params: dict) -> dict:
+    """Check that every parameter is a grid setting; "did you mean" otherwise."""
+    for key in params:
+        if key not in GRID_PARAMS:
+            raise ValueError(f"unknown parameter '{key}' for grid planner '{planner}'; "
+                             f"valid: {', '.join(GRID_PARAMS)}." + suggest(key, list(GRID_PARAMS)))
+    return dict(params)
+
+
+def build_sampler(sampler: str, params: dict) -> Sampler:
+    params = dict(params)
+    rate = params.pop("goal_sample_rate", None) if "goal_sample_rate" not in parameters_of(SAMPLERS.get(sampler)) else None
+    base = make_sampler(sampler, **params)
+    if rate is None:
+        return base
+    wrapped = GoalBiasSampler(goal_sample_rate=rate, base=base)
+    wrapped.registered_name = f"goal_bias({sampler})"  # type: ignore[attr-defined]
+    return wrapped
+
+
+def tree_query(world, planner: str, sampler: str, seed: Any, params: dict) -> Result:
+    """A tree planner on ``world`` (its exact checker), without warm-up."""
+    to_planner, to_sampler = split_params(planner, sampler, params)
+    samp = build_sampler(sampler, to_sampler)
+    result = make_planner(planner, sampler=samp, **to_planner).plan(world, seed)
+    result.params.update(samp.resolved_params(world))
+    return result
+
+
+def grid_query(world, algorithm: str, params: dict) -> Result:
+    """A grid algorithm on ``world``'s conservative raster (a map: its own
+    cells), joined to the exact start and goal by checked straight legs."""
+    from .endpoints import attach
+    from .grid.planner import plan as grid_plan
+    from .grid.rasterize import rasterize
+
+    t0 = time.perf_counter()
+    settings = dict(params)
+    resolution = settings.pop("resolution", None)
+    settings.pop("allow_unknown", None)  # already applied to the world
+    grid = rasterize(world, resolution)
+    rasterize_s = time.perf_counter() - t0
+    passable = ~grid.blocked
+    checker = world.checker()
+    out_params = {"algorithm": algorithm, "resolution": grid.resolution, **settings}
+    stats: Dict[str, Any] = {"grid": f"{grid.width}x{grid.height}", "rasterize_s": rasterize_s}
+    cells = {}
+    for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
+        cells[label] = attach(world, grid, passable, point, checker)
+        if cells[label] is None:
+            own = tuple(int(v) for v in grid.world_to_cell(np.asarray(point, float)))
+            stats["time_s"] = time.perf_counter() - t0
+            return Result(status=status, params=out_params, stats=stats,
+                          reason=f"{label} ({point[0]:g}, {point[1]:g}) in cell {own} is free but reaches no free grid "
+                                 f"cell centre nearby in a straight line at resolution {grid.resolution:g} m "
+                                 "(cells within the robot radius of an obstacle are blocked); try a finer resolution")
+    r = grid_plan(grid, cells["start"], cells["goal"], algorithm=algorithm, smooth_method="supercover", **settings)
+    stats.update(r.stats)
+    stats.pop("length_m", None)  # the centre-to-centre part only; cost is the whole path's length
+    stats["rasterize_s"] = rasterize_s
+    if not r.success:
+        stats["time_s"] = time.perf_counter() - t0
+        return Result(status=Status.FAILED, params=out_params, stats=stats, reason=r.reason, cells=r.cells)
+    stats["cost_cells"] = float(r.stats.get("cost_cells", r.cost))
+    path = np.vstack((world.start, r.path, world.goal))
+    keep = np.ones(len(path), dtype=bool)
+    keep[1:] = np.any(np.diff(path, axis=0) != 0, axis=1)  # a point that is its cell's centre
+    path = path[keep]
+    # The raster is conservative, so the cell-to-cell legs are free by
+    # construction (and attach() checked the two end legs against the map's
+    # squares); one exact check of the whole path guards that promise.
+    bad = np.flatnonzero(~checker.segments_free(path[:-1], path[1:])) if len(path) > 1 else []
+    stats["collision_checks"] = checker.checks
+    stats["time_s"] = time.perf_counter() - t0
+    if len(bad):
+        i = int(bad[0])
+        return Result(status=Status.FAILED, params=out_params, stats=stats, cells=r.cells,
+                      reason=f"the grid path's leg {i} from {tuple(np.round(path[i], 6))} to "
+                             f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
+    cost = path_length(path)
+    tree = dict(r.tree) if isinstance(r.tree, dict) else {}
+    tree["raster"] = grid
+    return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
+
+
+def path_length(path) -> float:
+    """Length (m) of a polyline (0 for fewer than two points)."""
+    p = np.asarray(path, dtype=float)
+    return float(np.sum(np.hypot(*np.diff(p, axis=0).T))) if len(p) > 1 else 0.0
+

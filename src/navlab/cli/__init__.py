@@ -60,7 +60,38 @@ class NavlabGroup(click.Group):
             sys.exit(status)
 
 
-@click.group(cls=NavlabGroup, context_settings={"help_option_names": ["-h", "--help"]})
+#: every verb: the module (in navlab.cli) and the command object in it, and the one-line help that
+#: `navlab --help` shows without importing the module (a verb's imports load only when it runs)
+VERBS = {
+    "plan": ("plan", "plan_cmd", "Plan a path in SOURCE: a built-in scene, a world or map file."),
+    "list": ("listing", "list_cmd", "Every registered part with its description and parameters."),
+    "grid": ("grid", "grid_group", "Grid planning on ROS map_server maps, Moving AI maps and mazes."),
+    "bench": ("bench", "bench_cmd", "Run a benchmark: an experiment file, a suite, or flags."),
+    "sim": ("sim", "sim_cmd", "Simulate a robot driving to a goal, or run an --experiment."),
+    "ros": ("ros", "ros_group", "ROS 2 nodes: map_server, sim, pathplanner, ... and the demo."),
+}
+
+
+class LazyNavlabGroup(NavlabGroup):
+    """The top-level group, importing a verb's module only when the verb runs."""
+
+    def list_commands(self, ctx):
+        return list(VERBS)
+
+    def get_command(self, ctx, name):
+        if name not in VERBS:
+            return None
+        import importlib
+
+        module, attr, _ = VERBS[name]
+        return getattr(importlib.import_module(f".{module}", __name__), attr)
+
+    def format_commands(self, ctx, formatter):
+        with formatter.section("Commands"):
+            formatter.write_dl([(name, summary) for name, (_, _, summary) in VERBS.items()])
+
+
+@click.group(cls=LazyNavlabGroup, context_settings={"help_option_names": ["-h", "--help"]})
 @click.version_option(package_name="navlab")
 def main() -> None:
     """navlab: 2D mobile-robot path planning and navigation.
@@ -74,16 +105,6 @@ def main() -> None:
     ...); 130 after Ctrl-C. Set NAVLAB_DEBUG=1 to see Python tracebacks.
     """
 
-
-from .bench import bench_cmd  # noqa: E402
-from .grid import grid_group  # noqa: E402
-from .listing import list_cmd  # noqa: E402
-from .plan import plan_cmd  # noqa: E402
-from .ros import ros_group  # noqa: E402
-from .sim import sim_cmd  # noqa: E402
-
-for _command in (plan_cmd, list_cmd, grid_group, bench_cmd, sim_cmd, ros_group):
-    main.add_command(_command)
 
 if __name__ == "__main__":  # pragma: no cover
     main()

@@ -25,6 +25,8 @@ PLAN_MARGIN = 0.07
 #: a tree planner's iterations for a simulation's plan on a map, unless given: a maze's corridors
 #: need far more samples than the 5000 of a plan in the open (the README's 10 x 10 maze: 60 000)
 MAP_TREE_ITERATIONS = 60_000
+#: most cells on each side of a point that :func:`margin_room` scans on a map
+MAX_ROOM_WINDOW = 512
 #: [m] sensed points farther than this from every static obstacle are news
 UNEXPLAINED = 0.05
 #: [m] radius of the obstacle a sensed point stands for in a replan
@@ -95,10 +97,15 @@ def margin_room(scene_world, robot_radius: float, points) -> float:
         reach = robot_radius + PLAN_MARGIN + res
         closed = scene_world.blocked | scene_world.unknown
         best = np.inf
+        k = int(np.ceil(reach / res)) + 1
+        if k > MAX_ROOM_WINDOW:  # cells far finer than the robot: keep the fixed margin (no window scan)
+            return PLAN_MARGIN
         for p in pts:
             (cx, cy), = scene_world.world_to_cell([p])
-            k = int(np.ceil(reach / res)) + 1
-            xs, ys = np.arange(cx - k, cx + k + 1), np.arange(cy - k, cy + k + 1)
+            xs = np.arange(max(cx - k, -1), min(cx + k, scene_world.width) + 1)
+            ys = np.arange(max(cy - k, -1), min(cy + k, scene_world.height) + 1)
+            if len(xs) == 0 or len(ys) == 0:
+                return 0.0
             gx, gy = np.meshgrid(xs, ys)
             inside = (gx >= 0) & (gy >= 0) & (gx < scene_world.width) & (gy < scene_world.height)
             hit = ~inside.copy()

@@ -270,7 +270,7 @@ def breakdown_lines(run: BenchRun, total_s: Optional[float] = None) -> List[str]
         return []
     parts = []
     if total_s is not None:
-        parts.append(f"total {total_s:.1f} s")
+        parts.append(f"total {total_s:.1f} s since navlab started")
         known = p.get("trials", 0) + p.get("plots", 0) + p.get("report", 0)
         parts.append(f"start-up and checks {max(0.0, total_s - known):.1f} s")
     workers = p.get("workers", 1)

@@ -61,7 +61,11 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--suite", default=None, help="A built-in suite. " + suite_help() + ".")
 @click.option("--out", type=click.Path(file_okay=False), default=None,
               help="Output folder (default: bench-results/NAME).")
-@click.option("--world", "worlds", multiple=True, help="World or scene (repeatable; replaces the file's).")
+@click.option("--world", "worlds", multiple=True,
+              help="World, scene or map file (repeatable; replaces the file's). A map needs --start and --goal.")
+@click.option("--start", type=float, nargs=2, default=None, metavar="X Y",
+              help="Start [m] for the --world maps (map_server YAML or Moving AI .map), which have none.")
+@click.option("--goal", type=float, nargs=2, default=None, metavar="X Y", help="Goal [m] for the --world maps.")
 @click.option("--planner", "planners", multiple=True, help="Planner, e.g. rrt_star or ompl:RRTstar (repeatable).")
 @click.option("--sampler", "samplers", multiple=True, help="Sampler (repeatable).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE", help="Setting for every cell (repeatable).")
@@ -82,8 +86,8 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--no-plots", is_flag=True, help="Skip the figures (faster).")
 @click.option("--show", is_flag=True, help="Print the experiment as YAML and exit (a template for your own).")
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
-def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, trials, max_iter, max_time, seed,
-              executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet) -> None:
+def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, params, grid, trials, max_iter, max_time,
+              seed, executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet) -> None:
     """Run a benchmark: EXPERIMENT (a YAML file) or --suite NAME, optionally
     changed by flags, or an experiment made of flags alone (--world, --planner).
 
@@ -112,13 +116,17 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
     if experiment or suite:
         data, where = experiment_data(experiment or suite)
     elif worlds and planners:
-        data, where = {"name": "custom"}, "the command line"
+        data, where = {}, "the command line"
     else:
         raise click.UsageError("give an experiment file, --suite NAME, or at least --world and --planner")
     if not isinstance(data, dict):
         raise click.UsageError(f"{where}: expected a mapping of experiment fields")
+    if (start is None) != (goal is None):
+        raise click.UsageError("give --start and --goal together")
+    if start is not None and not worlds:
+        raise click.UsageError("--start and --goal go with --world (a map, which has no start or goal)")
     if worlds:
-        data["worlds"] = list(worlds)
+        data["worlds"] = [_as_world(w, start, goal) for w in worlds]
     if planners:
         data["planners"] = list(planners)
     if samplers:
@@ -140,11 +148,17 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
         data["trials"] = trials
     if seed is not None:
         data["seed"] = seed
+    if not (experiment or suite):
+        # an experiment made of flags: named by what it runs, so two different ones never share a folder
+        data["name"] = _adhoc_name(data)
     exp = load_experiment(data, where)
     if show:
         click.echo(yaml.safe_dump(data, sort_keys=False))
         return
     folder = out or f"bench-results/{exp.name}"
+    if not (experiment or suite) and not out and not resume:
+        click.echo(f"results go to {folder} (--out DIR to choose; the same flags again with --resume continue it)",
+                   err=True)
     try:
         run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
                              overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)
@@ -175,10 +189,36 @@ def bench_cmd(experiment, suite, out, worlds, planners, samplers, params, grid, 
     for verdict in _overall(summary):
         click.echo(verdict)
     click.echo(f"report: {run.folder / 'report.html'} (and report.md, results.jsonl)")
-    for line in breakdown_lines(run, _since_process_start()):
+    for line in breakdown_lines(run, _since_navlab_start()):
         click.echo(line)
     if run.errors:
         sys.exit(1)
+
+
+def _as_world(world: str, start, goal):
+    """A --world as the experiment names it: a map with --start/--goal becomes a map world with that query."""
+    if start is None:
+        return world
+    from ..world.sources import source_kind
+
+    if source_kind(world) not in ("ros_map", "movingai_map"):
+        raise click.UsageError(f"--start and --goal are for maps (map_server YAML, Moving AI .map); {world!r} "
+                               "has its own start and goal")
+    return {"map": world, "queries": [[*start, *goal]]}
+
+
+def _adhoc_name(data) -> str:
+    """``adhoc-<worlds>-<planners>-<hash>``: readable, and different for different experiments."""
+    import re
+
+    from ..bench.experiment import stable_hash
+
+    def short(value) -> str:
+        text = value.get("map", "map") if isinstance(value, dict) else str(value)
+        return re.sub(r"[^A-Za-z0-9_.]+", "_", text.rsplit("/", 1)[-1].rsplit(".", 1)[0])[:16]
+
+    parts = [short(w) for w in data.get("worlds", [])[:2]] + [short(p) for p in data.get("planners", [])[:2]]
+    return "-".join(["adhoc", *parts, stable_hash({k: v for k, v in data.items() if k != "name"})[:8]])
 
 
 def _resume_command() -> str:
@@ -192,18 +232,13 @@ def _resume_command() -> str:
     return "navlab bench " + " ".join(shlex.quote(a) for a in args)
 
 
-def _since_process_start() -> Optional[float]:
-    """Seconds since this process started (Linux /proc), start-up included."""
-    try:
-        import os
+def _since_navlab_start() -> float:
+    """Seconds since the navlab command started (its first import; see ``navlab.cli.STARTED``)."""
+    import time
 
-        with open("/proc/self/stat") as f:
-            start_ticks = int(f.read().rsplit(")", 1)[1].split()[19])
-        with open("/proc/uptime") as f:
-            uptime = float(f.read().split()[0])
-        return uptime - start_ticks / os.sysconf("SC_CLK_TCK")
-    except (OSError, ValueError, IndexError):
-        return None
+    from . import STARTED
+
+    return time.perf_counter() - STARTED
 
 
 def _overall(summary) -> List[str]:

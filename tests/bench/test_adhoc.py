@@ -1,0 +1,61 @@
+"""Experiments made of flags: maps with --start/--goal, and folders named by what they run."""
+
+import pytest
+from click.testing import CliRunner
+
+from navlab.cli import main
+from navlab.grid import OccupancyGrid, plan
+from navlab.grid.mapio import save_map
+
+
+@pytest.fixture
+def a_map(tmp_path):
+    import numpy as np
+
+    blocked = np.zeros((40, 40), bool)
+    blocked[5:35, 20] = True
+    save_map(OccupancyGrid(blocked, resolution=0.1), tmp_path / "wall.yaml")
+    return tmp_path / "wall.yaml"
+
+
+def test_a_map_with_start_and_goal_runs_without_an_experiment_file(tmp_path, a_map, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    args = ["bench", "--world", str(a_map), "--start", "0.5", "2", "--goal", "3.5", "2", "--planner", "astar",
+            "--planner", "rrt_star", "--trials", "2", "--max-iter", "2000", "-q", "--no-plots", "--executor", "serial"]
+    res = CliRunner().invoke(main, args)
+    assert res.exit_code == 0, res.output
+    folders = list((tmp_path / "bench-results").iterdir())
+    assert len(folders) == 1 and folders[0].name.startswith("adhoc-wall-astar-rrt_star-")
+    assert "success 2/2" in res.output
+
+
+def test_two_different_adhoc_runs_get_two_folders_and_the_same_one_is_resumable(tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    base = ["bench", "--world", "trap", "--trials", "2", "--max-iter", "200", "-q", "--no-plots",
+            "--executor", "serial"]
+    for planner in ("rrt", "rrt_star"):
+        assert CliRunner().invoke(main, base + ["--planner", planner]).exit_code == 0
+    assert len(list((tmp_path / "bench-results").iterdir())) == 2
+    again = CliRunner().invoke(main, base + ["--planner", "rrt", "--resume"])
+    assert again.exit_code == 0 and "0 run now" in again.output
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--world", "trap", "--start", "1", "1", "--goal", "2", "2"], "are for maps"),
+    (["--world", "trap", "--start", "1", "1"], "together"),
+])
+def test_start_and_goal_misuse_is_one_line(args, message):
+    res = CliRunner().invoke(main, ["bench", "--planner", "rrt"] + args)
+    assert res.exit_code == 2 and message in res.output
+
+
+def test_grid_plan_reports_the_warm_up_apart_from_the_search():
+    import numpy as np
+
+    from navlab.grid.planner import _warmed
+
+    _warmed.cache_clear()
+    first = plan(OccupancyGrid(np.zeros((30, 30), bool)), (0, 0), (29, 29), algorithm="jps", smooth=True)
+    second = plan(OccupancyGrid(np.zeros((30, 30), bool)), (0, 0), (29, 29), algorithm="jps", smooth=True)
+    assert first.stats["warmup_s"] > 0 and second.stats["warmup_s"] == 0.0
+    assert first.cost == second.cost

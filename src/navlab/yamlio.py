@@ -67,25 +67,31 @@ _LOADERS = {base: _loader_class(base) for base in
 
 
 def expanded_size(node) -> int:
-    """Nodes the document has once every alias is expanded, computed without expanding
-    (each distinct node's size once, by an explicit stack: no recursion limit)."""
+    """Nodes the document has once every alias is expanded, computed without expanding:
+    each distinct node's size once, in one depth-first pass over an explicit stack (no
+    recursion limit). A node that contains itself (``&a [*a]``) expands without end."""
     size: Dict[int, int] = {}
+    entered = set()
     stack = [(node, False)]
     while stack:
         current, done = stack.pop()
         key = id(current)
-        if key in size:
-            continue
         if isinstance(current, yaml.ScalarNode):
             size[key] = 1
             continue
         children = [c for pair in current.value for c in pair] if isinstance(current, yaml.MappingNode) \
-            else list(current.value)
+            else current.value
         if done:
+            missing = [c for c in children if id(c) not in size]
+            if missing:  # a child still open: it is an ancestor, so the document refers to itself
+                raise yaml.YAMLError("an alias refers to a node that contains it: the document never ends")
             size[key] = 1 + sum(size[id(c)] for c in children)
-        else:
+        elif key not in entered:
+            entered.add(key)
             stack.append((current, True))
-            stack.extend((c, False) for c in children if id(c) not in size)
+            stack.extend((c, False) for c in children if id(c) not in size and id(c) not in entered)
+        elif key not in size:
+            raise yaml.YAMLError("an alias refers to a node that contains it: the document never ends")
     return size[id(node)]
 
 

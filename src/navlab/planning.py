@@ -118,7 +118,10 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     from .endpoints import endpoint_problem
     from .world.sources import load_source
 
+    if not isinstance(planner, str):
+        raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     grid = is_grid_planner(planner)
+    _check_seed(seed)
     params = dict(params)
     goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
@@ -153,6 +156,14 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": warmup_s}
     result.params.update(common)
     return result
+
+
+def _check_seed(seed: Any) -> None:
+    """A seed is a non-negative whole number, None, or a numpy Generator (ValueError naming ``seed``)."""
+    if seed is None or isinstance(seed, np.random.Generator):
+        return
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed must be a non-negative whole number or a numpy Generator, got {seed!r}")
 
 
 def _stats_skeleton(grid: bool) -> Dict[str, Any]:

@@ -73,7 +73,9 @@ def movingai_dir() -> Path:
         if folder.is_dir():
             return folder
     raise ExperimentError(f"the Moving AI maps are not in {MOVINGAI_DIR} (looked from {Path.cwd()} and from the "
-                          "navlab checkout); this suite needs that folder with the .map and .map.scen files")
+                          "navlab checkout); this suite needs that folder with the .map and .map.scen files of "
+                          f"{', '.join(m for m, _ in MOVINGAI_MAPS)} (from movingai.com/benchmarks; the navlab "
+                          "repository's shared data has them beside the checkout)")
 
 
 #: seed 000 (SPEC.md; the seed's Tables I–VI): means over 20 trials. The seed contradicts itself on

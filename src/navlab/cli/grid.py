@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import sys
 
 import click
@@ -47,6 +48,11 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
             raise ValueError(f"{label} must be finite numbers, got {v[0]:g} {v[1]:g}")
         if not in_world and any(c != int(c) for c in v):
             raise ValueError(f"{label}: cells are integers; use --world for metres, got {v[0]:g} {v[1]:g}")
+    from ..world.sources import source_kind
+
+    if source_kind(map_path) == "world_file":
+        raise ValueError(f"{map_path}: this is a world file (shapes, start and goal), not a map: use "
+                         f"navlab plan {map_path} --planner {algorithm}")
     grid = load_map(map_path, rule=map_rule)
     if inflate:
         grid = grid.inflate(inflate)
@@ -90,8 +96,8 @@ def fail(message: str) -> None:
 
 
 @grid_group.command("scen")
-@click.argument("scen_path", metavar="FILE.scen", type=click.Path(dir_okay=False, exists=True))
-@click.option("--map", "map_path", type=click.Path(dir_okay=False, exists=True), default=None,
+@click.argument("scen_path", metavar="FILE.scen", type=click.Path(dir_okay=False))
+@click.option("--map", "map_path", type=click.Path(dir_okay=False), default=None,
               help="The .map file (default: the scenario's map name next to FILE.scen).")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
 @click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True)
@@ -112,6 +118,11 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
     from ..grid.scen import read_scen
     from ..grid.scen_runner import run_scenarios
 
+    for path in (scen_path, map_path):
+        if path is not None and not os.path.exists(path):
+            fail(f"{path}: no such file. Moving AI scenarios and maps come from movingai.com/benchmarks "
+                 "(a .map and its .map.scen side by side; the README's examples use the five in "
+                 "../shared/data/movingai beside a navlab checkout)")
     total = len(read_scen(scen_path)[::every][:limit])
     with progress_bar(total, "scenarios", quiet) as bar:
         out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every,

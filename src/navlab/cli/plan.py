@@ -24,7 +24,7 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
               help="Goal in metres (overrides the world's; required for maps).")
 @click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
               help="Robot radius in metres (overrides the world's; maps: 0).")
-@click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iterations (default: the planner's).")
+@click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
 @click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None,
               help="Time limit in seconds (starts after warm-up).")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Random seed (same seed, same result).")
@@ -96,8 +96,8 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
         click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "
                    f"planning {s['time_s'] * 1000:.1f} ms"
                    + (f", first solution at iteration {first}" if first is not None else ""))
-    elif "time_s" in s:
-        line = f"  grid {s.get('grid', '?')} at {result.params.get('resolution', 0):g} m"
+    elif "time_s" in s and s.get("grid"):  # a grid planner that searched (not one refused at its start)
+        line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:
             line += f", {s['expanded']} cells expanded"
         click.echo(line + f", planning {s['time_s'] * 1000:.1f} ms (rasterising {s.get('rasterize_s', 0) * 1000:.1f} ms)")

@@ -1,0 +1,45 @@
+"""Small things a newcomer run found: each one line naming what is wrong, or the right output."""
+
+import subprocess
+import sys
+
+import pytest
+
+import navlab
+from navlab.world.io import save_world
+
+
+def navlab_cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "navlab", *map(str, args)], capture_output=True, text=True, cwd=cwd)
+
+
+@pytest.mark.parametrize("seed", [-5, 1.5, "3", True])
+def test_a_bad_seed_is_named(seed):
+    with pytest.raises(ValueError, match="seed must be a non-negative whole number"):
+        navlab.plan("trap", seed=seed)
+
+
+@pytest.mark.parametrize("planner", [["rrt"], None, 3])
+def test_a_planner_that_is_not_a_name_is_named(planner):
+    with pytest.raises(ValueError, match="planner"):
+        navlab.plan("trap", planner=planner)
+
+
+def test_an_invalid_start_for_a_grid_planner_prints_no_empty_grid_line():
+    done = navlab_cli("plan", "trap", "--planner", "astar", "--start", "100", "100")
+    assert done.returncode in (1, 2) and "grid None" not in done.stdout + done.stderr
+
+
+def test_grid_plan_on_a_world_file_says_to_use_navlab_plan(tmp_path):
+    save_world(navlab.load_world("trap"), tmp_path / "trap.yaml")
+    done = navlab_cli("grid", "plan", tmp_path / "trap.yaml", "--start", "0", "0", "--goal", "1", "1")
+    assert done.returncode == 2 and "this is a world file" in done.stderr and "navlab plan" in done.stderr
+
+
+def test_a_missing_scenario_file_says_where_they_come_from(tmp_path):
+    done = navlab_cli("grid", "scen", tmp_path / "arena.map.scen")
+    assert done.returncode == 2 and "movingai.com/benchmarks" in done.stderr
+
+
+def test_max_iter_help_states_the_defaults():
+    assert "5000 for rrt_star" in navlab_cli("plan", "--help").stdout.replace("\n", " ").replace("  ", " ")

@@ -32,7 +32,9 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 @click.option("--connectivity", type=click.Choice(["4", "8"]), default="8", show_default=True)
 @click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A* (>= 1).")
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
-@click.option("--inflate", type=float, default=0.0, show_default=True, help="Inflate obstacles by this radius, m.")
+@click.option("--robot-radius", "--inflate", "inflate", type=float, default=0.0, show_default=True,
+              help="The robot's radius [m]: obstacles are inflated by it (--inflate is the old name), as "
+                   "navlab plan's --robot-radius.")
 @click.option("--allow-unknown", is_flag=True, help="Let the path cross cells of unknown occupancy.")
 @click.option("--map-rule", type=click.Choice(["nav2", "ros1"]), default="nav2", show_default=True,
               help="How a map_server image is read: Nav2's map_io (inclusive thresholds) or ROS 1's map_server.")

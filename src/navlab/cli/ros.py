@@ -166,5 +166,7 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
         for line in summary["warnings"]:
             click.echo(f"  {line}")
         if "recorded" in summary:
-            click.echo(f"  recorded to {summary['recorded']['path']}: {summary['recorded']['messages']}")
+            counts = summary["recorded"]["messages"]
+            listed = ", ".join(f"{topic} {n}" for topic, n in counts.items()) if isinstance(counts, dict) else counts
+            click.echo(f"  recorded to {summary['recorded']['path']}: messages per topic: {listed}")
     sys.exit({"REACHED": 0, "INTERRUPTED": EXIT_INTERRUPTED}.get(summary["status"], 1))

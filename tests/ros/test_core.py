@@ -160,7 +160,7 @@ def test_a_tree_planner_that_fails_still_reports_its_tree():
     # values of the wrong kind (ROS parameters are loosely typed) are refused at start-up too
     (dict(algorithm="rrt_star", max_iter="abc"), "max_iter"),
     (dict(algorithm="rrt_star", max_time=-1.0), "max_time"),
-    (dict(algorithm="rrt_star", seed="x"), "bad setting for rrt_star"),
+    (dict(algorithm="rrt_star", seed="x"), "seed must be a non-negative whole number"),
     (dict(algorithm="rrt_star", sampler="integration", weights=5), "weights"),
 ])
 def test_unknown_names_and_bad_values_are_refused_at_start_up(settings, message):

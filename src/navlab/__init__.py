@@ -11,7 +11,7 @@ __version__ = "0.1.0"
 
 #: public name -> the module (relative to navlab) that defines it
 _LAZY = {
-    "plan": "planning", "planner_names": "planning", "Result": "result", "Status": "result",
+    "plan": "planning", "planner_names": "planning", "Result": "result", "Status": "result", "Tree": "result",
     "make_planner": "sampling", "make_sampler": "sampling", "World": "world", "load_world": "world",
     "load_source": "world.sources",
 }

@@ -15,7 +15,7 @@ from typing import Any, Dict
 import numpy as np
 
 from .registry import UnknownNameError, parameters_of, suggest
-from .result import Result, Status
+from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
 from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
 
@@ -144,8 +144,7 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
                       reason=f"the grid path's leg {i} from {tuple(np.round(path[i], 6))} to "
                              f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
     cost = path_length(path)
-    tree = dict(r.tree) if isinstance(r.tree, dict) else {}
-    tree["raster"] = grid
+    tree = (r.tree or Tree()).with_raster(grid)
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
 
 

@@ -70,9 +70,8 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     if plot:
         from ..viz.grid_plot import plot_grid_plan
 
-        raw = result.tree["raw_cells"] if result.tree else None
         try:
-            plot_grid_plan(grid, result, plot, raw_cells=raw, start=ends[0], goal=ends[1])
+            plot_grid_plan(grid, result, plot, start=ends[0], goal=ends[1])
         except OSError as exc:
             fail(f"cannot write {plot}: {exc.strerror or exc}")
     if as_json:

@@ -35,7 +35,7 @@ import numpy as np
 
 from ..limits import check_coordinate
 from ..registry import Registry
-from ..result import Result, Status
+from ..result import Result, Status, Tree
 from . import kernels as K
 from .occupancy import OccupancyGrid
 
@@ -336,7 +336,7 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     cost = path_cost(cells) if raw is not None else raw_cost
     stats = _stats(t0, expanded, cost, raw_cost, grid.resolution, warmup_s)
     return Result(status=Status.EXACT, path=grid.cell_to_world(cells), cost=stats["length_m"], stats=stats,
-                  params=params, cells=cells, tree=None if raw is None else {"raw_cells": raw})
+                  params=params, cells=cells, tree=None if raw is None else Tree(raw_cells=raw))
 
 
 def plan_world(grid: OccupancyGrid, start_xy, goal_xy, **kwargs: Any) -> Result:

@@ -21,7 +21,7 @@ import numpy as np
 
 from ..limits import check_length, check_memory
 from ..registry import Registry, parameters_of
-from ..result import Result, Status
+from ..result import Result, Status, Tree
 from . import tree_kernel as K
 from .regions import BoxRegion, InformedRegion
 from .samplers import Sampler, make_sampler
@@ -230,7 +230,7 @@ class TreePlanner:
                       f"{np.linalg.norm(path[-1] - goal):.4g} m from the goal") if tree.size > 1 else \
                      f"the tree did not grow in {iterations} iterations"
         cost = float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) if len(path) > 1 else 0.0
-        treedata = {"nodes": tree.nodes(), "parent": tree.parents()} if self.keep_tree else None
+        treedata = Tree(nodes=tree.nodes(), parent=tree.parents()) if self.keep_tree else None
         return Result(status=status, path=path, cost=cost, stats=stats, reason=reason,
                       tree=treedata, params=params)
 

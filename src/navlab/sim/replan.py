@@ -152,6 +152,7 @@ class Replanner:
         self.planner, self.sampler, self.params = planner, sampler, params
         self.sense_range = sense_range
         self.count = 0  #: replans made
+        self.paths: list = []  #: each new path found, from the pose it was planned at (for drawing)
         self._tracks: list = []  # (centre, velocity, points) per cluster of the last scan
         self.threat: Optional[tuple] = None  #: (centre, velocity) of an obstacle about to run into the robot
         self._t_last = -np.inf
@@ -222,4 +223,7 @@ class Replanner:
         path = plan_path(self.world, self.radius, pose, self.goal, self.planner, self.sampler,
                          seed=self.count + 1000 * (seed if isinstance(seed, int) else 0), extra=extra,
                          params=self.params)
-        return path if isinstance(path, np.ndarray) else None
+        if not isinstance(path, np.ndarray):
+            return None
+        self.paths.append(path)
+        return path

@@ -15,7 +15,7 @@ import enum
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any, Dict, Optional
+from typing import Any, Dict, List, Optional
 
 import numpy as np
 
@@ -70,6 +70,8 @@ class SimResult:
     scans: Optional[np.ndarray] = None  #: (N, beams) when recorded
     reason: str = ""
     meta: Dict[str, Any] = field(default_factory=dict)
+    #: paths planned during the run (replans), each from the robot's pose then
+    replans: List[np.ndarray] = field(default_factory=list)
 
     @property
     def real_time_factor(self) -> float:
@@ -192,6 +194,8 @@ class Simulation:
 
     def run(self, seed: Any = 0) -> SimResult:
         rng = np.random.default_rng(seed)
+        replanner = getattr(self.controller, "replanner", None)
+        replans_before = len(getattr(replanner, "paths", ()))
         # latency jitter has its own stream, so runs without jitter draw exactly as before
         entropy = int(seed) if isinstance(seed, (int, np.integer)) else 0
         timing_rng = np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=(4,)))
@@ -259,7 +263,8 @@ class Simulation:
         steps = n - 1
         return SimResult(status, steps * dt, steps, wall, np.arange(n) * dt, true[:n].copy(), odo[:n].copy(),
                          cmds[:n].copy(), self.goal.copy(), self.path,
-                         None if scans is None else scans[:n].copy(), reason)
+                         None if scans is None else scans[:n].copy(), reason,
+                         replans=list(getattr(replanner, "paths", ())[replans_before:]))
 
     def min_clearance(self, result: SimResult) -> float:
         """Smallest gap (m) between the robot's disc and any obstacle, where

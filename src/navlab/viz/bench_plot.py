@@ -10,6 +10,7 @@ from typing import Any, Dict, List, Sequence, Tuple
 import numpy as np
 
 from .plot import _pyplot, draw_path, draw_tree, draw_world
+from .legend import place_legend
 from .save import save_figure
 
 Rows = List[Dict[str, Any]]
@@ -89,9 +90,8 @@ def convergence_plot(world: str, groups: Dict[str, Rows], out: str) -> bool:
     ax.set_ylabel("best path cost [m] (median, 25–75% band)")
     ax.set_title(f"{world}: convergence")
     ax.grid(alpha=0.3)
-    if ax.lines:
-        ax.legend(fontsize=8)
     fig.subplots_adjust(left=0.1, right=0.97, bottom=0.12, top=0.92)
+    place_legend(ax)  # a corner clear of the curves, else outside
     _save(fig, out, 100)
     plt.close(fig)
     return True
@@ -109,13 +109,12 @@ def example_trees(world, examples: Sequence[Tuple[str, Dict[str, np.ndarray]]], 
         ax.axis("off")
     for ax, (title, tree) in zip(axes.ravel(), examples):
         draw_world(ax, world, show_inflation=False)
-        draw_tree(ax, np.asarray(tree["nodes"]), np.asarray(tree["parent"]))
+        draw_tree(ax, np.asarray(tree["nodes"]), np.asarray(tree["parent"]), label=None)
         draw_path(ax, np.asarray(tree["path"], dtype=float).reshape(-1, 2), label="path")
         ax.set_title(title, fontsize=9)
-        ax.set_xlabel("")
-        ax.set_ylabel("")
-        ax.set_xticks([])  # the world's extent is in the other figures; ticks cost time
-        ax.set_yticks([])
-    fig.subplots_adjust(left=0.01, right=0.99, bottom=0.01, top=0.93, wspace=0.05, hspace=0.25)
+        ax.tick_params(labelsize=7)
+        ax.xaxis.label.set_size(8)  # draw_world labels the axes in metres
+        ax.yaxis.label.set_size(8)
+    fig.subplots_adjust(left=0.06, right=0.99, bottom=0.08, top=0.93, wspace=0.2, hspace=0.3)
     _save(fig, out, 90)
     plt.close(fig)

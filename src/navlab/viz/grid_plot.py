@@ -6,28 +6,36 @@ from typing import Optional, Sequence
 
 import numpy as np
 
-from .plot import _pyplot, finish_figure
+from .plot import finish_plot, new_axes
 
 
 def draw_grid(ax, grid) -> None:
-    """The occupancy grid in world coordinates (blocked black, unknown grey)."""
+    """The occupancy grid in world coordinates (blocked black, unknown grey),
+    axes labelled in metres, equal aspect."""
     res = grid.resolution
     x0, y0 = grid.origin[0], grid.origin[1]
     extent = (x0, x0 + grid.width * res, y0, y0 + grid.height * res)
     image = np.where(grid.blocked, 0.0, np.where(grid.unknown, 0.6, 1.0))
     ax.imshow(image, cmap="gray", vmin=0, vmax=1, origin="lower", extent=extent, interpolation="nearest")
+    ax.set_aspect("equal")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
 
 
 def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[np.ndarray] = None,
                    expanded: Optional[np.ndarray] = None, title: Optional[str] = None,
-                   start: Optional[Sequence[float]] = None, goal: Optional[Sequence[float]] = None):
+                   start: Optional[Sequence[float]] = None, goal: Optional[Sequence[float]] = None, ax=None):
     """The grid (world frame), optional expanded cells, raw and smoothed paths.
 
     ``start`` and ``goal`` (metres) are drawn whether or not there is a path
     (default: the path's ends), so a failed plan still shows what was asked.
+    ``raw_cells`` defaults to the path before smoothing (``result.tree.raw_cells``).
+    With ``ax``, draws into those axes and returns them; otherwise returns a
+    new figure (closed once written to ``out``), as :func:`navlab.viz.plot_plan`.
     """
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7, 7))
+    fig, ax, owned = new_axes(ax)
+    if raw_cells is None and result.tree is not None:
+        raw_cells = result.tree.get("raw_cells")
     draw_grid(ax, grid)
     if expanded is not None and len(expanded):
         pts = grid.cell_to_world(expanded)
@@ -44,9 +52,5 @@ def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[
         ax.plot(*np.asarray(start, float)[:2], "o", color="tab:green", ms=8, label="start")
     if goal is not None:
         ax.plot(*np.asarray(goal, float)[:2], "*", color="tab:red", ms=13, label="goal")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
     ax.set_title(title or f"{grid.name}: {result.params.get('algorithm')} — {result.status.name}")
-    if ax.get_legend_handles_labels()[0]:  # no legend (and no matplotlib warning) when nothing is labelled
-        ax.legend(loc="best", fontsize=8)
-    return finish_figure(fig, out)
+    return finish_plot(fig, ax, owned, out)

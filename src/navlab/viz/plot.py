@@ -6,6 +6,8 @@ from typing import Optional
 
 import numpy as np
 
+from ..result import Tree
+from .legend import FRAME, place_legend
 from .save import save_figure
 
 
@@ -37,7 +39,41 @@ def finish_figure(fig, out: Optional[str], dpi: int = 110):
     return fig
 
 
+def new_axes(ax=None, figsize=(7, 7)):
+    """``(figure, axes, owned)``: ``ax`` and its figure when given (drawing into
+    a caller's axes, e.g. a notebook's subplot), else a new figure whose
+    ``owned`` flag says the caller of the ``plot_*`` function saves and closes it."""
+    if ax is not None:
+        return ax.figure, ax, False
+    fig, ax = _pyplot().subplots(figsize=figsize)
+    return fig, ax, True
+
+
+def finish_plot(fig, ax, owned: bool, out: Optional[str]):
+    """The ``plot_*`` functions' common ending: the legend where it covers no
+    data, then the figure saved to ``out`` (new figures only) and returned;
+    drawing into a given ``ax`` returns that axes (``out`` saves its figure)."""
+    place_legend(ax)
+    if not owned:
+        if out:
+            finish_figure_keep(fig, out)
+        return ax
+    return finish_figure(fig, out)
+
+
+def finish_figure_keep(fig, out: str, dpi: int = 110) -> None:
+    """Write ``fig`` to ``out`` without closing it (a caller's figure stays theirs)."""
+    try:
+        save_figure(fig, out, dpi=dpi, bbox_inches="tight")
+    except OSError as exc:
+        raise ValueError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
+    except ValueError as exc:
+        raise ValueError(f"{out}: cannot write the figure: {exc}") from None
+
+
 def draw_map(ax, grid, allow_unknown: bool = False, occupied: float = 0.35) -> None:
+    """An occupancy grid under a world's shapes, in world coordinates (its
+    origin's yaw applied): blocked cells grey (``occupied`` shade), free white."""
     """An occupancy grid as an image in the map frame: occupied cells dark
     (grey level ``occupied``), unknown cells mid grey (light when
     ``allow_unknown``), free cells white."""
@@ -53,8 +89,13 @@ def draw_map(ax, grid, allow_unknown: bool = False, occupied: float = 0.35) -> N
     image.set_transform(mtransforms.Affine2D().rotate(yaw).translate(ox, oy) + ax.transData)
 
 
-def draw_world(ax, world, show_inflation: bool = True) -> None:
-    """Obstacles (filled), their inflation by the robot radius (dashed), bounds, start and goal."""
+def draw_world(ax, world, show_inflation: bool = True, moving: bool = True) -> None:
+    """Obstacles (filled), their inflation by the robot radius (dashed),
+    bounds, start and goal; axes labelled in metres, equal aspect.
+
+    ``moving=False`` leaves out the obstacles that move (an animation draws
+    them where they are in each frame, so no copy stays at t = 0).
+    """
     from matplotlib import patches
 
     from ..world.shapes import Circle, Polygon, Rectangle
@@ -62,32 +103,39 @@ def draw_world(ax, world, show_inflation: bool = True) -> None:
     r = world.robot_radius
     if getattr(world, "occupancy", None) is not None:
         draw_map(ax, world.occupancy, world.allow_unknown)
+    solid = {"color": "0.35", "zorder": 2, "label": "obstacle"}
+    grown = {"fill": False, "ls": "--", "lw": 0.7, "ec": "0.5", "zorder": 2,
+             "label": f"inflated by the robot radius {r:g} m"}
     for o in world.obstacles:
+        if not moving and getattr(o, "motion", None) is not None:
+            continue
         if isinstance(o, Circle):
-            ax.add_patch(patches.Circle(o.center, o.radius, color="0.35", zorder=2))
+            ax.add_patch(patches.Circle(o.center, o.radius, **solid))
             if show_inflation and r > 0:
-                ax.add_patch(patches.Circle(o.center, o.radius + r, fill=False, ls="--", lw=0.7, ec="0.5", zorder=2))
+                ax.add_patch(patches.Circle(o.center, o.radius + r, **grown))
         elif isinstance(o, Rectangle):
             w, h = o.max[0] - o.min[0], o.max[1] - o.min[1]
-            ax.add_patch(patches.Rectangle(o.min, w, h, color="0.35", zorder=2))
+            ax.add_patch(patches.Rectangle(o.min, w, h, **solid))
             if show_inflation and r > 0:
-                ax.add_patch(patches.FancyBboxPatch(o.min, w, h, boxstyle=f"round,pad={r}", fill=False,
-                                                    ls="--", lw=0.7, ec="0.5", zorder=2))
+                ax.add_patch(patches.FancyBboxPatch(o.min, w, h, boxstyle=f"round,pad={r}", **grown))
         elif isinstance(o, Polygon):
-            ax.add_patch(patches.Polygon(o.points, closed=True, color="0.35", zorder=2))
+            ax.add_patch(patches.Polygon(o.points, closed=True, **solid))
             if show_inflation and r > 0:
                 import shapely
 
-                grown = shapely.Polygon(o.points).buffer(r)
-                ax.plot(*grown.exterior.xy, ls="--", lw=0.7, color="0.5", zorder=2)
+                outline = shapely.Polygon(o.points).buffer(r)
+                ax.add_patch(patches.Polygon(np.column_stack(outline.exterior.xy), closed=True, **grown))
+        else:
+            continue
+        # one legend entry per kind, however many obstacles
+        solid["label"] = grown["label"] = None
     b = world.bounds
-    ax.plot([b.xmin, b.xmax, b.xmax, b.xmin, b.xmin], [b.ymin, b.ymin, b.ymax, b.ymax, b.ymin], color="k", lw=1)
+    ax.plot([b.xmin, b.xmax, b.xmax, b.xmin, b.xmin], [b.ymin, b.ymin, b.ymax, b.ymax, b.ymin], color="k", lw=1,
+            gid=FRAME)
     ax.plot(*world.start, "o", color="tab:green", ms=9, zorder=5, label="start")
     ax.plot(*world.goal, "*", color="tab:red", ms=14, zorder=5, label="goal")
     if world.goal_tolerance > 0:
-        from matplotlib import patches as p
-
-        ax.add_patch(p.Circle(world.goal, world.goal_tolerance, fill=False, ec="tab:red", lw=0.8, zorder=5))
+        ax.add_patch(patches.Circle(world.goal, world.goal_tolerance, fill=False, ec="tab:red", lw=0.8, zorder=5))
     ax.set_xlim(b.xmin - 0.02 * b.diagonal, b.xmax + 0.02 * b.diagonal)
     ax.set_ylim(b.ymin - 0.02 * b.diagonal, b.ymax + 0.02 * b.diagonal)
     ax.set_aspect("equal")
@@ -95,31 +143,69 @@ def draw_world(ax, world, show_inflation: bool = True) -> None:
     ax.set_ylabel("y [m]")
 
 
-def draw_tree(ax, nodes: np.ndarray, parent: np.ndarray) -> None:
-    """Tree edges as one line collection."""
+def draw_tree(ax, tree, parent: Optional[np.ndarray] = None, label: Optional[str] = "tree") -> None:
+    """A search tree's edges as one line collection (thin blue).
+
+    ``tree`` is a :class:`navlab.Tree` (``result.tree``), or the node array
+    (N, 2) with ``parent`` (N,) given apart (−1 for the root).
+    """
     from matplotlib.collections import LineCollection
 
-    has_parent = parent >= 0
-    segs = np.stack((nodes[parent[has_parent]], nodes[has_parent]), axis=1)
-    ax.add_collection(LineCollection(segs, colors="tab:blue", linewidths=0.4, alpha=0.5, zorder=3))
+    from ..result import Tree
+
+    if not isinstance(tree, Tree):
+        tree = Tree(nodes=np.asarray(tree, float), parent=np.asarray(parent))
+    segs = tree.edges()
+    ax.add_collection(LineCollection(segs, colors="tab:blue", linewidths=0.4, alpha=0.5, zorder=3,
+                                     label=f"{label} ({len(tree)} nodes)" if label and len(segs) else None))
 
 
 def draw_path(ax, path: np.ndarray, label: str = "path", color: str = "tab:orange", **kw) -> None:
+    """A path (N, 2+) as a polyline (x, y columns; headings, if any, ignored)."""
+    path = np.asarray(path, dtype=float)
     if len(path):
         kw.setdefault("ls", "-")
-        ax.plot(path[:, 0], path[:, 1], color=color, lw=kw.pop("lw", 2.2), zorder=4, label=label, **kw)
+        kw.setdefault("zorder", 4)
+        ax.plot(path[:, 0], path[:, 1], color=color, lw=kw.pop("lw", 2.2), label=label, **kw)
 
 
-def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = None):
-    """A figure of world, tree (if kept), path, start and goal; saved to ``out``."""
-    plt = _pyplot()
-    fig, ax = plt.subplots(figsize=(7, 7))
-    tree = result.tree if isinstance(result.tree, dict) else {}
+def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = None, ax=None):
+    """World, tree (if kept), path, start and goal.
+
+    Parameters
+    ----------
+    world : World
+        What was planned in (``navlab.load_world`` or the source's world).
+    result : Result
+        A planner's result; its ``tree`` is drawn when it was kept.
+    out : str, optional
+        Write the figure here (format from the suffix); written whole or not at all.
+    title : str, optional
+        Default: world, planner (+ sampler) and status.
+    ax : matplotlib Axes, optional
+        Draw into these axes (a notebook's subplot) instead of a new figure.
+
+    Returns
+    -------
+    Figure or Axes
+        The new figure (closed once saved to ``out``), or ``ax`` when given.
+
+    Examples
+    --------
+    >>> import matplotlib.pyplot as plt, navlab
+    >>> from navlab.viz import plot_plan
+    >>> fig, axes = plt.subplots(1, 2)
+    >>> for ax, sampler in zip(axes, ("uniform", "gaussian")):
+    ...     r = navlab.plan("trap", sampler=sampler, seed=0, max_iter=300, keep_tree=True)
+    ...     _ = plot_plan(navlab.load_world("trap"), r, ax=ax)
+    """
+    fig, ax, owned = new_axes(ax)
+    tree = result.tree if result.tree is not None else Tree()
     if "raster" in tree and getattr(world, "occupancy", None) is None:
         draw_map(ax, tree["raster"], occupied=0.8)  # the cells a grid planner saw, under the exact shapes
     draw_world(ax, world)
     if "nodes" in tree:
-        draw_tree(ax, tree["nodes"], tree["parent"])
+        draw_tree(ax, tree)
     if "raw_cells" in tree and "raster" in tree:  # a smoothed grid path: the path before smoothing
         raw = tree["raster"].cell_to_world(tree["raw_cells"])
         draw_path(ax, raw, label="grid path before smoothing", color="tab:blue", lw=1.0, ls="--")
@@ -128,5 +214,4 @@ def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = N
     if result.params.get("sampler"):
         what += f" + {result.params['sampler']}"
     ax.set_title(title or f"{world.name}: {what} — {result.status.name}")
-    ax.legend(loc="upper left", fontsize=8)
-    return finish_figure(fig, out)
+    return finish_plot(fig, ax, owned, out)

@@ -65,12 +65,15 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
 
 
 def split_grid_params(planner: str, params: dict) -> dict:
-    """Check that every parameter is a grid setting; "did you mean" otherwise."""
+    """Check that every parameter is a grid setting ("did you mean" otherwise)
+    with a value it can take (:func:`navlab.grid.settings.check_grid_settings`)."""
+    from .grid.settings import check_grid_settings
+
     for key in params:
         if key not in GRID_PARAMS:
             raise ValueError(f"unknown parameter '{key}' for grid planner '{planner}'; "
                              f"valid: {', '.join(GRID_PARAMS)}." + suggest(key, list(GRID_PARAMS)))
-    return dict(params)
+    return check_grid_settings(params)
 
 
 def build_sampler(sampler: str, params: dict) -> Sampler:

@@ -23,6 +23,8 @@ class UnknownNameError(KeyError, ValueError):
 
 def suggest(name: str, valid: list[str]) -> str:
     """Return a ``did you mean`` hint for ``name`` among ``valid`` (may be '')."""
+    if not isinstance(name, str):  # a number or a list where a name belongs: nothing is "close"
+        return ""
     close = difflib.get_close_matches(name, valid, n=1, cutoff=0.5)
     return f" Did you mean '{close[0]}'?" if close else ""
 
@@ -59,10 +61,10 @@ class Registry(Generic[T]):
         """Return the entry called ``name`` or raise :class:`UnknownNameError`."""
         try:
             return self._entries[name]
-        except KeyError:
+        except (KeyError, TypeError):  # TypeError: an unhashable value (a list) where a name belongs
             valid = sorted(self._entries)
             raise UnknownNameError(
-                f"unknown {self.kind} '{name}'; valid: {', '.join(valid)}."
+                f"unknown {self.kind} {name!r}; valid: {', '.join(valid)}."
                 + suggest(name, valid)
             ) from None
 
@@ -97,3 +99,30 @@ def check_params(factory: Callable[..., Any], params: Dict[str, Any], what: str)
                 f"unknown parameter '{key}' for {what}; valid: {', '.join(valid) or 'none'}."
                 + suggest(key, valid)
             )
+
+
+def check_finite(params: Dict[str, Any], what: str) -> None:
+    """Refuse NaN and infinite numbers anywhere in ``params`` (lists included),
+    naming the parameter: a robot or controller setting of ``.nan`` or
+    ``.inf`` would otherwise run, and end in NaN poses or a robot that never
+    turns. (For "no limit", a setting says so in its own terms, e.g. ``None``.)"""
+    import math
+
+    def bad(value: Any) -> bool:
+        if isinstance(value, bool):
+            return False
+        if isinstance(value, (int, float)):
+            return isinstance(value, float) and not math.isfinite(value)
+        if isinstance(value, (list, tuple)):
+            return any(bad(v) for v in value)
+        try:  # numpy scalars and arrays
+            import numpy as np
+
+            arr = np.asarray(value)
+            return arr.dtype.kind in "fc" and not bool(np.all(np.isfinite(arr)))
+        except Exception:  # not numeric: left to the factory's own checks
+            return False
+
+    for key, value in params.items():
+        if bad(value):
+            raise ValueError(f"{what}: {key} must be finite, got {value!r}")

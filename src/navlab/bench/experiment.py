@@ -289,7 +289,7 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         maps=maps,
         planners=[_component(p, "planners") for p in _as_list(data["planners"], "planners")],
         samplers=[_component(s, "samplers") for s in _as_list(data.get("samplers", ["uniform"]), "samplers")],
-        params=dict(data.get("params") or {}),
+        params=_mapping(data.get("params"), "params"),
         grid=grid,
         budget={k: v for k, v in budget.items() if v is not None},
         trials=data.get("trials", 20),
@@ -350,6 +350,15 @@ def _component(entry: Any, what: str) -> Component:
         params = {k: v for k, v in entry.items() if k not in ("name", "label")}
         return Component(str(entry["name"]), params, str(entry.get("label", "")))
     raise ExperimentError(f"each of '{what}' is a name or a mapping with 'name' (and settings), got {entry!r}")
+
+
+def _mapping(value: Any, field: str) -> Dict[str, Any]:
+    """A field that must be a mapping (``params: [1]`` is refused naming it)."""
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise ExperimentError(f"'{field}' must be a mapping of name: value, got {value!r}")
+    return dict(value)
 
 
 def validate(exp: Experiment) -> None:

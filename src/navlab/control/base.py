@@ -41,10 +41,11 @@ class Controller:
 
 
 def make_controller(name: str, **params) -> Controller:
-    from ..registry import check_params
+    from ..registry import check_finite, check_params
 
     factory = CONTROLLERS.get(name)
     check_params(factory, params, f"controller '{name}'")
+    check_finite(params, f"controller '{name}'")
     return factory(**params)
 
 

@@ -50,8 +50,8 @@ class Hybrid(Controller):
                  stall_window: float = 4.0, stall_progress: float = 0.03, **field) -> None:
         if not carrot > 0:
             raise ValueError(f"hybrid carrot must be positive, got {carrot!r}")
-        if not replan_interval >= 0:
-            raise ValueError(f"hybrid replan_interval must be ≥ 0, got {replan_interval!r}")
+        if not replan_interval > 0:  # as the followers': 0 would replan on every step of a stall
+            raise ValueError(f"hybrid replan_interval must be a positive number, got {replan_interval!r}")
         if not (isinstance(max_replans, int) and max_replans >= 0):
             raise ValueError(f"hybrid max_replans must be an integer ≥ 0, got {max_replans!r}")
         field.setdefault("stall_window", 1e9)  # the hybrid judges progress along the path itself

@@ -115,7 +115,11 @@ def read_pgm(path: PathLike) -> np.ndarray:
             data = f.read(count * 8 + 4096)
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore", DeprecationWarning)  # a stray token ends the parse
-                raw = np.fromstring(data.decode("latin-1"), dtype=np.int64, sep=" ")
+                try:
+                    raw = np.fromstring(data.decode("latin-1"), dtype=np.int64, sep=" ")
+                except ValueError:  # numpy ≥ 2.x: "could not be read to its end due to unmatched data"
+                    raise MapFormatError(f"{p}: PGM pixel data must be whitespace-separated whole numbers "
+                                         f"0..{maxval} (found something else)") from None
     if raw.size < count:
         raise MapFormatError(f"{p}: truncated PGM data: {raw.size} of {count} pixels ({width}x{height})")
     raw = raw[:count].reshape(height, width)
@@ -153,7 +157,7 @@ def _read_image(path: Path) -> _Image:
                 img.load()
                 if img.mode == "P" or img.mode.startswith("I") or img.mode == "F":
                     # palettes and 16-bit/float grey: through RGBA (keeps transparency)
-                    img = img.convert("RGBA") if img.mode == "P" else _gray16_to_l(img)
+                    img = img.convert("RGBA") if img.mode == "P" else _gray16_to_l(img, path)
                 bands = img.getbands()
                 alpha = np.asarray(img.getchannel("A")) if "A" in bands else None
                 gray = np.asarray(img.convert("L"))
@@ -173,11 +177,15 @@ def _read_image(path: Path) -> _Image:
     return _Image(gray, colour_sum, channels, alpha)
 
 
-def _gray16_to_l(img):
+def _gray16_to_l(img, source):
     """16-bit or float grey to 8-bit, scaled (Pillow's own conversion clips)."""
     from PIL import Image
 
     arr = np.asarray(img, dtype=np.float64)
+    if not np.all(np.isfinite(arr)):
+        bad = np.argwhere(~np.isfinite(arr))[0]
+        raise MapFormatError(f"{source}: pixel (row {bad[0]}, column {bad[1]}) is {arr[tuple(bad)]}: "
+                             "a float image's grey levels must be finite numbers")
     top = 65535.0 if img.mode.startswith("I;16") or arr.max(initial=0) > 255 else 255.0
     return Image.fromarray(np.clip(np.floor(arr * (255.0 / top) + 0.5), 0, 255).astype(np.uint8), "L")
 

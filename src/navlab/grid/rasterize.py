@@ -48,10 +48,12 @@ def grid_shape(bounds, resolution: float) -> tuple[int, int]:
         raise ValueError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
     sx, sy = bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin
     # a hair of slack so that 10 m / 0.05 m counts 200 cells, not 199
-    nx, ny = math.floor(sx / resolution * (1 + 1e-12)), math.floor(sy / resolution * (1 + 1e-12))
-    if nx * ny > MAX_CELLS:
+    fx, fy = sx / resolution * (1 + 1e-12), sy / resolution * (1 + 1e-12)
+    if not fx * fy <= MAX_CELLS:  # counted in floats: 1e-300 m cells are more than an int can format
         raise ValueError(f"resolution {resolution:g} m would rasterise the {sx:g} m x {sy:g} m bounds to "
-                         f"{nx} x {ny} = {nx * ny:.3g} cells (more than {MAX_CELLS:.0e}); use a coarser resolution")
+                         f"{fx:.3g} x {fy:.3g} = {fx * fy:.3g} cells (more than {MAX_CELLS:.0e}); "
+                         "use a coarser resolution")
+    nx, ny = math.floor(fx), math.floor(fy)
     if nx < 1 or ny < 1:
         raise ValueError(f"resolution {resolution:g} m is larger than the {sx:g} m x {sy:g} m bounds")
     return nx, ny

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import List
@@ -52,4 +53,8 @@ def read_scen(path) -> List[Scenario]:
                                 float(parts[8]), parts[8].strip()))
         except ValueError:
             raise MapFormatError(f"{p}: line {n}: bad number in {line!r}") from None
+        optimal = out[-1].optimal
+        if not (math.isfinite(optimal) and optimal >= 0):
+            raise MapFormatError(f"{p}: line {n}: the optimal length must be a finite number >= 0, "
+                                 f"got {parts[8].strip()!r}")
     return out

@@ -196,8 +196,9 @@ class Omni3:
 
 def make_robot(name: str, **params) -> object:
     """A registered robot by name (``diff``, ``omni3``) with its settings."""
-    from ..registry import check_params
+    from ..registry import check_finite, check_params
 
     cls = ROBOTS.get(name)
     check_params(cls, params, f"robot '{name}'")
+    check_finite(params, f"robot '{name}'")
     return cls(**params)

@@ -4,6 +4,8 @@ that turns bad settings into one error line."""
 
 from __future__ import annotations
 
+import math
+
 import signal
 import sys
 import time
@@ -42,6 +44,8 @@ class Param(NamedTuple):
     name: str
     default: Any
     description: str
+    #: the smallest value a number may take (rates, delays, timeouts: 0), or None
+    low: Any = None
 
 
 def parameter_help(params: Sequence[Param]) -> str:
@@ -56,6 +60,10 @@ def coerce(param: Param, value: Any) -> Any:
         return float(value)
     if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
         raise ValueError(f"parameter {param.name} must be {kind.__name__}, got {value!r}")
+    if kind is float and not math.isfinite(value) and math.isfinite(param.default):
+        raise ValueError(f"parameter {param.name} must be a finite number, got {value!r}")
+    if param.low is not None and value < param.low:
+        raise ValueError(f"parameter {param.name} must be at least {param.low:g}, got {value!r}")
     if param.name == "seed" and value < 0:  # numpy's generators take non-negative seeds only
         raise ValueError(f"parameter seed must be a non-negative integer, got {value!r}")
     return value

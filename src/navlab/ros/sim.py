@@ -50,11 +50,11 @@ class SimNode(NavlabNode):
         Param("yaw", 0.0, "start heading (rad)"),
         Param("dt", 0.02, "simulation step (s); /odom is published every step"),
         Param("real_time_factor", 1.0, "simulated seconds per wall-clock second"),
-        Param("scan_rate", 10.0, "LiDAR scans per simulated second (0: no /scan)"),
-        Param("lidar_beams", 360, "readings per scan"),
-        Param("lidar_range_max", 12.0, "LiDAR range (m)"),
+        Param("scan_rate", 10.0, "LiDAR scans per simulated second (0: no /scan)", low=0.0),
+        Param("lidar_beams", 360, "readings per scan", low=1),
+        Param("lidar_range_max", 12.0, "LiDAR range (m)", low=0.0),
         Param("noisy", False, "seed 004 noise: RPLiDAR A1 ranges, 2% wheel speed noise, 1% slip, 1° compass"),
-        Param("cmd_vel_timeout", 0.5, "stop when /cmd_vel is older than this (simulated s; 0: never)"),
+        Param("cmd_vel_timeout", 0.5, "stop when /cmd_vel is older than this (simulated s; 0: never)", low=0.0),
         Param("seed", 0, "random seed of the noise"),
         Param("publish_clock", True, "publish /clock (the other nodes then use use_sim_time)"),
         Param("odom_frame", "odom", "frame of /odom"),
@@ -62,11 +62,11 @@ class SimNode(NavlabNode):
         Param("static_map_odom", True, "publish the identity map → odom transform on /tf_static "
                                        "(turn off when a localiser publishes map → odom)"),
         Param("scan_latency", 0.0, "delay of /scan (simulated s): a scan is published this long after it is "
-                                   "taken, stamped when taken (seed 004 measured 0.5 s)"),
-        Param("scan_jitter", 0.0, "standard deviation of the /scan delay (s), seeded"),
-        Param("odom_latency", 0.0, "delay of /odom (simulated s; seed 004 measured 0.08 s)"),
-        Param("odom_jitter", 0.0, "standard deviation of the /odom delay (s), seeded"),
-        Param("odom_rate", 0.0, "/odom messages per simulated second (0: every step)"),
+                                   "taken, stamped when taken (seed 004 measured 0.5 s)", low=0.0),
+        Param("scan_jitter", 0.0, "standard deviation of the /scan delay (s), seeded", low=0.0),
+        Param("odom_latency", 0.0, "delay of /odom (simulated s; seed 004 measured 0.08 s)", low=0.0),
+        Param("odom_jitter", 0.0, "standard deviation of the /odom delay (s), seeded", low=0.0),
+        Param("odom_rate", 0.0, "/odom messages per simulated second (0: every step)", low=0.0),
     )
 
     def __init__(self, **kwargs) -> None:

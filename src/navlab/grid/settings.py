@@ -1,0 +1,64 @@
+"""Checking grid planner settings before anything is built.
+
+Settings arrive from Python calls, ``--param`` flags and experiment files,
+so any YAML value can turn up (``heuristic: 0``, ``connectivity: [1]``,
+``connectivity: .inf``, ``resolution: 1e-300``); each is checked here once,
+with one message naming the setting, instead of failing later inside numpy
+or ``int()``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Dict
+
+from ..limits import MAX_COORDINATE, MIN_LENGTH
+
+
+def _name(key: str, value: Any, valid) -> str:
+    if not isinstance(value, str) or value not in valid:
+        raise ValueError(f"{key} must be one of {', '.join(valid)}; got {value!r}")
+    return value
+
+
+def _flag(key: str, value: Any) -> bool:
+    if not isinstance(value, bool):
+        raise ValueError(f"{key} must be true or false, got {value!r}")
+    return value
+
+
+def _number(key: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{key} must be a finite number, got {value!r}")
+    return float(value)
+
+
+def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
+    """``params`` with every grid setting it has checked (values unchanged
+    but for integral floats of ``connectivity``); unknown keys pass through
+    (the caller reports them). Raises ``ValueError`` naming the setting."""
+    from .planner import GRID_ALGORITHMS, HEURISTICS
+
+    out = dict(params)
+    if "heuristic" in out:
+        _name("heuristic", out["heuristic"], HEURISTICS.names())
+    if "algorithm" in out:
+        _name("algorithm", out["algorithm"], GRID_ALGORITHMS.names())
+    if "connectivity" in out:
+        value = out["connectivity"]
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or value not in (4, 8):
+            raise ValueError(f"connectivity must be 4 or 8, got {value!r}")
+        out["connectivity"] = int(value)
+    for key in ("smooth", "allow_unknown"):
+        if key in out:
+            _flag(key, out[key])
+    if "weight" in out and not _number("weight", out["weight"]) >= 1:
+        raise ValueError(f"weight must be a number >= 1, got {out['weight']!r}")
+    if "resolution" in out and out["resolution"] is not None:
+        r = _number("resolution", out["resolution"])
+        if not MIN_LENGTH <= r <= MAX_COORDINATE:
+            raise ValueError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
+                             f"got {out['resolution']!r}")
+    if "smooth_method" in out:
+        _name("smooth_method", out["smooth_method"], ["bresenham", "supercover"])
+    return out

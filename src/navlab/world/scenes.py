@@ -9,6 +9,9 @@
   (as ``goal_tolerance``) in an empty 10 m × 10 m workspace.
 - ``one_obstacle``: seed 004's open floor with one cylinder between the
   start and the goal (the ROS 2 omni-robot demo and test).
+- ``crossing``: a 10 m × 4 m corridor that a cylinder crosses at 0.2 m/s,
+  back and forth across the robot's way: the dynamic-environment example
+  (seed 004's moving obstacles).
 
 Pictures: ``docs/scenes.md``.
 """
@@ -18,6 +21,7 @@ from __future__ import annotations
 from typing import Callable
 
 from ..registry import Registry
+from .motion import parse_motion
 from .shapes import Circle, Polygon, Rectangle
 from .world import Bounds, World
 
@@ -154,5 +158,22 @@ def one_obstacle() -> World:
         start=(0.0, 0.0),
         goal=(3.0, 0.0),
         obstacles=(Circle((1.5, 0.02), 0.15),),
+        robot_radius=0.0,
+    )
+
+
+@SCENES.register("crossing")
+def crossing() -> World:
+    """A corridor from (1, 2) to (9, 2) that a 0.3 m cylinder crosses at
+    0.2 m/s, from (5, 0.6) to (5, 3.5) and back, again and again: a robot
+    going straight meets it half way (replanning and potential fields dodge
+    it)."""
+    mover = Circle((5.0, 0.6), 0.3, motion=parse_motion({"waypoints": [[5, 3.5], [5, 0.5]], "speed": 0.2}))
+    return World(
+        name="crossing",
+        bounds=Bounds(0.0, 10.0, 0.0, 4.0),
+        start=(1.0, 2.0),
+        goal=(9.0, 2.0),
+        obstacles=(mover,),
         robot_radius=0.0,
     )

@@ -1,0 +1,134 @@
+"""Issue 22's "clear errors for the rest": each bad value is one line naming
+the file and the field, from Python (the project's ValueError) and from the
+command line (exit 2, no traceback)."""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+from PIL import Image
+
+import navlab
+from navlab.bench.experiment import ExperimentError, load_experiment
+from navlab.control.base import make_controller
+from navlab.grid import load_map, read_scen
+from navlab.grid.mapio import MapFormatError
+from navlab.robots import make_robot
+
+
+def cli(*args, cwd=None):
+    return subprocess.run([sys.executable, "-m", "navlab", *map(str, args)], capture_output=True, text=True,
+                          cwd=cwd)
+
+
+@pytest.mark.parametrize("setting, value, words", [
+    ("heuristic", 0, "heuristic must be one of"),
+    ("connectivity", [1], "connectivity must be 4 or 8"),
+    ("connectivity", float("inf"), "connectivity must be 4 or 8"),
+    ("resolution", 1e-300, "resolution must be between"),
+    ("smooth", 3, "smooth must be true or false"),
+    ("weight", float("nan"), "weight must be a finite number"),
+])
+def test_grid_settings_of_the_wrong_type_name_the_setting(setting, value, words):
+    with pytest.raises(ValueError, match=words):
+        navlab.plan("trap", planner="astar", **{setting: value})
+
+
+@pytest.mark.parametrize("param", ["heuristic=0", "connectivity=[1]", "connectivity=.inf", "resolution=1e-300"])
+def test_grid_settings_from_the_command_line(param):
+    done = cli("plan", "trap", "--planner", "astar", "--param", param)
+    assert done.returncode == 2 and "internal error" not in done.stderr and "Traceback" not in done.stderr
+    assert done.stderr.strip().count("\n") == 0 and param.split("=")[0] in done.stderr
+
+
+@pytest.mark.parametrize("body, words", [
+    ("grid: {heuristic: [0]}", "heuristic must be one of"),
+    ("grid: {connectivity: [[1]]}", "connectivity must be 4 or 8"),
+    ("grid: {connectivity: [.inf]}", "connectivity must be 4 or 8"),
+    ("grid: {resolution: [1.0e-300]}", "resolution must be between"),
+    ("params: [1]", "'params' must be a mapping"),
+    ("params: {heuristic: 0}", "heuristic must be one of"),
+    ("budget: {max_iter: 1.0e+12}", "max_iter must be a positive integer"),
+    ("claims: [{text: x, metric: cost, lower: nothere, higher: astar}]", "nothere"),
+])
+def test_experiment_files_are_checked_before_any_trial(tmp_path, body, words):
+    path = tmp_path / "e.yaml"
+    path.write_text(f"name: t\nworlds: [trap]\nplanners: [astar]\ntrials: 1\n{body}\n")
+    with pytest.raises(ExperimentError, match=words):
+        load_experiment(path)
+
+
+def test_a_raster_too_fine_to_count_is_one_line():
+    from navlab.grid.rasterize import grid_shape
+    from navlab.world.world import Bounds
+
+    with pytest.raises(ValueError, match="more than 1e\\+08"):
+        grid_shape(Bounds(0, 10, 0, 10), 1e-200)
+
+
+@pytest.mark.parametrize("kind, name, params, words", [
+    ("robot", "omni3", {"wheel_angles_deg": [float("nan"), 120, 240]}, "wheel_angles_deg must be finite"),
+    ("robot", "diff", {"wheel_radius": float("inf")}, "wheel_radius"),
+    ("controller", "potential_field", {"heading_gain": float("inf")}, "heading_gain must be finite"),
+    ("controller", "goto_waypoint", {"heading_gain": float("nan")}, "heading_gain must be finite"),
+    ("controller", "hybrid", {"replan_interval": 0}, "replan_interval must be a positive number"),
+    ("controller", "goto_waypoint", {"replan": True, "replan_interval": 0}, "replan_interval must be a positive"),
+])
+def test_non_finite_robot_and_controller_settings_are_named(kind, name, params, words):
+    make = make_robot if kind == "robot" else make_controller
+    with pytest.raises(ValueError, match=words):
+        make(name, **params)
+
+
+def test_the_cli_names_a_nan_wheel_angle():
+    done = cli("sim", "one_obstacle", "--robot", "omni3", "--robot-param", "wheel_angles_deg=[.nan, 120, 240]")
+    assert done.returncode == 2 and "wheel_angles_deg must be finite" in done.stderr
+
+
+def _map_yaml(tmp_path, image):
+    path = tmp_path / "m.yaml"
+    path.write_text(f"image: {image}\nresolution: 0.1\norigin: [0, 0, 0]\noccupied_thresh: 0.65\n"
+                    "free_thresh: 0.2\nnegate: 0\n")
+    return path
+
+
+def test_pgm_pixels_that_are_not_whole_numbers(tmp_path):
+    (tmp_path / "bad.pgm").write_text("P2\n2 2\n255\n0 255\n1.5 x\n")
+    with pytest.raises(MapFormatError, match="bad.pgm: PGM pixel data must be whitespace-separated whole numbers"):
+        load_map(_map_yaml(tmp_path, "bad.pgm"))
+
+
+def test_moving_ai_headers_that_are_not_numbers(tmp_path):
+    (tmp_path / "bad.map").write_text("type octile\nheight abc\nwidth 4\nmap\n....\n....\n")
+    with pytest.raises(MapFormatError, match="bad.map: header 'height'"):
+        load_map(tmp_path / "bad.map")
+
+
+def test_nan_pixels_in_a_float_tiff(tmp_path):
+    values = np.full((4, 4), 0.5, np.float32)
+    values[1, 2] = np.nan
+    Image.fromarray(values, mode="F").save(tmp_path / "nan.tif")
+    with pytest.raises(MapFormatError, match=r"nan.tif: pixel \(row 1, column 2\) is nan"):
+        load_map(_map_yaml(tmp_path, "nan.tif"))
+    done = cli("grid", "plan", _map_yaml(tmp_path, "nan.tif"), "--start", "0", "0", "--goal", "3", "3")
+    assert done.returncode == 2 and "RuntimeWarning" not in done.stderr
+
+
+@pytest.mark.parametrize("optimum", ["nan", "-2", "inf"])
+def test_scenario_optima_must_be_finite_and_non_negative(tmp_path, optimum):
+    path = tmp_path / "bad.scen"
+    path.write_text(f"version 1\n0\tarena.map\t49\t49\t1\t1\t3\t3\t{optimum}\n")
+    with pytest.raises(MapFormatError, match="line 2: the optimal length must be a finite number >= 0"):
+        read_scen(path)
+
+
+def test_ros_parameters_with_a_floor_or_non_finite():
+    pytest.importorskip("rclpy")
+    from navlab.ros.base import Param, coerce
+
+    with pytest.raises(ValueError, match="scan_rate must be at least 0"):
+        coerce(Param("scan_rate", 10.0, "", low=0.0), -5.0)
+    with pytest.raises(ValueError, match="scan_latency must be a finite number"):
+        coerce(Param("scan_latency", 0.0, "", low=0.0), float("nan"))
+    assert np.isnan(coerce(Param("x", float("nan"), ""), float("nan")))  # NaN means "unset" where it is the default

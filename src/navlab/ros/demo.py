@@ -20,7 +20,9 @@ import contextlib
 import math
 import os
 import shutil
+import signal
 import tempfile
+import threading
 import time
 from pathlib import Path
 from typing import Any, Dict, Iterator, List, Optional, Sequence
@@ -33,6 +35,7 @@ from nav_msgs.msg import Path as PathMsg
 from rcl_interfaces.msg import Log
 from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.parameter import Parameter
+from rclpy.signals import SignalHandlerOptions
 
 from .base import DEFAULT_QOS, NavlabNode
 from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
@@ -159,8 +162,34 @@ def _alive(pid: int) -> bool:
     return True
 
 
+@contextlib.contextmanager
+def _stop_requests() -> Iterator[threading.Event]:
+    """An event set by SIGINT or SIGTERM while the demo runs.
+
+    The demo handles these itself instead of rclpy's handlers: those shut the
+    context down from inside the signal, wherever the main thread is — in
+    the middle of building the executor or removing a node — which ended
+    3 runs in 7 stopped with SIGTERM in ``RCLError: context is not valid``
+    or a traceback. Here a signal only sets the event; the spin loop sees it
+    within one 50 ms turn and ends the mission "interrupted", and shutdown
+    happens once, in order, in ``_run``'s ``finally``.
+    """
+    stop = threading.Event()
+    previous = {sig: signal.signal(sig, lambda *_: stop.set()) for sig in (signal.SIGINT, signal.SIGTERM)}
+    try:
+        yield stop
+    finally:
+        for sig, handler in previous.items():
+            signal.signal(sig, handler)
+
+
 def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress) -> Dict[str, Any]:
-    rclpy.init()
+    with _stop_requests() as stop:
+        return _run_until(stop, specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress)
+
+
+def _run_until(stop, specs, goal, processes, record, max_time, timeout, tolerance, log_dir, progress):
+    rclpy.init(signal_handler_options=SignalHandlerOptions.NO)
     nodes, recorder = [], None
     try:
         executor = SingleThreadedExecutor()
@@ -186,6 +215,8 @@ def _run(specs, goal, processes, record, max_time, timeout, tolerance, log_dir, 
         with launcher or contextlib.nullcontext():
             while not mission.done:
                 try:
+                    if stop.is_set():
+                        raise KeyboardInterrupt
                     executor.spin_once(timeout_sec=0.05)
                 except (KeyboardInterrupt, ExternalShutdownException):
                     mission.finish("interrupted")

@@ -267,10 +267,11 @@ def all_documents(tmp_path_factory) -> Dict[str, Any]:
     (a folder each), and most of their time is simulated robots and ROS nodes
     waiting on their clocks, so they share the machine well."""
     outcomes: Dict[str, Any] = {}
+    folders = {d.name: tmp_path_factory.mktemp(d.stem) for d in DOCUMENTS}  # made here: mktemp is not thread-safe
 
     def one(document: Path) -> None:
         try:
-            outcomes[document.name] = run_document(document, tmp_path_factory.mktemp(document.stem))
+            outcomes[document.name] = run_document(document, folders[document.name])
         except BaseException as exc:  # reported by the document's own test
             outcomes[document.name] = exc
 

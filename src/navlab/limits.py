@@ -119,3 +119,13 @@ def _bytes(n: int) -> str:
     """``n`` bytes for a person: MiB below a GiB, else GiB."""
     n = min(n, 10**300)
     return f"{n / 2**20:.3g} MiB" if n < 2**30 else f"{n / 2**30:.3g} GiB"
+
+
+def check_seed(seed: Any) -> None:
+    """A seed is a non-negative whole number, None, or a numpy Generator
+    (``ValueError`` naming ``seed`` otherwise: a dict or -5 would reach numpy
+    as a ``TypeError``)."""
+    if seed is None or isinstance(seed, np.random.Generator):
+        return
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise ValueError(f"seed must be a non-negative whole number or a numpy Generator, got {seed!r}")

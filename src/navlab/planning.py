@@ -24,6 +24,7 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
+from .limits import check_seed
 from .queries import (GRID_PARAMS, build_sampler, grid_query, is_grid_planner, path_length, planner_names,  # noqa: F401
                       split_grid_params, split_params, tree_query)
 from .result import Result, Status
@@ -121,7 +122,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     if not isinstance(planner, str):
         raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     grid = is_grid_planner(planner)
-    _check_seed(seed)
+    check_seed(seed)
     params = dict(params)
     goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
@@ -156,14 +157,6 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": warmup_s}
     result.params.update(common)
     return result
-
-
-def _check_seed(seed: Any) -> None:
-    """A seed is a non-negative whole number, None, or a numpy Generator (ValueError naming ``seed``)."""
-    if seed is None or isinstance(seed, np.random.Generator):
-        return
-    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ValueError(f"seed must be a non-negative whole number or a numpy Generator, got {seed!r}")
 
 
 def _stats_skeleton(grid: bool) -> Dict[str, Any]:

@@ -37,11 +37,20 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     straight line) to the goal. Returns the result, the world or grid, and
     the Simulation.
     """
-    from ..limits import check_coordinate
+    from ..limits import check_coordinate, check_seed
 
-    for name, values in (("start", start), ("goal", goal)):
-        for axis, v in zip("xyθ", values or ()):
+    for name, values, sizes in (("start", start, (2, 3)), ("goal", goal, (2,))):
+        if values is None:
+            continue
+        if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__len__") or len(values) not in sizes:
+            shape = "(x, y) or (x, y, θ)" if len(sizes) == 2 else "(x, y)"
+            raise ValueError(f"{name} must be {shape}, got {values!r}")
+        for axis, v in zip("xyθ", values):
             check_coordinate(f"{name} {axis}", v, "rad" if axis == "θ" else "m")
+    for name, value in (("robot_params", robot_params), ("controller_params", controller_params)):
+        if value is not None and not isinstance(value, dict):
+            raise ValueError(f"{name} must be a mapping of name: value, got {value!r}")
+    check_seed(seed)
     scene_world = load_scene_world(world)
     bot = make_robot(robot, **(robot_params or {}))
     ctrl = make_controller(controller or DEFAULT_CONTROLLER[robot], **(controller_params or {}))

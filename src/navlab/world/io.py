@@ -281,6 +281,8 @@ def load_world(source: Union[str, os.PathLike, World]) -> World:
 
     if isinstance(source, World):
         return source
+    if not isinstance(source, (str, bytes, os.PathLike)):
+        raise WorldFormatError(f"a world must be a file path, a scene name or a World, got {source!r}")
     text = os.fspath(source)
     if isinstance(text, bytes):
         text = os.fsdecode(text)

@@ -55,7 +55,7 @@ def source_kind(source: Any) -> str:
     if isinstance(source, OccupancyGrid):
         return "occupancy"
     if not isinstance(source, (str, os.PathLike)):
-        raise TypeError(f"source must be a scene name, a file path, a World or an OccupancyGrid, "
+        raise ValueError(f"source must be a scene name, a file path, a World or an OccupancyGrid, "
                         f"got {type(source).__name__}")
     path = Path(source)
     if not path.exists():

@@ -2,6 +2,7 @@
 
     pip install -e '.[bench]'          # adds pyastar2d (C++ core)
     python benchmarks/bench_grid.py [--every 5] [--repeat 3]
+    python benchmarks/bench_grid.py --large [--repeat 3]   # issue 22's maps: 4096² random 20 %, 1001² maze
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an
@@ -31,7 +32,13 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--every", type=int, default=5, help="use every k-th scenario")
     ap.add_argument("--repeat", type=int, default=3, help="runs per query (the fastest counts)")
+    ap.add_argument("--large", action="store_true",
+                    help="corner-to-corner queries on a 4096x4096 random map (20%% blocked) and a 1001x1001 maze, "
+                         "first query on a fresh grid timed apart, bytes per expanded cell")
     args = ap.parse_args()
+    if args.large:
+        large_maps(args.repeat)
+        return
     try:
         import pyastar2d
     except ImportError:
@@ -73,6 +80,69 @@ def main() -> None:
               f"{100 * statistics.mean(excess) if excess else float('nan'):>10.1f}%")
     print("astar/pya < 1 means navlab's exact A* is faster; pya/jps is JPS's speed-up over pyastar2d;")
     print("'pya excess' is how much longer pyastar2d's corner-cutting paths are than the true optimum.")
+
+
+def _large_maps():
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.maze import make_maze
+
+    rng = np.random.default_rng(0)
+    blocked = rng.random((4096, 4096)) < 0.2
+    blocked[0, 0] = blocked[-1, -1] = False
+    yield "random4096-20%", lambda: OccupancyGrid(blocked.copy(), name="random4096")
+    yield "maze1001", lambda: make_maze(100, 100, seed=1, cell_size=0.5, wall=0.05, resolution=0.05)
+
+
+def large_maps(repeat: int) -> None:
+    """A* (8-connected, octile, no corner cutting), JPS and 4-connected A*
+    against pyastar2d on big maps, corner to corner. The first query on a
+    fresh grid (kernels already loaded) is timed apart from repeated ones.
+    Bytes per expanded cell: the search state the query touched (g 8, parent
+    4, mark 4, open-list slot 4 bytes per cell, and the padded grid's byte)
+    over the cells it expanded."""
+    import pyastar2d
+
+    from conditions import load_line, spread
+
+    print(load_line("at start"))
+    for kw in ({}, {"algorithm": "jps"}, {"connectivity": 4, "heuristic": "manhattan"}):
+        plan(load_map_free(8), (0, 0), (7, 7), **kw)  # kernels loaded before any timing
+    print(f"{'map':<16} {'planner':<10} {'first s':>8} {'repeat s':>9} {'range':>12} {'pyastar2d s':>12} "
+          f"{'first/pya':>9} {'rep/pya':>8} {'expanded':>9} {'B/expanded':>10}")
+    for name, make in _large_maps():
+        grid = make()
+        free = np.argwhere(~grid.blocked)
+        s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+        weights = np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
+        for label, kw, diagonal in (("astar", {}, True), ("jps", {"algorithm": "jps"}, True),
+                                    ("astar-4", {"connectivity": 4, "heuristic": "manhattan"}, False)):
+            fresh = grid.replace()  # same cells, empty cache: the first query pays for its search state
+            t0 = time.perf_counter()
+            r = plan(fresh, s, t, **kw)
+            first = time.perf_counter() - t0
+            reps, pya = [], []
+            for _ in range(repeat):  # interleaved with pyastar2d
+                t0 = time.perf_counter()
+                plan(fresh, s, t, **kw)
+                reps.append(time.perf_counter() - t0)
+                t0 = time.perf_counter()
+                pyastar2d.astar_path(weights, (s[1], s[0]), (t[1], t[0]), allow_diagonal=diagonal)
+                pya.append(time.perf_counter() - t0)
+            rep, ref = statistics.median(reps), statistics.median(pya)
+            touched = grid.blocked.size * (8 + 4 + 4 + 4 + 1)
+            print(f"{name:<16} {label:<10} {first:>8.3f} {rep:>9.3f} {spread(reps, 3, ' s'):>12} {ref:>12.3f} "
+                  f"{first / ref:>9.2f} {rep / ref:>8.2f} {r.stats['expanded']:>9} "
+                  f"{touched / max(r.stats['expanded'], 1):>10.1f}")
+    print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
+    print("astar-4 and pyastar2d's 4-connected mode solve the same problem. B/expanded: search-state bytes per")
+    print("expanded cell (the arrays span the grid; pages are touched where the search goes).")
+    print(load_line("at end"))
+
+
+def load_map_free(n: int):
+    from navlab.grid import OccupancyGrid
+
+    return OccupancyGrid(np.zeros((n, n), bool))
 
 
 if __name__ == "__main__":

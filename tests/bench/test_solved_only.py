@@ -84,3 +84,26 @@ def test_the_report_shows_both_readings_of_the_seed_and_which_agrees():
     assert solved == {"Tables I-VI": "no", "conclusion": "yes"}
     cost_row = next(r for r in table if r[3] == "cost")
     assert cost_row[5] is None  # boundary has no solved trial: no cost to put beside the document's
+
+
+def test_a_sweep_of_thousands_of_cells_has_a_bounded_summary():
+    """10 000 cells used to mean 5·10⁷ pairwise comparisons (a 7.8 GB summary):
+    past MAX_PAIRWISE_CELLS a world keeps its cells' statistics and says so."""
+    import tracemalloc
+
+    from navlab.bench.analysis import MAX_PAIRWISE_CELLS
+
+    rows = []
+    for k in range(2000):
+        rows += rows_of(f"s{k}", 1, n=1)
+    tracemalloc.start()
+    summary = summarize(rows)
+    peak = tracemalloc.get_traced_memory()[1]
+    tracemalloc.stop()
+    assert len(summary["cells"]) == 2000
+    assert summary["comparisons"]["trap"] == {"cost": [], "time": []}
+    assert summary["pairwise_skipped"] == {"trap": 2000}
+    assert peak < 100 * 2**20  # bytes; all pairs would be 2·10⁶ comparison dicts
+    small = summarize(rows[:2 * MAX_PAIRWISE_CELLS:2])
+    assert len(small["comparisons"]["trap"]["cost"]) == MAX_PAIRWISE_CELLS * (MAX_PAIRWISE_CELLS - 1) // 2
+    assert small["pairwise_skipped"] == {}

@@ -194,6 +194,12 @@ def judged_values(rows_a: List[Dict[str, Any]], rows_b: List[Dict[str, Any]],
     return va, vb, short
 
 
+#: Worlds with more cells than this get no all-pairs comparison table (40 cells
+#: are 780 pairs); the cells' own statistics and the claims are still there.
+#: Comparisons one cares about in a larger sweep are stated as claims.
+MAX_PAIRWISE_CELLS = 40
+
+
 def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
     """Everything a report needs, as JSON-ready data. Cells are keyed by
     world, planner, sampler and swept values; ``time`` picks CPU or wall time."""
@@ -210,11 +216,14 @@ def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
                           "warmup_s": sum(r.get("warmup_s") or 0.0 for r in members),
                           "params_used": next((r["params_used"] for r in members if r.get("params_used")), {}),
                           "timing_noise": float(np.median(noise[first["cell_id"]])) if noise.get(first["cell_id"]) else None})
-    comparisons = {world: {m: pairwise_judged(groups, m, noise) for m in ("cost", "time")}
+    # every pair of cells is n²/2 comparisons: bounded, or a 10 000-cell sweep's summary took 7.8 GB
+    comparisons = {world: {m: pairwise_judged(groups, m, noise) if len(groups) <= MAX_PAIRWISE_CELLS else []
+                           for m in ("cost", "time")}
                    for world, groups in worlds.items()}
+    too_many = {world: len(groups) for world, groups in worlds.items() if len(groups) > MAX_PAIRWISE_CELLS}
     swept = sorted({k for c in cells for k in c["swept"]})
     return {"time": time, "time_label": TIME_LABELS[time], "swept": swept, "cells": cells,
-            "comparisons": comparisons, "rule": rule_text()}
+            "comparisons": comparisons, "pairwise_skipped": too_many, "rule": rule_text()}
 
 
 def rule_text() -> str:

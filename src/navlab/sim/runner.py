@@ -19,6 +19,13 @@ from .simulation import SimResult, Simulation
 #: avoider (the plain field stalls in traps and clutter); the diff drive
 #: follows the plan with seed 002's goto_waypoint
 DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint"}
+#: followers that can replan around what the LiDAR sees; the default one does
+#: so by itself in worlds with moving obstacles
+REPLANNING_FOLLOWERS = ("goto_waypoint", "pure_pursuit")
+
+
+def _has_moving(scene_world) -> bool:
+    return any(getattr(o, "motion", None) is not None for o in getattr(scene_world, "obstacles", ()))
 
 
 class NoPathError(ValueError):
@@ -53,7 +60,11 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     check_seed(seed)
     scene_world = load_scene_world(world)
     bot = make_robot(robot, **(robot_params or {}))
-    ctrl = make_controller(controller or DEFAULT_CONTROLLER[robot], **(controller_params or {}))
+    params = dict(controller_params or {})
+    if controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
+        # the default follower watches the path ahead where obstacles move (crossing): blind, it drove into them
+        params.setdefault("replan", True)
+    ctrl = make_controller(controller or DEFAULT_CONTROLLER[robot], **params)
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:
         if is_grid:

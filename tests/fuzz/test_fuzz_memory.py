@@ -34,6 +34,12 @@ CASES = {
     "PNG of 100 megapixels": ("load_map(D / 'bomb.yaml')", "image", ()),
     # The logs grow with the run (which ends when the robot arrives), not with max_time.
     "simulated time 10**6 s": ("simulate('one_obstacle', max_time=1e6)", None, ()),
+    # A sweep at the cell limit: 10 000 cells in one world (all pairs were 5·10⁷ comparisons, 7.8 GB).
+    "bench summary of 10 000 cells": (
+        "__import__('navlab.bench.analysis', fromlist=['summarize']).summarize(["
+        "{'trial_id': f's{k}', 'cell_id': f's{k}', 'trial': 0, 'world': 'trap', 'planner': 'rrt_star', "
+        "'sampler': f's{k}', 'status': 'EXACT', 'success': True, 'cost': 10.0 + k * 1e-6, 'cpu_s': 0.1} "
+        "for k in range(10000)])", None, ()),
 }
 
 CHILD = r"""
@@ -95,5 +101,7 @@ def test_within_the_memory_budget(outcomes, name):
     assert row["peak"] <= MEMORY_BUDGET, f"{name}: peak {row['peak'] / 2**20:.0f} MiB ({row})"
     if name == "world file of 0.25 MiB":  # an eighth of the 2 MiB limit: under an eighth of the budget
         assert row["outcome"] == "ok" and row["peak"] <= MEMORY_BUDGET / 8, row
+    if name == "bench summary of 10 000 cells":  # summarised, not refused
+        assert row["outcome"] == "ok", row
     if field is not None:
         assert row["outcome"] == "error" and row["value_error"] and field in row["message"], row

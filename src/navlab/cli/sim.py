@@ -18,7 +18,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 
 @click.command("sim")
 @click.argument("world", required=False)
-@click.option("--robot", type=click.Choice(["omni3", "diff"]), default="omni3", show_default=True)
+@click.option("--robot", type=click.Choice(["omni3", "diff", "jackal"]), default="omni3", show_default=True)
 @click.option("--controller", default=None,
               help="hybrid (omni3 default: a global plan, the potential field as local avoider), "
                    "potential_field (seed 004's field alone), goto_waypoint (diff default) or pure_pursuit.")

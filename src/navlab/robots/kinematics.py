@@ -10,11 +10,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Tuple
+from typing import Any, Optional, Tuple
 
 import numpy as np
 
 from ..registry import Registry
+from ..world.footprint import Footprint
 
 ROBOTS: Registry[type] = Registry("robot")
 
@@ -59,13 +60,52 @@ def _wrap(angle: float) -> float:
 
 
 def _positive(name: str, value: float) -> None:
-    if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
+    if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
         raise ValueError(f"{name} must be a positive number, got {value!r}")
+
+
+def accelerate(previous, command, dt: float, max_accel: Optional[float], max_angular_accel: Optional[float]):
+    """The twist reached from ``previous`` towards ``command`` within ``dt`` under the
+    acceleration limits (m/s² on the linear part, as a vector; rad/s² on ω); None is no limit."""
+    vx, vy, w = command
+    if max_accel is not None:
+        dvx, dvy = vx - previous[0], vy - previous[1]
+        change = math.hypot(dvx, dvy)
+        room = max_accel * dt
+        if change > room:
+            vx, vy = previous[0] + dvx * room / change, previous[1] + dvy * room / change
+    if max_angular_accel is not None:
+        room = max_angular_accel * dt
+        w = min(max(w, previous[2] - room), previous[2] + room)
+    return vx, vy, w
+
+
+class _Shaped:
+    """What every robot shares: its footprint and acceleration limits."""
+
+    def _check_shape(self) -> None:
+        for name in ("max_accel", "max_angular_accel"):
+            if getattr(self, name) is not None:
+                _positive(name, getattr(self, name))
+        if self.footprint is not None:
+            self.footprint = Footprint.from_value(self.footprint, "footprint")
+
+    @property
+    def shape(self) -> Footprint:
+        """The robot's footprint: the given polygon, or the disc of ``radius``."""
+        return self.footprint if self.footprint is not None else Footprint.disc(self.radius)
+
+    @property
+    def planning_radius(self) -> float:
+        """The clearance a global planner keeps: the disc's radius, or a polygon
+        footprint's inscribed radius (Nav2 plans the centre on cells below
+        ``INSCRIBED``; the local controller checks the whole footprint)."""
+        return self.shape.inscribed_radius
 
 
 @ROBOTS.register("diff")
 @dataclass
-class DiffDrive:
+class DiffDrive(_Shaped):
     """A differential-drive robot; the defaults are a TurtleBot3 Burger.
 
     Parameters
@@ -80,6 +120,10 @@ class DiffDrive:
         rad/s (2.84).
     radius : float
         Footprint radius for collisions, m (0.105).
+    footprint : list of [x, y] or Footprint, optional
+        A polygon footprint in the body frame, m (default: the disc of ``radius``).
+    max_accel, max_angular_accel : float, optional
+        Acceleration limits, m/s² and rad/s² (default: none).
     """
 
     wheel_radius: float = 0.033
@@ -87,12 +131,16 @@ class DiffDrive:
     max_speed: float = 0.22
     max_turn_rate: float = 2.84
     radius: float = 0.105
+    footprint: Any = None
+    max_accel: Optional[float] = None
+    max_angular_accel: Optional[float] = None
     holonomic = False
     n_wheels = 2
 
     def __post_init__(self) -> None:
         for name in ("wheel_radius", "track", "max_speed", "max_turn_rate", "radius"):
             _positive(name, getattr(self, name))
+        self._check_shape()
 
     def inverse(self, vx: float, vy: float = 0.0, omega: float = 0.0) -> np.ndarray:
         """Wheel angular speeds (left, right) in rad/s for a body twist; vy is
@@ -111,9 +159,32 @@ class DiffDrive:
                 min(max(omega, -self.max_turn_rate), self.max_turn_rate))
 
 
+@ROBOTS.register("jackal")
+@dataclass
+class Jackal(DiffDrive):
+    """A Clearpath Jackal, as the BARN challenge drives it.
+
+    The footprint is the challenge's rectangle (``costmap_common_params.yaml``:
+    0.42 × 0.33 m, centred); speed limits 2.0 m/s and 4.0 rad/s and
+    acceleration limits 20 m/s² and 25 rad/s² are Clearpath's
+    ``jackal_control/config/control.yaml``; wheel radius 0.098 m and wheel
+    separation 0.37559 m its URDF's. ``radius`` is the footprint's inscribed
+    radius, the clearance the global planner keeps.
+    """
+
+    wheel_radius: float = 0.098
+    track: float = 0.37559
+    max_speed: float = 2.0
+    max_turn_rate: float = 4.0
+    radius: float = 0.165
+    footprint: Any = ((-0.21, -0.165), (-0.21, 0.165), (0.21, 0.165), (0.21, -0.165))
+    max_accel: Optional[float] = 20.0
+    max_angular_accel: Optional[float] = 25.0
+
+
 @ROBOTS.register("omni3")
 @dataclass
-class Omni3:
+class Omni3(_Shaped):
     """A three-wheel omnidirectional robot (seed 004).
 
     Wheel i sits at angle θi in the body frame, at distance ``base_radius`` L
@@ -144,6 +215,9 @@ class Omni3:
     max_turn_rate: float = 3.0
     max_wheel_speed: float = 20.0  #: rad/s per wheel
     radius: float = 0.16
+    footprint: Any = None  #: a polygon in the body frame (default: the disc of ``radius``)
+    max_accel: Optional[float] = None  #: m/s² (default: none)
+    max_angular_accel: Optional[float] = None  #: rad/s² (default: none)
     holonomic = True
     n_wheels = 3
     _J: np.ndarray = field(init=False, repr=False)
@@ -152,6 +226,7 @@ class Omni3:
     def __post_init__(self) -> None:
         for name in ("wheel_radius", "base_radius", "max_speed", "max_turn_rate", "max_wheel_speed", "radius"):
             _positive(name, getattr(self, name))
+        self._check_shape()
         if len(self.wheel_angles_deg) != 3:
             raise ValueError("Omni3 needs exactly three wheel angles")
         drive = np.radians(self.wheel_angles_deg) + np.pi / 2
@@ -195,7 +270,7 @@ class Omni3:
 
 
 def make_robot(name: str, **params) -> object:
-    """A registered robot by name (``diff``, ``omni3``) with its settings."""
+    """A registered robot by name (``diff``, ``omni3``, ``jackal``) with its settings."""
     from ..registry import check_finite, check_params
 
     cls = ROBOTS.get(name)

@@ -9,7 +9,7 @@ from typing import Optional
 
 import numpy as np
 
-from ..robots.kinematics import integrate_pose
+from ..robots.kinematics import accelerate, integrate_pose
 from ..robots.odometry import Odometry
 from ..robots.proprioception import Compass, WheelEncoders
 from .scene import Scene
@@ -43,11 +43,12 @@ class Plant:
         something hit the robot (moving obstacles move over the same step;
         the pose is then the colliding one and :attr:`hit` says who hit whom)."""
         robot, enc = self.robot, self.encoders
-        self.last_twist = robot.limit(vx, vy, omega)
+        self.last_twist = accelerate(self.last_twist, robot.limit(vx, vy, omega), dt,
+                                     getattr(robot, "max_accel", None), getattr(robot, "max_angular_accel", None))
         rotation = enc.actual_speeds(robot.inverse(*self.last_twist), rng) * dt
         bx, by, bw = robot.forward(enc.ground_rotation(rotation, rng) / dt)
         new_pose = integrate_pose(self.pose, bx, by, bw, dt)
-        self.hit = self.scene.hit(self.pose, new_pose, t, t + dt)
+        self.hit = self.scene.hit(self.pose, new_pose, t, t + dt, twist=(bx, by, bw))
         collided = self.hit is not None
         self.pose = new_pose
         self._wheel_angles += rotation

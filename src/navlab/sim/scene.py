@@ -99,12 +99,18 @@ class Scene:
     obstacles where they are at a time for the LiDAR (``lidar_shapes``).
     """
 
-    def __init__(self, world: Union[World, OccupancyGrid], radius: float) -> None:
+    def __init__(self, world: Union[World, OccupancyGrid], radius: float, footprint=None) -> None:
         self.world = world
         self.radius = float(radius)
         self.is_grid = isinstance(world, OccupancyGrid)
         self.moving: List[int] = []  #: indices (in world.obstacles) of the moving obstacles
         self.t: float = 0.0
+        #: a polygon footprint's body-frame vertices (K, 2), or None for the disc of ``radius``
+        self.footprint = footprint if footprint is not None and not footprint.is_disc else None
+        if self.footprint is not None:
+            self._body = np.ascontiguousarray(self.footprint.vertices)
+            self._reach = self.footprint.circumscribed_radius
+            self.radius = self.footprint.inscribed_radius
         if self.is_grid:
             self._origin = np.asarray(world.origin, float)
             return
@@ -128,6 +134,59 @@ class Scene:
         self._lidar_rows = [all_layout[i] for i in self.moving]
         self._offsets_cache: dict = {}
         self.offsets = np.zeros((len(self.moving), 2))  #: displacement of each moving obstacle at ``t``
+        if self.footprint is not None:
+            self._all_layout = all_layout
+            self._bounds = bounds
+
+    def _footprint_hit(self, a, b, t0: float, t1: float, twist, first: int) -> Optional[str]:
+        """The footprint swept from pose a (at t0) to pose b (at t1) at ``twist`` (see
+        :mod:`navlab.world.footprint_collision`): None, or who was hit, where and when."""
+        from ..world import footprint_collision as F
+
+        dt = t1 - t0 if t1 > t0 else 1.0
+        if twist is None:
+            twist = F.twist_between(a, b, dt)
+        twist = np.asarray(twist, float)
+        pose = np.asarray(a, float)
+        if self.is_grid:
+            n = F.sample_count(*twist, dt, self._reach, 0.0, F.SWEEP_SPACING)
+            kind, row, k = F.sweep_first_hit_grid(self._body, pose, twist, dt, first, n, self.world.blocked,
+                                                  self._origin, float(self.world.resolution))
+        else:
+            circles, rects, verts, voffsets = self._lidar_base
+            zeros = [np.zeros((len(circles), 2)), np.zeros((len(rects), 2)), np.zeros((len(voffsets) - 1, 2))]
+            off0 = [z.copy() for z in zeros]
+            off1 = [z.copy() for z in zeros]
+            speed = 0.0
+            if self.moving:
+                o0, o1 = self.offsets_at(t0), self.offsets_at(t1)
+                for j, (kind, row) in enumerate(self._lidar_rows):
+                    off0[kind][row], off1[kind][row] = o0[j], o1[j]
+                speed = float(np.max(np.hypot(*(o1 - o0).T))) / dt
+            n = F.sample_count(*twist, dt, self._reach, speed, F.SWEEP_SPACING)
+            kind, row, k = F.sweep_first_hit(self._body, pose, twist, dt, first, n, circles, off0[0],
+                                             off1[0], rects, off0[1], off1[1], verts, voffsets, off0[2], off1[2],
+                                             self._bounds)
+        if kind == F.KIND_NONE:
+            return None
+        t = t0 + (t1 - t0) * (k / n)
+        x, y, _ = F.arc_pose(pose[0], pose[1], pose[2], *twist, dt * k / n)
+        where = f"at t = {t:.2f} s near ({x:.3f}, {y:.3f})"
+        if kind == F.KIND_BOUNDS:
+            return f"collision {where}: the robot's footprint left the {'map' if self.is_grid else 'bounds'}"
+        if kind == F.KIND_CELL:
+            w = self.world.blocked.shape[1]
+            return f"collision {where}: the robot's footprint touched blocked cell (x={row % w}, y={row // w})"
+        index = self._all_layout.index((kind, row))
+        return f"collision {where}: the robot's footprint touched {self.name_obstacle(index)}"
+
+    def name_obstacle(self, index: int) -> str:
+        """``obstacle 12 (circle 'unit_cylinder_12')``: its index, kind and, from SDF worlds, its model name."""
+        shape = self.world.obstacles[index]
+        names = self.world.meta.get("obstacle_names") if isinstance(self.world.meta, dict) else None
+        name = f" {names[index]!r}" if names and index < len(names) else ""
+        moving = "moving " if shape.motion is not None else ""
+        return f"{moving}obstacle {index} ({type(shape).__name__.lower()}{name})"
 
     @property
     def dynamic(self) -> bool:
@@ -163,9 +222,13 @@ class Scene:
                 a, b = voffsets[row], voffsets[row + 1]
                 verts[a:b] = bv[a:b] + (dx, dy)
 
-    def hit(self, a, b, t0: float = 0.0, t1: float = 0.0) -> Optional[str]:
-        """None when the disc goes from a (at t0) to b (at t1) touching
-        nothing, else who hit whom (one sentence)."""
+    def hit(self, a, b, t0: float = 0.0, t1: float = 0.0, twist=None) -> Optional[str]:
+        """None when the robot goes from a (at t0) to b (at t1) touching
+        nothing, else who hit whom (one sentence). A polygon footprint is swept
+        along the arc of ``twist`` (body vx, vy, ω; by default the arc from a to b)."""
+        if self.footprint is not None:
+            same = t1 == t0 and np.array_equal(np.asarray(a, float), np.asarray(b, float))
+            return self._footprint_hit(a, b, t0, t1, None if same else twist, first=0 if same else 1)
         if self.is_grid:
             if disc_hits_grid(b[0], b[1], self.radius, self.world.blocked, self._origin, self.world.resolution):
                 return f"collision at t = {t1:.2f} s: {self.describe(b)}"
@@ -184,6 +247,10 @@ class Scene:
         return self.hit(a, b) is None
 
     def free(self, p) -> bool:
+        """Whether the robot at pose p (x, y, θ; a polygon footprint at that heading) touches nothing."""
+        p = np.asarray(p, float)
+        if self.footprint is not None and len(p) < 3:
+            p = np.array((*p[:2], 0.0))
         return self.free_motion(p, p)
 
     def obstacles_at(self, t: float) -> list:
@@ -243,6 +310,8 @@ class Scene:
 
     def describe(self, p) -> str:
         where = f"({p[0]:g}, {p[1]:g})"
+        if self.footprint is not None:
+            return self.hit(p, p) or f"{where} is free"
         if self.is_grid:
             return f"{where} overlaps a blocked cell or leaves the map (robot radius {self.radius:g} m)"
         return f"{where} is within the robot radius {self.radius:g} m of an obstacle or outside the bounds"

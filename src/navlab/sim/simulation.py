@@ -170,7 +170,7 @@ class Simulation:
         if controller.holonomic and not robot.holonomic:
             raise ValueError(f"controller {type(controller).__name__} commands sideways motion, "
                              f"which a {type(robot).__name__} cannot do")
-        self.scene = Scene(scene_world, robot.radius)
+        self.scene = Scene(scene_world, robot.radius, getattr(robot, "footprint", None))
         self.robot, self.controller, self.lidar = robot, controller, lidar
         self.encoders = encoders or WheelEncoders()
         self.compass = compass
@@ -189,7 +189,7 @@ class Simulation:
             controller.replanner = Replanner(scene_world, robot.radius, self.goal)
         if not self.scene.free(self.start):
             raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
-        if not self.scene.free(np.array((*self.goal, 0.0))):
+        if not any(self.scene.free(np.array((*self.goal, heading))) for heading in np.linspace(0, np.pi, 8, False)):
             raise ValueError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
 
     def run(self, seed: Any = 0) -> SimResult:

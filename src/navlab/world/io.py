@@ -268,7 +268,8 @@ def save_world(world: World, path: Union[str, os.PathLike]) -> None:
 
 
 def load_world(source: Union[str, os.PathLike, World]) -> World:
-    """A world from a YAML path, a built-in scene name, or a World (returned as is).
+    """A world from a YAML path, a Gazebo SDF ``.world`` (see :mod:`navlab.world.sdf`),
+    a built-in scene name, or a World (returned as is).
 
     Raises
     ------
@@ -287,10 +288,14 @@ def load_world(source: Union[str, os.PathLike, World]) -> World:
     if isinstance(text, bytes):
         text = os.fsdecode(text)
     if os.path.exists(text):
+        if text.lower().endswith((".world", ".sdf")):
+            from .sdf import read_sdf
+
+            return read_sdf(text)
         return read_world_file(text)
     if text in SCENES:
         return SCENES.get(text)()
-    if text.endswith((".yaml", ".yml")) or os.sep in text:
+    if text.endswith((".yaml", ".yml", ".world", ".sdf")) or os.sep in text:
         raise WorldFormatError(f"{text}: no such file")
     SCENES.get(text)  # raises with the list of scenes and a hint
     raise AssertionError("unreachable")

@@ -62,7 +62,7 @@ def source_kind(source: Any) -> str:
         text = os.fspath(source)
         if text in SCENES:
             return "scene"
-        if path.suffix.lower() in (".yaml", ".yml", ".map", ".pgm", ".png") or os.sep in text:
+        if path.suffix.lower() in (".yaml", ".yml", ".map", ".pgm", ".png", ".world", ".sdf") or os.sep in text:
             raise WorldFormatError(f"{text}: no such file")
         SCENES.get(text)  # raises with the list of scenes and a hint
     if path.is_dir():
@@ -72,9 +72,11 @@ def source_kind(source: Any) -> str:
         return "movingai_map"
     if suffix in (".pgm", ".png"):
         raise WorldFormatError(f"{path}: an image alone is not a map; give the map_server YAML that names it")
+    if suffix in (".world", ".sdf"):
+        return "world_file"
     if suffix not in (".yaml", ".yml"):
         raise WorldFormatError(f"{path}: unknown source format '{suffix}' (expected a world or map_server "
-                               ".yaml, or a Moving AI .map)")
+                               ".yaml, a Gazebo SDF .world, or a Moving AI .map)")
     data = read_yaml_document(path)
     if isinstance(data, dict) and "image" in data:
         return "ros_map"

@@ -91,10 +91,10 @@ def test_obstacle_layer_marks_and_clears():
     assert cm.cost_at([(3.0, 1.05)])[0] == LETHAL_OBSTACLE
     assert cm.cost_at([(1.05, 4.5)])[0] == 0
     # the obstacle moved away: a beam through its cell clears it
-    cm = layers.update((1.0, 1.0), np.array([[3.4, 1.05]]))
-    assert cm.cost_at([(3.0, 1.05)])[0] < 253 and cm.cost_at([(3.4, 1.05)])[0] == LETHAL_OBSTACLE
-    window = layers.update(None, None, window=(1.0, 1.0), center=(3.4, 1.05))
-    assert window.shape == (10, 10) and window.cost_at([(3.4, 1.05)])[0] == LETHAL_OBSTACLE
+    cm = layers.update((1.0, 1.0), np.array([[3.45, 1.05]]))
+    assert cm.cost_at([(3.0, 1.05)])[0] < 253 and cm.cost_at([(3.45, 1.05)])[0] == LETHAL_OBSTACLE
+    window = layers.update(None, None, window=(1.0, 1.0), center=(3.45, 1.05))
+    assert window.shape == (10, 10) and window.cost_at([(3.45, 1.05)])[0] == LETHAL_OBSTACLE
 
 
 @pytest.mark.parametrize("kwargs, words", [

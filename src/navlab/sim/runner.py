@@ -18,7 +18,7 @@ from .simulation import SimResult, Simulation
 #: the omni robot follows a global plan with the potential field as its local
 #: avoider (the plain field stalls in traps and clutter); the diff drive
 #: follows the plan with seed 002's goto_waypoint
-DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint", "jackal": "goto_waypoint"}
+DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint", "jackal": "dwa"}
 #: followers that can replan around what the LiDAR sees; the default one does
 #: so by itself in worlds with moving obstacles
 REPLANNING_FOLLOWERS = ("goto_waypoint", "pure_pursuit")
@@ -79,7 +79,10 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     if planner is not None and not ctrl.needs_path:
         raise ValueError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
                          "and pure_pursuit")
-    path = plan_path(scene_world, bot, start, goal, planner, sampler) if ctrl.needs_path else None
+    if getattr(ctrl, "needs_costmap", False) and planner is None:
+        path = costmap_path(scene_world, bot, ctrl, start, goal)
+    else:
+        path = plan_path(scene_world, bot, start, goal, planner, sampler) if ctrl.needs_path else None
     if ctrl.needs_path and hasattr(ctrl, "replanner"):  # replans use the same planner as the first plan
         ctrl.replanner = Replanner(scene_world, bot.radius, goal, planner, sampler)
     if max_time is None:
@@ -103,6 +106,17 @@ def default_max_time(path: np.ndarray, robot, controller) -> float:
     field = getattr(controller, "field", controller)
     speed = min(robot.max_speed, getattr(controller, "speed", None) or getattr(field, "max_speed", robot.max_speed))
     return 60.0 + 4.0 * length / speed
+
+
+def costmap_path(scene_world, robot, controller, start, goal) -> np.ndarray:
+    """The global path a costmap controller starts with: A* on its costmap (cost-weighted, as Nav2's planners)."""
+    from .costmap_feed import CostmapFeed
+
+    path = CostmapFeed(scene_world, robot.shape, controller, goal).initial_path(start)
+    if path is None:
+        raise NoPathError(f"no path on the costmap from {tuple(start[:2])} to {tuple(goal)} (every way passes "
+                          "cells of INSCRIBED cost or more: the footprint would touch an obstacle)")
+    return path
 
 
 def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform") -> np.ndarray:

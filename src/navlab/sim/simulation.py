@@ -187,6 +187,11 @@ class Simulation:
             from .replan import Replanner
 
             controller.replanner = Replanner(scene_world, robot.radius, self.goal)
+        self.costmap_feed = None
+        if getattr(controller, "needs_costmap", False):
+            from .costmap_feed import CostmapFeed
+
+            self.costmap_feed = CostmapFeed(scene_world, robot.shape, controller, self.goal)
         if not self.scene.free(self.start):
             raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
         if not any(self.scene.free(np.array((*self.goal, heading))) for heading in np.linspace(0, np.pi, 8, False)):
@@ -196,6 +201,8 @@ class Simulation:
         rng = np.random.default_rng(seed)
         replanner = getattr(self.controller, "replanner", None)
         replans_before = len(getattr(replanner, "paths", ()))
+        if self.costmap_feed is not None:
+            self.costmap_feed.reset()
         # latency jitter has its own stream, so runs without jitter draw exactly as before
         entropy = int(seed) if isinstance(seed, (int, np.integer)) else 0
         timing_rng = np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=(4,)))
@@ -238,7 +245,10 @@ class Simulation:
                 elif scans is not None:
                     scans[n - 1] = np.nan
                 points = lidar_line.read(t)
-            command = self.controller.command(t, odom_line.read(t), points)
+            believed = odom_line.read(t)
+            if self.costmap_feed is not None:
+                self.costmap_feed.update(t, believed, points)
+            command = self.controller.command(t, believed, points)
             if command.status == REACHED:
                 # the controller judged its estimate; the run is judged on where the robot really is
                 off = float(np.hypot(*(plant.pose[:2] - self.goal[:2])))
@@ -264,7 +274,8 @@ class Simulation:
         return SimResult(status, steps * dt, steps, wall, np.arange(n) * dt, true[:n].copy(), odo[:n].copy(),
                          cmds[:n].copy(), self.goal.copy(), self.path,
                          None if scans is None else scans[:n].copy(), reason,
-                         replans=list(getattr(replanner, "paths", ())[replans_before:]))
+                         replans=list(getattr(replanner, "paths", ())[replans_before:])
+                         + (self.costmap_feed.paths if self.costmap_feed is not None else []))
 
     def min_clearance(self, result: SimResult) -> float:
         """Smallest gap (m) between the robot's disc and any obstacle, where

@@ -185,25 +185,35 @@ def _line_max(costs, x0, y0, x1, y1):
 
 
 @njit(cache=True)
-def _footprint_costs(costs, ox, oy, res, body, poses, out):
+def footprint_cost_one(costs, ox, oy, res, body, x, y, th):
+    """The footprint cost at one pose (see :meth:`Costmap.footprint_cost`); an empty
+    ``body`` (a disc) costs the centre's cell, ``NO_INFORMATION`` off the map."""
     k = body.shape[0]
-    cx = np.empty(k, np.int64)
-    cy = np.empty(k, np.int64)
+    if k == 0:
+        h, w = costs.shape
+        cx = int(math.floor((x - ox) / res))
+        cy = int(math.floor((y - oy) / res))
+        if cx < 0 or cy < 0 or cx >= w or cy >= h:
+            return NO_INFORMATION
+        return costs[cy, cx]
+    c, s = math.cos(th), math.sin(th)
+    best = 0
+    jx = int(math.floor((x + c * body[k - 1, 0] - s * body[k - 1, 1] - ox) / res))
+    jy = int(math.floor((y + s * body[k - 1, 0] + c * body[k - 1, 1] - oy) / res))
+    for i in range(k):
+        ix = int(math.floor((x + c * body[i, 0] - s * body[i, 1] - ox) / res))
+        iy = int(math.floor((y + s * body[i, 0] + c * body[i, 1] - oy) / res))
+        v = _line_max(costs, jx, jy, ix, iy)
+        if v > best:
+            best = v
+        jx, jy = ix, iy
+    return best
+
+
+@njit(cache=True)
+def _footprint_costs(costs, ox, oy, res, body, poses, out):
     for n in range(poses.shape[0]):
-        c, s = math.cos(poses[n, 2]), math.sin(poses[n, 2])
-        for i in range(k):
-            wx = poses[n, 0] + c * body[i, 0] - s * body[i, 1]
-            wy = poses[n, 1] + s * body[i, 0] + c * body[i, 1]
-            cx[i] = int(math.floor((wx - ox) / res))
-            cy[i] = int(math.floor((wy - oy) / res))
-        best = 0
-        j = k - 1
-        for i in range(k):
-            v = _line_max(costs, cx[j], cy[j], cx[i], cy[i])
-            if v > best:
-                best = v
-            j = i
-        out[n] = best
+        out[n] = footprint_cost_one(costs, ox, oy, res, body, poses[n, 0], poses[n, 1], poses[n, 2])
 
 
 def inflation_costs(lethal: np.ndarray, resolution: float, inscribed_radius: float, inflation_radius: float,

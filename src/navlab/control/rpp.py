@@ -1,0 +1,198 @@
+"""Regulated Pure Pursuit, as Nav2's ``nav2_regulated_pure_pursuit_controller``.
+
+S. Macenski, S. Singh, F. Martín, J. Ginés, "Regulated Pure Pursuit for
+Robot Path Tracking", Autonomous Robots 47, 2023. Each cycle:
+
+1. **Look-ahead**: ``lookahead_time · |v|`` clipped to ``[min_lookahead_dist,
+   max_lookahead_dist]`` (``use_velocity_scaled_lookahead_dist``), else
+   ``lookahead_dist``; the carrot is the path point that far from the robot,
+   interpolated along the path after the point nearest the robot.
+2. **Curvature** of the arc through the carrot: ``κ = 2·y / L²`` with (x, y)
+   the carrot in the robot's frame and L its distance.
+3. **Regulation** of ``desired_linear_vel``: on tight curves (radius below
+   ``regulated_linear_scaling_min_radius`` the speed is scaled by radius /
+   that radius); near obstacles (the cost at the robot turned back into a
+   distance with the inflation's formula; below ``cost_scaling_dist`` the
+   speed is scaled by ``cost_scaling_gain · distance / cost_scaling_dist``);
+   approaching the goal (within ``approach_velocity_scaling_dist`` the speed
+   falls with the distance); never below ``regulated_linear_scaling_min_speed``
+   (except at the goal) and within the acceleration limits.
+4. **Rotate to heading**: when the carrot is more than
+   ``rotate_to_heading_min_angle`` off the robot's heading, turn in place at
+   ``rotate_to_heading_angular_vel`` (limited by ``max_angular_accel``).
+5. **Collision look-ahead**: the commanded arc is projected for
+   ``max_allowed_time_to_collision_up_to_carrot`` seconds (no farther than the
+   carrot) at steps of a costmap cell; if the footprint meets a cell of
+   ``INSCRIBED`` cost or more, the robot stops (Nav2 aborts; the run then stalls).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE
+from .base import CONTROLLERS
+from .local import CostmapController, arc_rollouts, check_number
+
+
+def carrot_on_path(path: np.ndarray, pose, lookahead: float) -> np.ndarray:
+    """The point ``lookahead`` metres from the robot along the path: the first point past
+    the one nearest the robot at that distance (interpolated on its segment), else the path's end."""
+    xy = np.asarray(pose[:2], float)
+    d = np.hypot(*(path - xy).T)
+    start = int(np.argmin(d))
+    for i in range(start, len(path) - 1):
+        a, b = path[i], path[i + 1]
+        if np.hypot(*(b - xy)) >= lookahead:
+            # the circle of radius L about the robot meets segment ab
+            u = b - a
+            f = a - xy
+            qa, qb, qc = float(u @ u), 2.0 * float(f @ u), float(f @ f) - lookahead ** 2
+            disc = qb * qb - 4 * qa * qc
+            if qa > 0 and disc >= 0:
+                t = (-qb + math.sqrt(disc)) / (2 * qa)
+                return a + min(max(t, 0.0), 1.0) * u
+            return b
+    return path[-1].copy()
+
+
+@CONTROLLERS.register("rpp")
+class RegulatedPurePursuit(CostmapController):
+    """Nav2's Regulated Pure Pursuit (see the module); defaults are Nav2's.
+
+    Parameters
+    ----------
+    desired_linear_vel : float
+        [m/s] (0.5).
+    lookahead_dist, min_lookahead_dist, max_lookahead_dist, lookahead_time : float
+        [m], [m], [m], [s] (0.6, 0.3, 0.9, 1.5).
+    use_velocity_scaled_lookahead_dist : bool
+        (False).
+    rotate_to_heading_angular_vel, rotate_to_heading_min_angle : float
+        [rad/s], [rad] (1.8, 0.785).
+    max_angular_accel, max_linear_accel : float
+        [rad/s²], [m/s²] (3.2, 2.5).
+    max_angular_vel : float
+        [rad/s] cap on the turn rate while driving (2.0).
+    regulated_linear_scaling_min_radius, regulated_linear_scaling_min_speed : float
+        [m], [m/s] (0.9, 0.25).
+    use_cost_regulated_linear_velocity_scaling : bool
+        (True).
+    cost_scaling_dist, cost_scaling_gain : float
+        [m], [-] (0.6, 1.0).
+    approach_velocity_scaling_dist : float
+        [m] (0.6).
+    max_allowed_time_to_collision_up_to_carrot : float
+        [s] (1.0).
+    inflation_radius, cost_scaling_factor : float
+        The costmap's inflation (0.55 m, 3.0 1/m: Nav2's defaults).
+    """
+
+    def __init__(self, desired_linear_vel: float = 0.5, lookahead_dist: float = 0.6, min_lookahead_dist: float = 0.3,
+                 max_lookahead_dist: float = 0.9, lookahead_time: float = 1.5,
+                 use_velocity_scaled_lookahead_dist: bool = False, rotate_to_heading_angular_vel: float = 1.8,
+                 rotate_to_heading_min_angle: float = 0.785, max_angular_accel: float = 3.2,
+                 max_linear_accel: float = 2.5, max_angular_vel: float = 2.0,
+                 regulated_linear_scaling_min_radius: float = 0.9, regulated_linear_scaling_min_speed: float = 0.25,
+                 use_cost_regulated_linear_velocity_scaling: bool = True, cost_scaling_dist: float = 0.6,
+                 cost_scaling_gain: float = 1.0, approach_velocity_scaling_dist: float = 0.6,
+                 max_allowed_time_to_collision_up_to_carrot: float = 1.0, xy_goal_tolerance: float = 0.25,
+                 inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0, layers: str = "static",
+                 replan_interval: float = 1.0, controller_frequency: float = 20.0, stall_window: float = 20.0,
+                 stall_progress: float = 0.05) -> None:
+        super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
+                         layers, replan_interval)
+        for name, flag in (("use_velocity_scaled_lookahead_dist", use_velocity_scaled_lookahead_dist),
+                           ("use_cost_regulated_linear_velocity_scaling", use_cost_regulated_linear_velocity_scaling)):
+            if not isinstance(flag, bool):
+                raise ValueError(f"{name} must be true or false, got {flag!r}")
+        self.desired_linear_vel = check_number("desired_linear_vel", desired_linear_vel)
+        self.lookahead_dist = check_number("lookahead_dist", lookahead_dist)
+        self.min_lookahead_dist = check_number("min_lookahead_dist", min_lookahead_dist)
+        self.max_lookahead_dist = check_number("max_lookahead_dist", max_lookahead_dist)
+        if self.max_lookahead_dist < self.min_lookahead_dist:
+            raise ValueError(f"max_lookahead_dist ({max_lookahead_dist}) must be ≥ min_lookahead_dist "
+                             f"({min_lookahead_dist})")
+        self.lookahead_time = check_number("lookahead_time", lookahead_time)
+        self.scaled_lookahead = use_velocity_scaled_lookahead_dist
+        self.rotate_vel = check_number("rotate_to_heading_angular_vel", rotate_to_heading_angular_vel)
+        self.rotate_min_angle = check_number("rotate_to_heading_min_angle", rotate_to_heading_min_angle,
+                                             high=math.pi)
+        self.max_angular_accel = check_number("max_angular_accel", max_angular_accel)
+        self.max_linear_accel = check_number("max_linear_accel", max_linear_accel)
+        self.max_angular_vel = check_number("max_angular_vel", max_angular_vel)
+        self.min_radius = check_number("regulated_linear_scaling_min_radius", regulated_linear_scaling_min_radius)
+        self.min_speed = check_number("regulated_linear_scaling_min_speed", regulated_linear_scaling_min_speed,
+                                      allow_low=True, high=self.desired_linear_vel)
+        self.cost_regulation = use_cost_regulated_linear_velocity_scaling
+        self.cost_scaling_dist = check_number("cost_scaling_dist", cost_scaling_dist)
+        self.cost_scaling_gain = check_number("cost_scaling_gain", cost_scaling_gain)
+        self.approach_dist = check_number("approach_velocity_scaling_dist", approach_velocity_scaling_dist)
+        self.collision_time = check_number("max_allowed_time_to_collision_up_to_carrot",
+                                           max_allowed_time_to_collision_up_to_carrot)
+        self.period = 1.0 / check_number("controller_frequency", controller_frequency, high=1e4)
+        self.last_carrot = None
+
+    def lookahead(self) -> float:
+        if not self.scaled_lookahead:
+            return self.lookahead_dist
+        return min(max(abs(self.velocity[0]) * self.lookahead_time, self.min_lookahead_dist),
+                   self.max_lookahead_dist)
+
+    def obstacle_distance(self, pose) -> float:
+        """The distance to the nearest obstacle implied by the cost at the robot (the
+        inflation formula inverted; inf at zero cost)."""
+        cost = float(self.costmap.cost_at(pose[:2])[0])
+        if cost <= 0:
+            return math.inf
+        if cost >= INSCRIBED_INFLATED_OBSTACLE:
+            return 0.0
+        factor = self.costmap_settings["cost_scaling_factor"]
+        inscribed = self.footprint.inscribed_radius
+        return inscribed - math.log(cost / MAX_NON_OBSTACLE) / factor if factor > 0 else inscribed
+
+    def plan(self, t: float, pose: np.ndarray):
+        lookahead = self.lookahead()
+        carrot = carrot_on_path(self.path, pose, lookahead)
+        self.last_carrot = carrot
+        c, s = math.cos(pose[2]), math.sin(pose[2])
+        dx, dy = carrot - pose[:2]
+        x, y = c * dx + s * dy, -s * dx + c * dy
+        dist2 = x * x + y * y
+        curvature = 2.0 * y / dist2 if dist2 > 1e-12 else 0.0
+        w_prev = self.velocity[2]
+        angle = math.atan2(y, x)
+        if abs(angle) > self.rotate_min_angle:
+            w = math.copysign(self.rotate_vel, angle)
+            room = self.max_angular_accel * self.period
+            w = min(max(w, w_prev - room), w_prev + room)
+            return 0.0, 0.0, w
+        v = self.desired_linear_vel
+        radius = 1.0 / abs(curvature) if abs(curvature) > 1e-9 else math.inf
+        if radius < self.min_radius:
+            v *= radius / self.min_radius
+        if self.cost_regulation:
+            d = self.obstacle_distance(pose)
+            if d < self.cost_scaling_dist:
+                v *= self.cost_scaling_gain * d / self.cost_scaling_dist
+        v = max(v, self.min_speed)
+        to_goal = float(np.hypot(*(self.goal - pose[:2])))
+        if to_goal < self.approach_dist:
+            v = min(v, max(self.desired_linear_vel * to_goal / self.approach_dist, 0.05))
+        room = self.max_linear_accel * self.period
+        v = min(max(v, self.velocity[0] - room), self.velocity[0] + room)
+        w = min(max(v * curvature, -self.max_angular_vel), self.max_angular_vel)
+        if self.collision_ahead(pose, v, w, math.sqrt(dist2)):
+            return 0.0, 0.0, 0.0
+        return v, 0.0, w
+
+    def collision_ahead(self, pose, v: float, w: float, carrot_dist: float) -> bool:
+        """Whether the footprint meets an INSCRIBED-or-worse cell on the projected arc."""
+        if v <= 0:
+            return False
+        reach = min(v * self.collision_time, carrot_dist)
+        steps = max(int(math.ceil(reach / self.costmap.resolution)), 1)
+        arc = arc_rollouts(*pose, np.array([v]), np.zeros(1), np.array([w]), reach / v / steps, steps)[0]
+        return bool((self.costmap.footprint_cost(arc, self.footprint) >= INSCRIBED_INFLATED_OBSTACLE).any())

@@ -1,0 +1,165 @@
+"""A* on a costmap, the way Nav2's grid planners weigh cost (Smac 2D, NavFn).
+
+A cell's centre may be visited when its cost is below ``INSCRIBED`` (253):
+lethal and inscribed cells are blocked, as in Nav2, and so are
+``NO_INFORMATION`` cells unless ``allow_unknown``. Moves go to the eight
+neighbours (a diagonal only when both cells beside it are passable, so the
+path never cuts a blocked corner). A move of length ℓ (one or √2 cells) into
+a cell of cost c costs
+
+    ℓ · (1 + cost_travel_multiplier · c / 252)
+
+so a path pays for the metres it spends near obstacles. Smac 2D adds
+``cost_travel_multiplier · c / 252`` to each step (its default multiplier is
+2.0); navlab scales that penalty by the step's length so a diagonal step is
+not cheaper per metre than a straight one. The octile distance is a lower
+bound of this cost (every factor is ≥ 1), so A* returns the cheapest path.
+
+Search state belongs to the call (thread-safe).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+SQRT2 = math.sqrt(2.0)
+#: Nav2 Smac 2D's default
+DEFAULT_COST_TRAVEL_MULTIPLIER = 2.0
+
+
+@njit(cache=True, inline="always")
+def _push(heap_f, heap_v, size, f, v):
+    k = size
+    while k > 0:
+        p = (k - 1) >> 1
+        if f < heap_f[p]:
+            heap_f[k] = heap_f[p]
+            heap_v[k] = heap_v[p]
+            k = p
+        else:
+            break
+    heap_f[k] = f
+    heap_v[k] = v
+
+
+@njit(cache=True, inline="always")
+def _pop(heap_f, heap_v, size):
+    top = heap_v[0]
+    size -= 1
+    f, v = heap_f[size], heap_v[size]
+    k = 0
+    while True:
+        c = 2 * k + 1
+        if c >= size:
+            break
+        if c + 1 < size and heap_f[c + 1] < heap_f[c]:
+            c += 1
+        if heap_f[c] < f:
+            heap_f[k] = heap_f[c]
+            heap_v[k] = heap_v[c]
+            k = c
+        else:
+            break
+    if size > 0:
+        heap_f[k] = f
+        heap_v[k] = v
+    return top, size
+
+
+@njit(cache=True)
+def costmap_astar(costs, passable, start, goal, multiplier, parent):
+    """Cheapest 8-connected path cost (in cells) from cell ``start`` to ``goal``
+    (flat indices ``y·W + x``) over ``passable`` cells, filling ``parent``;
+    inf when the goal cannot be reached. ``goal = -1`` searches the whole map
+    (Dijkstra); then ``parent`` and the returned g array hold every cell's."""
+    h, w = costs.shape
+    n = h * w
+    g = np.full(n, np.inf)
+    closed = np.zeros(n, np.bool_)
+    heap_f = np.empty(8 * n + 8)
+    heap_v = np.empty(8 * n + 8, np.int64)
+    gx, gy = (goal % w, goal // w) if goal >= 0 else (0, 0)
+    g[start] = 0.0
+    parent[start] = start
+    size = 0
+    _push(heap_f, heap_v, size, 0.0, start)
+    size += 1
+    while size > 0:
+        v, size = _pop(heap_f, heap_v, size)
+        if closed[v]:
+            continue
+        closed[v] = True
+        if v == goal:
+            return g[v], g
+        vx, vy = v % w, v // w
+        for dy in range(-1, 2):
+            for dx in range(-1, 2):
+                if dx == 0 and dy == 0:
+                    continue
+                nx, ny = vx + dx, vy + dy
+                if nx < 0 or ny < 0 or nx >= w or ny >= h or not passable[ny, nx]:
+                    continue
+                if dx != 0 and dy != 0 and not (passable[vy, nx] and passable[ny, vx]):
+                    continue
+                u = ny * w + nx
+                if closed[u]:
+                    continue
+                step = SQRT2 if dx != 0 and dy != 0 else 1.0
+                cand = g[v] + step * (1.0 + multiplier * costs[ny, nx] / 252.0)
+                if cand < g[u]:
+                    g[u] = cand
+                    parent[u] = v
+                    hx, hy = abs(nx - gx), abs(ny - gy)
+                    hval = (max(hx, hy) + (SQRT2 - 1.0) * min(hx, hy)) if goal >= 0 else 0.0
+                    _push(heap_f, heap_v, size, cand + hval, u)
+                    size += 1
+    return np.inf, g
+
+
+def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = DEFAULT_COST_TRAVEL_MULTIPLIER,
+                    allow_unknown: bool = False):
+    """The cheapest path over a :class:`~navlab.world.costmap.Costmap` between two points.
+
+    Returns
+    -------
+    path : (N, 2) array or None
+        Cell centres [m] from the start's cell to the goal's, the start and goal
+        points themselves at the ends; None when no path exists.
+    cost : float
+        The path's cost in metres (each metre weighted by its cells' costs).
+    reason : str
+        Why there is no path ('' when there is one).
+    """
+    from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION
+
+    if not (math.isfinite(cost_travel_multiplier) and cost_travel_multiplier >= 0):
+        raise ValueError(f"cost_travel_multiplier must be ≥ 0, got {cost_travel_multiplier!r}")
+    costs = costmap.costs
+    h, w = costs.shape
+    passable = costs < INSCRIBED_INFLATED_OBSTACLE
+    if allow_unknown:
+        passable = passable | (costs == NO_INFORMATION)
+    work = np.where(costs == NO_INFORMATION, 0, costs).astype(np.float64)
+    cells = costmap.world_to_cell(np.array([start_xy[:2], goal_xy[:2]], float))
+    for label, (cx, cy) in zip(("start", "goal"), cells):
+        if not (0 <= cx < w and 0 <= cy < h):
+            return None, math.inf, f"the {label} is outside the costmap"
+        if not passable[cy, cx]:
+            return None, math.inf, (f"the {label} is on a cell of cost {costs[cy, cx]} (lethal, inscribed or "
+                                    "unknown): the robot's body would touch an obstacle there")
+    start, goal = int(cells[0, 1] * w + cells[0, 0]), int(cells[1, 1] * w + cells[1, 0])
+    parent = np.full(h * w, -1, np.int64)
+    total, _ = costmap_astar(work, passable, start, goal, float(cost_travel_multiplier), parent)
+    if not math.isfinite(total):
+        return None, math.inf, "no path through cells below INSCRIBED cost"
+    chain = [goal]
+    while chain[-1] != start:
+        chain.append(int(parent[chain[-1]]))
+    flat = np.array(chain[::-1])
+    centres = costmap.cell_to_world(np.column_stack((flat % w, flat // w)))
+    path = np.vstack([np.asarray(start_xy[:2], float), centres[1:-1], np.asarray(goal_xy[:2], float)]) \
+        if len(centres) > 2 else np.array([start_xy[:2], goal_xy[:2]], float)
+    return path, total * costmap.resolution, ""

@@ -91,6 +91,15 @@ _SEED000_TABLE = [
 ]
 
 
+@SUITES.register("barn")
+def barn() -> Dict[str, Any]:
+    """BARN (Perille et al., SSRR 2020): local navigators driving a Jackal through 300 cylinder worlds, scored as the challenge does (needs --data DIR and --controller)."""
+    from .errors import ExperimentError
+
+    raise ExperimentError("the barn suite is not an experiment file: run it as navlab bench --suite barn --data DIR "
+                          "--controller NAME (see navlab bench --help)")
+
+
 @SUITES.register("samplers")
 def samplers() -> Dict[str, Any]:
     """Seed 000's RRT* sampler comparison (LabVIEW, TELEKONTRAN 2021).

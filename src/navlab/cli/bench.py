@@ -86,8 +86,19 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--no-plots", is_flag=True, help="Skip the figures (faster).")
 @click.option("--show", is_flag=True, help="Print the experiment as YAML and exit (a template for your own).")
 @click.option("--quiet", "-q", is_flag=True, help="No progress bar.")
+@click.option("--data", type=click.Path(), default=None,
+              help="--suite barn: the BARN worlds (a checkout's jackal_helper/worlds/BARN, or any folder of "
+                   "world_N.world with path_files/ beside them; ../shared/data/barn has eight).")
+@click.option("--worlds", "barn_worlds", default=None, metavar="LIST",
+              help="--suite barn: which worlds, e.g. 0,6,12 or 0-49 or 0-299:6 or test (default: every one found).")
+@click.option("--controller", "controllers", multiple=True, metavar="NAME[:KEY=VALUE,...]",
+              help="--suite barn: a navigator (repeatable), e.g. dwa_barn or rpp:desired_linear_vel=1.5 "
+                   "(default: dwa_barn).")
+@click.option("--straight-line", is_flag=True,
+              help="--suite barn: score worlds without a path file against the 10 m straight line (OT 5 s).")
 def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, params, grid, trials, max_iter, max_time,
-              seed, executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet) -> None:
+              seed, executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet, data, barn_worlds,
+              controllers, straight_line) -> None:
     """Run a benchmark: EXPERIMENT (a YAML file) or --suite NAME, optionally
     changed by flags, or an experiment made of flags alone (--world, --planner).
 
@@ -104,6 +115,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
       navlab bench --suite samplers --trials 40 --out runs/s0 --resume
       navlab bench --world trap --planner rrt_star --sampler uniform --sampler gaussian --trials 10
       navlab bench my_study.yaml --executor dask --scheduler tcp://10.0.0.5:8786
+      navlab bench --suite barn --data ../shared/data/barn --controller dwa_barn --controller rpp
     """
     from ..bench import load_experiment, run_experiment
     from ..bench.experiment import experiment_data
@@ -111,6 +123,12 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
 
     if resume and overwrite:
         raise click.UsageError("--resume keeps the finished trials and --overwrite discards them: give one")
+    if suite == "barn":
+        _barn(data, barn_worlds, controllers, planners, params, trials, seed, out, executor, jobs, scheduler, resume,
+              overwrite, no_plots, quiet, straight_line, experiment or worlds or samplers or grid or show)
+        return
+    if data or barn_worlds or controllers or straight_line:
+        raise click.UsageError("--data, --worlds, --controller and --straight-line go with --suite barn")
     if experiment and suite:
         raise click.UsageError("give an experiment file or --suite, not both")
     if experiment or suite:
@@ -192,6 +210,47 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     for line in breakdown_lines(run, _since_navlab_start()):
         click.echo(line)
     if run.errors:
+        sys.exit(1)
+
+
+def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor, jobs, scheduler, resume,
+          overwrite, no_plots, quiet, straight_line, other) -> None:
+    """``navlab bench --suite barn``: see :mod:`navlab.bench.barn_run`."""
+    from ..bench.barn_run import Navigator, make_study, run_barn
+    from ..bench.runner import Interrupted
+
+    if other:
+        raise click.UsageError("--suite barn takes --data, --worlds, --controller, --planner, --param, --trials "
+                               "(runs per world), --seed and the run options; not an experiment file, --world, "
+                               "--sampler, --grid or --show")
+    if not data:
+        raise click.UsageError("--suite barn needs --data DIR: a checkout's jackal_helper/worlds/BARN (git clone "
+                               "https://github.com/Daffan/the-barn-challenge), or ../shared/data/barn for eight")
+    if len(planners) > 1:
+        raise click.UsageError("--suite barn: give at most one --planner (the global planner of every navigator)")
+    shared = parse_params(params) if params else {}
+    navigators = []
+    for text in controllers or ("dwa_barn",):
+        name, _, rest = text.partition(":")
+        own = parse_params(tuple(p for p in rest.split(",") if p.strip()), "--controller") if rest else {}
+        navigators.append(Navigator(name.strip(), {**shared, **own}, planners[0] if planners else None))
+    study = make_study(data, worlds, navigators, runs=runs or 1, seed=seed or 0, straight_line=straight_line)
+    folder = out or "bench-results/barn"
+    try:
+        folder, rows, summary = run_barn(study, folder, executor=executor, jobs=jobs, scheduler=scheduler,
+                                         resume=resume, overwrite=overwrite, progress=not quiet, plots=not no_plots)
+    except Interrupted as stop:
+        click.echo(f"\ninterrupted: {stop.kept} of {stop.total} runs are kept in {stop.folder}; "
+                   f"run the rest with: {_resume_command()}", err=True)
+        sys.exit(EXIT_INTERRUPTED)
+    from ..bench.barn_report import DISCLAIMER, means_table
+
+    click.echo(f"{len(rows)} runs ({summary['ran']} run now) in {summary['elapsed_s']:.1f} s")
+    for line in means_table(summary):
+        click.echo(line)
+    click.echo(DISCLAIMER)
+    click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl)")
+    if any(r["status"] == "ERROR" for r in rows):
         sys.exit(1)
 
 

@@ -206,6 +206,8 @@ class Simulation:
         # latency jitter has its own stream, so runs without jitter draw exactly as before
         entropy = int(seed) if isinstance(seed, (int, np.integer)) else 0
         timing_rng = np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=(4,)))
+        if hasattr(self.controller, "seed"):  # sampling controllers (MPPI) draw from their own stream
+            self.controller.seed(np.random.default_rng(np.random.SeedSequence(entropy, spawn_key=(5,))))
         n_max = int(math.ceil(self.max_time / self.dt)) + 1
         # The logs grow by doubling: memory follows the run, not max_time.
         rows = min(n_max, INITIAL_LOG_ROWS)

@@ -100,3 +100,16 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
         except RecursionError:
             raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint=flag) from None
     return out
+
+
+def check_output_file(path: str, flag: str) -> None:
+    """Refuse, before any work, an output file whose folder is missing or not writable."""
+    import os
+
+    folder = os.path.dirname(os.path.abspath(path)) or "."
+    if os.path.isdir(path):
+        raise click.BadParameter(f"{path} is a folder; give a file name", param_hint=flag)
+    if not os.path.isdir(folder):
+        raise click.BadParameter(f"cannot write {path}: the folder {folder} does not exist", param_hint=flag)
+    if not os.access(folder, os.W_OK):
+        raise click.BadParameter(f"cannot write {path}: the folder {folder} is not writable", param_hint=flag)

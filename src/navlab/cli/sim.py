@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from .common import parse_params
+from .common import check_output_file, parse_params
 
 #: experiment names the CLI offers (the registry is filled when sim.experiments is imported; listed here so
 #: that `navlab --help` does not import the simulator)
@@ -18,10 +18,13 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 
 @click.command("sim")
 @click.argument("world", required=False)
-@click.option("--robot", type=click.Choice(["omni3", "diff", "jackal"]), default="omni3", show_default=True)
+@click.option("--robot", type=click.Choice(["omni3", "diff", "jackal"]), default="omni3", show_default=True,
+              help="omni3 (seed 004's), diff (a TurtleBot3 Burger) or jackal (the BARN robot: a 0.42 × 0.33 m "
+                   "rectangle; default controller dwa).")
 @click.option("--controller", default=None,
               help="hybrid (omni3 default: a global plan, the potential field as local avoider), "
-                   "potential_field (seed 004's field alone), goto_waypoint (diff default) or pure_pursuit.")
+                   "potential_field (seed 004's field alone), goto_waypoint (diff default), pure_pursuit, or the "
+                   "costmap planners dwa (jackal default), dwa_barn (the BARN challenge's settings), mppi, rpp.")
 @click.option("--start", nargs=3, type=float, default=None, metavar="X Y THETA",
               help="Start pose [m, m, rad] (default: the world's start, heading 0).")
 @click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal [m] (default: the world's).")
@@ -55,10 +58,14 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.option("--json", "as_json", is_flag=True, help="JSON output (one object per run for experiments).")
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="PNG of the run.")
 @click.option("--gif", type=click.Path(dir_okay=False), default=None, help="GIF animation of the run.")
+@click.option("--trajectory", type=click.Path(dir_okay=False), default=None,
+              help="CSV of the true pose at every step (header t,x,y,theta; s, m, m, rad).")
 def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robot_params, controller_params, dt,
-            max_time, lidar_timing, odom_timing, seed, experiment, runs, plot_dir, as_json, plot, gif) -> None:
-    """Simulate a robot in WORLD (a world YAML, a scene name, or a map_server
-    YAML / Moving AI map) driving to --goal, or run an --experiment. The
+            max_time, lidar_timing, odom_timing, seed, experiment, runs, plot_dir, as_json, plot, gif,
+            trajectory) -> None:
+    """Simulate a robot in WORLD (a world YAML, a scene name, a map_server
+    YAML / Moving AI map, or a Gazebo SDF .world such as a BARN world)
+    driving to --goal, or run an --experiment. The
     omni robot's default controller is the hybrid navigator (a global plan
     with the potential field as local avoider); obstacles with a `motion`
     move, and the robot can replan around them
@@ -73,6 +80,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
       navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --gif run.gif
       navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --planner rrt_star --sampler integration
       navlab sim one_obstacle --controller potential_field --lidar-timing rate=10,latency=0.5
+      navlab sim ../shared/data/barn/world_0.world --robot jackal --controller rpp --start -2 3 1.57 --trajectory t.csv
     """
     if experiment:
         if world:
@@ -81,6 +89,9 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
         return
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
+    for flag, name in (("--trajectory", trajectory), ("--plot", plot), ("--gif", gif)):
+        if name:
+            check_output_file(name, flag)
     from ..sim.runner import NoPathError, simulate
 
     try:
@@ -95,6 +106,10 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
         # the planner's answer about this world, as `navlab plan` gives it: not bad input
         click.echo(json.dumps({"status": "NO_PATH", "reason": str(exc)}) if as_json else f"NO_PATH ({exc})")
         sys.exit(1)
+    if trajectory:
+        from ..sim.trajectory import write_trajectory_csv
+
+        write_trajectory_csv(result, trajectory)
     if plot:
         from ..viz.sim_plot import plot_run
 
@@ -119,7 +134,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
             replans = getattr(getattr(sim.controller, "replanner", None), "count", 0)
             click.echo(f"  {len(sim.scene.moving)} moving obstacle(s); closest approach "
                        f"{1000 * sim.min_clearance(result):.0f} mm; {replans} replan(s)")
-        for what, name in (("plot", plot), ("animation", gif)):
+        for what, name in (("trajectory", trajectory), ("plot", plot), ("animation", gif)):
             if name:
                 click.echo(f"  {what} written to {name}")
     if result.status.name != "REACHED":

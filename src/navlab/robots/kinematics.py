@@ -180,6 +180,8 @@ class Jackal(DiffDrive):
     footprint: Any = ((-0.21, -0.165), (-0.21, 0.165), (0.21, 0.165), (0.21, -0.165))
     max_accel: Optional[float] = 20.0
     max_angular_accel: Optional[float] = 25.0
+    #: its front laser as the challenge mounts it (a Hokuyo UST-10LX: 270° in 720 beams; 30 m range)
+    laser = {"beams": 720, "fov": math.radians(270.0), "range_max": 30.0, "range_min": 0.06}
 
 
 @ROBOTS.register("omni3")

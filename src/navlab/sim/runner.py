@@ -89,7 +89,8 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         max_time = default_max_time(path if path is not None else np.array((start[:2], goal)), bot, ctrl)
     sensor = None
     if lidar != "none" and (ctrl.needs_scan or lidar is not None):
-        sensor = Lidar(noise=None if lidar in (None, "exact") else lidar)
+        # a robot that names its own laser (the jackal) gets it; the others the seed's RPLiDAR
+        sensor = Lidar(**getattr(bot, "laser", {}), noise=None if lidar in (None, "exact") else lidar)
     noisy = lidar == "rplidar_a1"
     sim = Simulation(scene_world, bot, ctrl, start, goal, lidar=sensor,
                      encoders=WheelEncoders(noise=0.02 if noisy else 0.0, slip=0.01 if noisy else 0.0),

@@ -124,9 +124,12 @@ def check_navigator(nav: Navigator) -> None:
 
     make_controller(nav.controller, **nav.params)
     if nav.planner is not None:
-        from ..planning import PLANNERS
+        from ..queries import planner_names
+        from ..registry import UnknownNameError, suggest
 
-        PLANNERS.get(nav.planner)
+        if nav.planner not in planner_names():
+            raise UnknownNameError(f"unknown planner {nav.planner!r}; valid: {', '.join(planner_names())}."
+                                   + suggest(nav.planner, planner_names()))
 
 
 _WORLDS: Dict[str, Any] = {}

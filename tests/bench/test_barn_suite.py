@@ -1,0 +1,85 @@
+"""The BARN suite end to end: two shipped worlds through the CLI, resumable, and its bad inputs."""
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from click.testing import CliRunner
+
+from navlab.bench import barn
+from navlab.cli import main
+
+BARN = Path(__file__).resolve().parents[3] / "shared" / "data" / "barn"
+pytestmark = pytest.mark.skipif(not BARN.is_dir(), reason="../shared/data/barn is not beside the checkout")
+
+
+def _run(*args):
+    return CliRunner().invoke(main, ["bench", "--suite", "barn", *args, "--executor", "serial", "-q"])
+
+
+def test_two_worlds_end_to_end_and_resume(tmp_path):
+    out = tmp_path / "barn"
+    result = _run("--data", str(BARN), "--worlds", "0,36", "--controller", "rpp", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    rows = [json.loads(line) for line in (out / "results.jsonl").read_text().splitlines()]
+    assert sorted(r["world"] for r in rows) == [0, 36]
+    for row in rows:
+        assert row["status"] in barn.STATUSES
+        # the row's OT is the path file's, by hand: start, cells in metres, goal, at 2 m/s
+        cells = np.load(BARN / "path_files" / f"path_{row['world']}.npy")
+        pts = np.vstack([(-2, 3), np.column_stack((cells[:, 0] * 0.15 - 4.575, cells[:, 1] * 0.15 + 5.075)),
+                         (-2, 13)])
+        assert row["ot_s"] == pytest.approx(np.hypot(*np.diff(pts, axis=0).T).sum() / 2.0)
+        expected = barn.score(row["success"], row["time_s"], row["ot_s"])
+        assert row["score"] == pytest.approx(expected)
+        if row["success"]:
+            assert 0 < row["score"] <= 0.5
+    report = (out / "report.md").read_text()
+    assert "move_base DWA, Gazebo (published, same worlds)" in report and "2D kinematic simulation" in report
+    assert "| rpp | 2 | 2 |" in report
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["published"]["worlds"] == [0, 36]
+    # a second navigator on the same folder is another study; resuming the same one runs nothing
+    again = _run("--data", str(BARN), "--worlds", "0,36", "--controller", "rpp", "--out", str(out), "--resume")
+    assert again.exit_code == 0 and "(0 run now)" in again.output
+
+
+def test_any_navlab_planner_as_the_global_planner(tmp_path):
+    out = tmp_path / "rrt"
+    result = _run("--data", str(BARN), "--worlds", "0", "--controller", "rpp:desired_linear_vel=1.0",
+                  "--planner", "rrt", "--out", str(out))
+    assert result.exit_code == 0, result.output
+    row = json.loads((out / "results.jsonl").read_text().splitlines()[0])
+    assert row["status"] in barn.STATUSES and row["navigator"]["planner"] == "rrt"
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--data", "/nonexistent"], "not a folder"),
+    (["--data", str(BARN), "--worlds", "1"], "no world file for 1"),
+    (["--data", str(BARN), "--controller", "nonesuch"], "unknown controller 'nonesuch'"),
+    (["--data", str(BARN), "--controller", "rpp:lookahead_dist=-1"], "lookahead_dist must be > 0"),
+    (["--data", str(BARN), "--controller", "rpp", "--controller", "rpp"], "named twice"),
+    ([], "needs --data"),
+])
+def test_bad_input_is_one_line(args, words, tmp_path):
+    result = _run(*args, "--out", str(tmp_path / "x"))
+    assert result.exit_code == 2
+    assert words in result.output
+    assert not (tmp_path / "x" / "results.jsonl").exists()
+
+
+def test_a_world_without_its_path_file(tmp_path):
+    data = tmp_path / "BARN"
+    (data / "path_files").mkdir(parents=True)
+    shutil.copy(BARN / "world_0.world", data / "world_0.world")
+    shutil.copy(BARN / "world_36.world", data / "world_36.world")
+    shutil.copy(BARN / "path_files" / "path_36.npy", data / "path_files" / "path_36.npy")
+    refused = _run("--data", str(data), "--controller", "rpp", "--out", str(tmp_path / "a"))
+    assert refused.exit_code == 2 and "no path file" in refused.output and "world(s) 0" in refused.output
+    ran = _run("--data", str(data), "--worlds", "0", "--controller", "rpp", "--straight-line",
+               "--out", str(tmp_path / "b"))
+    assert ran.exit_code == 0, ran.output
+    row = json.loads((tmp_path / "b" / "results.jsonl").read_text().splitlines()[0])
+    assert row["ot_s"] == pytest.approx(5.0)

@@ -178,3 +178,24 @@ def test_gif_frames_aspect_legend_and_no_ghost(tmp_path):
     early, late = blue(first), blue(last)
     assert early.sum() > 20 and abs(int(late.sum()) - int(early.sum())) < 0.3 * early.sum()  # drawn once in each
     assert (early & late).sum() < 0.2 * early.sum()  # and gone from where it started: no ghost
+
+
+def test_the_footprint_is_drawn_along_a_run_and_in_the_gif(tmp_path):
+    import matplotlib.patches as mpatches
+
+    from navlab.robots import make_robot
+    from navlab.sim.runner import simulate
+    from navlab.viz import plot_run
+    from navlab.viz.sim_plot import animate_run
+
+    result, world, sim = simulate("one_obstacle", robot="jackal", controller="rpp", max_time=20)
+    fig = plot_run(world, result, footprint=make_robot("jackal").shape)
+    polygons = [p for p in fig.axes[0].patches if isinstance(p, mpatches.Polygon) and not p.get_fill()]
+    assert len(polygons) >= 5
+    # each outline is the rectangle at a pose of the run: 4 corners 0.42 × 0.33 apart
+    corners = polygons[0].get_xy()[:4]
+    sides = sorted(np.hypot(*np.diff(np.vstack((corners, corners[:1])), axis=0).T))
+    assert sides == pytest.approx([0.33, 0.33, 0.42, 0.42])
+    animate_run(world, result, str(tmp_path / "run.gif"), sim.robot.radius, max_frames=5,
+                footprint=sim.robot.shape)
+    assert (tmp_path / "run.gif").stat().st_size > 0

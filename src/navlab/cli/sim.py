@@ -113,11 +113,11 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
     if plot:
         from ..viz.sim_plot import plot_run
 
-        plot_run(scene_world, result, plot)
+        plot_run(scene_world, result, plot, footprint=sim.robot.shape)
     if gif:
         from ..viz.sim_plot import animate_run
 
-        animate_run(scene_world, result, gif, sim.robot.radius)
+        animate_run(scene_world, result, gif, sim.robot.radius, footprint=sim.robot.shape)
     if as_json:
         click.echo(json.dumps(result.to_dict(trajectory=True)))
     else:

@@ -10,7 +10,7 @@ from .grid_plot import draw_grid, plot_grid_plan
 from .legend import place_legend
 from .plot import draw_map, draw_path, draw_tree, draw_world, plot_plan
 from .save import save_figure
-from .sim_plot import animate_run, draw_run, draw_scene, plot_run
+from .sim_plot import animate_run, draw_footprint, draw_run, draw_scene, plot_run
 
-__all__ = ["animate_run", "draw_grid", "draw_map", "draw_path", "draw_run", "draw_scene", "draw_tree",
+__all__ = ["animate_run", "draw_footprint", "draw_grid", "draw_map", "draw_path", "draw_run", "draw_scene", "draw_tree",
            "draw_world", "place_legend", "plot_grid_plan", "plot_plan", "plot_run", "save_figure"]

@@ -64,8 +64,22 @@ def _draw_moving(ax, moving, times) -> None:
     ax.plot([], [], ":", color="0.4", label=f"moving obstacles (outlines at t = {times[0]:g}…{times[-1]:.0f} s)")
 
 
-def draw_run(ax, result, raw_path=None, scene_world=None) -> None:
-    """A run's planned path, replans, true trajectory (on top), odometry, start and goal."""
+def draw_footprint(ax, footprint, poses, count: int = 12, **style) -> None:
+    """The robot's footprint outline at ``count`` poses evenly spread over ``poses`` (N, 3),
+    the last one included (a disc footprint is drawn as its circle)."""
+    from matplotlib import patches
+
+    poses = np.asarray(poses, float).reshape(-1, 3)
+    picks = np.unique(np.linspace(0, len(poses) - 1, min(count, len(poses))).astype(int))
+    style = {"fill": False, "ec": "tab:orange", "lw": 0.9, "zorder": 5.2, **style}
+    label = style.pop("label", "footprint")
+    for k, i in enumerate(picks):
+        ax.add_patch(patches.Polygon(footprint.at(poses[i]), closed=True, label=label if k == 0 else None, **style))
+
+
+def draw_run(ax, result, raw_path=None, scene_world=None, footprint=None) -> None:
+    """A run's planned path, replans, true trajectory (on top), odometry, start and goal, and
+    the robot's ``footprint`` (a :class:`~navlab.world.footprint.Footprint`) along the way."""
     if raw_path is not None and len(raw_path) and hasattr(scene_world, "cell_to_world"):
         raw = scene_world.cell_to_world(raw_path)
         ax.plot(raw[:, 0], raw[:, 1], "-", color="tab:blue", lw=1.0, alpha=0.6, label="A* path", zorder=3)
@@ -82,9 +96,12 @@ def draw_run(ax, result, raw_path=None, scene_world=None) -> None:
             zorder=5.5)
     ax.plot(*result.true_poses[0, :2], "o", color="tab:green", ms=8, zorder=6)
     ax.plot(*result.goal, "*", color="tab:red", ms=14, zorder=6)
+    if footprint is not None:
+        draw_footprint(ax, footprint, result.true_poses)
 
 
-def plot_run(scene_world, result, out: Optional[str] = None, raw_path=None, title: Optional[str] = None, ax=None):
+def plot_run(scene_world, result, out: Optional[str] = None, raw_path=None, title: Optional[str] = None, ax=None,
+             footprint=None):
     """World, planned path and replans, true trajectory, odometry, start and
     goal; moving obstacles as time-coloured outlines (dark: early, yellow:
     late) along their trails.
@@ -95,7 +112,7 @@ def plot_run(scene_world, result, out: Optional[str] = None, raw_path=None, titl
     fig, ax, owned = new_axes(ax)
     draw_scene(ax, scene_world)
     _draw_moving(ax, _moving(scene_world), np.linspace(0.0, result.time_s, 8))
-    draw_run(ax, result, raw_path, scene_world)
+    draw_run(ax, result, raw_path, scene_world, footprint)
     ax.set_title(title or f"{result.status.name} in {result.time_s:.1f} s, final error "
                  f"{1000 * result.error_true:.0f} mm")
     return finish_plot(fig, ax, owned, out)
@@ -107,7 +124,7 @@ GIF_FPS, GIF_MAX_FRAMES = 10, 150
 
 
 def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = GIF_FPS,
-                max_frames: int = GIF_MAX_FRAMES, progress: Optional[bool] = None) -> None:
+                max_frames: int = GIF_MAX_FRAMES, progress: Optional[bool] = None, footprint=None) -> None:
     """A GIF of the run (Pillow writer): the robot, its trail, the moving
     obstacles where they were at each frame, the planned path and replans,
     with a legend; sized to the world's aspect ratio.
@@ -153,7 +170,10 @@ def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = G
     for patch in movers:
         ax.add_patch(patch)
     trail, = ax.plot([], [], "-", color="tab:red", lw=1.4, label="true trajectory", zorder=5)
-    body = patches.Circle(result.true_poses[0, :2], robot_radius, fc="tab:orange", ec="k", zorder=6, label="robot")
+    shaped = footprint is not None and not footprint.is_disc
+    body = patches.Polygon(footprint.at(result.true_poses[0]), closed=True, fc="tab:orange", ec="k", zorder=6,
+                           label="robot") if shaped else \
+        patches.Circle(result.true_poses[0, :2], robot_radius, fc="tab:orange", ec="k", zorder=6, label="robot")
     ax.add_patch(body)
     heading, = ax.plot([], [], "-", color="k", lw=1.5, zorder=7)
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, fontsize=8)
@@ -169,7 +189,10 @@ def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = G
     def render(i: int) -> np.ndarray:
         x, y, th = result.true_poses[i]
         trail.set_data(result.true_poses[: i + 1, 0], result.true_poses[: i + 1, 1])
-        body.center = (x, y)
+        if shaped:
+            body.set_xy(footprint.at(result.true_poses[i]))
+        else:
+            body.center = (x, y)
         heading.set_data([x, x + robot_radius * np.cos(th)], [y, y + robot_radius * np.sin(th)])
         for patch, (_, shape, tr) in zip(movers, moving):
             moved = translated(shape, *tr.offset(float(result.t[i])))

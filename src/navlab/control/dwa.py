@@ -276,7 +276,7 @@ def _densify_cells(cells: np.ndarray) -> np.ndarray:
 
 @CONTROLLERS.register("dwa_barn")
 class DWABarn(DWA):
-    """:class:`DWA` with the BARN challenge's move_base settings as defaults (its
+    """DWA with the BARN challenge's move_base settings as defaults (its
     ``base_local_planner_params.yaml``: 0.5 m/s, 1.57 rad/s, acc 10 / 20, 2 s rollouts,
     6 × 20 samples, pdist 0.75, gdist 1.0, occdist 0.1, escape at −0.5 m/s; inflation 0.30 m).
     """

@@ -25,8 +25,8 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from .limits import check_seed
-from .queries import (GRID_PARAMS, build_sampler, grid_query, is_grid_planner, path_length, planner_names,  # noqa: F401
-                      split_grid_params, split_params, tree_query)
+from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
+                      planner_names, split_grid_params, split_params, tree_query)
 from .result import Result, Status
 from .sampling.samplers import SAMPLERS
 
@@ -97,7 +97,11 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         ``resolution`` in metres per cell for geometric worlds, default 1/200 of
         the bounds' longer side); ``allow_unknown`` (maps: unknown cells are
         free); ``goal_tolerance`` (m, overrides the source's; maps: 0; grid
-        planners always end exactly at the goal). Routed by name; an unknown name is an error listing the valid
+        planners always end exactly at the goal). ``costmap=True`` (astar) plans on a
+        Nav2-style costmap instead: cells within the robot radius blocked, each metre
+        weighted by ``1 + cost_travel_multiplier · cost / 252`` (settings
+        ``inflation_radius`` 0.55 m, ``cost_scaling_factor`` 3.0, ``cost_travel_multiplier``
+        2.0, ``resolution``). Routed by name; an unknown name is an error listing the valid
         ones for that planner.
 
     Returns
@@ -126,7 +130,16 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     params = dict(params)
     goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
-    if grid:
+    on_costs = params.get("costmap", False)
+    if not isinstance(on_costs, bool):
+        raise ValueError(f"costmap must be true or false, got {on_costs!r}")
+    if on_costs and not grid:
+        raise ValueError(f"costmap: only the grid planner astar plans on a costmap, not '{planner}'")
+    if on_costs:
+        if sampler not in (None, "uniform"):
+            raise ValueError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out")
+        settings = dict(params)
+    elif grid:
         if sampler not in (None, "uniform"):
             SAMPLERS.get(sampler)
             raise ValueError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out "
@@ -152,6 +165,11 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
             result.params.update(common)
             return result
 
+    if on_costs:
+        result = costmap_query(world, planner, settings)
+        result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": 0.0}
+        result.params.update(common)
+        return result
     warmup_s = _warm(planner, sampler, settings if grid else None, on_map=world.occupancy is not None)
     result = grid_query(world, planner, settings) if grid else tree_query(world, planner, sampler, seed, params)
     result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": warmup_s}

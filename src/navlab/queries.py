@@ -21,6 +21,9 @@ from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
 
 #: settings of the grid algorithms, routed by name like sampler settings
 GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
+#: settings of A* on a Nav2-style costmap (``costmap=True``; see :func:`costmap_query`)
+COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_travel_multiplier", "resolution",
+                  "allow_unknown")
 
 
 def planner_names() -> list[str]:
@@ -149,6 +152,52 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     cost = path_length(path)
     tree = (r.tree or Tree()).with_raster(grid)
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
+
+
+def costmap_query(world, algorithm: str, params: dict) -> Result:
+    """A* over the world's Nav2-style costmap (``costmap=True``): the static layer (the map's
+    cells, or the world rasterised), inflated for a disc of the world's robot radius with Nav2's
+    formula, step costs weighted by cell cost (:mod:`navlab.grid.cost_search`). The returned
+    path is checked against the exact world before it is returned."""
+    from .grid.cost_search import DEFAULT_COST_TRAVEL_MULTIPLIER, plan_on_costmap
+    from .limits import MIN_LENGTH
+    from .world.costmap import LayeredCostmap
+    from .world.footprint import Footprint
+
+    if algorithm != "astar":
+        raise ValueError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
+    unknown = sorted(set(params) - set(COSTMAP_PARAMS))
+    if unknown:
+        raise ValueError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
+                         + suggest(unknown[0], list(COSTMAP_PARAMS)))
+    t0 = time.perf_counter()
+    settings = {"inflation_radius": params.get("inflation_radius", 0.55),
+                "cost_scaling_factor": params.get("cost_scaling_factor", 3.0)}
+    multiplier = params.get("cost_travel_multiplier", DEFAULT_COST_TRAVEL_MULTIPLIER)
+    if isinstance(multiplier, bool) or not isinstance(multiplier, (int, float)):
+        raise ValueError(f"cost_travel_multiplier must be a number ≥ 0, got {multiplier!r}")
+    footprint = Footprint.disc(max(world.robot_radius, MIN_LENGTH))
+    source = world.occupancy if world.occupancy is not None else world
+    layers = LayeredCostmap(source, footprint, resolution=params.get("resolution"), **settings)
+    costmap = layers.static_costmap()
+    path, weighted, reason = plan_on_costmap(costmap, world.start, world.goal, float(multiplier),
+                                             bool(params.get("allow_unknown", False)))
+    out_params = {"algorithm": algorithm, "costmap": True, "resolution": costmap.resolution,
+                  "cost_travel_multiplier": float(multiplier), **settings}
+    stats: Dict[str, Any] = {"grid": f"{costmap.shape[1]}x{costmap.shape[0]}", "costmap_cost_m": weighted}
+    if path is None:
+        stats["time_s"] = time.perf_counter() - t0
+        return Result(status=Status.FAILED, params=out_params, stats=stats, reason=reason)
+    checker = world.checker()
+    bad = np.flatnonzero(~checker.segments_free(path[:-1], path[1:]))
+    stats["collision_checks"] = checker.checks
+    stats["time_s"] = time.perf_counter() - t0
+    if len(bad):
+        i = int(bad[0])
+        return Result(status=Status.FAILED, params=out_params, stats=stats,
+                      reason=f"the costmap path's leg {i} from {tuple(np.round(path[i], 6))} to "
+                             f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
+    return Result(status=Status.EXACT, path=path, cost=path_length(path), stats=stats, params=out_params)
 
 
 def path_length(path) -> float:

@@ -57,6 +57,13 @@ class CostmapController(Controller):
     replan_interval : float
         [s] how often the global path is planned again on a costmap with a
         sensor layer.
+    costmap_resolution : float
+        [m] the costmap's cell size for worlds (maps keep their own; 0.05 m,
+        the challenge's).
+    footprint_padding : float
+        [m] the footprint the costmap and the planner's collision checks use
+        is the robot's grown by this (costmap_2d's ``footprint_padding``); the
+        simulator still tests the true footprint.
     """
 
     needs_path = True
@@ -65,7 +72,10 @@ class CostmapController(Controller):
 
     def __init__(self, xy_goal_tolerance: float = 0.25, stall_window: float = 20.0, stall_progress: float = 0.05,
                  inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0, layers: str = "static",
-                 replan_interval: float = 1.0) -> None:
+                 replan_interval: float = 1.0, footprint_padding: float = 0.0,
+                 costmap_resolution: float = 0.05) -> None:
+        self.costmap_resolution = check_number("costmap_resolution", costmap_resolution, high=100.0)
+        self.footprint_padding = check_number("footprint_padding", footprint_padding, allow_low=True, high=10.0)
         if layers not in self.LAYERS:
             raise ValueError(f"layers must be one of {', '.join(self.LAYERS)}, got {layers!r}")
         self.layers = layers

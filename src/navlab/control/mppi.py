@@ -216,9 +216,9 @@ class MPPI(CostmapController):
                  goal_threshold: float = 1.4, path_threshold: float = 0.5, prune_distance: float = 1.7,
                  xy_goal_tolerance: float = 0.25, inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0,
                  layers: str = "static", replan_interval: float = 1.0, stall_window: float = 20.0,
-                 stall_progress: float = 0.05) -> None:
+                 stall_progress: float = 0.05, footprint_padding: float = 0.0, costmap_resolution: float = 0.05) -> None:
         super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
-                         layers, replan_interval)
+                         layers, replan_interval, footprint_padding, costmap_resolution)
         if motion_model not in ("diff", "omni"):
             raise ValueError(f"motion_model must be diff or omni, got {motion_model!r}")
         self.motion_model = motion_model

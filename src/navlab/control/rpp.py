@@ -86,6 +86,9 @@ class RegulatedPurePursuit(CostmapController):
         [m] (0.6).
     max_allowed_time_to_collision_up_to_carrot : float
         [s] (1.0).
+    creep_when_blocked : bool
+        navlab's extension, off by default: where Nav2 would stop, creep along the path at the lowest
+        speed with the shortest look-ahead, or turn in place towards it when that is free (False).
     inflation_radius, cost_scaling_factor : float
         The costmap's inflation (0.55 m, 3.0 1/m: Nav2's defaults).
     """
@@ -101,11 +104,13 @@ class RegulatedPurePursuit(CostmapController):
                  max_allowed_time_to_collision_up_to_carrot: float = 1.0, xy_goal_tolerance: float = 0.25,
                  inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0, layers: str = "static",
                  replan_interval: float = 1.0, controller_frequency: float = 20.0, stall_window: float = 20.0,
-                 stall_progress: float = 0.05) -> None:
+                 stall_progress: float = 0.05, creep_when_blocked: bool = False, footprint_padding: float = 0.0,
+                 costmap_resolution: float = 0.05) -> None:
         super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
-                         layers, replan_interval)
+                         layers, replan_interval, footprint_padding, costmap_resolution)
         for name, flag in (("use_velocity_scaled_lookahead_dist", use_velocity_scaled_lookahead_dist),
-                           ("use_cost_regulated_linear_velocity_scaling", use_cost_regulated_linear_velocity_scaling)):
+                           ("use_cost_regulated_linear_velocity_scaling", use_cost_regulated_linear_velocity_scaling),
+                           ("creep_when_blocked", creep_when_blocked)):
             if not isinstance(flag, bool):
                 raise ValueError(f"{name} must be true or false, got {flag!r}")
         self.desired_linear_vel = check_number("desired_linear_vel", desired_linear_vel)
@@ -133,6 +138,7 @@ class RegulatedPurePursuit(CostmapController):
         self.collision_time = check_number("max_allowed_time_to_collision_up_to_carrot",
                                            max_allowed_time_to_collision_up_to_carrot)
         self.period = 1.0 / check_number("controller_frequency", controller_frequency, high=1e4)
+        self.creep_when_blocked = creep_when_blocked
         self.last_carrot = None
 
     def lookahead(self) -> float:
@@ -185,8 +191,28 @@ class RegulatedPurePursuit(CostmapController):
         v = min(max(v, self.velocity[0] - room), self.velocity[0] + room)
         w = min(max(v * curvature, -self.max_angular_vel), self.max_angular_vel)
         if self.collision_ahead(pose, v, w, math.sqrt(dist2)):
-            return 0.0, 0.0, 0.0
+            return self._creep(pose) if self.creep_when_blocked else (0.0, 0.0, 0.0)
         return v, 0.0, w
+
+    def _creep(self, pose):
+        """navlab's extension (``creep_when_blocked``), not Nav2's: where the arc ahead is blocked,
+        track the path tightly at the lowest speed (the shortest look-ahead), or turn in place
+        towards it when that turn is free; stop only when neither is."""
+        carrot = carrot_on_path(self.path, pose, self.min_lookahead_dist)
+        c, s = math.cos(pose[2]), math.sin(pose[2])
+        dx, dy = carrot - pose[:2]
+        x, y = c * dx + s * dy, -s * dx + c * dy
+        dist2 = max(x * x + y * y, 1e-12)
+        v = max(self.min_speed, 0.05)
+        w = min(max(v * 2.0 * y / dist2, -self.max_angular_vel), self.max_angular_vel)
+        if abs(math.atan2(y, x)) < self.rotate_min_angle and not self.collision_ahead(pose, v, w, math.sqrt(dist2)):
+            return v, 0.0, w
+        turn = math.copysign(min(self.rotate_vel, 1.0), math.atan2(y, x))
+        headings = pose[2] + turn * self.period * np.arange(1, 6)
+        turned = np.column_stack((np.full(5, pose[0]), np.full(5, pose[1]), headings))
+        if (self.costmap.footprint_cost(turned, self.footprint) < INSCRIBED_INFLATED_OBSTACLE).all():
+            return 0.0, 0.0, turn
+        return 0.0, 0.0, 0.0
 
     def collision_ahead(self, pose, v: float, w: float, carrot_dist: float) -> bool:
         """Whether the footprint meets an INSCRIBED-or-worse cell on the projected arc."""

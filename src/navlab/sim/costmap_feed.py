@@ -26,10 +26,13 @@ class CostmapFeed:
     """
 
     def __init__(self, scene_world, footprint, controller, goal) -> None:
-        self.footprint, self.controller = footprint, controller
+        # the planner's own idea of the robot: its footprint grown by the padding (costmap_2d's footprint_padding)
+        self.footprint = footprint.padded(controller.footprint_padding) if controller.footprint_padding else footprint
+        self.controller = controller
         self.goal = np.asarray(goal, float)[:2]
-        self.layers = LayeredCostmap(scene_world, footprint, static="static" in controller.layers,
-                                     **controller.costmap_settings)
+        resolution = None if hasattr(scene_world, "blocked") else controller.costmap_resolution
+        self.layers = LayeredCostmap(scene_world, self.footprint, static="static" in controller.layers,
+                                     resolution=resolution, **controller.costmap_settings)
         self.sensing = "sensor" in controller.layers
         self.reset()
 

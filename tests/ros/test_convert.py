@@ -127,3 +127,13 @@ def test_tree_markers_draw_every_edge_once_in_the_map_frame():
     assert [(p.x, p.y) for p in back.markers[1].points] == [p for pair in pairs for p in pair]
     # a root alone: no edges, an empty line list
     assert len(C.tree_to_markers(nodes[:1], parent[:1]).markers[1].points) == 0
+
+
+def test_costmap_message_uses_nav2_scaling():
+    from navlab.world.costmap import Costmap
+
+    costs = np.array([[0, 1, 128, 252], [253, 254, 255, 0]], np.uint8)
+    msg = C.costmap_to_msg(Costmap(costs, 0.05, (1.0, -2.0)))
+    assert (msg.info.width, msg.info.height) == (4, 2)
+    assert list(msg.data) == [0, 1, 1 + 97 * 127 // 251, 98, 99, 100, -1, 0]
+    assert (msg.info.origin.position.x, msg.info.origin.position.y) == (1.0, -2.0)

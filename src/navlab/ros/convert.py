@@ -59,6 +59,22 @@ def grid_to_msg(grid: OccupancyGrid, frame_id: str = "map", stamp=None):
     return msg
 
 
+def costmap_to_msg(costmap, frame_id: str = "map", stamp=None):
+    """nav_msgs/OccupancyGrid of a :class:`~navlab.world.costmap.Costmap` with Nav2's scaling
+    (0 free, 1–98 inflated, 99 inscribed, 100 lethal, −1 unknown), as Nav2's costmap publisher."""
+    from nav_msgs.msg import OccupancyGrid as GridMsg
+
+    msg = GridMsg()
+    msg.header.frame_id = frame_id
+    if stamp is not None:
+        msg.header.stamp = stamp
+    msg.info.resolution = float(costmap.resolution)
+    msg.info.height, msg.info.width = costmap.shape
+    msg.info.origin = pose_msg(costmap.origin[0], costmap.origin[1], 0.0)
+    msg.data = costmap.to_occupancy_values().ravel().tolist()
+    return msg
+
+
 def grid_from_msg(msg, occupied_threshold: int = 65, free_threshold: int = 25, name: str = "map") -> OccupancyGrid:
     """A navlab grid from nav_msgs/OccupancyGrid: values ≥ ``occupied_threshold``
     are blocked, −1 and values between the thresholds unknown.

@@ -44,7 +44,11 @@ from .convert import odometry_msg, scan_to_msg, tf_message_type, time_msg, trans
 class SimNode(NavlabNode):
     PARAMETERS = (
         Param("world", "", "map_server YAML, Moving AI .map, world YAML or built-in scene name"),
-        Param("robot", "diff", "diff (TurtleBot3 Burger) or omni3 (seed 004's three-wheel omni)"),
+        Param("robot", "diff", "diff (TurtleBot3 Burger), omni3 (seed 004's three-wheel omni) or jackal (BARN's "
+                               "0.42 × 0.33 m rectangle; its footprint is what collides)"),
+        Param("costmap_inflation_radius", 0.0, "publish the world's Nav2-style costmap for the robot's footprint "
+                                               "on /costmap with this inflation radius (m; 0: none)", low=0.0),
+        Param("costmap_cost_scaling_factor", 3.0, "the costmap's cost_scaling_factor (1/m)", low=0.0),
         Param("x", math.nan, "start x (m); default: the world's start (maps have none)"),
         Param("y", math.nan, "start y (m)"),
         Param("yaw", 0.0, "start heading (rad)"),
@@ -88,7 +92,7 @@ class SimNode(NavlabNode):
             if isinstance(world, OccupancyGrid):
                 raise ValueError("a map has no start of its own: set -p x:=... -p y:=...")
             start = (*world.start, p["yaw"])
-        self.scene = Scene(world, self.robot.radius)
+        self.scene = Scene(world, self.robot.radius, self.robot.footprint)
         if not self.scene.free(start):
             raise ValueError(f"the robot cannot start there: {self.scene.describe(start)}")
         noisy = p["noisy"]
@@ -124,6 +128,16 @@ class SimNode(NavlabNode):
             self.tf_static_pub = self.create_publisher(self.tf_type, "tf_static", MAP_QOS)
             self.tf_static_pub.publish(self.tf_type(transforms=[
                 transform_msg((0.0, 0.0, 0.0), "map", p["odom_frame"], time_msg(self.t))]))
+        if p["costmap_inflation_radius"] > 0:
+            from nav_msgs.msg import OccupancyGrid as GridMsg
+
+            from ..world.costmap import build_costmap
+            from .convert import costmap_to_msg
+
+            costmap = build_costmap(world, self.robot.shape, p["costmap_inflation_radius"],
+                                    p["costmap_cost_scaling_factor"])
+            self.costmap_pub = self.create_publisher(GridMsg, "costmap", MAP_QOS)
+            self.costmap_pub.publish(costmap_to_msg(costmap, "map", time_msg(self.t)))
         self.create_subscription(Twist, "cmd_vel", self.on_cmd_vel, DEFAULT_QOS)
         self.publish_state()
         self.steady_timer(self.dt / p["real_time_factor"], self.step)

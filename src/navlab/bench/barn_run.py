@@ -221,8 +221,8 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
 
     from ..atomic import write_text_atomic
     from .executors import EXECUTORS, check_executor
-    from .runner import Interrupted, _progress
-    from .store import ResultStore, read_rows
+    from .runner import _progress, stopped
+    from .store import ResultStore
 
     for nav in study.navigators:
         check_navigator(nav)
@@ -242,9 +242,7 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
                     bar.update(1)
             except KeyboardInterrupt:
                 bar.close()
-                store.close()
-                kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
-                raise Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs)) from None
+                raise stopped(store, specs) from None
             bar.close()
         rows = store.current_rows(specs)
         elapsed = time.perf_counter() - t0

@@ -115,9 +115,7 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                     bar.update(1)
             except KeyboardInterrupt:
                 bar.close()
-                store.close()
-                kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
-                raise Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs)) from None
+                raise stopped(store, specs) from None
             bar.close()
         elapsed = time.perf_counter() - t0
         phases["trials"] = elapsed
@@ -135,6 +133,13 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         except OSError as exc:
             raise write_error(store.folder / "results.csv", exc) from None
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
+
+
+def stopped(store: ResultStore, specs: List[Dict[str, Any]]) -> Interrupted:
+    """After Ctrl-C: close the store (releasing its lock) and say how many of ``specs`` are on disk."""
+    store.close()
+    kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
+    return Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs))
 
 
 def _progress(total: int, desc: str, enabled: bool):

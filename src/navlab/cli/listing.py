@@ -112,7 +112,7 @@ def _lidar_models() -> Iterator[str]:
 
 
 def _suites() -> Iterator[str]:
-    from ..bench.suites import SUITES
+    from ..bench.suites import BARN_SUITE, SUITES
 
     for name in SUITES:
         suite = SUITES.get(name)
@@ -120,6 +120,7 @@ def _suites() -> Iterator[str]:
         counts = [(len(data.get(k) or []), k) for k in ("worlds", "planners", "samplers") if k in data]
         sizes = ", ".join(f"{n} {k if n != 1 else k[:-1]}" for n, k in counts)
         yield from _entry(name, first_paragraph(suite.__doc__), sizes + f"; `navlab bench --suite {name}`")
+    yield from _entry(BARN_SUITE[0], BARN_SUITE[1], "`navlab bench --suite barn --data DIR --controller NAME`")
 
 
 def _executors() -> Iterator[str]:

@@ -34,6 +34,7 @@ from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
 from ..yamlio import read_yaml
+from .errors import WorldFormatError  # noqa: F401  (defined apart so the SDF reader can raise it too)
 from .motion import MotionFormatError, with_motion
 from .shapes import Circle, Obstacle, Point, Polygon, Rectangle
 from .world import Bounds, World
@@ -42,9 +43,6 @@ from .world import Bounds, World
 #: memory (PyYAML needs ~80 bytes per byte of text); larger environments belong in an occupancy map
 MAX_FILE_BYTES = 2 * 2**20
 
-
-class WorldFormatError(ValueError):
-    """A world file is malformed; the message names the file and the field."""
 
 
 class _FieldError(ValueError):

@@ -29,7 +29,7 @@ from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
-from .io import WorldFormatError
+from .errors import WorldFormatError
 from .shapes import Circle, Polygon, Rectangle
 from .world import Bounds, World
 

@@ -20,11 +20,11 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.argument("world", required=False)
 @click.option("--robot", type=click.Choice(["omni3", "diff", "jackal"]), default="omni3", show_default=True,
               help="omni3 (seed 004's), diff (a TurtleBot3 Burger) or jackal (the BARN robot: a 0.42 × 0.33 m "
-                   "rectangle; default controller dwa).")
+                   "rectangle; default controller rpp).")
 @click.option("--controller", default=None,
               help="hybrid (omni3 default: a global plan, the potential field as local avoider), "
                    "potential_field (seed 004's field alone), goto_waypoint (diff default), pure_pursuit, or the "
-                   "costmap planners dwa (jackal default), dwa_barn (the BARN challenge's settings), mppi, rpp.")
+                   "costmap planners dwa, dwa_barn (the BARN challenge's settings), mppi, rpp (jackal default).")
 @click.option("--start", nargs=3, type=float, default=None, metavar="X Y THETA",
               help="Start pose [m, m, rad] (default: the world's start, heading 0).")
 @click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal [m] (default: the world's).")

@@ -45,8 +45,8 @@ class CostmapController(Controller):
     xy_goal_tolerance : float
         [m] the run ends REACHED within this distance of the goal.
     stall_window, stall_progress : float
-        [s], [m] STALLED when the goal distance has not dropped by
-        ``stall_progress`` over ``stall_window``.
+        [s], [m] STALLED when the distance left along the path has not
+        dropped by ``stall_progress`` over ``stall_window``.
     inflation_radius, cost_scaling_factor : float
         The costmap's inflation (read by the simulator when it builds it).
     layers : str
@@ -103,6 +103,15 @@ class CostmapController(Controller):
     def set_path(self, path) -> None:
         """A new global path (N, 2) to follow from now on."""
         self.path = np.ascontiguousarray(np.asarray(path, float)[:, :2])
+        seg = np.hypot(*np.diff(self.path, axis=0).T) if len(self.path) > 1 else np.zeros(0)
+        self._to_end = np.concatenate((np.cumsum(seg[::-1])[::-1], [0.0]))  #: path length left from each point
+
+    def remaining(self, pose) -> float:
+        """How far the robot still has to go: to the nearest path point, then along the path
+        (progress is judged on this, so a path that first leads away from the goal is not a stall)."""
+        d = np.hypot(*(self.path - np.asarray(pose[:2], float)).T)
+        i = int(np.argmin(d))
+        return float(d[i] + self._to_end[i])
 
     def set_costmap(self, costmap, footprint) -> None:
         """The costmap and footprint the next :meth:`command` plans on."""
@@ -115,7 +124,7 @@ class CostmapController(Controller):
         if distance <= self.xy_goal_tolerance:
             self.velocity = np.zeros(3)
             return Command(0.0, 0.0, 0.0, REACHED)
-        if self.stall.stalled(t, distance):
+        if self.stall.stalled(t, self.remaining(pose)):
             return Command(0.0, 0.0, 0.0, STALLED)
         if self.costmap is None:
             raise RuntimeError(f"{type(self).__name__} needs a costmap: call set_costmap before command")

@@ -18,7 +18,7 @@ from .simulation import SimResult, Simulation
 #: the omni robot follows a global plan with the potential field as its local
 #: avoider (the plain field stalls in traps and clutter); the diff drive
 #: follows the plan with seed 002's goto_waypoint
-DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint", "jackal": "dwa"}
+DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint", "jackal": "rpp"}
 #: followers that can replan around what the LiDAR sees; the default one does
 #: so by itself in worlds with moving obstacles
 REPLANNING_FOLLOWERS = ("goto_waypoint", "pure_pursuit")

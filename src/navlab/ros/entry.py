@@ -15,12 +15,19 @@ import ctypes
 import os
 import signal
 import sys
+import threading
+import time
 from typing import List, Optional
 
 #: <linux/prctl.h>
 PR_SET_PDEATHSIG = 1
 #: exit status of a process ended by SIGINT, as a shell reports it
 INTERRUPTED = 128 + signal.SIGINT
+#: exit status of a node that outlived its launcher by the grace period
+ORPHANED = 128 + signal.SIGTERM
+#: seconds a node whose launcher died has to shut down cleanly before it
+#: exits regardless, and how often it looks for its launcher
+ORPHAN_GRACE_S, PARENT_POLL_S = 5.0, 0.25
 
 
 def die_with_parent(parent_pid: Optional[int], sig: int = signal.SIGTERM) -> bool:
@@ -39,6 +46,26 @@ def die_with_parent(parent_pid: Optional[int], sig: int = signal.SIGTERM) -> boo
     return parent_pid is None or os.getppid() == parent_pid
 
 
+def exit_when_orphaned(parent_pid: int, grace_s: float = ORPHAN_GRACE_S) -> threading.Thread:
+    """Start a daemon thread that ends this process ``grace_s`` after its
+    launcher ``parent_pid`` is gone, whatever the main thread is doing.
+
+    ``PR_SET_PDEATHSIG`` asks for a clean shutdown, but a node busy in a
+    long callback (or a shutdown that hangs in the middleware) would keep
+    running for as long as that takes; a node must never outlive its launcher.
+    """
+
+    def watch() -> None:
+        while os.getppid() == parent_pid:
+            time.sleep(PARENT_POLL_S)
+        time.sleep(grace_s)
+        os._exit(ORPHANED)
+
+    thread = threading.Thread(target=watch, name="navlab-orphan-watch", daemon=True)
+    thread.start()
+    return thread
+
+
 def run_child(argv: List[str]) -> int:
     """Run node ``argv[0]`` with the ROS arguments that follow (see the module docstring)."""
     from .launch import PARENT_ENV
@@ -46,6 +73,8 @@ def run_child(argv: List[str]) -> int:
     parent = os.environ.get(PARENT_ENV)
     if not die_with_parent(int(parent) if parent else None):
         return INTERRUPTED
+    if parent:
+        exit_when_orphaned(int(parent))
     try:
         # from here on an interrupt is a KeyboardInterrupt (the launcher's
         # bootstrap exited at once until now), then rclpy's

@@ -30,9 +30,10 @@ block); the right side is one of
     a long command (a study of hundreds of runs) runs with these flags added:
     a smaller study through the same code, so it still proves the command
     parses, starts and finishes;
-``ros``
+``ros [FLAGS]``
     the command needs the ros2 extra: it runs in a private network namespace
-    as tests/ros does, and is skipped when the extra is missing;
+    as tests/ros does, and is skipped when the extra is missing; FLAGS, if
+    given, are added as ``add`` does (a shorter drive through the same nodes);
 ``ros-script`` (for ``*``)
     the whole block is one script in one private network namespace (a node
     started with ``&`` and a command that talks to it);
@@ -190,7 +191,8 @@ def _command_line(cmd: Command, env: Dict[str, str]) -> Tuple[List[str], Dict[st
     if cmd.lang == "python":
         args = [sys.executable, "-c", cmd.text]
     else:
-        text = cmd.text + (" " + cmd.argument if cmd.action == "add" else "")
+        reduced = cmd.action == "add" or (cmd.action == "ros" and cmd.argument)
+        text = cmd.text + (" " + cmd.argument if reduced else "")
         args = ["bash", "-c", text]
     if cmd.action in ("ros", "ros-script", "serve"):
         # a domain of its own per document too, for machines where unshare is refused

@@ -7,7 +7,9 @@ map_server YAML, a Moving AI ``.map``, a :class:`~navlab.world.World` or an
 (:data:`navlab.grid.GRID_ALGORITHMS`), seen as one list
 (:func:`planner_names`). Tree planners search the world itself through its
 exact checker; grid planners search its conservative raster
-(:mod:`navlab.grid.rasterize`) and join the exact start and goal to it.
+(:mod:`navlab.grid.rasterize`) and join the exact start and goal to it. The
+heading-aware ``hybrid_astar`` plans between poses ``(x, y, θ)`` for a
+robot with a footprint and a turning radius (:mod:`navlab.pose_queries`).
 
 Whatever the pair, the Result's path starts at the start and ends at the goal
 (or in the goal region), ``cost`` is its length in metres, and
@@ -25,6 +27,7 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from .limits import check_seed
+from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
                       planner_names, split_grid_params, split_params, tree_query)
 from .result import Result, Status
@@ -78,13 +81,16 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         Moving AI ``.map``, a World or an OccupancyGrid.
     planner : str
         A tree planner (``rrt``, ``rrt_star``, ``informed_rrt_star``,
-        ``growth_ratio_rrt``) or a grid algorithm (``astar``, ``dijkstra``,
-        ``jps``, ``theta_star``); see :func:`planner_names`.
+        ``growth_ratio_rrt``), a grid algorithm (``astar``, ``dijkstra``,
+        ``jps``, ``theta_star``) or ``hybrid_astar`` (poses, a turning
+        radius, a footprint); see :func:`planner_names`.
     sampler : str or None
         A registered sampler for tree planners (None: ``uniform``); grid
         planners take none.
-    start, goal : (x, y), optional
-        Metres; override the source's own. Required for maps (they have none).
+    start, goal : (x, y) or (x, y, θ), optional
+        Metres (and radians); override the source's own. Required for maps
+        (they have none). The heading matters to ``hybrid_astar`` only
+        (default: the world's, else pointing from start to goal).
     seed : int or numpy.random.Generator
         The same seed gives the same result, bit for bit.
     robot_radius : float, optional
@@ -101,7 +107,12 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         Nav2-style costmap instead: cells within the robot radius blocked, each metre
         weighted by ``1 + cost_travel_multiplier · cost / 252`` (settings
         ``inflation_radius`` 0.55 m, ``cost_scaling_factor`` 3.0, ``cost_travel_multiplier``
-        2.0, ``resolution``). Routed by name; an unknown name is an error listing the valid
+        2.0, ``resolution``). ``hybrid_astar``: ``motion`` (``reeds_shepp``, forward and
+        reverse, or ``dubins``, forward only), ``turning_radius`` (m, default 0.4),
+        ``footprint`` (a radius or ``[[x, y], ...]`` in the body frame; default the world's,
+        else a disc of the robot radius), ``resolution`` and the settings of
+        :func:`navlab.grid.hybrid_astar.plan_hybrid`; ``motion=holonomic`` is every other
+        planner's. Routed by name; an unknown name is an error listing the valid
         ones for that planner.
 
     Returns
@@ -125,9 +136,15 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
 
     if not isinstance(planner, str):
         raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
-    grid = is_grid_planner(planner)
     check_seed(seed)
     params = dict(params)
+    if planner in POSE_PLANNERS:
+        if sampler not in (None, "uniform"):
+            raise ValueError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
+        return _pose_plan(source, planner, start, goal, seed, robot_radius, params)
+    grid = is_grid_planner(planner)
+    if not is_pose_query(planner, params):
+        params.pop("motion", None)  # holonomic: what every other planner does
     goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
     on_costs = params.get("costmap", False)
@@ -175,6 +192,42 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": warmup_s}
     result.params.update(common)
     return result
+
+
+def _pose_plan(source: Any, planner: str, start, goal, seed: Any, robot_radius: Optional[float],
+               params: Dict[str, Any]) -> Result:
+    """A heading-aware planner between poses (see :mod:`navlab.pose_queries`)."""
+    from .pose_queries import hybrid_query, is_pose_query
+    from .world.sources import load_source
+
+    is_pose_query(planner, params)  # a bad motion is named before any file is read
+    goal_tolerance = params.pop("goal_tolerance", None)
+    if goal_tolerance not in (None, 0, 0.0):
+        raise ValueError(f"goal_tolerance: {planner} ends exactly at the goal pose; leave goal_tolerance out")
+    world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
+                        allow_unknown=params.get("allow_unknown"))
+    t0 = time.perf_counter()
+    warm_pose_planner(planner)
+    warmup_s = time.perf_counter() - t0
+    result = hybrid_query(world, params)
+    result.stats = {"expansions": 0, "nodes": 0, "cusps": 0, "rasterize_s": 0.0, **result.stats, "warmup_s": warmup_s}
+    result.params.update({"planner": planner, "sampler": None, "seed": seed if isinstance(seed, int) else None,
+                          "world": world.name, "robot_radius": world.robot_radius})
+    return result
+
+
+@functools.lru_cache(maxsize=None)
+def warm_pose_planner(planner: str) -> None:
+    """Compile (or load) the kernels of a heading-aware planner: a tiny query with each motion."""
+    from .grid.hybrid_astar import plan_hybrid
+    from .grid.occupancy import OccupancyGrid
+
+    blocked = np.zeros((24, 24), dtype=bool)
+    blocked[6:18, 12] = True
+    grid = OccupancyGrid(blocked, resolution=0.25, name="warm-up map")
+    for motion in ("reeds_shepp", "dubins"):
+        plan_hybrid(grid, (1.5, 3.0, 0.0), (4.5, 3.0, 0.0), 0.5, motion=motion,
+                    footprint=[[0.2, 0.15], [-0.2, 0.15], [-0.2, -0.15], [0.2, -0.15]], max_expansions=2000)
 
 
 def _stats_skeleton(grid: bool) -> Dict[str, Any]:

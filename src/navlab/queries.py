@@ -29,8 +29,9 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
 def planner_names() -> list[str]:
     """Every planner ``navlab.plan`` accepts: tree planners and grid algorithms."""
     from .grid.planner import GRID_ALGORITHMS
+    from .pose_queries import POSE_PLANNERS
 
-    return sorted(PLANNERS.names() + GRID_ALGORITHMS.names())
+    return sorted(PLANNERS.names() + GRID_ALGORITHMS.names() + list(POSE_PLANNERS))
 
 
 def is_grid_planner(name: str) -> bool:

@@ -113,3 +113,44 @@ def check_output_file(path: str, flag: str) -> None:
         raise click.BadParameter(f"cannot write {path}: the folder {folder} does not exist", param_hint=flag)
     if not os.access(folder, os.W_OK):
         raise click.BadParameter(f"cannot write {path}: the folder {folder} is not writable", param_hint=flag)
+
+
+def _is_number(token: str) -> bool:
+    try:
+        float(token)
+    except ValueError:
+        return False
+    return True
+
+
+class PointOrPoseOption(click.Option):
+    """An option taking ``X Y`` or a pose ``X Y THETA`` (metres, radians):
+    click's options take a fixed number of values, so the parser is told to
+    take a third one when the token after ``Y`` is a number. The value is a
+    tuple of 2 or 3 floats (None when the option is not given)."""
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("metavar", "X Y [THETA]")
+        super().__init__(*args, type=str, **kwargs)
+
+    def add_to_parser(self, parser: Any, ctx: click.Context) -> None:
+        super().add_to_parser(parser, ctx)
+        for name in self.opts:
+            option = parser._long_opt.get(name) or parser._short_opt.get(name)
+            take = option.process
+
+            def process(value: str, state: Any, take=take) -> None:
+                values = [value]
+                while len(values) < 3 and state.rargs and _is_number(state.rargs[0]):
+                    values.append(state.rargs.pop(0))
+                take(" ".join(values), state)
+
+            option.process = process
+
+    def type_cast_value(self, ctx: click.Context, value: Any) -> Any:
+        if value is None:
+            return None
+        tokens = str(value).split()
+        if len(tokens) not in (2, 3) or not all(_is_number(t) for t in tokens):
+            raise click.BadParameter(f"expected X Y or X Y THETA (numbers), got {str(value)!r}", ctx=ctx, param=self)
+        return tuple(float(t) for t in tokens)

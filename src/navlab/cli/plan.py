@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from .common import parse_params
+from .common import PointOrPoseOption, parse_params
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -16,12 +16,14 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 @click.argument("source", metavar="SOURCE")
 @click.option("--planner", default="rrt_star", show_default=True,
               help="Tree planner or grid algorithm (navlab list): rrt, rrt_star, informed_rrt_star, "
-                   "growth_ratio_rrt, astar, dijkstra, jps, theta_star.")
+                   "growth_ratio_rrt, astar, dijkstra, jps, theta_star; hybrid_astar plans between poses for a "
+                   "car-like robot (--param motion=reeds_shepp|dubins turning_radius=R 'footprint=[[x, y], ...]').")
 @click.option("--sampler", default=None, help="Registered sampler for tree planners (navlab list). [default: uniform]")
-@click.option("--start", nargs=2, type=float, default=None, metavar="X Y",
-              help="Start in metres (overrides the world's; required for maps).")
-@click.option("--goal", nargs=2, type=float, default=None, metavar="X Y",
-              help="Goal in metres (overrides the world's; required for maps).")
+@click.option("--start", cls=PointOrPoseOption, default=None,
+              help="Start in metres (overrides the world's; required for maps); THETA, the heading in radians, "
+                   "matters to hybrid_astar.")
+@click.option("--goal", cls=PointOrPoseOption, default=None,
+              help="Goal in metres (overrides the world's; required for maps); THETA as for --start.")
 @click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
               help="Robot radius in metres (overrides the world's; maps: 0).")
 @click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
@@ -48,6 +50,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     why); 2 for bad input (one line, Error: ...).
     """
     from ..planning import is_grid_planner, plan
+    from ..pose_queries import POSE_PLANNERS
     from ..world.sources import MissingQueryError, load_source
 
     settings = parse_params(params)
@@ -57,7 +60,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
                 raise click.UsageError(f"--{flag.replace('_', '-')} {value:g} and --param {flag}={settings[flag]} "
                                        f"disagree: give one")
             settings[flag] = value
-    grid = is_grid_planner(planner)
+    grid = planner in POSE_PLANNERS or is_grid_planner(planner)
     if sampler is None:
         sampler = None if grid else "uniform"
     if plot and not grid:
@@ -96,6 +99,10 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
         click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "
                    f"planning {s['time_s'] * 1000:.1f} ms"
                    + (f", first solution at iteration {first}" if first is not None else ""))
+    elif "expansions" in s:  # a heading-aware planner
+        p = result.params
+        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {s['expansions']} expansions, "
+                   f"{s.get('cusps', 0)} cusps, planning {s['time_s'] * 1000:.1f} ms")
     elif "time_s" in s and s.get("grid"):  # a grid planner that searched (not one refused at its start)
         line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:

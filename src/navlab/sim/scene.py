@@ -181,12 +181,8 @@ class Scene:
         return f"collision {where}: the robot's footprint touched {self.name_obstacle(index)}"
 
     def name_obstacle(self, index: int) -> str:
-        """``obstacle 12 (circle 'unit_cylinder_12')``: its index, kind and, from SDF worlds, its model name."""
-        shape = self.world.obstacles[index]
-        names = self.world.meta.get("obstacle_names") if isinstance(self.world.meta, dict) else None
-        name = f" {names[index]!r}" if names and index < len(names) else ""
-        moving = "moving " if shape.motion is not None else ""
-        return f"{moving}obstacle {index} ({type(shape).__name__.lower()}{name})"
+        """``obstacle 12 (circle 'unit_cylinder_12')``: see :meth:`navlab.world.World.describe_obstacle`."""
+        return self.world.describe_obstacle(index)
 
     @property
     def dynamic(self) -> bool:

@@ -169,6 +169,40 @@ def draw_path(ax, path: np.ndarray, label: str = "path", color: str = "tab:orang
         ax.plot(path[:, 0], path[:, 1], color=color, lw=kw.pop("lw", 2.2), label=label, **kw)
 
 
+def draw_footprint(ax, footprint, poses, count: int = 12, **style) -> None:
+    """The robot's footprint outline at ``count`` poses evenly spread over ``poses`` (N, 3),
+    the last one included (a disc footprint is drawn as its circle)."""
+    from matplotlib import patches
+
+    poses = np.asarray(poses, float).reshape(-1, 3)
+    picks = np.unique(np.linspace(0, len(poses) - 1, min(count, len(poses))).astype(int))
+    style = {"fill": False, "ec": "tab:orange", "lw": 0.9, "zorder": 5.2, **style}
+    label = style.pop("label", "footprint")
+    for k, i in enumerate(picks):
+        ax.add_patch(patches.Polygon(footprint.at(poses[i]), closed=True, label=label if k == 0 else None, **style))
+
+
+def draw_pose_path(ax, result) -> None:
+    """For a path of poses (N, 3): its reverse stretches dashed over it, the
+    footprint along it, and arrows for the start and goal headings."""
+    path = np.asarray(result.path, dtype=float)
+    if path.ndim != 2 or path.shape[1] != 3 or not len(path):
+        return
+    direction = getattr(result, "direction", None)
+    if direction is not None and len(direction) == len(path) and np.any(direction < 0):
+        back = np.where(direction < 0, path[:, 1], np.nan)
+        ax.plot(path[:, 0], back, color="tab:red", lw=2.2, ls="--", zorder=4.1, label="in reverse")
+    value = result.params.get("footprint")
+    if value is not None:
+        from ..world.footprint import Footprint
+
+        draw_footprint(ax, Footprint.from_value(value), path, count=16)
+    size = 0.04 * max(np.ptp(path[:, 0]), np.ptp(path[:, 1]), 1e-9)
+    for pose in (path[0], path[-1]):
+        ax.arrow(pose[0], pose[1], size * np.cos(pose[2]), size * np.sin(pose[2]), width=size * 0.12,
+                 color="black", zorder=6, length_includes_head=True)
+
+
 def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = None, ax=None):
     """World, tree (if kept), path, start and goal.
 
@@ -210,6 +244,7 @@ def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = N
         raw = tree["raster"].cell_to_world(tree["raw_cells"])
         draw_path(ax, raw, label="grid path before smoothing", color="tab:blue", lw=1.0, ls="--")
     draw_path(ax, result.path, label=f"path {result.cost:.3f} m" if np.isfinite(result.cost) else "path")
+    draw_pose_path(ax, result)
     what = result.params.get("planner", "")
     if result.params.get("sampler"):
         what += f" + {result.params['sampler']}"

@@ -7,7 +7,7 @@ from typing import Optional
 
 import numpy as np
 
-from .plot import _pyplot, draw_path, draw_world, finish_plot, new_axes
+from .plot import _pyplot, draw_footprint, draw_path, draw_world, finish_plot, new_axes
 
 
 def draw_scene(ax, scene_world, moving: bool = True) -> None:
@@ -62,19 +62,6 @@ def _draw_moving(ax, moving, times) -> None:
         for t, colour in zip(times, colours):
             ax.add_patch(_shape_patch(translated(shape, *tr.offset(t)), fill=False, ec=colour, lw=1.0, zorder=3))
     ax.plot([], [], ":", color="0.4", label=f"moving obstacles (outlines at t = {times[0]:g}…{times[-1]:.0f} s)")
-
-
-def draw_footprint(ax, footprint, poses, count: int = 12, **style) -> None:
-    """The robot's footprint outline at ``count`` poses evenly spread over ``poses`` (N, 3),
-    the last one included (a disc footprint is drawn as its circle)."""
-    from matplotlib import patches
-
-    poses = np.asarray(poses, float).reshape(-1, 3)
-    picks = np.unique(np.linspace(0, len(poses) - 1, min(count, len(poses))).astype(int))
-    style = {"fill": False, "ec": "tab:orange", "lw": 0.9, "zorder": 5.2, **style}
-    label = style.pop("label", "footprint")
-    for k, i in enumerate(picks):
-        ax.add_patch(patches.Polygon(footprint.at(poses[i]), closed=True, label=label if k == 0 else None, **style))
 
 
 def draw_run(ax, result, raw_path=None, scene_world=None, footprint=None) -> None:

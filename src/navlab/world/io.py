@@ -34,6 +34,7 @@ from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
 from ..yamlio import read_yaml
+from .footprint import Footprint, FootprintError
 from .errors import WorldFormatError  # noqa: F401  (defined apart so the SDF reader can raise it too)
 from .motion import MotionFormatError, with_motion
 from .shapes import Circle, Obstacle, Point, Polygon, Rectangle
@@ -176,7 +177,16 @@ def _obstacle(where: str, item: Any) -> Obstacle:
 # --- the whole document ---------------------------------------------------------------------------
 
 _TOP_FIELDS = {"name": False, "bounds": True, "start": True, "goal": True, "robot_radius": False,
-               "goal_tolerance": False, "obstacles": False}
+               "goal_tolerance": False, "obstacles": False, "footprint": False}
+
+
+def _point_or_pose(field: str, value: Any) -> Tuple[float, ...]:
+    """``[x, y]`` or a pose ``[x, y, theta]`` (theta in radians)."""
+    if isinstance(value, (list, tuple)) and len(value) == 3:
+        return _pair(field, value[:2]) + (_number(f"{field}[2]", value[2]),)
+    if isinstance(value, (str, bytes, dict)) or not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise _FieldError(field, f"expected [x, y] or a pose [x, y, theta] of numbers, got {_show(value)}")
+    return _pair(field, value)
 
 
 def _world(data: Any, default_name: str) -> World:
@@ -200,14 +210,20 @@ def _world(data: Any, default_name: str) -> World:
         name = default_name
     elif isinstance(name, bool) or not isinstance(name, (str, int, float)):
         raise _FieldError("name", f"expected text, got {_show(name)}")
-    kwargs = {"start": _pair("start", data["start"]), "goal": _pair("goal", data["goal"])}
+    kwargs: Dict[str, Any] = {"start": _point_or_pose("start", data["start"]),
+                              "goal": _point_or_pose("goal", data["goal"])}
+    if data.get("footprint") is not None:
+        try:
+            kwargs["footprint"] = Footprint.from_value(data["footprint"])
+        except FootprintError as exc:
+            raise _FieldError("footprint", _short(exc)) from None
     for key in ("robot_radius", "goal_tolerance"):
         if data.get(key) is not None:
             kwargs[key] = _length(key, data[key])
     try:
         return World(name=str(name), bounds=Bounds(x0, x1, y0, y1), obstacles=obstacles, **kwargs)
     except ValueError as exc:  # a rule the World adds beyond the per-field checks above
-        field = next((k for k in ("start", "goal", "robot_radius", "goal_tolerance", "bounds", "obstacles")
+        field = next((k for k in ("start", "goal", "robot_radius", "goal_tolerance", "bounds", "obstacles", "footprint")
                       if k in str(exc)), "world")
         raise _FieldError(field, _short(exc)) from None
 

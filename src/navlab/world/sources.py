@@ -17,6 +17,8 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any, Optional, Tuple
 
+import numpy as np
+
 from ..limits import check_coordinate, check_length
 from .io import WorldFormatError, load_world, read_yaml_document
 from .world import World
@@ -86,14 +88,15 @@ def source_kind(source: Any) -> str:
                            "map_server map (it would have 'image', 'resolution', 'origin')")
 
 
-def _point_or_none(value: Any, field: str) -> Optional[Tuple[float, float]]:
+def _point_or_none(value: Any, field: str):
     if value is None:
         return None
-    try:
-        x, y = value
-    except (TypeError, ValueError):
-        raise ValueError(f"{field} must be two numbers (x, y) in metres, got {value!r}") from None
-    return check_coordinate(f"{field} x", x), check_coordinate(f"{field} y", y)
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) not in (2, 3):
+        raise ValueError(f"{field} must be two numbers (x, y) in metres or a pose (x, y, theta), got {value!r}")
+    point = (check_coordinate(f"{field} x", value[0]), check_coordinate(f"{field} y", value[1]))
+    return point + tuple(value[2:])  # a heading is checked by the World
 
 
 def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float] = None,

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 import numpy as np
 
 from ..limits import check_coordinate, check_length
+from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
 
 if TYPE_CHECKING:  # the grid package imports nothing from world; keep it that way at run time
@@ -20,13 +21,23 @@ def _plain(value: Any) -> Any:
     return value.item() if isinstance(value, np.generic) else value
 
 
-def _query_point(value: Any, what: str) -> Tuple[float, float]:
-    """``value`` as an (x, y) pair of supported coordinates, else ValueError naming ``what``."""
+def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[float]]:
+    """``value`` as an (x, y) pair of supported coordinates and the heading
+    θ [rad] when it is a pose (x, y, θ) (else None); ValueError naming ``what``."""
     if isinstance(value, np.ndarray):
         value = value.tolist()
-    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) != 2:
-        raise ValueError(f"{what} must be two numbers [x, y] in metres, got {value!r}")
-    return (check_coordinate(f"{what} x", _plain(value[0])), check_coordinate(f"{what} y", _plain(value[1])))
+    if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) not in (2, 3):
+        raise ValueError(f"{what} must be [x, y] in metres or a pose [x, y, theta] (rad), got {value!r}")
+    point = (check_coordinate(f"{what} x", _plain(value[0])), check_coordinate(f"{what} y", _plain(value[1])))
+    return point, (_heading(f"{what} theta", value[2]) if len(value) == 3 else None)
+
+
+def _heading(what: str, value: Any) -> float:
+    """A finite heading in radians, wrapped to [-π, π)."""
+    value = _plain(value)
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
+    return (float(value) + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def _check_obstacle(k: int, obstacle: Any) -> None:
@@ -86,6 +97,12 @@ class World:
     Obstacles are inflated by ``robot_radius`` for every collision query, so a
     planner can treat the robot as a point.
 
+    ``start`` and ``goal`` may be given as poses ``(x, y, θ)``: the point is
+    kept in ``start``/``goal`` and the heading in ``start_heading`` /
+    ``goal_heading`` (None: any heading; the heading-aware planners then take
+    the direction from start to goal). ``footprint`` is the robot's outline
+    for those planners (None: a disc of ``robot_radius``).
+
     A world may also carry an ``occupancy`` grid (a ROS or Moving AI map): its
     occupied cells (and its unknown cells unless ``allow_unknown``) are square
     obstacles for the same checker, so every planner sees shapes and maps
@@ -103,14 +120,24 @@ class World:
     meta: Dict[str, Any] = field(default_factory=dict, compare=False)
     occupancy: Optional["OccupancyGrid"] = None
     allow_unknown: bool = False
+    start_heading: Optional[float] = None
+    goal_heading: Optional[float] = None
+    footprint: Optional[Footprint] = None
 
     def __post_init__(self) -> None:
         # Everything is checked against navlab.limits here, so the compiled
         # kernels never see a non-finite or overflowing number.
         if not isinstance(self.bounds, Bounds):
             raise ValueError(f"bounds must be a Bounds, got {type(self.bounds).__name__}")
-        object.__setattr__(self, "start", _query_point(self.start, "start"))
-        object.__setattr__(self, "goal", _query_point(self.goal, "goal"))
+        for what in ("start", "goal"):
+            point, heading = _query_point(getattr(self, what), what)
+            object.__setattr__(self, what, point)
+            if heading is not None:  # a pose given as start/goal wins over a separate heading
+                object.__setattr__(self, f"{what}_heading", heading)
+            elif getattr(self, f"{what}_heading") is not None:
+                object.__setattr__(self, f"{what}_heading", _heading(f"{what}_heading", getattr(self, f"{what}_heading")))
+        if self.footprint is not None and not isinstance(self.footprint, Footprint):
+            object.__setattr__(self, "footprint", Footprint.from_value(self.footprint))
         object.__setattr__(self, "obstacles", tuple(self.obstacles))
         for k, obstacle in enumerate(self.obstacles):
             _check_obstacle(k, obstacle)
@@ -155,21 +182,33 @@ class World:
 
         return CollisionChecker(self)
 
+    def describe_obstacle(self, index: int) -> str:
+        """``obstacle 12 (circle 'unit_cylinder_12')``: its index, kind and, from SDF worlds, its model name."""
+        shape = self.obstacles[index]
+        names = self.meta.get("obstacle_names") if isinstance(self.meta, dict) else None
+        name = f" {names[index]!r}" if names and index < len(names) else ""
+        moving = "moving " if shape.motion is not None else ""
+        return f"{moving}obstacle {index} ({type(shape).__name__.lower()}{name})"
+
     def with_query(self, start=None, goal=None) -> "World":
         """The same world with another start and/or goal."""
         from dataclasses import replace
 
-        return replace(self, start=self.start if start is None else start,
-                       goal=self.goal if goal is None else goal)
+        changes: Dict[str, Any] = {}
+        for what, value in (("start", start), ("goal", goal)):
+            if value is not None:  # a new point drops the old heading unless it is a pose itself
+                changes[what], changes[f"{what}_heading"] = value, None
+        return replace(self, **changes)
 
     def to_dict(self) -> Dict[str, Any]:
         """The YAML world-file form (see :func:`navlab.world.io.load_world`)."""
         return {
             "name": self.name,
             "bounds": {"x": [self.bounds.xmin, self.bounds.xmax], "y": [self.bounds.ymin, self.bounds.ymax]},
-            "start": list(self.start),
-            "goal": list(self.goal),
+            "start": list(self.start) + ([self.start_heading] if self.start_heading is not None else []),
+            "goal": list(self.goal) + ([self.goal_heading] if self.goal_heading is not None else []),
             "robot_radius": self.robot_radius,
             "goal_tolerance": self.goal_tolerance,
             "obstacles": [o.to_dict() for o in self.obstacles],
+            **({"footprint": self.footprint.to_value()} if self.footprint is not None else {}),
         }

@@ -1,0 +1,203 @@
+"""Planning between poses ``(x, y, θ)`` for robots that cannot turn in place
+(issue 21): the ``motion`` setting, the heading-aware planners and their
+query on any source, without warm-up.
+
+:func:`navlab.plan` routes here when the planner is heading-aware
+(``hybrid_astar``) or ``motion`` is ``dubins`` / ``reeds_shepp``.
+
+Headings come from the query (``start=(x, y, θ)``), else from the world
+(``start: [x, y, theta]`` in its file), else they point from the start to
+the goal. The robot's outline comes from the ``footprint`` setting, else the
+world's ``footprint``, else a disc of the world's robot radius.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from dataclasses import replace
+from typing import Any, Dict, Optional, Tuple
+
+import numpy as np
+
+from .registry import suggest
+from .result import Result, Status
+
+#: how the robot may move: any direction (today's planners), forward along
+#: arcs of at least the turning radius, or forward and reverse
+MOTIONS = ("holonomic", "dubins", "reeds_shepp")
+#: planners that plan between poses for a curvature-bounded robot
+POSE_PLANNERS = ("hybrid_astar",)
+#: [m] the turning radius when none is given: Nav2 Smac's ``minimum_turning_radius``
+DEFAULT_TURNING_RADIUS = 0.4
+#: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
+HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
+                 "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
+                 "analytic_expansion_max_length", "max_expansions", "smooth", "waypoint_spacing")
+#: [m] spacing of the poses at which a returned path's footprint is re-checked against the exact world
+VERIFY_SPACING = 0.001
+
+
+def check_motion(value: Any) -> str:
+    if value not in MOTIONS:
+        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {value!r}." + suggest(str(value), list(MOTIONS)))
+    return value
+
+
+def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
+    """Whether this query plans between poses (else it plans for a point robot).
+
+    A tree or grid planner asked for a non-holonomic ``motion`` is an error
+    naming the planners that can (the SE(2) tree planners are not built yet)."""
+    motion = params.get("motion", "holonomic" if planner not in POSE_PLANNERS else "reeds_shepp")
+    check_motion(motion)
+    if planner in POSE_PLANNERS:
+        if motion == "holonomic":
+            raise ValueError(f"motion: {planner} plans for a car-like robot: motion must be dubins or reeds_shepp, "
+                             "got 'holonomic'")
+        return True
+    if motion != "holonomic":
+        raise ValueError(f"motion '{motion}': planner '{planner}' plans for a robot that can move in any direction; "
+                         f"the planners for {motion} motion: {', '.join(POSE_PLANNERS)}")
+    return False
+
+
+def query_headings(world) -> Tuple[float, float]:
+    """The start and goal headings [rad]: the world's, else the direction from start to goal."""
+    sx, sy = world.start
+    gx, gy = world.goal
+    towards = math.atan2(gy - sy, gx - sx) if (gx, gy) != (sx, sy) else 0.0
+    return (towards if world.start_heading is None else world.start_heading,
+            towards if world.goal_heading is None else world.goal_heading)
+
+
+def query_footprint(world, value: Any):
+    """The robot's outline: the ``footprint`` setting, the world's, or a disc of its robot radius."""
+    from .world.footprint import Footprint
+
+    if value is not None:
+        return Footprint.from_value(value)
+    if world.footprint is not None:
+        return world.footprint
+    return Footprint.disc(world.robot_radius) if world.robot_radius > 0 else None
+
+
+def hybrid_query(world, params: Dict[str, Any]) -> Result:
+    """Hybrid A* between the world's start and goal poses, on its map or on a
+    raster of its shapes (cells any obstacle touches are blocked), the path
+    then re-checked against the exact world.
+
+    Parameters
+    ----------
+    world : World
+    params : dict
+        ``motion`` (dubins | reeds_shepp, default reeds_shepp),
+        ``turning_radius`` [m] (default 0.4, Nav2 Smac's), ``footprint``,
+        ``resolution`` [m] for geometric worlds, and
+        :func:`~navlab.grid.hybrid_astar.plan_hybrid`'s settings.
+    """
+    from .grid.hybrid_astar import plan_hybrid
+    from .grid.rasterize import rasterize
+
+    settings = dict(params)
+    unknown = sorted(set(settings) - set(HYBRID_PARAMS))
+    if unknown:
+        raise ValueError(f"unknown parameter '{unknown[0]}' for planner 'hybrid_astar'; valid: "
+                         f"{', '.join(HYBRID_PARAMS)}." + suggest(unknown[0], list(HYBRID_PARAMS)))
+    motion = check_motion(settings.pop("motion", "reeds_shepp"))
+    turning_radius = settings.pop("turning_radius", DEFAULT_TURNING_RADIUS)
+    footprint = query_footprint(world, settings.pop("footprint", None))
+    resolution = settings.pop("resolution", None)
+    settings.pop("allow_unknown", None)  # already applied to the world
+    t0 = time.perf_counter()
+    if world.occupancy is not None:
+        if resolution is not None:
+            raise ValueError("resolution: a map is searched on its own cells; leave resolution out")
+        grid = world.occupancy
+        if world.allow_unknown:
+            grid = replace(grid, unknown=np.zeros_like(grid.unknown))
+    else:
+        grid = rasterize(replace(world, robot_radius=0.0), resolution)  # the footprint is checked by the search
+    rasterize_s = time.perf_counter() - t0
+    start_heading, goal_heading = query_headings(world)
+    start = (*world.start, start_heading)
+    goal = (*world.goal, goal_heading)
+    for label, pose, status in (("start", start, Status.INVALID_START), ("goal", goal, Status.INVALID_GOAL)):
+        why = pose_problem(world, footprint, pose, label)
+        if why is not None:
+            return Result(status=status, reason=why, stats={"time_s": time.perf_counter() - t0},
+                          params={"planner": "hybrid_astar", "motion": motion, "turning_radius": turning_radius,
+                                  "start": list(start), "goal": list(goal),
+                                  "footprint": None if footprint is None else footprint.to_value()})
+    result = plan_hybrid(grid, start, goal, turning_radius, motion=motion, footprint=footprint, **settings)
+    result.stats["rasterize_s"] = rasterize_s
+    result.stats["time_s"] = result.stats.get("time_s", 0.0) + rasterize_s
+    result.params.update(start=list(start), goal=list(goal), footprint=None if footprint is None else footprint.to_value())
+    if result.success:
+        why = footprint_hits_world(world, footprint, result)
+        if why is not None:
+            return replace(result, status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf,
+                           reason=f"internal check: {why}; please report it")
+    return result
+
+
+def footprint_hits_world(world, footprint, result: Result) -> Optional[str]:
+    """Why the path's footprint overlaps an obstacle of the exact world (None
+    when it does not), checked with shapely at poses :data:`VERIFY_SPACING` apart."""
+    from .sampling.curves import trace_word
+
+    if world.occupancy is not None:
+        return None  # on a map plan_hybrid has re-checked the path against the map's own cells
+    segments = np.asarray(result.stats.get("segments", []), dtype=float)
+    kinds = np.array([{"L": 1, "S": 2, "R": 3}[c] for c in result.stats.get("word", "")], dtype=np.int64)
+    x, y, th = result.path[0]
+    poses, _ = trace_word(float(x), float(y), float(th), kinds, segments, float(result.params["turning_radius"]),
+                          VERIFY_SPACING)
+    hit = first_touch(world, footprint, poses)
+    if hit is None:
+        return None
+    k, what = hit
+    return f"the footprint at ({poses[k, 0]:.3f}, {poses[k, 1]:.3f}) {what}"
+
+
+def pose_problem(world, footprint, pose, label: str) -> Optional[str]:
+    """Why the robot cannot stand at ``pose`` in the exact world (None when it can)."""
+    hit = first_touch(world, footprint, np.array([pose], dtype=float))
+    if hit is None:
+        return None
+    return f"the robot's footprint at the {label} pose ({pose[0]:g}, {pose[1]:g}, {pose[2]:.4g}) {hit[1]}"
+
+
+def first_touch(world, footprint, poses: np.ndarray) -> Optional[Tuple[int, str]]:
+    """The first of ``poses`` (N, 3) at which the footprint touches an
+    obstacle of the exact world or leaves its bounds, and what it touches."""
+    import shapely
+
+    from .world.shapes import Circle, Rectangle
+
+    if footprint is None:
+        shapes = shapely.points(poses[:, :2])
+    elif footprint.is_disc:
+        shapes = shapely.buffer(shapely.points(poses[:, :2]), footprint.radius, quad_segs=256)
+    else:
+        shapes = shapely.polygons(footprint.at_many(poses))
+    b = world.bounds
+    found: Optional[Tuple[int, str]] = None
+    outside = ~shapely.covered_by(shapes, shapely.box(b.xmin, b.ymin, b.xmax, b.ymax))
+    if np.any(outside):
+        found = (int(np.argmax(outside)), "leaves the world's bounds")
+    if world.occupancy is not None:
+        return found  # the map's cells are checked by the search itself
+    for k, o in enumerate(world.obstacles):
+        if isinstance(o, Circle):  # exact: the distance to the centre, not a polygon inside the circle
+            hits = shapely.distance(shapes, shapely.Point(o.center)) <= o.radius
+        else:
+            points = ((o.min[0], o.min[1]), (o.max[0], o.min[1]), (o.max[0], o.max[1]), (o.min[0], o.max[1])) \
+                if isinstance(o, Rectangle) else o.points
+            hits = shapely.intersects(shapes, shapely.Polygon(points))
+        if np.any(hits) and (found is None or int(np.argmax(hits)) < found[0]):
+            found = (int(np.argmax(hits)), f"touches {world.describe_obstacle(k)}")
+    return found
+
+
+__all__ = ["MOTIONS", "POSE_PLANNERS", "hybrid_query", "is_pose_query", "query_headings", "query_footprint"]

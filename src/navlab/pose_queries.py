@@ -71,6 +71,12 @@ def query_headings(world) -> Tuple[float, float]:
             towards if world.goal_heading is None else world.goal_heading)
 
 
+def scene_turning_radius(world) -> float:
+    """The turning radius a scene gives for its robot (``meta["turning_radius"]``), else :data:`DEFAULT_TURNING_RADIUS`."""
+    value = world.meta.get("turning_radius") if isinstance(world.meta, dict) else None
+    return DEFAULT_TURNING_RADIUS if value is None else value
+
+
 def query_footprint(world, value: Any):
     """The robot's outline: the ``footprint`` setting, the world's, or a disc of its robot radius."""
     from .world.footprint import Footprint
@@ -92,7 +98,7 @@ def hybrid_query(world, params: Dict[str, Any]) -> Result:
     world : World
     params : dict
         ``motion`` (dubins | reeds_shepp, default reeds_shepp),
-        ``turning_radius`` [m] (default 0.4, Nav2 Smac's), ``footprint``,
+        ``turning_radius`` [m] (default: the scene's, else 0.4, Nav2 Smac's), ``footprint``,
         ``resolution`` [m] for geometric worlds, and
         :func:`~navlab.grid.hybrid_astar.plan_hybrid`'s settings.
     """
@@ -105,7 +111,7 @@ def hybrid_query(world, params: Dict[str, Any]) -> Result:
         raise ValueError(f"unknown parameter '{unknown[0]}' for planner 'hybrid_astar'; valid: "
                          f"{', '.join(HYBRID_PARAMS)}." + suggest(unknown[0], list(HYBRID_PARAMS)))
     motion = check_motion(settings.pop("motion", "reeds_shepp"))
-    turning_radius = settings.pop("turning_radius", DEFAULT_TURNING_RADIUS)
+    turning_radius = settings.pop("turning_radius", scene_turning_radius(world))
     footprint = query_footprint(world, settings.pop("footprint", None))
     resolution = settings.pop("resolution", None)
     settings.pop("allow_unknown", None)  # already applied to the world

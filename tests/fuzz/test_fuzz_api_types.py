@@ -85,7 +85,7 @@ def test_wrong_types_are_a_value_error_or_work(name, data):
 
 @pytest.mark.parametrize("name, argument, value", [
     ("plan", "planner", ["rrt"]), ("plan", "sampler", {"a": 1}), ("plan", "start", "ab"),
-    ("plan", "goal", [1, 2, 3]), ("plan", "robot_radius", math.nan), ("plan", "source", 3),
+    ("plan", "goal", [1, 2, 3, 4]), ("plan", "robot_radius", math.nan), ("plan", "source", 3),
     ("grid.plan", "heuristic", 0), ("grid.plan", "connectivity", [1]), ("grid.plan", "start", None),
     ("OccupancyGrid", "origin", "x"), ("OccupancyGrid", "resolution", None), ("load_world", "source", None),
     ("simulate", "robot", ["diff"]), ("simulate", "controller_params", [1]), ("simulate", "dt", "0.1"),

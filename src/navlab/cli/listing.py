@@ -74,6 +74,13 @@ def _grid_planners() -> Iterator[str]:
     for name in GRID_ALGORITHMS:
         yield from _entry(name, first_paragraph(GRID_ALGORITHMS.get(name)), shared)
     yield from _entry("(heuristics)", f"for astar's heuristic=: {', '.join(HEURISTICS)}")
+    from ..grid.hybrid_astar import plan_hybrid
+
+    yield from _entry("hybrid_astar", "Hybrid A* between poses for a car-like robot (Dolgov et al. 2008; Nav2 Smac "
+                      "Hybrid); `navlab plan --planner hybrid_astar`, not `navlab grid plan`.",
+                      "footprint=None (the world's, else a disc of its robot radius), turning_radius=None (the "
+                      "scene's, else 0.4), " + _params(plan_hybrid, skip=("grid", "start", "goal", "turning_radius",
+                                                                         "footprint", "robot_radius")))
 
 
 def _samplers() -> Iterator[str]:
@@ -88,8 +95,12 @@ def _scenes() -> Iterator[str]:
     for name in SCENES:
         factory = SCENES.get(name)
         w = factory()
+        robot = (f"footprint {w.footprint.describe()}, turning radius {w.meta.get('turning_radius')} m"
+                 if w.footprint is not None else f"robot radius {w.robot_radius} m")
+        start = w.start if w.start_heading is None else (*w.start, round(w.start_heading, 4))
+        goal = w.goal if w.goal_heading is None else (*w.goal, round(w.goal_heading, 4))
         yield from _entry(name, first_paragraph(factory.__doc__),
-                          f"start {w.start}, goal {w.goal}, robot radius {w.robot_radius} m, "
+                          f"start {start}, goal {goal}, {robot}, "
                           f"{len(w.obstacles)} obstacle{'s' if len(w.obstacles) != 1 else ''}")
 
 

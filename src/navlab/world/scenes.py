@@ -177,3 +177,82 @@ def crossing() -> World:
         obstacles=(mover,),
         robot_radius=0.0,
     )
+
+
+# --- scenes that need heading (issue 21): poses, a footprint and a turning radius ---------------------
+# ``meta["turning_radius"]`` is the scene's robot's (the heading-aware planners' default for it).
+
+#: navigation2 #5884's robot: 0.9 × 0.62 m, its origin at the centre
+AISLE_ROBOT = ((-0.45, -0.31), (0.45, -0.31), (0.45, 0.31), (-0.45, 0.31))
+#: a compact car, 4.4 × 1.8 m, its origin at the middle of the rear axle (1.0 m from the back)
+CAR = ((-1.0, -0.9), (3.4, -0.9), (3.4, 0.9), (-1.0, 0.9))
+
+
+def _walls_around(bounds: Bounds, free, thickness: float = 0.5):
+    """Rectangles filling ``bounds`` except the union of the ``free`` (x0, x1, y0, y1)
+    rectangles, which must be an L or a straight run of two axis-aligned boxes:
+    the blocks left and right of, above and below each free box, clipped to bounds."""
+    xs = sorted({bounds.xmin, bounds.xmax, *(v for r in free for v in r[:2])})
+    ys = sorted({bounds.ymin, bounds.ymax, *(v for r in free for v in r[2:])})
+    cells = []
+    for x0, x1 in zip(xs, xs[1:]):
+        for y0, y1 in zip(ys, ys[1:]):
+            cx, cy = 0.5 * (x0 + x1), 0.5 * (y0 + y1)
+            if not any(a <= cx <= b and c <= cy <= d for a, b, c, d in free):
+                cells.append(Rectangle((x0, y0), (x1, y1)))
+    return tuple(cells)
+
+
+@SCENES.register("narrow_aisle")
+def narrow_aisle() -> World:
+    """navigation2 #5884: a 0.9 × 0.62 m robot in a 1.1 m wide aisle with a 90°
+    turn, from (1.2, 1.55) facing east to (4.05, 4.6) facing north; turning radius 0.5 m."""
+    bounds = Bounds(0.0, 6.0, 0.0, 6.0)
+    return World(
+        name="narrow_aisle",
+        bounds=bounds,
+        start=(1.2, 1.55, 0.0),
+        goal=(4.05, 4.6, 1.5707963267948966),
+        obstacles=_walls_around(bounds, [(0.5, 4.6, 1.0, 2.1), (3.5, 4.6, 2.1, 5.5)]),
+        footprint=AISLE_ROBOT,
+        meta={"turning_radius": 0.5},
+    )
+
+
+@SCENES.register("parking")
+def parking() -> World:
+    """A car (4.4 × 1.8 m, turning radius 4.5 m) in the lane of a car park must
+    back into the one free 2.8 m bay of a row against a wall, ending nose out
+    (facing north): forward-only motion cannot park it."""
+    bays = [(1.0 + 2.8 * k, 1.0 + 2.8 * (k + 1)) for k in range(9)]
+    free_bay = 5
+    parked = tuple(Rectangle((x0 + 0.45, 0.8), (x1 - 0.45, 5.2)) for k, (x0, x1) in enumerate(bays) if k != free_bay)
+    wall = Rectangle((0.0, 0.0), (28.0, 0.4))
+    opposite = tuple(Rectangle((x0 + 0.45, 12.8), (x1 - 0.45, 17.2)) for x0, x1 in bays)
+    bay_x = 0.5 * sum(bays[free_bay])
+    return World(
+        name="parking",
+        bounds=Bounds(0.0, 28.0, 0.0, 18.0),
+        start=(3.0, 9.0, 0.0),
+        goal=(bay_x, 2.0, 1.5707963267948966),
+        obstacles=(wall, *parked, *opposite),
+        footprint=CAR,
+        meta={"turning_radius": 4.5},
+    )
+
+
+@SCENES.register("trap_car")
+def trap_car() -> World:
+    """The bug trap with a car-like robot (0.9 × 0.62 m, turning radius 1 m)
+    that starts at (5, 6) facing the trap's closed side: it must turn round
+    inside the U to leave it; goal (16.5, 6) facing east."""
+    base = trap()
+    return World(
+        name="trap_car",
+        bounds=base.bounds,
+        start=(5.0, 6.0, 0.0),
+        goal=(16.5, 6.0, 0.0),  # 0.5 m further than trap's: room to turn in past the last obstacle
+        obstacles=base.obstacles,
+        footprint=AISLE_ROBOT,
+        meta={"turning_radius": 1.0},
+    )

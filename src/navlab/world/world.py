@@ -33,11 +33,11 @@ def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[f
 
 
 def _heading(what: str, value: Any) -> float:
-    """A finite heading in radians, wrapped to [-π, π)."""
+    """A finite heading in radians, wrapped to [-π, π] (exactly: a heading already there is kept bit for bit)."""
     value = _plain(value)
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
-    return (float(value) + math.pi) % (2.0 * math.pi) - math.pi
+    return math.remainder(float(value), 2.0 * math.pi)
 
 
 def _check_obstacle(k: int, obstacle: Any) -> None:

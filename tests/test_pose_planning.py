@@ -1,0 +1,154 @@
+"""Planning between poses through navlab.plan and `navlab plan` (issue 21):
+the heading scenes, checked with independent geometry (shapely at 1 mm, the
+curvature bound, the Reeds–Shepp lower bound), and bad input."""
+
+import json
+import math
+
+import numpy as np
+import pytest
+import shapely
+from click.testing import CliRunner
+
+import navlab
+from helpers import shapely_of, true_clearance
+from navlab.cli import main
+from navlab.result import Status
+from navlab.sampling import dubins, reeds_shepp
+from navlab.sampling.curves import CurvePath
+from navlab.world import World, world_from_dict
+from navlab.world.shapes import Circle
+
+HEADING_SCENES = ["narrow_aisle", "parking", "trap_car"]
+
+
+def retrace(result):
+    """The exact path from the segments the planner reports, traced at 1 mm."""
+    start = tuple(result.params["start"])
+    path = CurvePath(start, result.stats["word"], tuple(result.stats["segments"]), result.params["turning_radius"])
+    return path, path.sample(0.001)[0]
+
+
+def footprints(world, poses):
+    v = np.asarray(world.footprint.points, float)
+    c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+    xs = poses[:, :1] + c * v[:, 0] - s * v[:, 1]
+    ys = poses[:, 1:2] + s * v[:, 0] + c * v[:, 1]
+    return shapely.polygons(np.stack([xs, ys], axis=-1))
+
+
+def assert_clear_of_the_world(world, poses):
+    """No footprint along ``poses`` touches an obstacle or leaves the bounds (shapely; touching counts)."""
+    shapes = footprints(world, poses)
+    b = world.bounds
+    assert shapely.covered_by(shapes, shapely.box(b.xmin, b.ymin, b.xmax, b.ymax)).all()
+    for o in world.obstacles:
+        if isinstance(o, Circle):
+            assert (shapely.distance(shapes, shapely_of(o)) > o.radius).all()
+        else:
+            assert not shapely.intersects(shapes, shapely_of(o)).any()
+
+
+def assert_curvature(poses, radius):
+    """Between 1 mm samples, the chord over the heading change never implies a radius below ``radius``."""
+    steps = np.hypot(*np.diff(poses[:, :2], axis=0).T)
+    turn = np.abs((np.diff(poses[:, 2]) + math.pi) % (2 * math.pi) - math.pi)
+    arcs = (turn > 1e-12) & (steps > 0)
+    assert (steps[arcs] / (2 * np.sin(turn[arcs] / 2)) >= radius * (1 - 1e-6)).all()
+
+
+@pytest.mark.parametrize("scene", HEADING_SCENES)
+def test_hybrid_astar_solves_each_heading_scene_clear_of_its_exact_shapes(scene):
+    world = navlab.load_world(scene)
+    r = navlab.plan(scene, planner="hybrid_astar")
+    assert r.status is Status.EXACT, r.reason
+    radius = world.meta["turning_radius"]
+    assert r.params["turning_radius"] == radius and r.params["footprint"] == [list(p) for p in world.footprint.points]
+    start, goal = (*world.start, world.start_heading), (*world.goal, world.goal_heading)
+    np.testing.assert_allclose(r.path[0], start, atol=1e-12)
+    path, poses = retrace(r)
+    assert np.allclose(path.end[:2], goal[:2], atol=1e-9)
+    assert abs((path.end[2] - goal[2] + math.pi) % (2 * math.pi) - math.pi) < 1e-9
+    assert_clear_of_the_world(world, poses)
+    assert_curvature(poses, radius)
+    assert r.cost == pytest.approx(path.length, rel=1e-12)
+    assert r.cost >= reeds_shepp.distance(start, goal, radius) - 1e-9
+    assert r.path.shape[1] == 3 and len(r.direction) == len(r.path)
+
+
+def test_parking_needs_reverse_and_dubins_says_so():
+    backed = navlab.plan("parking", planner="hybrid_astar", motion="reeds_shepp")
+    assert backed.status is Status.EXACT and backed.stats["cusps"] >= 1 and (backed.direction == -1).any()
+    forward = navlab.plan("parking", planner="hybrid_astar", motion="dubins")
+    assert forward.status is Status.FAILED and "reverse" in forward.reason
+
+
+def test_headings_default_to_the_direction_from_start_to_goal():
+    r = navlab.plan("trap", planner="hybrid_astar", start=(2.0, 2.0), goal=(5.0, 5.0), turning_radius=0.5)
+    assert r.status is Status.EXACT, r.reason
+    assert r.params["start"][2] == pytest.approx(math.pi / 4) and r.params["goal"][2] == pytest.approx(math.pi / 4)
+    # a disc of the world's robot radius when neither the query nor the world gives a footprint
+    assert r.params["footprint"] == 0.15
+    _, poses = retrace(r)
+    clearance = min(true_clearance(navlab.load_world("trap"), shapely.LineString(poses[i:i + 400, :2]))
+                    for i in range(0, len(poses) - 1, 399))
+    assert clearance > 0.15
+
+
+def test_an_open_floor_costs_the_exact_curve_distance():
+    """No obstacle in reach: Hybrid A*'s analytic expansion is the exact shortest curve."""
+    world = World(name="open", bounds=navlab.load_world("trap").bounds, start=(4.0, 6.0, 0.0), goal=(6.0, 6.5, 2.5))
+    for motion, solver in (("reeds_shepp", reeds_shepp), ("dubins", dubins)):
+        r = navlab.plan(world, planner="hybrid_astar", motion=motion, turning_radius=1.0, smooth=False)
+        assert r.cost == pytest.approx(solver.distance((4.0, 6.0, 0.0), (6.0, 6.5, 2.5), 1.0), rel=1e-9)
+
+
+def test_a_start_pose_whose_footprint_touches_an_obstacle_names_it():
+    r = navlab.plan("trap_car", planner="hybrid_astar", start=(7.2, 6.0, 0.0))
+    assert r.status is Status.INVALID_START and "obstacle 2 (rectangle)" in r.reason
+    r = navlab.plan("trap_car", planner="hybrid_astar", goal=(0.2, 6.0, 0.0))
+    assert r.status is Status.INVALID_GOAL and "bounds" in r.reason
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"turning_radius": 0}, "turning_radius"), ({"turning_radius": -1}, "turning_radius"),
+    ({"turning_radius": math.inf}, "turning_radius"), ({"motion": "holonomic"}, "motion"),
+    ({"motion": "dubin"}, "Did you mean 'dubins'"), ({"start": (1, 1, math.nan)}, "start theta"),
+    ({"footprint": [[0, 0], [1, 1]]}, "footprint"), ({"expand_dis": 1}, "unknown parameter 'expand_dis'"),
+    ({"goal_tolerance": 0.5}, "goal_tolerance"),
+])
+def test_bad_pose_settings_are_named(kwargs, field):
+    with pytest.raises(ValueError, match=field):
+        navlab.plan("parking", planner="hybrid_astar", **kwargs)
+
+
+def test_a_point_robot_planner_asked_for_car_motion_names_the_planners_that_can():
+    with pytest.raises(ValueError, match="hybrid_astar"):
+        navlab.plan("trap", planner="rrt_star", motion="reeds_shepp")
+    assert navlab.plan("trap", planner="rrt", motion="holonomic", max_iter=200).params["planner"] == "rrt"
+
+
+def test_world_files_carry_poses_and_a_footprint():
+    world = navlab.load_world("parking")
+    again = world_from_dict(world.to_dict())
+    assert again.start_heading == world.start_heading and again.goal_heading == pytest.approx(math.pi / 2)
+    assert again.footprint == world.footprint
+    moved = world.with_query(start=(3.0, 9.0))
+    assert moved.start_heading is None and moved.goal_heading == world.goal_heading
+
+
+def test_the_command_line_takes_a_pose(tmp_path):
+    out = CliRunner().invoke(main, ["plan", "narrow_aisle", "--planner", "hybrid_astar", "--start", "1.2", "1.55",
+                                    "0.1", "--json"])
+    assert out.exit_code == 0, out.output
+    data = json.loads(out.output)
+    assert data["params"]["start"] == [1.2, 1.55, 0.1] and len(data["path"][0]) == 3
+    picture = tmp_path / "p.png"
+    out = CliRunner().invoke(main, ["plan", "parking", "--planner", "hybrid_astar", "--plot", str(picture)])
+    assert out.exit_code == 0 and "cusps" in out.output and picture.stat().st_size > 0
+    # a point and a pose both parse; anything else is one line naming the flag
+    assert CliRunner().invoke(main, ["plan", "trap", "--planner", "astar", "--start", "6", "6"]).exit_code == 0
+    bad = CliRunner().invoke(main, ["plan", "trap", "--start", "6", "--goal", "1", "2"])
+    assert bad.exit_code == 2 and "'--start'" in bad.output and "Traceback" not in bad.output
+    bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "hybrid_astar", "--param", "motion=sideways"])
+    assert bad.exit_code == 2 and "motion must be one of" in bad.output

@@ -1,0 +1,231 @@
+"""A robot's footprint on an occupancy grid for heading-aware planners:
+certified collision checks of poses and of Dubins / Reeds–Shepp curves.
+
+Shared by Hybrid A* (:mod:`navlab.grid.hybrid_astar`) and the SE(2) trees
+(:mod:`navlab.sampling.se2_tree`). For every heading bin the cells a
+footprint can touch are precomputed (:class:`Lattice`); a pose is free when
+none of its bin's cells, offset to its cell, is blocked. The cells are those
+of the footprint grown by one cell diagonal (the pose may lie anywhere in its
+cell), by ``δ/2`` (curves are traced at poses no more than δ apart for any
+footprint point, so the union covers the motion between them) and by
+``R·sin(Δθ/2)`` (any heading within the bin; R the circumscribed radius), so
+a curve found free never overlaps a blocked cell. The check is conservative
+by at most ``√2·res + δ/2 + R·sin(Δθ/2)``. :func:`first_overlap` is the
+independent re-check with shapely.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from typing import Optional, Tuple
+
+import numpy as np
+from numba import njit
+from shapely.geometry import Point, Polygon
+
+from ..limits import check_length
+from .curves import trace_word
+
+
+def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple[np.ndarray, float]:
+    """The robot's outline in body coordinates: ``(vertices (K, 2), 0.0)`` for a
+    polygon ``footprint`` ((K, 2) vertices, or a Footprint), or ``(empty, radius)``
+    for a disc of ``robot_radius`` (a point robot when both are None)."""
+    if footprint is not None and robot_radius is not None:
+        raise ValueError("give footprint or robot_radius, not both")
+    if footprint is not None and hasattr(footprint, "vertices"):  # navlab.world.footprint.Footprint
+        if footprint.vertices is None:
+            return np.empty((0, 2)), check_length("footprint radius", footprint.radius)
+        footprint = footprint.vertices
+    if footprint is None:
+        return np.empty((0, 2)), check_length("robot_radius", 0.0 if robot_radius is None else robot_radius)
+    vertices = np.asarray(footprint, dtype=float)
+    if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3 or not np.isfinite(vertices).all():
+        raise ValueError("footprint must be 3 or more finite (x, y) vertices in body coordinates")
+    poly = Polygon(vertices)
+    if not poly.is_valid or poly.area <= 0:
+        raise ValueError("footprint must be a simple polygon (its edges must not cross)")
+    if not poly.covers(Point(0.0, 0.0)):
+        raise ValueError("footprint must contain the robot's origin (0, 0)")
+    return vertices, 0.0
+
+
+@njit(cache=True)
+def _near_outline(px: float, py: float, vertices: np.ndarray, disc: float, margin: float) -> bool:
+    """Whether point (px, py) lies within ``margin`` of the outline (inside counts)."""
+    if vertices.shape[0] == 0:
+        return px * px + py * py <= (disc + margin) ** 2
+    inside = False
+    k = vertices.shape[0]
+    best = math.inf
+    for i in range(k):
+        ax, ay = vertices[i, 0], vertices[i, 1]
+        bx, by = vertices[(i + 1) % k, 0], vertices[(i + 1) % k, 1]
+        if (ay > py) != (by > py) and px < ax + (py - ay) * (bx - ax) / (by - ay):
+            inside = not inside
+        ex, ey = bx - ax, by - ay
+        t = ((px - ax) * ex + (py - ay) * ey) / (ex * ex + ey * ey)
+        t = min(1.0, max(0.0, t))
+        dx, dy = px - ax - t * ex, py - ay - t * ey
+        best = min(best, dx * dx + dy * dy)
+    return inside or best <= margin * margin
+
+
+@njit(cache=True)
+def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.ndarray, margin: float,
+                   res: float) -> np.ndarray:
+    """Offsets (dx, dy) of the cells, relative to the cell whose centre is the
+    origin, with a centre within ``margin`` of the outline at any of ``poses``."""
+    span = int(math.ceil((reach + margin + np.abs(poses[:, :2]).max()) / res)) + 1
+    size = 2 * span + 1
+    hit = np.zeros((size, size), dtype=np.bool_)
+    local = np.empty(2)
+    for p in range(poses.shape[0]):
+        c, s = math.cos(poses[p, 2]), math.sin(poses[p, 2])
+        for iy in range(size):
+            for ix in range(size):
+                if hit[iy, ix]:
+                    continue
+                # the cell centre in the body frame of this pose
+                wx, wy = (ix - span) * res - poses[p, 0], (iy - span) * res - poses[p, 1]
+                local[0], local[1] = c * wx + s * wy, -s * wx + c * wy
+                if local[0] * local[0] + local[1] * local[1] > (reach + margin) ** 2:
+                    continue
+                if _near_outline(local[0], local[1], vertices, disc, margin):
+                    hit[iy, ix] = True
+    ys, xs = np.nonzero(hit)
+    out = np.empty((xs.shape[0], 2), dtype=np.int64)
+    out[:, 0] = xs - span
+    out[:, 1] = ys - span
+    return out
+
+
+def _pack(groups) -> Tuple[np.ndarray, np.ndarray]:
+    """Ragged lists of (K_i, 2) offsets as (flat offsets, start index per group + end)."""
+    starts = np.zeros(len(groups) + 1, dtype=np.int64)
+    for i, g in enumerate(groups):
+        starts[i + 1] = starts[i] + len(g)
+    flat = np.concatenate(groups) if groups else np.empty((0, 2), np.int64)
+    return np.ascontiguousarray(flat, dtype=np.int64), starts
+
+
+class Lattice:
+    """The motion primitives and their precomputed swept cells for one robot
+    outline, turning radius, resolution, heading count and first heading.
+
+    Built from hashable settings only, so it is cached by content (:func:`lattice_for`).
+    """
+
+    def __init__(self, vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float,
+                 resolution: float, bins: int, reverse: bool, theta0: float) -> None:
+        verts = np.array(vertices, dtype=float).reshape(-1, 2)
+        res, r = resolution, turning_radius
+        self.bins, self.resolution, self.turning_radius, self.theta0 = bins, res, r, theta0
+        self.step = 2.0 * math.pi / bins
+        chord = 2.0 * r * math.sin(self.step / 2.0)
+        self.k = max(1, math.ceil(math.sqrt(2.0) * res / chord - 1e-12))  # bins turned per arc primitive
+        self.length = r * self.step * self.k  # every primitive's length [m]
+        reach = max(disc, float(np.hypot(*verts.T).max()) if len(verts) else 0.0)
+        self.circumscribed = reach
+        # δ: no footprint point moves more than this between two traced poses
+        self.delta = 0.5 * res
+        self.ds = self.delta / (1.0 + reach / r)
+        diag = math.sqrt(2.0) * res
+        directions = (1.0, -1.0) if reverse else (1.0,)
+        prims = [(kind, d * self.length) for d in directions for kind in (2, 1, 3)]  # straight, left, right
+        self.prim_kind = np.array([p[0] for p in prims], dtype=np.int64)
+        self.prim_len = np.array([p[1] for p in prims])
+        n = len(prims)
+        self.dx, self.dy = np.empty((bins, n)), np.empty((bins, n))
+        self.dbin = np.empty(n, dtype=np.int64)
+        swept = []
+        for b in range(bins):
+            theta = theta0 + b * self.step
+            for j, (kind, s) in enumerate(prims):
+                poses, _ = trace_word(0.0, 0.0, theta, np.array([kind]), np.array([s]), r, self.ds)
+                self.dx[b, j], self.dy[b, j] = poses[-1, 0], poses[-1, 1]
+                self.dbin[j] = round((poses[-1, 2] - theta) / self.step)
+                swept.append(_cells_touched(verts, disc, reach, poses, diag + 0.5 * self.delta, res))
+        self.swept, self.swept_start = _pack(swept)
+        # per-bin outlines for any heading within the bin (analytic and smoothed segments)
+        margin = diag + 0.5 * self.delta + reach * math.sin(self.step / 2.0)
+        self.pose_cells, self.pose_start = _pack([
+            _cells_touched(verts, disc, reach, np.array([[0.0, 0.0, theta0 + b * self.step]]), margin, res)
+            for b in range(bins)])
+
+
+@functools.lru_cache(maxsize=16)
+def lattice_for(vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float, resolution: float,
+                bins: int, reverse: bool, theta0: float) -> Lattice:
+    """:class:`Lattice` cached by its settings."""
+    return Lattice(vertices, disc, turning_radius, resolution, bins, reverse, theta0)
+
+
+@njit(cache=True)
+def free_cells(blocked: np.ndarray, cx: int, cy: int, offsets: np.ndarray, lo: int, hi: int) -> bool:
+    h, w = blocked.shape
+    for i in range(lo, hi):
+        x, y = cx + offsets[i, 0], cy + offsets[i, 1]
+        if x < 0 or y < 0 or x >= w or y >= h or blocked[y, x]:
+            return False
+    return True
+
+
+@njit(cache=True)
+def pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start) -> bool:
+    cx, cy = int(math.floor(x / res)), int(math.floor(y / res))
+    b = int(round((theta - theta0) / step)) % bins
+    return free_cells(blocked, cx, cy, pose_cells, pose_start[b], pose_start[b + 1])
+
+
+@njit(cache=True)
+def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, step, bins, pose_cells,
+                pose_start) -> bool:
+    poses, _ = trace_word(x, y, theta, kinds, lengths, radius, ds)
+    for i in range(poses.shape[0]):
+        if not pose_free(blocked, res, poses[i, 0], poses[i, 1], poses[i, 2], theta0, step, bins, pose_cells,
+                          pose_start):
+            return False
+    return True
+
+
+def first_overlap(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: float, poses: np.ndarray,
+                  grow: float) -> Optional[Tuple[int, int]]:
+    """The first cell (x, y) a footprint at any of ``poses`` (grid frame) overlaps,
+    grown by ``grow`` metres; None when it overlaps none. Outside the map counts,
+    as the cell just beyond the edge.
+
+    Shapely decides (touching counts), on the blocked cells as squares grown by
+    ``grow`` on every side: a superset of the footprint's own growth by ``grow``,
+    so with poses spaced so no footprint point moves more than 2·grow between
+    two, the motion between them is covered too.
+    """
+    import shapely
+
+    h, w = blocked.shape
+    if len(vertices):
+        c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+        xs = poses[:, :1] + c * vertices[:, 0] - s * vertices[:, 1]
+        ys = poses[:, 1:2] + s * vertices[:, 0] + c * vertices[:, 1]
+        shapes = shapely.polygons(np.stack([xs, ys], axis=-1))
+    else:
+        shapes = shapely.buffer(shapely.points(poses[:, :2]), disc, quad_segs=16) if disc > 0 \
+            else shapely.points(poses[:, :2])
+    # the map's edge as a ring of blocked cells around it
+    padded = np.ones((h + 2, w + 2), dtype=bool)
+    padded[1:-1, 1:-1] = blocked
+    x0, y0, x1, y1 = shapely.total_bounds(shapes)
+    lo_x, lo_y = max(0, int((x0 - grow) // res) + 1 - 1), max(0, int((y0 - grow) // res) + 1 - 1)
+    hi_x, hi_y = min(w + 1, int((x1 + grow) // res) + 2), min(h + 1, int((y1 + grow) // res) + 2)
+    ys_, xs_ = np.nonzero(padded[lo_y:hi_y + 1, lo_x:hi_x + 1])
+    if len(xs_) == 0:
+        return None
+    cx, cy = xs_ + lo_x - 1, ys_ + lo_y - 1  # cells in the grid's numbering
+    boxes = shapely.box(cx * res - grow, cy * res - grow, (cx + 1) * res + grow, (cy + 1) * res + grow)
+    tree = shapely.STRtree(boxes)
+    pairs = tree.query(shapes, predicate="intersects")
+    if pairs.shape[1] == 0:
+        return None
+    first = pairs[:, np.argmin(pairs[0])]
+    return int(cx[first[1]]), int(cy[first[1]])

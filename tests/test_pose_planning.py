@@ -11,50 +11,14 @@ import shapely
 from click.testing import CliRunner
 
 import navlab
-from helpers import shapely_of, true_clearance
+from helpers import true_clearance
+from pose_helpers import assert_clear_of_the_world, assert_curvature, retrace
 from navlab.cli import main
 from navlab.result import Status
 from navlab.sampling import dubins, reeds_shepp
-from navlab.sampling.curves import CurvePath
 from navlab.world import World, world_from_dict
-from navlab.world.shapes import Circle
 
 HEADING_SCENES = ["narrow_aisle", "parking", "trap_car"]
-
-
-def retrace(result):
-    """The exact path from the segments the planner reports, traced at 1 mm."""
-    start = tuple(result.params["start"])
-    path = CurvePath(start, result.stats["word"], tuple(result.stats["segments"]), result.params["turning_radius"])
-    return path, path.sample(0.001)[0]
-
-
-def footprints(world, poses):
-    v = np.asarray(world.footprint.points, float)
-    c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
-    xs = poses[:, :1] + c * v[:, 0] - s * v[:, 1]
-    ys = poses[:, 1:2] + s * v[:, 0] + c * v[:, 1]
-    return shapely.polygons(np.stack([xs, ys], axis=-1))
-
-
-def assert_clear_of_the_world(world, poses):
-    """No footprint along ``poses`` touches an obstacle or leaves the bounds (shapely; touching counts)."""
-    shapes = footprints(world, poses)
-    b = world.bounds
-    assert shapely.covered_by(shapes, shapely.box(b.xmin, b.ymin, b.xmax, b.ymax)).all()
-    for o in world.obstacles:
-        if isinstance(o, Circle):
-            assert (shapely.distance(shapes, shapely_of(o)) > o.radius).all()
-        else:
-            assert not shapely.intersects(shapes, shapely_of(o)).any()
-
-
-def assert_curvature(poses, radius):
-    """Between 1 mm samples, the chord over the heading change never implies a radius below ``radius``."""
-    steps = np.hypot(*np.diff(poses[:, :2], axis=0).T)
-    turn = np.abs((np.diff(poses[:, 2]) + math.pi) % (2 * math.pi) - math.pi)
-    arcs = (turn > 1e-12) & (steps > 0)
-    assert (steps[arcs] / (2 * np.sin(turn[arcs] / 2)) >= radius * (1 - 1e-6)).all()
 
 
 @pytest.mark.parametrize("scene", HEADING_SCENES)
@@ -124,7 +88,7 @@ def test_bad_pose_settings_are_named(kwargs, field):
 
 def test_a_point_robot_planner_asked_for_car_motion_names_the_planners_that_can():
     with pytest.raises(ValueError, match="hybrid_astar"):
-        navlab.plan("trap", planner="rrt_star", motion="reeds_shepp")
+        navlab.plan("trap", planner="astar", motion="reeds_shepp")
     assert navlab.plan("trap", planner="rrt", motion="holonomic", max_iter=200).params["planner"] == "rrt"
 
 

@@ -31,6 +31,7 @@ from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
                       planner_names, split_grid_params, split_params, tree_query)
 from .result import Result, Status
+from .registry import parameters_of
 from .sampling.samplers import SAMPLERS
 
 def _warm(planner: str, sampler: Optional[str], grid_settings: Optional[dict], on_map: bool) -> float:
@@ -141,10 +142,11 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     if planner in POSE_PLANNERS:
         if sampler not in (None, "uniform"):
             raise ValueError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
-        return _pose_plan(source, planner, start, goal, seed, robot_radius, params)
+        return _pose_plan(source, planner, None, start, goal, seed, robot_radius, params)
     grid = is_grid_planner(planner)
-    if not is_pose_query(planner, params):
-        params.pop("motion", None)  # holonomic: what every other planner does
+    if is_pose_query(planner, params):
+        return _pose_plan(source, planner, sampler or "uniform", start, goal, seed, robot_radius, params)
+    params.pop("motion", None)  # holonomic: what every other planner does
     goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
     on_costs = params.get("costmap", False)
@@ -194,40 +196,65 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     return result
 
 
-def _pose_plan(source: Any, planner: str, start, goal, seed: Any, robot_radius: Optional[float],
-               params: Dict[str, Any]) -> Result:
-    """A heading-aware planner between poses (see :mod:`navlab.pose_queries`)."""
-    from .pose_queries import hybrid_query, is_pose_query
+def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, seed: Any,
+               robot_radius: Optional[float], params: Dict[str, Any]) -> Result:
+    """A planner between poses (see :mod:`navlab.pose_queries`): Hybrid A*,
+    or a tree planner (``sampler`` given) with Dubins or Reeds–Shepp steering."""
+    from .pose_queries import hybrid_query, is_pose_query, tree_pose_query
     from .world.sources import load_source
 
     is_pose_query(planner, params)  # a bad motion is named before any file is read
     goal_tolerance = params.pop("goal_tolerance", None)
     if goal_tolerance not in (None, 0, 0.0):
         raise ValueError(f"goal_tolerance: {planner} ends exactly at the goal pose; leave goal_tolerance out")
+    to_sampler = {}
+    if sampler is not None:
+        SAMPLERS.get(sampler)
+        sampler_keys = set(parameters_of(SAMPLERS.get(sampler))) | {"goal_sample_rate"}
+        to_sampler = {k: params.pop(k) for k in list(params) if k in sampler_keys}
+        samp = build_sampler(sampler, to_sampler)
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
                         allow_unknown=params.get("allow_unknown"))
     t0 = time.perf_counter()
-    warm_pose_planner(planner)
+    warm_pose_planner(planner if sampler is None else "se2_tree")
     warmup_s = time.perf_counter() - t0
-    result = hybrid_query(world, params)
-    result.stats = {"expansions": 0, "nodes": 0, "cusps": 0, "rasterize_s": 0.0, **result.stats, "warmup_s": warmup_s}
-    result.params.update({"planner": planner, "sampler": None, "seed": seed if isinstance(seed, int) else None,
+    if sampler is None:
+        result = hybrid_query(world, params)
+        skeleton = {"expansions": 0, "nodes": 0, "cusps": 0, "rasterize_s": 0.0}
+    else:
+        result = tree_pose_query(world, planner, samp, seed, params)
+        result.params.update(samp.resolved_params(world))
+        skeleton = {"iterations": 0, "nodes": 0, "collision_checks": 0, "edge_checks": 0, "cusps": 0,
+                    "first_solution_iteration": None, "first_solution_time_s": None, "rewires": 0,
+                    "cost_trace": np.zeros(0)}
+    result.stats = {**skeleton, **result.stats, "warmup_s": warmup_s}
+    result.params.update({"planner": planner, "sampler": sampler, "seed": seed if isinstance(seed, int) else None,
                           "world": world.name, "robot_radius": world.robot_radius})
     return result
 
 
 @functools.lru_cache(maxsize=None)
 def warm_pose_planner(planner: str) -> None:
-    """Compile (or load) the kernels of a heading-aware planner: a tiny query with each motion."""
-    from .grid.hybrid_astar import plan_hybrid
+    """Compile (or load) the kernels of a planner between poses (``hybrid_astar``
+    or ``se2_tree``): a tiny query with each motion."""
     from .grid.occupancy import OccupancyGrid
+    from .world import World
 
     blocked = np.zeros((24, 24), dtype=bool)
     blocked[6:18, 12] = True
-    grid = OccupancyGrid(blocked, resolution=0.25, name="warm-up map")
+    world = World.from_grid(OccupancyGrid(blocked, resolution=0.25, name="warm-up map"), (1.5, 3.0), (4.5, 3.0))
+    box = [[0.2, 0.15], [-0.2, 0.15], [-0.2, -0.15], [0.2, -0.15]]
     for motion in ("reeds_shepp", "dubins"):
-        plan_hybrid(grid, (1.5, 3.0, 0.0), (4.5, 3.0, 0.0), 0.5, motion=motion,
-                    footprint=[[0.2, 0.15], [-0.2, 0.15], [-0.2, -0.15], [0.2, -0.15]], max_expansions=2000)
+        if planner == "hybrid_astar":
+            from .pose_queries import hybrid_query
+
+            hybrid_query(world, {"motion": motion, "turning_radius": 0.5, "footprint": box, "max_expansions": 2000})
+        else:
+            from .pose_queries import tree_pose_query
+
+            for name in ("rrt", "rrt_star"):
+                tree_pose_query(world, name, build_sampler("uniform", {}), 0,
+                                {"motion": motion, "turning_radius": 0.5, "footprint": box, "max_iter": 64})
 
 
 def _stats_skeleton(grid: bool) -> Dict[str, Any]:

@@ -22,12 +22,15 @@ import numpy as np
 
 from .registry import suggest
 from .result import Result, Status
+from .sampling.curves import check_turning_radius
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
 MOTIONS = ("holonomic", "dubins", "reeds_shepp")
 #: planners that plan between poses for a curvature-bounded robot
 POSE_PLANNERS = ("hybrid_astar",)
+#: tree planners that also plan between poses when ``motion`` is dubins or reeds_shepp
+TREE_POSE_PLANNERS = ("rrt", "rrt_star", "informed_rrt_star")
 #: [m] the turning radius when none is given: Nav2 Smac's ``minimum_turning_radius``
 DEFAULT_TURNING_RADIUS = 0.4
 #: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
@@ -47,8 +50,9 @@ def check_motion(value: Any) -> str:
 def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
     """Whether this query plans between poses (else it plans for a point robot).
 
-    A tree or grid planner asked for a non-holonomic ``motion`` is an error
-    naming the planners that can (the SE(2) tree planners are not built yet)."""
+    ``rrt``, ``rrt_star`` and ``informed_rrt_star`` plan between poses when
+    ``motion`` is dubins or reeds_shepp; any other planner asked for it is an
+    error naming the planners that can."""
     motion = params.get("motion", "holonomic" if planner not in POSE_PLANNERS else "reeds_shepp")
     check_motion(motion)
     if planner in POSE_PLANNERS:
@@ -56,10 +60,18 @@ def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
             raise ValueError(f"motion: {planner} plans for a car-like robot: motion must be dubins or reeds_shepp, "
                              "got 'holonomic'")
         return True
-    if motion != "holonomic":
-        raise ValueError(f"motion '{motion}': planner '{planner}' plans for a robot that can move in any direction; "
-                         f"the planners for {motion} motion: {', '.join(POSE_PLANNERS)}")
-    return False
+    if motion == "holonomic":
+        return False
+    if planner in TREE_POSE_PLANNERS:
+        return True
+    raise ValueError(f"motion '{motion}': planner '{planner}' plans for a robot that can move in any direction; "
+                     f"the planners for {motion} motion: {', '.join(POSE_PLANNERS + TREE_POSE_PLANNERS)}")
+
+
+def query_poses(world) -> Tuple[Tuple[float, float, float], Tuple[float, float, float]]:
+    """The start and goal poses: the world's points with :func:`query_headings`."""
+    start_heading, goal_heading = query_headings(world)
+    return (*world.start, start_heading), (*world.goal, goal_heading)
 
 
 def query_headings(world) -> Tuple[float, float]:
@@ -88,6 +100,56 @@ def query_footprint(world, value: Any):
     return Footprint.disc(world.robot_radius) if world.robot_radius > 0 else None
 
 
+def _pose_grid(world, resolution):
+    """The cells a heading-aware planner searches: a map's own, or the world's
+    shapes rasterised with no inflation (the footprint is checked by the search)."""
+    from .grid.rasterize import rasterize
+
+    if world.occupancy is not None:
+        if resolution is not None:
+            raise ValueError("resolution: a map is searched on its own cells; leave resolution out")
+        grid = world.occupancy
+        return replace(grid, unknown=np.zeros_like(grid.unknown)) if world.allow_unknown else grid
+    return rasterize(replace(world, robot_radius=0.0), resolution)
+
+
+def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str, Any], Any]:
+    """The settings shared by every heading-aware query, checked; the rest returned as ``settings``."""
+    settings = dict(params)
+    unknown = sorted(set(settings) - set(valid))
+    if unknown:
+        raise ValueError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
+                         f"valid: {', '.join(valid)}." + suggest(unknown[0], list(valid)))
+    common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
+              "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
+              "footprint": query_footprint(world, settings.pop("footprint", None)),
+              "resolution": settings.pop("resolution", None)}
+    settings.pop("allow_unknown", None)  # already applied to the world
+    return common, settings
+
+
+def _invalid_endpoint(world, planner: str, common, start, goal, t0: float) -> Optional[Result]:
+    footprint = common["footprint"]
+    for label, pose, status in (("start", start, Status.INVALID_START), ("goal", goal, Status.INVALID_GOAL)):
+        why = pose_problem(world, footprint, pose, label)
+        if why is not None:
+            return Result(status=status, reason=why, stats={"time_s": time.perf_counter() - t0},
+                          params={"planner": planner, "motion": common["motion"],
+                                  "turning_radius": common["turning_radius"], "start": list(start),
+                                  "goal": list(goal), "footprint": None if footprint is None else footprint.to_value()})
+    return None
+
+
+def _verified(world, footprint, result: Result) -> Result:
+    """The result, or FAILED when its path's footprint touches the exact world (a bug to report)."""
+    if result.success:
+        why = footprint_hits_world(world, footprint, result)
+        if why is not None:
+            return replace(result, status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf,
+                           reason=f"internal check: {why}; please report it")
+    return result
+
+
 def hybrid_query(world, params: Dict[str, Any]) -> Result:
     """Hybrid A* between the world's start and goal poses, on its map or on a
     raster of its shapes (cells any obstacle touches are blocked), the path
@@ -103,48 +165,72 @@ def hybrid_query(world, params: Dict[str, Any]) -> Result:
         :func:`~navlab.grid.hybrid_astar.plan_hybrid`'s settings.
     """
     from .grid.hybrid_astar import plan_hybrid
-    from .grid.rasterize import rasterize
 
-    settings = dict(params)
-    unknown = sorted(set(settings) - set(HYBRID_PARAMS))
-    if unknown:
-        raise ValueError(f"unknown parameter '{unknown[0]}' for planner 'hybrid_astar'; valid: "
-                         f"{', '.join(HYBRID_PARAMS)}." + suggest(unknown[0], list(HYBRID_PARAMS)))
-    motion = check_motion(settings.pop("motion", "reeds_shepp"))
-    turning_radius = settings.pop("turning_radius", scene_turning_radius(world))
-    footprint = query_footprint(world, settings.pop("footprint", None))
-    resolution = settings.pop("resolution", None)
-    settings.pop("allow_unknown", None)  # already applied to the world
+    common, settings = _query(world, "hybrid_astar", params, HYBRID_PARAMS)
     t0 = time.perf_counter()
-    if world.occupancy is not None:
-        if resolution is not None:
-            raise ValueError("resolution: a map is searched on its own cells; leave resolution out")
-        grid = world.occupancy
-        if world.allow_unknown:
-            grid = replace(grid, unknown=np.zeros_like(grid.unknown))
-    else:
-        grid = rasterize(replace(world, robot_radius=0.0), resolution)  # the footprint is checked by the search
+    grid = _pose_grid(world, common["resolution"])
     rasterize_s = time.perf_counter() - t0
-    start_heading, goal_heading = query_headings(world)
-    start = (*world.start, start_heading)
-    goal = (*world.goal, goal_heading)
-    for label, pose, status in (("start", start, Status.INVALID_START), ("goal", goal, Status.INVALID_GOAL)):
-        why = pose_problem(world, footprint, pose, label)
-        if why is not None:
-            return Result(status=status, reason=why, stats={"time_s": time.perf_counter() - t0},
-                          params={"planner": "hybrid_astar", "motion": motion, "turning_radius": turning_radius,
-                                  "start": list(start), "goal": list(goal),
-                                  "footprint": None if footprint is None else footprint.to_value()})
-    result = plan_hybrid(grid, start, goal, turning_radius, motion=motion, footprint=footprint, **settings)
+    start, goal = query_poses(world)
+    invalid = _invalid_endpoint(world, "hybrid_astar", common, start, goal, t0)
+    if invalid is not None:
+        return invalid
+    footprint = common["footprint"]
+    result = plan_hybrid(grid, start, goal, common["turning_radius"], motion=common["motion"], footprint=footprint,
+                         **settings)
     result.stats["rasterize_s"] = rasterize_s
     result.stats["time_s"] = result.stats.get("time_s", 0.0) + rasterize_s
     result.params.update(start=list(start), goal=list(goal), footprint=None if footprint is None else footprint.to_value())
+    return _verified(world, footprint, result)
+
+
+def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, Any]) -> Result:
+    """RRT, RRT* or Informed RRT* between poses with Dubins or Reeds–Shepp
+    steering (:mod:`navlab.sampling.se2_planners`), edges checked with the
+    footprint on the world's cells (as Hybrid A*), the path re-checked
+    against the exact world."""
+    from .sampling.curves import trace_word
+    from .sampling.footprint_lattice import lattice_for, robot_outline
+    from .sampling.se2_planners import SE2_TREE_PARAMS, plan_se2_tree
+
+    valid = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
+    common, settings = _query(world, planner, params, valid)
+    bins = settings.pop("heading_bins", 72)
+    if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or not 4 <= bins <= 1440:
+        raise ValueError(f"heading_bins must be a whole number from 4 to 1440, got {bins!r}")
+    t0 = time.perf_counter()
+    grid = _pose_grid(world, common["resolution"])
+    start, goal = query_poses(world)
+    invalid = _invalid_endpoint(world, planner, common, start, goal, t0)
+    if invalid is not None:
+        return invalid
+    footprint, motion, r = common["footprint"], common["motion"], common["turning_radius"]
+    vertices, disc = robot_outline(footprint)
+    lattice = lattice_for(tuple(map(tuple, vertices.tolist())), disc, r, grid.resolution, int(bins),
+                          motion == "reeds_shepp", 0.0)
+    blocked = np.ascontiguousarray(grid.blocked | grid.unknown)
+    ox, oy, yaw = grid.origin
+    c, s = math.cos(yaw), math.sin(yaw)
+
+    def to_grid(x, y, theta):
+        return c * (x - ox) + s * (y - oy), -s * (x - ox) + c * (y - oy), theta - yaw
+
+    result = plan_se2_tree(planner, world, sampler, lattice, blocked, to_grid, start, goal, motion, r,
+                           np.random.default_rng(seed), settings)
+    result.params.update(motion=motion, turning_radius=r, heading_bins=int(bins), resolution=grid.resolution,
+                         start=list(start), goal=list(goal),
+                         footprint=None if footprint is None else footprint.to_value())
+    result.stats["time_s"] = time.perf_counter() - t0
+    segments = result.stats.pop("segments_raw", [])
     if result.success:
-        why = footprint_hits_world(world, footprint, result)
-        if why is not None:
-            return replace(result, status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf,
-                           reason=f"internal check: {why}; please report it")
-    return result
+        kinds = np.array([k for k, _ in segments], dtype=np.int64)
+        lengths = np.array([v for _, v in segments])
+        poses, direction = trace_word(*start, kinds, lengths, r, grid.resolution)
+        result.path, result.direction = poses, direction
+        result.stats["word"] = "".join({1: "L", 2: "S", 3: "R"}[int(k)] for k in kinds)
+        result.stats["segments"] = lengths.tolist()
+        signs = np.sign(lengths[lengths != 0])
+        result.stats["cusps"] = int(np.count_nonzero(np.diff(signs) != 0))
+    return _verified(world, footprint, result)
 
 
 def footprint_hits_world(world, footprint, result: Result) -> Optional[str]:
@@ -206,4 +292,5 @@ def first_touch(world, footprint, poses: np.ndarray) -> Optional[Tuple[int, str]
     return found
 
 
-__all__ = ["MOTIONS", "POSE_PLANNERS", "hybrid_query", "is_pose_query", "query_headings", "query_footprint"]
+__all__ = ["MOTIONS", "POSE_PLANNERS", "TREE_POSE_PLANNERS", "hybrid_query", "is_pose_query", "query_headings",
+           "query_footprint", "tree_pose_query"]

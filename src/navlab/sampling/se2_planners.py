@@ -1,0 +1,161 @@
+"""RRT, RRT* and Informed RRT* between poses, with Dubins or Reeds–Shepp
+steering (the compiled loop: :mod:`navlab.sampling.se2_tree`).
+
+Samples: the positions come from any registered sampler (uniform, goal
+bias, Gaussian, boundary, integration: where in the plane they fall is what
+distinguishes them), the headings are uniform on [−π, π), except that a
+sample the goal-bias sampler places on the goal takes the goal's heading,
+so goal bias steers at the goal pose itself. Informed RRT* draws positions
+from the ellipse |x − start| + |x − goal| ≤ c_best: the steering length is
+never below the Euclidean distance, so no pose outside it can improve the path.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from typing import Any, Dict
+
+import numpy as np
+
+from ..result import Result, Status, Tree
+from . import se2_tree as K
+from .curves import MAX_SEGMENTS, NOP
+from .regions import BoxRegion, InformedRegion
+from .samplers import Sampler
+
+#: planners with an SE(2) version, and the kernel mode each runs
+SE2_MODES = {"rrt": 0, "rrt_star": 1, "informed_rrt_star": 1}
+#: settings they take (beyond the query's motion, turning_radius, footprint, resolution)
+SE2_TREE_PARAMS = ("expand_dis", "max_iter", "max_time", "connect_circle_dist", "batch_size", "keep_tree",
+                   "heading_bins")
+#: iterations when max_iter is not given
+DEFAULT_MAX_ITER = {"rrt": 10_000, "rrt_star": 5_000, "informed_rrt_star": 5_000}
+
+
+def se2_gamma(bounds) -> float:
+    """γ of Karaman and Frazzoli's RRT* radius in d = 3 (x, y, θ) with OMPL's rewire factor 1.1:
+    γ = 1.1 · 2 (1 + 1/3)^(1/3) (μ(X)/ζ_3)^(1/3), μ(X) = area · 2π, ζ_3 = 4π/3."""
+    volume = bounds.area * 2.0 * math.pi
+    return 1.1 * 2.0 * (4.0 / 3.0) ** (1.0 / 3.0) * (volume / (4.0 * math.pi / 3.0)) ** (1.0 / 3.0)
+
+
+def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.ndarray, to_grid, start, goal,
+                  motion: str, turning_radius: float, rng, settings: Dict[str, Any]) -> Result:
+    """Grow an SE(2) tree from pose ``start`` to pose ``goal`` (grid-frame poses via ``to_grid``).
+
+    Parameters
+    ----------
+    planner : {"rrt", "rrt_star", "informed_rrt_star"}
+    world : World
+        What the sampler draws positions in (world frame).
+    lattice : navlab.sampling.footprint_lattice.Lattice
+        The footprint's cells per heading bin on ``blocked`` (the grid).
+    to_grid : callable
+        World poses (x, y, θ; numbers or arrays) → grid-frame poses (the map's origin and yaw).
+    settings : dict
+        ``expand_dis`` (η, m; default the smaller of 0.2 × the bounds' diagonal, OMPL's
+        range, and two turning radii: a longer curve rarely fits between obstacles),
+        ``max_iter``, ``max_time`` (s), ``connect_circle_dist`` (γ; default
+        :func:`se2_gamma`), ``batch_size``, ``keep_tree``.
+    """
+    t0 = time.perf_counter()
+    b = world.bounds
+    diagonal = math.hypot(b.xmax - b.xmin, b.ymax - b.ymin)
+    eta = float(settings.get("expand_dis") or min(0.2 * diagonal, 2.0 * turning_radius))
+    gamma = float(settings.get("connect_circle_dist") or se2_gamma(b))
+    max_iter = int(settings.get("max_iter") or DEFAULT_MAX_ITER[planner])
+    max_time = settings.get("max_time")
+    batch = int(settings.get("batch_size") or 64)
+    params = {"expand_dis": eta, "connect_circle_dist": gamma, "max_iter": max_iter, "max_time": max_time,
+              "batch_size": batch, "keep_tree": bool(settings.get("keep_tree", False))}
+    n_max = max_iter + 1
+    pose = np.zeros((n_max, 3))
+    gs, gg = to_grid(*start), to_grid(*goal)
+    pose[0] = gs
+    parent = np.full(n_max, -1, dtype=np.int64)
+    cost = np.zeros(n_max)
+    child = np.full(n_max, -1, dtype=np.int64)
+    sibling = np.full(n_max, -1, dtype=np.int64)
+    edge_kinds = np.full((n_max, MAX_SEGMENTS), NOP, dtype=np.int64)
+    edge_len = np.zeros((n_max, MAX_SEGMENTS))
+    # the position index: about two nodes per cell when the tree is full, cells no smaller than the map's
+    h, w = blocked.shape
+    extent_x, extent_y = w * lattice.resolution, h * lattice.resolution
+    cell = max(lattice.resolution, math.sqrt(extent_x * extent_y / max(1.0, n_max / 2.0)))
+    dims = np.array([max(1, math.ceil(extent_x / cell)), max(1, math.ceil(extent_y / cell))], dtype=np.int64)
+    gridp = np.array([0.0, 0.0, cell])
+    head = np.full(int(dims[0] * dims[1]), -1, dtype=np.int64)
+    nxt = np.full(n_max, -1, dtype=np.int64)
+    K._insert(0, pose, head, nxt, gridp, dims)
+    goal_node = np.zeros(n_max, dtype=np.int64)
+    goal_extra = np.zeros(n_max)
+    goal_kinds = np.full((n_max, MAX_SEGMENTS), NOP, dtype=np.int64)
+    goal_len = np.zeros((n_max, MAX_SEGMENTS))
+    trace = np.full(max_iter, np.inf)
+    istate = np.zeros(6, dtype=np.int64)
+    istate[K.S_SIZE], istate[K.S_FIRST_ITER], istate[K.S_BEST] = 1, -1, -1
+    fparams = np.zeros(10)
+    fparams[[K.F_ETA, K.F_GAMMA, K.F_RADIUS, K.F_REVERSE, K.F_CELL]] = (
+        eta, gamma, turning_radius, 1.0 if motion == "reeds_shepp" else 0.0, cell)
+    fparams[[K.F_GX, K.F_GY, K.F_GT]] = gg
+    fparams[K.F_MODE] = SE2_MODES[planner]
+    fparams[K.F_EPS] = 1e-9 * max(1.0, diagonal)
+    lat = (blocked, lattice.resolution, lattice.ds, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells,
+           lattice.pose_start)
+    K.try_goal(0, 0, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, fparams, *lat)
+    if planner == "rrt" and istate[K.S_GOALS] > 0:
+        max_iter = 0  # the start reaches the goal in one step: nothing to grow
+    box = BoxRegion(b)
+    checker = world.checker()
+    it, first_time = 0, None
+    gpoint = np.asarray(goal[:2])
+    while it < max_iter:
+        if max_time is not None and time.perf_counter() - t0 > max_time:
+            break
+        region = box
+        best = istate[K.S_BEST]
+        if planner == "informed_rrt_star" and best >= 0:
+            c_best = cost[goal_node[best]] + goal_extra[best]
+            region = InformedRegion(start[:2], goal[:2], c_best, b)
+        m = min(batch, max_iter - it)
+        points = np.asarray(sampler.sample(world, rng, m, checker=checker, region=region), dtype=float)
+        headings = rng.uniform(-math.pi, math.pi, len(points))
+        at_goal = np.all(points == gpoint, axis=1)
+        headings[at_goal] = goal[2]
+        samples = np.ascontiguousarray(np.column_stack(to_grid(points[:, 0], points[:, 1], headings)), dtype=float)
+        used = K.grow(samples, it, pose, parent, cost, child, sibling, edge_kinds, edge_len, head, nxt, gridp, dims,
+                      goal_node, goal_extra, goal_kinds, goal_len, trace, istate, fparams, *lat)
+        it += used
+        if first_time is None and istate[K.S_FIRST_ITER] >= 0:
+            first_time = time.perf_counter() - t0
+        if used < m:
+            break
+    elapsed = time.perf_counter() - t0
+    stats = {"iterations": it, "nodes": int(istate[K.S_SIZE]), "edge_checks": int(istate[K.S_EDGE_CHECKS]),
+             "collision_checks": int(istate[K.S_EDGE_CHECKS]), "rewires": int(istate[K.S_REWIRES]),
+             "first_solution_iteration": int(istate[K.S_FIRST_ITER]) if istate[K.S_FIRST_ITER] >= 0 else None,
+             "first_solution_time_s": first_time, "cost_trace": trace[:it].copy(), "time_s": elapsed}
+    tree = None
+    if params["keep_tree"]:
+        n = int(istate[K.S_SIZE])
+        tree = Tree(nodes=pose[:n].copy(), parent=parent[:n].copy())
+    best = int(istate[K.S_BEST])
+    if best < 0:
+        why = f"the goal pose was not reached in {it} iterations" + (
+            " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')"
+            if motion == "dubins" else "")
+        return Result(status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf, stats=stats, reason=why,
+                      params=params, tree=tree)
+    # the chain of nodes, each edge's word as it was checked, then the goal connection's
+    chain = [int(goal_node[best])]
+    while parent[chain[-1]] >= 0:
+        chain.append(int(parent[chain[-1]]))
+    chain.reverse()
+    words = [(edge_kinds[c], edge_len[c]) for c in chain[1:]] + [(goal_kinds[best], goal_len[best])]
+    segments = [(int(k), float(s)) for ks, ls in words for k, s in zip(ks, ls) if k != NOP and s != 0.0]
+    return Result(status=Status.EXACT, path=np.empty((0, 3)), cost=float(sum(abs(s) for _, s in segments)),
+                  stats={**stats, "segments_raw": segments}, params=params, tree=tree)
+
+
+__all__ = ["SE2_MODES", "SE2_TREE_PARAMS", "plan_se2_tree", "se2_gamma"]

@@ -220,6 +220,10 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
                          start=list(start), goal=list(goal),
                          footprint=None if footprint is None else footprint.to_value())
     result.stats["time_s"] = time.perf_counter() - t0
+    if result.tree is not None:  # its poses in the world's frame
+        nodes = result.tree.nodes
+        wx, wy = ox + c * nodes[:, 0] - s * nodes[:, 1], oy + s * nodes[:, 0] + c * nodes[:, 1]
+        result.tree = replace(result.tree, nodes=np.column_stack([wx, wy, nodes[:, 2] + yaw]))
     segments = result.stats.pop("segments_raw", [])
     if result.success:
         kinds = np.array([k for k, _ in segments], dtype=np.int64)

@@ -35,7 +35,7 @@ class Tree:
     Attributes
     ----------
     nodes : ndarray (N, 2) or None
-        Tree node positions, metres.
+        Tree node positions, metres; (N, 3) poses (x, y, θ) for a tree planned between poses.
     parent : ndarray (N,) of int or None
         Each node's parent index, −1 for the root.
     raw_cells : ndarray (M, 2) of int or None

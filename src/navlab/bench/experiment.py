@@ -101,8 +101,9 @@ def samples(planner: str) -> bool:
     """Whether ``planner`` takes a navlab sampler (tree planners do; grid
     algorithms search and OMPL's planners sample by themselves)."""
     from ..grid.planner import GRID_ALGORITHMS
+    from ..pose_queries import POSE_PLANNERS
 
-    return not planner.startswith(OMPL_PREFIX) and planner not in GRID_ALGORITHMS
+    return not planner.startswith(OMPL_PREFIX) and planner not in GRID_ALGORITHMS and planner not in POSE_PLANNERS
 
 
 def stable_hash(data: Any) -> str:
@@ -315,8 +316,11 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
     """A cell's settings: the experiment's shared ``params`` and ``grid``
     values that apply to this kind of planner (grid settings to grid
     algorithms, the others to tree and OMPL planners), then its own."""
+    from ..pose_queries import HYBRID_PARAMS, POSE_PLANNERS
     from ..queries import GRID_PARAMS
 
+    if planner in POSE_PLANNERS:  # its own settings (motion, turning_radius, ...)
+        return {**{k: v for k, v in shared.items() if k in HYBRID_PARAMS}, **own}
     grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
     return {**{k: v for k, v in shared.items() if (k in GRID_PARAMS) == grid}, **own}
 
@@ -367,13 +371,15 @@ def _mapping(value: Any, field: str) -> Dict[str, Any]:
 
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
+    from ..pose_queries import POSE_PLANNERS, is_pose_query
     from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
     from ..sampling.planners import make_planner
     from .ompl_planners import check_ompl_name, ompl_available
 
     for planner in exp.planners:
         if not planner.name.startswith(OMPL_PREFIX):
-            is_grid_planner(planner.name)  # unknown names: "did you mean", both kinds listed
+            if planner.name not in POSE_PLANNERS:
+                is_grid_planner(planner.name)  # unknown names: "did you mean", both kinds listed
 
     if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
         raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
@@ -410,11 +416,14 @@ def validate(exp: Experiment) -> None:
                 raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
                                       "pip install 'navlab[ompl]'")
             continue
-        if cell.sampler is None:  # a grid algorithm: its settings only, no budget
-            split_grid_params(cell.planner.name, routed_params(cell.planner.name, cell.params, cell.planner.params))
+        own = routed_params(cell.planner.name, cell.params, cell.planner.params)
+        if cell.planner.name in POSE_PLANNERS or (cell.sampler is not None and is_pose_query(cell.planner.name, own)):
+            is_pose_query(cell.planner.name, own)  # the motion named; other settings are checked by each trial
             continue
-        params = {**routed_params(cell.planner.name, cell.params, cell.planner.params), **cell.sampler.params,
-                  **exp.budget}
+        if cell.sampler is None:  # a grid algorithm: its settings only, no budget
+            split_grid_params(cell.planner.name, own)
+            continue
+        params = {**own, **cell.sampler.params, **exp.budget}
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
         planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
         try:

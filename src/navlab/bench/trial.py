@@ -134,8 +134,9 @@ def _warm_kind(key: str, spec: Dict[str, Any]) -> None:
 
 def _is_grid(planner: str) -> bool:
     from ..grid.planner import GRID_ALGORITHMS
+    from ..pose_queries import POSE_PLANNERS
 
-    return planner in GRID_ALGORITHMS
+    return planner in GRID_ALGORITHMS or planner in POSE_PLANNERS  # no sampler, no iteration budget
 
 
 def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:

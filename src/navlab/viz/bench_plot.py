@@ -110,7 +110,8 @@ def example_trees(world, examples: Sequence[Tuple[str, Dict[str, np.ndarray]]], 
     for ax, (title, tree) in zip(axes.ravel(), examples):
         draw_world(ax, world, show_inflation=False)
         draw_tree(ax, np.asarray(tree["nodes"]), np.asarray(tree["parent"]), label=None)
-        draw_path(ax, np.asarray(tree["path"], dtype=float).reshape(-1, 2), label="path")
+        path = np.asarray(tree["path"], dtype=float)  # (N, 2) points or (N, 3) poses
+        draw_path(ax, path.reshape(len(path), -1) if path.size else path.reshape(0, 2), label="path")
         ax.set_title(title, fontsize=9)
         ax.tick_params(labelsize=7)
         ax.xaxis.label.set_size(8)  # draw_world labels the axes in metres

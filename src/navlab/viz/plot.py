@@ -147,7 +147,8 @@ def draw_tree(ax, tree, parent: Optional[np.ndarray] = None, label: Optional[str
     """A search tree's edges as one line collection (thin blue).
 
     ``tree`` is a :class:`navlab.Tree` (``result.tree``), or the node array
-    (N, 2) with ``parent`` (N,) given apart (−1 for the root).
+    (N, 2) with ``parent`` (N,) given apart (−1 for the root). A tree of poses
+    (N, 3) is drawn by its chords (its edges are Dubins / Reeds–Shepp curves).
     """
     from matplotlib.collections import LineCollection
 
@@ -155,7 +156,7 @@ def draw_tree(ax, tree, parent: Optional[np.ndarray] = None, label: Optional[str
 
     if not isinstance(tree, Tree):
         tree = Tree(nodes=np.asarray(tree, float), parent=np.asarray(parent))
-    segs = tree.edges()
+    segs = tree.edges()[:, :, :2]
     ax.add_collection(LineCollection(segs, colors="tab:blue", linewidths=0.4, alpha=0.5, zorder=3,
                                      label=f"{label} ({len(tree)} nodes)" if label and len(segs) else None))
 

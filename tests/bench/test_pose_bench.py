@@ -1,0 +1,32 @@
+"""Planners between poses in the benchmark harness: Hybrid A* and RRT* with
+Reeds–Shepp steering on a heading scene, rows as navlab.plan gives them."""
+
+import pytest
+
+import navlab
+from navlab.bench import ExperimentError, load_experiment, run_experiment
+
+POSES = {"name": "poses", "worlds": ["trap_car"], "planners": ["rrt_star", "hybrid_astar"], "samplers": ["uniform"],
+         "params": {"motion": "reeds_shepp"}, "budget": {"max_iter": 800}, "trials": 2, "seed": 3}
+
+
+def test_hybrid_astar_and_se2_rrt_star_run_as_cells(tmp_path):
+    run = run_experiment(load_experiment(POSES), tmp_path / "run", executor="serial", progress=False, plots=True)
+    assert run.errors == 0 and len(run.rows) == 4
+    hybrid = [r for r in run.rows if r["planner"] == "hybrid_astar"]
+    assert all(r["status"] == "EXACT" for r in hybrid)
+    direct = navlab.plan("trap_car", planner="hybrid_astar", motion="reeds_shepp")
+    assert hybrid[0]["cost"] == pytest.approx(direct.cost, rel=1e-12)
+    tree = [r for r in run.rows if r["planner"] == "rrt_star"]
+    for row in tree:
+        again = navlab.plan("trap_car", planner="rrt_star", motion="reeds_shepp", max_iter=800, seed=row["seed"])
+        assert row["status"] == again.status.name and (not again.success or row["cost"] == again.cost)
+    assert list((tmp_path / "run" / "plots").glob("*.png"))
+
+
+def test_a_point_planner_asked_for_car_motion_is_refused_before_any_trial():
+    with pytest.raises((ExperimentError, ValueError), match="planners for reeds_shepp motion"):
+        exp = load_experiment({**POSES, "planners": ["growth_ratio_rrt"]})
+        from navlab.bench.experiment import validate
+
+        validate(exp)

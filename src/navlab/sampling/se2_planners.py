@@ -40,6 +40,35 @@ def se2_gamma(bounds) -> float:
     return 1.1 * 2.0 * (4.0 / 3.0) ** (1.0 / 3.0) * (volume / (4.0 * math.pi / 3.0)) ** (1.0 / 3.0)
 
 
+class _TreeArrays:
+    """The tree's per-node arrays (and the goal connections' and the cost
+    trace), grown by doubling when a run bounded by time outgrows them."""
+
+    NODE = {"pose": ((3,), float, 0.0), "parent": ((), np.int64, -1), "cost": ((), float, 0.0),
+            "child": ((), np.int64, -1), "sibling": ((), np.int64, -1), "edge_kinds": ((MAX_SEGMENTS,), np.int64, NOP),
+            "edge_len": ((MAX_SEGMENTS,), float, 0.0), "nxt": ((), np.int64, -1), "goal_node": ((), np.int64, 0),
+            "goal_extra": ((), float, 0.0), "goal_kinds": ((MAX_SEGMENTS,), np.int64, NOP),
+            "goal_len": ((MAX_SEGMENTS,), float, 0.0)}
+
+    def __init__(self, nodes: int, trace_length: int) -> None:
+        for name, (shape, dtype, fill) in self.NODE.items():
+            setattr(self, name, np.full((nodes, *shape), fill, dtype=dtype))
+        self.trace = np.full(max(trace_length, 0), np.inf)
+
+    def ensure(self, nodes: int, iterations: int) -> None:
+        """Room for ``nodes`` nodes and ``iterations`` trace entries."""
+        if nodes > len(self.pose):
+            size = max(nodes, 2 * len(self.pose))
+            for name, (shape, dtype, fill) in self.NODE.items():
+                old = getattr(self, name)
+                new = np.full((size, *shape), fill, dtype=dtype)
+                new[:len(old)] = old
+                setattr(self, name, new)
+        if iterations > len(self.trace):
+            self.trace = np.concatenate([self.trace, np.full(max(iterations, 2 * len(self.trace)) - len(self.trace),
+                                                             np.inf)])
+
+
 def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.ndarray, to_grid, start, goal,
                   motion: str, turning_radius: float, rng, settings: Dict[str, Any]) -> Result:
     """Grow an SE(2) tree from pose ``start`` to pose ``goal`` (grid-frame poses via ``to_grid``).
@@ -69,30 +98,19 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     batch = int(settings.get("batch_size") or 64)
     params = {"expand_dis": eta, "connect_circle_dist": gamma, "max_iter": max_iter, "max_time": max_time,
               "batch_size": batch, "keep_tree": bool(settings.get("keep_tree", False))}
-    n_max = max_iter + 1
-    pose = np.zeros((n_max, 3))
+    # arrays sized for the whole run when it is bounded by iterations alone, else grown by doubling
+    expected = max_iter + 1 if max_time is None else min(max_iter + 1, 1 << 16)
+    a = _TreeArrays(expected, trace_length=expected - 1)
     gs, gg = to_grid(*start), to_grid(*goal)
-    pose[0] = gs
-    parent = np.full(n_max, -1, dtype=np.int64)
-    cost = np.zeros(n_max)
-    child = np.full(n_max, -1, dtype=np.int64)
-    sibling = np.full(n_max, -1, dtype=np.int64)
-    edge_kinds = np.full((n_max, MAX_SEGMENTS), NOP, dtype=np.int64)
-    edge_len = np.zeros((n_max, MAX_SEGMENTS))
-    # the position index: about two nodes per cell when the tree is full, cells no smaller than the map's
+    a.pose[0] = gs
+    # the position index: about two nodes per cell at the expected size, cells no smaller than the map's
     h, w = blocked.shape
     extent_x, extent_y = w * lattice.resolution, h * lattice.resolution
-    cell = max(lattice.resolution, math.sqrt(extent_x * extent_y / max(1.0, n_max / 2.0)))
+    cell = max(lattice.resolution, math.sqrt(extent_x * extent_y / max(1.0, expected / 2.0)))
     dims = np.array([max(1, math.ceil(extent_x / cell)), max(1, math.ceil(extent_y / cell))], dtype=np.int64)
     gridp = np.array([0.0, 0.0, cell])
     head = np.full(int(dims[0] * dims[1]), -1, dtype=np.int64)
-    nxt = np.full(n_max, -1, dtype=np.int64)
-    K._insert(0, pose, head, nxt, gridp, dims)
-    goal_node = np.zeros(n_max, dtype=np.int64)
-    goal_extra = np.zeros(n_max)
-    goal_kinds = np.full((n_max, MAX_SEGMENTS), NOP, dtype=np.int64)
-    goal_len = np.zeros((n_max, MAX_SEGMENTS))
-    trace = np.full(max_iter, np.inf)
+    K._insert(0, a.pose, head, a.nxt, gridp, dims)
     istate = np.zeros(6, dtype=np.int64)
     istate[K.S_SIZE], istate[K.S_FIRST_ITER], istate[K.S_BEST] = 1, -1, -1
     fparams = np.zeros(10)
@@ -103,7 +121,7 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     fparams[K.F_EPS] = 1e-9 * max(1.0, diagonal)
     lat = (blocked, lattice.resolution, lattice.ds, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells,
            lattice.pose_start)
-    K.try_goal(0, 0, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, fparams, *lat)
+    K.try_goal(0, 0, a.pose, a.goal_node, a.goal_extra, a.goal_kinds, a.goal_len, istate, fparams, *lat)
     if planner == "rrt" and istate[K.S_GOALS] > 0:
         max_iter = 0  # the start reaches the goal in one step: nothing to grow
     box = BoxRegion(b)
@@ -116,16 +134,18 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
         region = box
         best = istate[K.S_BEST]
         if planner == "informed_rrt_star" and best >= 0:
-            c_best = cost[goal_node[best]] + goal_extra[best]
+            c_best = a.cost[a.goal_node[best]] + a.goal_extra[best]
             region = InformedRegion(start[:2], goal[:2], c_best, b)
         m = min(batch, max_iter - it)
+        a.ensure(int(istate[K.S_SIZE]) + m, it + m)
         points = np.asarray(sampler.sample(world, rng, m, checker=checker, region=region), dtype=float)
         headings = rng.uniform(-math.pi, math.pi, len(points))
         at_goal = np.all(points == gpoint, axis=1)
         headings[at_goal] = goal[2]
         samples = np.ascontiguousarray(np.column_stack(to_grid(points[:, 0], points[:, 1], headings)), dtype=float)
-        used = K.grow(samples, it, pose, parent, cost, child, sibling, edge_kinds, edge_len, head, nxt, gridp, dims,
-                      goal_node, goal_extra, goal_kinds, goal_len, trace, istate, fparams, *lat)
+        used = K.grow(samples, it, a.pose, a.parent, a.cost, a.child, a.sibling, a.edge_kinds, a.edge_len, head,
+                      a.nxt, gridp, dims, a.goal_node, a.goal_extra, a.goal_kinds, a.goal_len, a.trace, istate,
+                      fparams, *lat)
         it += used
         if first_time is None and istate[K.S_FIRST_ITER] >= 0:
             first_time = time.perf_counter() - t0
@@ -135,11 +155,11 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     stats = {"iterations": it, "nodes": int(istate[K.S_SIZE]), "edge_checks": int(istate[K.S_EDGE_CHECKS]),
              "collision_checks": int(istate[K.S_EDGE_CHECKS]), "rewires": int(istate[K.S_REWIRES]),
              "first_solution_iteration": int(istate[K.S_FIRST_ITER]) if istate[K.S_FIRST_ITER] >= 0 else None,
-             "first_solution_time_s": first_time, "cost_trace": trace[:it].copy(), "time_s": elapsed}
+             "first_solution_time_s": first_time, "cost_trace": a.trace[:it].copy(), "time_s": elapsed}
     tree = None
     if params["keep_tree"]:
         n = int(istate[K.S_SIZE])
-        tree = Tree(nodes=pose[:n].copy(), parent=parent[:n].copy())
+        tree = Tree(nodes=a.pose[:n].copy(), parent=a.parent[:n].copy())
     best = int(istate[K.S_BEST])
     if best < 0:
         why = f"the goal pose was not reached in {it} iterations" + (
@@ -148,11 +168,11 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
         return Result(status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf, stats=stats, reason=why,
                       params=params, tree=tree)
     # the chain of nodes, each edge's word as it was checked, then the goal connection's
-    chain = [int(goal_node[best])]
-    while parent[chain[-1]] >= 0:
-        chain.append(int(parent[chain[-1]]))
+    chain = [int(a.goal_node[best])]
+    while a.parent[chain[-1]] >= 0:
+        chain.append(int(a.parent[chain[-1]]))
     chain.reverse()
-    words = [(edge_kinds[c], edge_len[c]) for c in chain[1:]] + [(goal_kinds[best], goal_len[best])]
+    words = [(a.edge_kinds[c], a.edge_len[c]) for c in chain[1:]] + [(a.goal_kinds[best], a.goal_len[best])]
     segments = [(int(k), float(s)) for ks, ls in words for k, s in zip(ks, ls) if k != NOP and s != 0.0]
     return Result(status=Status.EXACT, path=np.empty((0, 3)), cost=float(sum(abs(s) for _, s in segments)),
                   stats={**stats, "segments_raw": segments}, params=params, tree=tree)

@@ -4,7 +4,7 @@
     python benchmarks/bench_hybrid.py --quick     # PythonRobotics' demo query once, no reference map
 
 PythonRobotics (github.com/AtsushiSakai/PythonRobotics) is imported from a
-checkout: ``--pythonrobotics``, else $PYTHONROBOTICS, else /work/pythonrobotics
+checkout: ``--pythonrobotics``, else $PYTHONROBOTICS, else ./PythonRobotics
 (it needs PathPlanning/HybridAStar, PathPlanning/ReedsSheppPath and utils/).
 Its map, start and goal are the ones its own ``main()`` builds (a 60 x 60 m
 map of obstacle points at 1 m spacing); three more queries run on that map.
@@ -204,8 +204,8 @@ def reference_map(runs: int = 5) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pythonrobotics", type=Path,
-                    default=Path(os.environ.get("PYTHONROBOTICS", "/work/pythonrobotics")),
-                    help="PythonRobotics checkout (default: $PYTHONROBOTICS, else /work/pythonrobotics)")
+                    default=Path(os.environ.get("PYTHONROBOTICS", "PythonRobotics")),
+                    help="PythonRobotics checkout (default: $PYTHONROBOTICS, else ./PythonRobotics, as git clone makes it)")
     ap.add_argument("--repeat", type=int, default=3, help="runs per query and planner (the median counts)")
     ap.add_argument("--resolution", type=float, default=1.0, choices=(0.25, 0.5, 1.0),
                     help="navlab's cell size [m] (PythonRobotics' points are 1 m apart)")

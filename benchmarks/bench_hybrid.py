@@ -205,7 +205,7 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pythonrobotics", type=Path,
                     default=Path(os.environ.get("PYTHONROBOTICS", "PythonRobotics")),
-                    help="PythonRobotics checkout (default: $PYTHONROBOTICS, else ./PythonRobotics, as git clone makes it)")
+                    help="PythonRobotics checkout (default: $PYTHONROBOTICS, else ./PythonRobotics)")
     ap.add_argument("--repeat", type=int, default=3, help="runs per query and planner (the median counts)")
     ap.add_argument("--resolution", type=float, default=1.0, choices=(0.25, 0.5, 1.0),
                     help="navlab's cell size [m] (PythonRobotics' points are 1 m apart)")

@@ -43,7 +43,8 @@ VERIFY_SPACING = 0.001
 
 def check_motion(value: Any) -> str:
     if value not in MOTIONS:
-        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {value!r}." + suggest(str(value), list(MOTIONS)))
+        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {value!r}."
+                         + suggest(str(value), list(MOTIONS)))
     return value
 
 
@@ -84,7 +85,8 @@ def query_headings(world) -> Tuple[float, float]:
 
 
 def scene_turning_radius(world) -> float:
-    """The turning radius a scene gives for its robot (``meta["turning_radius"]``), else :data:`DEFAULT_TURNING_RADIUS`."""
+    """The turning radius a scene gives for its robot (``meta["turning_radius"]``),
+    else :data:`DEFAULT_TURNING_RADIUS`."""
     value = world.meta.get("turning_radius") if isinstance(world.meta, dict) else None
     return DEFAULT_TURNING_RADIUS if value is None else value
 
@@ -179,7 +181,8 @@ def hybrid_query(world, params: Dict[str, Any]) -> Result:
                          **settings)
     result.stats["rasterize_s"] = rasterize_s
     result.stats["time_s"] = result.stats.get("time_s", 0.0) + rasterize_s
-    result.params.update(start=list(start), goal=list(goal), footprint=None if footprint is None else footprint.to_value())
+    result.params.update(start=list(start), goal=list(goal),
+                         footprint=None if footprint is None else footprint.to_value())
     return _verified(world, footprint, result)
 
 

@@ -25,7 +25,7 @@ from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..limits import check_length
-from .curves import trace_word
+from .curves import NOP, advance, trace_word
 
 
 def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple[np.ndarray, float]:
@@ -179,14 +179,39 @@ def pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_st
     return free_cells(blocked, cx, cy, pose_cells, pose_start[b], pose_start[b + 1])
 
 
+#: the coarse pass of :func:`curve_free` checks every this many-th pose of a segment first
+COARSE_STRIDE = 16
+
+
 @njit(cache=True)
 def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, step, bins, pose_cells,
-                pose_start) -> bool:
-    poses, _ = trace_word(x, y, theta, kinds, lengths, radius, ds)
-    for i in range(poses.shape[0]):
-        if not pose_free(blocked, res, poses[i, 0], poses[i, 1], poses[i, 2], theta0, step, bins, pose_cells,
-                          pose_start):
-            return False
+               pose_start) -> bool:
+    """Whether the footprint is free at every pose :func:`trace_word` gives
+    along the word at spacing ``ds`` (exactly those poses, computed the same
+    way), visited coarse to fine: every :data:`COARSE_STRIDE`-th pose of each
+    segment first, then the rest, so a blocked curve is usually rejected after
+    a few poses. Nothing is allocated but the segments' start poses."""
+    n = kinds.shape[0]
+    start = np.empty((n, 3))
+    pieces = np.zeros(n, dtype=np.int64)
+    cx, cy, ct = x, y, theta
+    for j in range(n):
+        start[j, 0], start[j, 1], start[j, 2] = cx, cy, ct
+        if kinds[j] == NOP or lengths[j] == 0.0:
+            continue
+        pieces[j] = max(1, int(math.ceil(abs(lengths[j]) / ds)))
+        cx, cy, ct = advance(cx, cy, ct, kinds[j], lengths[j] * pieces[j] / pieces[j], radius)
+    if not pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start):
+        return False
+    for fine in range(2):
+        for j in range(n):
+            count = pieces[j]
+            for p in range(1, count + 1):
+                if (p % COARSE_STRIDE == 0) == (fine == 1):
+                    continue  # coarse pass: multiples of the stride; fine pass: the others
+                px, py, pt = advance(start[j, 0], start[j, 1], start[j, 2], kinds[j], lengths[j] * p / count, radius)
+                if not pose_free(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start):
+                    return False
     return True
 
 

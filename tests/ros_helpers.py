@@ -12,6 +12,7 @@ import random
 import shutil
 import subprocess
 import sys
+from pathlib import Path
 
 DOMAIN_ID = 42
 
@@ -42,3 +43,12 @@ def run_isolated(args, timeout: float) -> subprocess.CompletedProcess:
 
 def navlab_cmd(*args) -> list:
     return [sys.executable, "-m", "navlab", *args]
+
+
+def alive(pid: int) -> bool:
+    """Whether a process runs (a zombie, waiting for a reaper, does not)."""
+    try:
+        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
+    except (OSError, IndexError):
+        return False
+    return state not in ("Z", "X")

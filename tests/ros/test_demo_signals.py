@@ -14,7 +14,7 @@ import pytest
 
 pytest.importorskip("rclpy", reason="rclpy cannot be imported: the ros2 extra is not installed")
 
-from ros_helpers import DOMAIN_ID, can_unshare, navlab_cmd, ros_env  # noqa: E402
+from ros_helpers import DOMAIN_ID, alive, can_unshare, navlab_cmd, ros_env  # noqa: E402
 
 #: bounds on waiting (a generous ceiling, never a measurement)
 START_LIMIT, EXIT_LIMIT = 120.0, 60.0
@@ -66,15 +66,6 @@ class Demo:
         self.out = self.proc.communicate(timeout=EXIT_LIMIT)[0]
         self.reader.join(timeout=EXIT_LIMIT)
         return "".join(self.lines)
-
-
-def alive(pid: int) -> bool:
-    """Whether a process runs (a zombie, waiting for a reaper, does not)."""
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except (OSError, IndexError):
-        return False
-    return state not in ("Z", "X")
 
 
 @pytest.mark.parametrize("moment", ["starting", "driving"])

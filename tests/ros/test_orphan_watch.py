@@ -6,7 +6,8 @@ import signal
 import subprocess
 import sys
 import time
-from pathlib import Path
+
+from ros_helpers import alive
 
 #: the grandchild ignores SIGTERM and sleeps forever: only the watch can end it
 GRANDCHILD = """
@@ -26,14 +27,6 @@ assert child.stdout.readline().strip() == "watching"
 print(child.pid, flush=True)
 child.wait()
 """
-
-
-def alive(pid: int) -> bool:
-    try:
-        state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
-    except (OSError, IndexError):
-        return False
-    return state not in ("Z", "X")
 
 
 def test_a_node_that_ignores_sigterm_still_ends_after_its_launcher_is_killed():

@@ -34,6 +34,7 @@ from numba import njit
 from . import dubins, reeds_shepp
 from .curves import MAX_SEGMENTS, NOP, advance
 from .footprint_lattice import curve_free
+from .tree_kernel import _remove_child
 
 #: istate fields
 S_SIZE, S_EDGE_CHECKS, S_REWIRES, S_GOALS, S_FIRST_ITER, S_BEST = 0, 1, 2, 3, 4, 5
@@ -189,18 +190,6 @@ def _attach(k, p, parent, child, sibling):
 
 
 @njit(cache=True)
-def _detach(k, parent, child, sibling):
-    p = parent[k]
-    if child[p] == k:
-        child[p] = sibling[k]
-        return
-    c = child[p]
-    while sibling[c] != k:
-        c = sibling[c]
-    sibling[c] = sibling[k]
-
-
-@njit(cache=True)
 def _shift(root, delta, cost, child, sibling, stack):
     """Add ``delta`` to the cost of every descendant of ``root``."""
     top = 0
@@ -344,7 +333,7 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
                 delta = c_new + dq - cost[q]
                 edge_kinds[q, :] = kinds
                 edge_len[q, :] = lengths
-                _detach(q, parent, child, sibling)
+                _remove_child(child, sibling, parent[q], q)
                 _attach(q, k, parent, child, sibling)
                 cost[q] += delta
                 _shift(q, delta, cost, child, sibling, stack)

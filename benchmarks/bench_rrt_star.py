@@ -167,7 +167,7 @@ int main(int argc, char **argv) {
 """
 
 
-def build_driver() -> Optional[str]:
+def build_driver(source: str = DRIVER_SOURCE, name: str = "rrt_star_driver") -> Optional[str]:
     """Compile the OMPL driver (cached by its source); None, with one line
     saying why, when there is no compiler or no OMPL headers."""
     compiler = shutil.which(os.environ.get("CXX", "g++")) or shutil.which("c++")
@@ -180,15 +180,15 @@ def build_driver() -> Optional[str]:
         print("OMPL C++ anchor skipped: no OMPL headers (apt-get install libompl-dev)")
         return None
     include = headers[-1].split("/ompl/geometric/")[0]
-    key = hashlib.sha1((DRIVER_SOURCE + compiler + include).encode()).hexdigest()[:12]
+    key = hashlib.sha1((source + compiler + include).encode()).hexdigest()[:12]
     folder = os.path.join(tempfile.gettempdir(), f"navlab-bench-ompl-{key}")
-    binary = os.path.join(folder, "rrt_star_driver")
+    binary = os.path.join(folder, name)
     if os.path.exists(binary):
         return binary
     os.makedirs(folder, exist_ok=True)
     source = os.path.join(folder, "driver.cpp")
     with open(source, "w") as f:
-        f.write(DRIVER_SOURCE)
+        f.write(source)
     with atomic_path(binary) as tmp:
         cmd = [compiler, "-O2", "-std=c++17", f"-I{include}", "-I/usr/include/eigen3", source, "-o", str(tmp), "-lompl"]
         done = subprocess.run(cmd, capture_output=True, text=True)

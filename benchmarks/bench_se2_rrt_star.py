@@ -199,17 +199,13 @@ class Scene:
 
 
 def build_driver() -> Optional[str]:
-    """The OMPL driver, built like bench_rrt_star's (cached by its source), or None with the reason printed."""
+    """The OMPL driver, built as bench_rrt_star builds its own (cached by source), or None with the reason printed."""
     import bench_rrt_star as r2
 
-    saved = r2.DRIVER_SOURCE
-    r2.DRIVER_SOURCE = DRIVER_SOURCE
     try:
-        return r2.build_driver()
+        return r2.build_driver(DRIVER_SOURCE, "se2_rrt_star_driver")
     except r2._BuildFailed:
         return None
-    finally:
-        r2.DRIVER_SOURCE = saved
 
 
 def run_ompl(binary: str, scene: Scene, seed: int, iterations: int = 0, seconds: float = 0.0):

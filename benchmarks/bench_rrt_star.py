@@ -186,11 +186,12 @@ def build_driver(source: str = DRIVER_SOURCE, name: str = "rrt_star_driver") -> 
     if os.path.exists(binary):
         return binary
     os.makedirs(folder, exist_ok=True)
-    source = os.path.join(folder, "driver.cpp")
-    with open(source, "w") as f:
+    source_file = os.path.join(folder, "driver.cpp")
+    with open(source_file, "w") as f:
         f.write(source)
     with atomic_path(binary) as tmp:
-        cmd = [compiler, "-O2", "-std=c++17", f"-I{include}", "-I/usr/include/eigen3", source, "-o", str(tmp), "-lompl"]
+        cmd = [compiler, "-O2", "-std=c++17", f"-I{include}", "-I/usr/include/eigen3", source_file, "-o", str(tmp),
+               "-lompl"]
         done = subprocess.run(cmd, capture_output=True, text=True)
         if done.returncode != 0:
             print(f"OMPL C++ anchor skipped: the driver did not build ({done.stderr.strip().splitlines()[-1:]})")

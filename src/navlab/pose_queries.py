@@ -22,7 +22,7 @@ import numpy as np
 
 from .registry import suggest
 from .result import Result, Status
-from .sampling.curves import check_turning_radius
+from .sampling.curves import LETTERS, CurvePath, check_turning_radius
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
@@ -142,9 +142,10 @@ def _invalid_endpoint(world, planner: str, common, start, goal, t0: float) -> Op
     return None
 
 
-def _verified(world, footprint, result: Result) -> Result:
-    """The result, or FAILED when its path's footprint touches the exact world (a bug to report)."""
-    if result.success:
+def _verified(world, footprint, result: Result, map_checked: bool = False) -> Result:
+    """The result, or FAILED when its path's footprint touches the exact world (a bug to report).
+    ``map_checked``: the planner has re-checked its path against the map's cells itself."""
+    if result.success and not (map_checked and world.occupancy is not None):
         why = footprint_hits_world(world, footprint, result)
         if why is not None:
             return replace(result, status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf,
@@ -183,7 +184,7 @@ def hybrid_query(world, params: Dict[str, Any]) -> Result:
     result.stats["time_s"] = result.stats.get("time_s", 0.0) + rasterize_s
     result.params.update(start=list(start), goal=list(goal),
                          footprint=None if footprint is None else footprint.to_value())
-    return _verified(world, footprint, result)
+    return _verified(world, footprint, result, map_checked=True)  # plan_hybrid re-checks with shapely
 
 
 def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, Any]) -> Result:
@@ -191,7 +192,6 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
     steering (:mod:`navlab.sampling.se2_planners`), edges checked with the
     footprint on the world's cells (as Hybrid A*), the path re-checked
     against the exact world."""
-    from .sampling.curves import trace_word
     from .sampling.footprint_lattice import lattice_for, robot_outline
     from .sampling.se2_planners import SE2_TREE_PARAMS, plan_se2_tree
 
@@ -229,29 +229,30 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
         result.tree = replace(result.tree, nodes=np.column_stack([wx, wy, nodes[:, 2] + yaw]))
     segments = result.stats.pop("segments_raw", [])
     if result.success:
-        kinds = np.array([k for k, _ in segments], dtype=np.int64)
-        lengths = np.array([v for _, v in segments])
-        poses, direction = trace_word(*start, kinds, lengths, r, grid.resolution)
-        result.path, result.direction = poses, direction
-        result.stats["word"] = "".join({1: "L", 2: "S", 3: "R"}[int(k)] for k in kinds)
-        result.stats["segments"] = lengths.tolist()
-        signs = np.sign(lengths[lengths != 0])
-        result.stats["cusps"] = int(np.count_nonzero(np.diff(signs) != 0))
+        curve = CurvePath(start, "".join(LETTERS[k] for k, _ in segments), tuple(v for _, v in segments), r)
+        result.path, result.direction = curve.sample(grid.resolution)
+        result.stats.update(word=curve.word, segments=list(curve.segments), cusps=curve.cusps)
     return _verified(world, footprint, result)
 
 
 def footprint_hits_world(world, footprint, result: Result) -> Optional[str]:
     """Why the path's footprint overlaps an obstacle of the exact world (None
-    when it does not), checked with shapely at poses :data:`VERIFY_SPACING` apart."""
-    from .sampling.curves import trace_word
+    when it does not), checked with shapely at poses :data:`VERIFY_SPACING` apart.
+    On a map, against its blocked cells (:func:`~navlab.sampling.footprint_lattice.first_overlap`)."""
+    from .sampling.footprint_lattice import first_overlap, robot_outline
 
+    curve = CurvePath(tuple(result.path[0]), result.stats["word"], tuple(result.stats["segments"]),
+                      float(result.params["turning_radius"]))
+    poses, _ = curve.sample(VERIFY_SPACING)
     if world.occupancy is not None:
-        return None  # on a map plan_hybrid has re-checked the path against the map's own cells
-    segments = np.asarray(result.stats.get("segments", []), dtype=float)
-    kinds = np.array([{"L": 1, "S": 2, "R": 3}[c] for c in result.stats.get("word", "")], dtype=np.int64)
-    x, y, th = result.path[0]
-    poses, _ = trace_word(float(x), float(y), float(th), kinds, segments, float(result.params["turning_radius"]),
-                          VERIFY_SPACING)
+        grid = _pose_grid(world, None)
+        ox, oy, yaw = grid.origin
+        c, s = math.cos(yaw), math.sin(yaw)
+        dx, dy = poses[:, 0] - ox, poses[:, 1] - oy
+        local = np.column_stack([c * dx + s * dy, -s * dx + c * dy, poses[:, 2] - yaw])
+        vertices, disc = robot_outline(footprint)
+        cell = first_overlap(grid.blocked | grid.unknown, grid.resolution, vertices, disc, local, 0.0)
+        return None if cell is None else f"the footprint overlaps the map's blocked cell {cell} (x, y)"
     hit = first_touch(world, footprint, poses)
     if hit is None:
         return None
@@ -287,15 +288,16 @@ def first_touch(world, footprint, poses: np.ndarray) -> Optional[Tuple[int, str]
         found = (int(np.argmax(outside)), "leaves the world's bounds")
     if world.occupancy is not None:
         return found  # the map's cells are checked by the search itself
+    index = shapely.STRtree(shapes)  # each obstacle meets only the poses near it
     for k, o in enumerate(world.obstacles):
         if isinstance(o, Circle):  # exact: the distance to the centre, not a polygon inside the circle
-            hits = shapely.distance(shapes, shapely.Point(o.center)) <= o.radius
+            hits = index.query(shapely.Point(o.center), predicate="dwithin", distance=o.radius)
         else:
             points = ((o.min[0], o.min[1]), (o.max[0], o.min[1]), (o.max[0], o.max[1]), (o.min[0], o.max[1])) \
                 if isinstance(o, Rectangle) else o.points
-            hits = shapely.intersects(shapes, shapely.Polygon(points))
-        if np.any(hits) and (found is None or int(np.argmax(hits)) < found[0]):
-            found = (int(np.argmax(hits)), f"touches {world.describe_obstacle(k)}")
+            hits = index.query(shapely.Polygon(points), predicate="intersects")
+        if len(hits) and (found is None or int(hits.min()) < found[0]):
+            found = (int(hits.min()), f"touches {world.describe_obstacle(k)}")
     return found
 
 

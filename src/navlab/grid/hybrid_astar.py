@@ -56,7 +56,7 @@ from shapely.geometry import Point, Polygon
 from ..limits import check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
-from ..sampling.curves import MAX_SEGMENTS, NOP, CurvePath, check_pose, check_turning_radius, trace_word
+from ..sampling.curves import LETTERS, MAX_SEGMENTS, NOP, CurvePath, check_pose, check_turning_radius, trace_word
 from ..sampling.footprint_lattice import curve_free, first_overlap, free_cells, lattice_for, robot_outline
 from .occupancy import OccupancyGrid
 
@@ -375,7 +375,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                              poses[:, 2] + yaw])
     length = float(np.abs(lengths).sum())
     stats["g"] = g_cost
-    stats["word"] = "".join({1: "L", 2: "S", 3: "R"}[int(k)] for k in kinds)
+    stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
     stats["cusps"] = int(np.count_nonzero(np.diff(np.sign(lengths[lengths != 0])) != 0)) if len(lengths) else 0
     return finish(Status.EXACT, "", world, direction, length)
@@ -406,7 +406,7 @@ def _shortcut(segments, start, r, motion, blocked, lattice, common):
     # waypoints: the pose after each segment
     poses = [start]
     for kind, s in segments:
-        poses.append(CurvePath(poses[-1], {1: "L", 2: "S", 3: "R"}[kind], (s,), r).end)
+        poses.append(CurvePath(poses[-1], LETTERS[kind], (s,), r).end)
     # cumulative length along the original path
     acc = np.concatenate([[0.0], np.cumsum([abs(s) for _, s in segments])])
     out = []

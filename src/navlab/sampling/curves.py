@@ -24,7 +24,8 @@ from numba import njit
 from ..limits import check_coordinate, check_length
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
-_LETTERS = {LEFT: "L", STRAIGHT: "S", RIGHT: "R"}
+#: a segment code's letter in a word
+LETTERS = {LEFT: "L", STRAIGHT: "S", RIGHT: "R"}
 MAX_SEGMENTS = 5  #: the longest Reeds–Shepp word (CCSCC)
 NEGLIGIBLE = 1e-12  #: a segment shorter than this many turning radii is rounding, not motion
 
@@ -135,7 +136,7 @@ class CurvePath:
         in the closed forms) are dropped, so the word names only what is driven."""
         used = [i for i in range(len(kinds))
                 if int(kinds[i]) != NOP and abs(lengths[i]) > NEGLIGIBLE * turning_radius]
-        return cls(start=tuple(start), word="".join(_LETTERS[int(kinds[i])] for i in used),
+        return cls(start=tuple(start), word="".join(LETTERS[int(kinds[i])] for i in used),
                    segments=tuple(float(lengths[i]) for i in used), turning_radius=turning_radius)
 
     @property
@@ -150,7 +151,7 @@ class CurvePath:
         return sum(a != b for a, b in zip(signs, signs[1:]))
 
     def _codes(self) -> Tuple[np.ndarray, np.ndarray]:
-        codes = {v: k for k, v in _LETTERS.items()}
+        codes = {v: k for k, v in LETTERS.items()}
         return (np.array([codes[c] for c in self.word], dtype=np.int64),
                 np.array(self.segments, dtype=np.float64))
 

@@ -139,13 +139,12 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     check_seed(seed)
     params = dict(params)
-    if planner in POSE_PLANNERS:
-        if sampler not in (None, "uniform"):
+    grid = planner not in POSE_PLANNERS and is_grid_planner(planner)  # unknown names: "did you mean"
+    if is_pose_query(planner, params):  # a bad motion is named before any file is read
+        if planner in POSE_PLANNERS and sampler not in (None, "uniform"):
             raise ValueError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
-        return _pose_plan(source, planner, None, start, goal, seed, robot_radius, params)
-    grid = is_grid_planner(planner)
-    if is_pose_query(planner, params):
-        return _pose_plan(source, planner, sampler or "uniform", start, goal, seed, robot_radius, params)
+        tree_sampler = None if planner in POSE_PLANNERS else sampler or "uniform"
+        return _pose_plan(source, planner, tree_sampler, start, goal, seed, robot_radius, params)
     params.pop("motion", None)  # holonomic: what every other planner does
     goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
@@ -200,16 +199,13 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
                robot_radius: Optional[float], params: Dict[str, Any]) -> Result:
     """A planner between poses (see :mod:`navlab.pose_queries`): Hybrid A*,
     or a tree planner (``sampler`` given) with Dubins or Reeds–Shepp steering."""
-    from .pose_queries import hybrid_query, is_pose_query, tree_pose_query
+    from .pose_queries import hybrid_query, tree_pose_query
     from .world.sources import load_source
 
-    is_pose_query(planner, params)  # a bad motion is named before any file is read
     goal_tolerance = params.pop("goal_tolerance", None)
     if goal_tolerance not in (None, 0, 0.0):
         raise ValueError(f"goal_tolerance: {planner} ends exactly at the goal pose; leave goal_tolerance out")
-    to_sampler = {}
     if sampler is not None:
-        SAMPLERS.get(sampler)
         sampler_keys = set(parameters_of(SAMPLERS.get(sampler))) | {"goal_sample_rate"}
         to_sampler = {k: params.pop(k) for k in list(params) if k in sampler_keys}
         samp = build_sampler(sampler, to_sampler)

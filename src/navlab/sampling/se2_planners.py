@@ -113,9 +113,9 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     K._insert(0, a.pose, head, a.nxt, gridp, dims)
     istate = np.zeros(6, dtype=np.int64)
     istate[K.S_SIZE], istate[K.S_FIRST_ITER], istate[K.S_BEST] = 1, -1, -1
-    fparams = np.zeros(10)
-    fparams[[K.F_ETA, K.F_GAMMA, K.F_RADIUS, K.F_REVERSE, K.F_CELL]] = (
-        eta, gamma, turning_radius, 1.0 if motion == "reeds_shepp" else 0.0, cell)
+    fparams = np.zeros(9)
+    fparams[[K.F_ETA, K.F_GAMMA, K.F_RADIUS, K.F_REVERSE]] = (
+        eta, gamma, turning_radius, 1.0 if motion == "reeds_shepp" else 0.0)
     fparams[[K.F_GX, K.F_GY, K.F_GT]] = gg
     fparams[K.F_MODE] = SE2_MODES[planner]
     fparams[K.F_EPS] = 1e-9 * max(1.0, diagonal)

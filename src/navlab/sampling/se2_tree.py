@@ -38,9 +38,9 @@ from .tree_kernel import _remove_child
 
 #: istate fields
 S_SIZE, S_EDGE_CHECKS, S_REWIRES, S_GOALS, S_FIRST_ITER, S_BEST = 0, 1, 2, 3, 4, 5
-#: fparams fields: step η [m], γ, turning radius, reverse (0/1), cell size of the index, goal x, y, θ,
+#: fparams fields: step η [m], γ, turning radius, reverse (0/1), goal x, y, θ,
 #: mode (0: RRT, stop at the first goal connection; 1: RRT*), rewire tolerance [m]
-(F_ETA, F_GAMMA, F_RADIUS, F_REVERSE, F_CELL, F_GX, F_GY, F_GT, F_MODE, F_EPS) = range(10)
+(F_ETA, F_GAMMA, F_RADIUS, F_REVERSE, F_GX, F_GY, F_GT, F_MODE, F_EPS) = range(9)
 #: lattice arrays passed as one tuple: blocked, res, ds, theta0, step, bins, pose_cells, pose_start
 
 
@@ -154,7 +154,7 @@ def _nearest(qx, qy, qt, pose, head, nxt, gridp, dims, radius, reverse, seg, kin
 
 
 @njit(cache=True)
-def _near(qx, qy, reach, pose, n, head, nxt, gridp, dims, out):
+def _near(qx, qy, reach, pose, head, nxt, gridp, dims, out):
     """Nodes whose positions lie within ``reach`` of (qx, qy); returns their count (in ``out``)."""
     lo_i = _cell(qx - reach, gridp[0], gridp[2], dims[0])
     hi_i = _cell(qx + reach, gridp[0], gridp[2], dims[0])
@@ -291,9 +291,10 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
         edge_len[k, :] = lengths
         p, c_new = a, cost[a] + d
         m = 0
+        rewires_before = istate[S_REWIRES]
         if star:
             rn = min(eta, gamma * (math.log(n + 1.0) / (n + 1.0)) ** (1.0 / 3.0))
-            m = _near(x, y, rn, pose, n, head, nxt, gridp, dims, near)
+            m = _near(x, y, rn, pose, head, nxt, gridp, dims, near)
             # candidate parents in the order of a lower bound on the cost they would give (the
             # Euclidean distance never exceeds the steering length): steer and check only while
             # that bound is below the best cost found, and check collisions only for improvements
@@ -338,9 +339,10 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
                 cost[q] += delta
                 _shift(q, delta, cost, child, sibling, stack)
                 istate[S_REWIRES] += 1
-        try_goal(k, it, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, fparams, lat_blocked, lat_res,
-                 lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start)
-        best_cost = _best_goal(goal_node, goal_extra, cost, istate)
+        rewired = istate[S_REWIRES] > rewires_before
+        if try_goal(k, it, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, fparams, lat_blocked, lat_res,
+                    lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start) or rewired:
+            best_cost = _best_goal(goal_node, goal_extra, cost, istate)  # costs change only by these two
         trace[it] = best_cost
         if not star and istate[S_GOALS] > 0:
             return s + 1

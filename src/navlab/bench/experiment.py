@@ -417,8 +417,7 @@ def validate(exp: Experiment) -> None:
                                       "pip install 'navlab[ompl]'")
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
-        if cell.planner.name in POSE_PLANNERS or (cell.sampler is not None and is_pose_query(cell.planner.name, own)):
-            is_pose_query(cell.planner.name, own)  # the motion named; other settings are checked by each trial
+        if is_pose_query(cell.planner.name, own):  # a bad motion named; other settings are checked by each trial
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)

@@ -188,10 +188,9 @@ AISLE_ROBOT = ((-0.45, -0.31), (0.45, -0.31), (0.45, 0.31), (-0.45, 0.31))
 CAR = ((-1.0, -0.9), (3.4, -0.9), (3.4, 0.9), (-1.0, 0.9))
 
 
-def _walls_around(bounds: Bounds, free, thickness: float = 0.5):
+def _walls_around(bounds: Bounds, free):
     """Rectangles filling ``bounds`` except the union of the ``free`` (x0, x1, y0, y1)
-    rectangles, which must be an L or a straight run of two axis-aligned boxes:
-    the blocks left and right of, above and below each free box, clipped to bounds."""
+    boxes: the cells of the grid drawn by every box edge that lie in no free box."""
     xs = sorted({bounds.xmin, bounds.xmax, *(v for r in free for v in r[:2])})
     ys = sorted({bounds.ymin, bounds.ymax, *(v for r in free for v in r[2:])})
     cells = []

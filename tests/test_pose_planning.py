@@ -77,6 +77,8 @@ def test_a_start_pose_whose_footprint_touches_an_obstacle_names_it():
 @pytest.mark.parametrize("kwargs, field", [
     ({"turning_radius": 0}, "turning_radius"), ({"turning_radius": -1}, "turning_radius"),
     ({"turning_radius": math.inf}, "turning_radius"), ({"motion": "holonomic"}, "motion"),
+    ({"turning_radius": 1e6}, "turning_radius 1e.06 m: one heading step"),
+    ({"turning_radius": 1e-6}, "turning_radius 1e-06 m is too small"),
     ({"motion": "dubin"}, "Did you mean 'dubins'"), ({"start": (1, 1, math.nan)}, "start theta"),
     ({"footprint": [[0, 0], [1, 1]]}, "footprint"), ({"expand_dis": 1}, "unknown parameter 'expand_dis'"),
     ({"goal_tolerance": 0.5}, "goal_tolerance"),

@@ -192,7 +192,7 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
     steering (:mod:`navlab.sampling.se2_planners`), edges checked with the
     footprint on the world's cells (as Hybrid A*), the path re-checked
     against the exact world."""
-    from .sampling.footprint_lattice import lattice_for, robot_outline
+    from .sampling.footprint_lattice import check_turning_scale, lattice_for, robot_outline
     from .sampling.se2_planners import SE2_TREE_PARAMS, plan_se2_tree
 
     valid = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
@@ -208,6 +208,8 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
         return invalid
     footprint, motion, r = common["footprint"], common["motion"], common["turning_radius"]
     vertices, disc = robot_outline(footprint)
+    extent = math.hypot(grid.width, grid.height) * grid.resolution
+    check_turning_scale(r, vertices, disc, grid.resolution, int(bins), extent)
     lattice = lattice_for(tuple(map(tuple, vertices.tolist())), disc, r, grid.resolution, int(bins),
                           motion == "reeds_shepp", 0.0)
     blocked = np.ascontiguousarray(grid.blocked | grid.unknown)

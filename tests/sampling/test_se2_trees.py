@@ -91,6 +91,7 @@ def test_dubins_says_when_the_goal_needs_reverse():
     ({"planner": "growth_ratio_rrt"}, "planners for reeds_shepp motion"),
     ({"expand_dis_": 1}, "unknown parameter 'expand_dis_'"),
     ({"heading_bins": 3}, "heading_bins"), ({"turning_radius": math.nan}, "turning_radius"),
+    ({"turning_radius": 1e-6}, "too small"), ({"turning_radius": 1e6}, "longer than the map"),
 ])
 def test_bad_settings_are_named(kwargs, field):
     args = {"planner": "rrt_star", "motion": "reeds_shepp", **kwargs}

@@ -57,7 +57,8 @@ from ..limits import check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
 from ..sampling.curves import LETTERS, MAX_SEGMENTS, NOP, CurvePath, check_pose, check_turning_radius, trace_word
-from ..sampling.footprint_lattice import curve_free, first_overlap, free_cells, lattice_for, robot_outline
+from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, free_cells, lattice_for,
+                                          robot_outline)
 from .occupancy import OccupancyGrid
 
 MOTIONS = ("dubins", "reeds_shepp")
@@ -312,6 +313,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
 
     lsx, lsy, lst = to_local(sx, sy, st)
     lgx, lgy, lgt = to_local(gx, gy, gt)
+    check_turning_scale(r, vertices, disc, res, int(heading_bins), math.hypot(grid.width, grid.height) * res)
     lattice = lattice_for(tuple(map(tuple, vertices.tolist())), disc, r, res, int(heading_bins),
                           motion == "reeds_shepp", lst)
     blocked = np.ascontiguousarray(grid.blocked | grid.unknown)

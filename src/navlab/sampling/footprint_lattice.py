@@ -155,6 +155,29 @@ class Lattice:
             for b in range(bins)])
 
 
+#: the finest spacing of checked poses, as a fraction of a cell: below it a curve
+#: would be traced at millions of poses per metre (a turning radius far below the footprint's size)
+FINEST_SPACING = 1e-3
+
+
+def check_turning_scale(turning_radius: float, vertices: np.ndarray, disc: float, resolution: float, bins: int,
+                        extent: float) -> None:
+    """Refuse, naming ``turning_radius``, a radius the map cannot be searched at:
+    so small that the footprint would be checked at poses less than
+    :data:`FINEST_SPACING` of a cell apart, or so large that one heading step of
+    arc is longer than the map's diagonal ``extent``."""
+    reach = max(disc, float(np.hypot(*np.asarray(vertices, float).reshape(-1, 2).T).max()) if len(vertices) else 0.0)
+    delta = 0.5 * resolution  # as Lattice spaces poses
+    smallest = reach / (delta / (FINEST_SPACING * resolution) - 1.0)
+    if turning_radius < smallest:
+        raise ValueError(f"turning_radius {turning_radius:g} m is too small for a footprint reaching {reach:g} m "
+                         f"on {resolution:g} m cells: at least {smallest:.3g} m (or use motion=holonomic)")
+    step_arc = turning_radius * 2.0 * math.pi / bins
+    if step_arc > extent:
+        raise ValueError(f"turning_radius {turning_radius:g} m: one heading step ({360 / bins:g}°) of arc is "
+                         f"{step_arc:.3g} m, longer than the map ({extent:.3g} m across); use a smaller radius")
+
+
 @functools.lru_cache(maxsize=16)
 def lattice_for(vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float, resolution: float,
                 bins: int, reverse: bool, theta0: float) -> Lattice:

@@ -22,8 +22,13 @@ Robot Path Tracking", Autonomous Robots 47, 2023. Each cycle:
    ``rotate_to_heading_angular_vel`` (limited by ``max_angular_accel``).
 5. **Collision look-ahead**: the commanded arc is projected for
    ``max_allowed_time_to_collision_up_to_carrot`` seconds (no farther than the
-   carrot) at steps of a costmap cell; if the footprint meets a cell of
-   ``INSCRIBED`` cost or more, the robot stops (Nav2 aborts; the run then stalls).
+   carrot) at steps of a costmap cell; if the footprint's outline meets a
+   ``LETHAL`` cell, the robot stops (Nav2 aborts; the run then stalls). Nav2's
+   ``CollisionChecker::inCollision`` compares the outline's cost with
+   ``LETHAL_OBSTACLE``: ``INSCRIBED`` (253) on the outline only says an obstacle
+   is within the inscribed radius of the outline, not that the body touches it,
+   so treating it as a collision stops a rectangle at every gap narrower than its
+   width plus its inscribed diameter.
 """
 
 from __future__ import annotations
@@ -32,7 +37,7 @@ import math
 
 import numpy as np
 
-from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE
+from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, MAX_NON_OBSTACLE
 from .base import CONTROLLERS
 from .local import CostmapController, arc_rollouts, check_number
 
@@ -210,15 +215,16 @@ class RegulatedPurePursuit(CostmapController):
         turn = math.copysign(min(self.rotate_vel, 1.0), math.atan2(y, x))
         headings = pose[2] + turn * self.period * np.arange(1, 6)
         turned = np.column_stack((np.full(5, pose[0]), np.full(5, pose[1]), headings))
-        if (self.costmap.footprint_cost(turned, self.footprint) < INSCRIBED_INFLATED_OBSTACLE).all():
+        if (self.costmap.footprint_cost(turned, self.footprint) < LETHAL_OBSTACLE).all():
             return 0.0, 0.0, turn
         return 0.0, 0.0, 0.0
 
     def collision_ahead(self, pose, v: float, w: float, carrot_dist: float) -> bool:
-        """Whether the footprint meets an INSCRIBED-or-worse cell on the projected arc."""
+        """Whether the footprint's outline meets a LETHAL (or unknown, off-map) cell on the projected arc
+        (Nav2's ``inCollision``: ``footprint_cost >= LETHAL_OBSTACLE``)."""
         if v <= 0:
             return False
         reach = min(v * self.collision_time, carrot_dist)
         steps = max(int(math.ceil(reach / self.costmap.resolution)), 1)
         arc = arc_rollouts(*pose, np.array([v]), np.zeros(1), np.array([w]), reach / v / steps, steps)[0]
-        return bool((self.costmap.footprint_cost(arc, self.footprint) >= INSCRIBED_INFLATED_OBSTACLE).any())
+        return bool((self.costmap.footprint_cost(arc, self.footprint) >= LETHAL_OBSTACLE).any())

@@ -229,3 +229,28 @@ def test_node_parameters_reach_ros_as_the_value_given(value):
         assert isinstance(read, str) and yaml.safe_load(read) == value
     else:
         assert read == value and type(read) is type(value)
+
+
+def test_a_pose_planner_keeps_the_goal_heading_and_the_odometry_heading():
+    """hybrid_astar (and trees with motion=reeds_shepp) plan between poses: the path
+    starts at the odometry's pose and ends at the goal's, headings included."""
+    log = Logbook()
+    empty = OccupancyGrid(np.zeros((40, 60), bool), 0.1, (0.0, 0.0, 0.0))
+    for algorithm, extra in (("hybrid_astar", {}), ("rrt_star", {"motion": "reeds_shepp", "max_iter": 3000})):
+        planner = GoalPlanner(log, algorithm, inflation_radius=0.2, turning_radius=0.5, **extra)
+        planner.set_map(empty)
+        planner.set_pose((1.0, 2.0, 0.0))
+        path = planner.set_goal((4.0, 2.0, math.pi))
+        assert path is not None and path.shape[1] == 3, log
+        assert np.allclose(path[0], (1.0, 2.0, 0.0)) and np.allclose(path[-1][:2], (4.0, 2.0))
+        assert abs(math.remainder(path[-1][2] - math.pi, 2 * math.pi)) < 1e-9
+        assert "rad)" in log[-1][1]  # the log names the poses with their headings
+    # a point planner drops the heading, as before
+    planner = GoalPlanner(log, "astar", inflation_radius=0.2)
+    planner.set_map(empty)
+    planner.set_pose((1.0, 2.0, 0.0))
+    assert planner.set_goal((4.0, 2.0, math.pi)).shape[1] == 2
+    with pytest.raises(ValueError, match="sampler 'gaussian' is for the tree planners"):
+        GoalPlanner(log, "hybrid_astar", sampler="gaussian")
+    with pytest.raises(ValueError, match="turning_radius"):
+        GoalPlanner(log, "hybrid_astar", turning_radius=-1.0)

@@ -8,7 +8,7 @@ from pathlib import Path
 
 import click
 
-from .common import check_output_file, parse_params
+from .common import PointOrPoseOption, check_output_file, parse_params
 
 #: experiment names the CLI offers (the registry is filled when sim.experiments is imported; listed here so
 #: that `navlab --help` does not import the simulator)
@@ -18,19 +18,25 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 
 @click.command("sim")
 @click.argument("world", required=False)
-@click.option("--robot", type=click.Choice(["omni3", "diff", "jackal"]), default="omni3", show_default=True,
-              help="omni3 (seed 004's), diff (a TurtleBot3 Burger) or jackal (the BARN robot: a 0.42 × 0.33 m "
-                   "rectangle; default controller rpp).")
+@click.option("--robot", type=click.Choice(["omni3", "diff", "jackal", "car"]), default="omni3", show_default=True,
+              help="omni3 (seed 004's), diff (a TurtleBot3 Burger), jackal (the BARN robot: a 0.42 × 0.33 m "
+                   "rectangle; default controller rpp) or car (a kinematic bicycle, 4.4 × 1.8 m, turning radius "
+                   "4.5 m: plans between poses and reverses at cusps).")
 @click.option("--controller", default=None,
               help="hybrid (omni3 default: a global plan, the potential field as local avoider), "
-                   "potential_field (seed 004's field alone), goto_waypoint (diff default), pure_pursuit, or the "
+                   "potential_field (seed 004's field alone), goto_waypoint (diff default), pure_pursuit, "
+                   "rear_wheel_feedback (car default; any robot on a path of poses), or the "
                    "costmap planners dwa, dwa_barn (the BARN challenge's settings), mppi, rpp (jackal default).")
-@click.option("--start", nargs=3, type=float, default=None, metavar="X Y THETA",
-              help="Start pose [m, m, rad] (default: the world's start, heading 0).")
-@click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal [m] (default: the world's).")
+@click.option("--start", cls=PointOrPoseOption, default=None,
+              help="Start [m] and heading THETA [rad] (default: the world's start and heading, else 0).")
+@click.option("--goal", cls=PointOrPoseOption, default=None,
+              help="Goal [m] (default: the world's); with THETA [rad] the run plans between poses and must end "
+                   "facing THETA (within 0.25 rad).")
 @click.option("--planner", default=None,
               help="Global path for hybrid and the followers: any planner (`navlab list`; worlds default "
-                   "rrt_star, maps astar, smoothed).")
+                   "rrt_star, maps astar, smoothed; between poses hybrid_astar).")
+@click.option("--plan-param", "plan_params", multiple=True, metavar="KEY=VALUE",
+              help="Global planner setting, e.g. motion=dubins, turning_radius=1.2, max_iter=20000.")
 @click.option("--sampler", default="uniform", show_default=True,
               help="Sampler of a tree planner (rrt_star etc.), on worlds and maps.")
 @click.option("--lidar", type=click.Choice(["rplidar_a1", "exact", "none"]), default=None,
@@ -60,7 +66,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.option("--gif", type=click.Path(dir_okay=False), default=None, help="GIF animation of the run.")
 @click.option("--trajectory", type=click.Path(dir_okay=False), default=None,
               help="CSV of the true pose at every step (header t,x,y,theta; s, m, m, rad).")
-def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robot_params, controller_params, dt,
+def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler, lidar, robot_params, controller_params, dt,
             max_time, lidar_timing, odom_timing, seed, experiment, runs, plot_dir, as_json, plot, gif,
             trajectory) -> None:
     """Simulate a robot in WORLD (a world YAML, a scene name, a map_server
@@ -81,6 +87,8 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
       navlab sim maze.yaml --robot diff --start 0.35 0.35 0 --goal 4.8 4.8 --planner rrt_star --sampler integration
       navlab sim one_obstacle --controller potential_field --lidar-timing rate=10,latency=0.5
       navlab sim ../shared/data/barn/world_0.world --robot jackal --controller rpp --start -2 3 1.57 --trajectory t.csv
+      navlab sim parking --robot car --plot parking.png
+      navlab sim trap --robot car --goal 16 6 0 --plan-param turning_radius=5
     """
     if experiment:
         if world:
@@ -101,7 +109,8 @@ def sim_cmd(world, robot, controller, start, goal, planner, sampler, lidar, robo
                                             controller_params=parse_params(controller_params, "--controller-param"),
                                             dt=dt, max_time=max_time, seed=seed,
                                             lidar_timing=_timing(lidar_timing, "--lidar-timing"),
-                                            odometry_timing=_timing(odom_timing, "--odom-timing"))
+                                            odometry_timing=_timing(odom_timing, "--odom-timing"),
+                                            plan_params=parse_params(plan_params, "--plan-param"))
     except NoPathError as exc:
         # the planner's answer about this world, as `navlab plan` gives it: not bad input
         click.echo(json.dumps({"status": "NO_PATH", "reason": str(exc)}) if as_json else f"NO_PATH ({exc})")

@@ -10,6 +10,7 @@ import numpy as np
 
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+from .path_tracking import split_at_cusps
 
 
 class _Follower(Controller):
@@ -165,20 +166,69 @@ class PurePursuit(_Follower):
     """Pure pursuit: steer on the arc through the path point ``lookahead``
     metres ahead (curvature 2·sin(α)/L).
 
+    A path of poses with a direction of travel (an SE(2) plan: ``Result.path``
+    and ``Result.direction``) is followed stretch by stretch, as Nav2's
+    Regulated Pure Pursuit does with ``allow_reversing``: the path is cut at
+    its cusps; a reverse stretch is pursued backwards (the arc is computed for
+    the robot turned round, then driven at negative speed); the robot slows
+    towards each cusp and moves on to the next stretch within ``cusp_radius``
+    of the cusp or once it has passed it. On such paths it never turns in
+    place, so it drives a car (whose turn rate its steering bounds) as well as
+    a differential drive or an omni robot.
+
     References
     ----------
     R. C. Coulter, "Implementation of the pure pursuit path tracking
-    algorithm", CMU-RI-TR-92-01, 1992.
+    algorithm", CMU-RI-TR-92-01, 1992. S. Macenski et al., "Regulated Pure
+    Pursuit for Robot Path Tracking", Autonomous Robots 47, 2023 (reversing
+    at cusps).
     """
 
     def __init__(self, lookahead: float = 0.2, speed: float = 0.2, goal_radius: float = 0.05,
                  stall_window: float = 8.0, replan: bool = False, replan_interval: float = 1.0,
-                 check_ahead: float = 1.0) -> None:
+                 check_ahead: float = 1.0, cusp_radius: float = 0.1) -> None:
         super().__init__(stall_window, replan=replan, replan_interval=replan_interval, check_ahead=check_ahead)
-        for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius)):
+        for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius),
+                            ("cusp_radius", cusp_radius)):
             if not value > 0:
                 raise ValueError(f"pure_pursuit {name} must be positive, got {value!r}")
-        self.lookahead, self.speed, self.goal_radius = lookahead, speed, goal_radius
+        self.lookahead, self.speed, self.goal_radius, self.cusp_radius = lookahead, speed, goal_radius, cusp_radius
+        self._stretches: list = []  #: (points, sign) of each stretch between cusps, for paths with directions
+        self._sign = 1.0
+        self._after = 0.0  #: [m] length of the stretches after the current one
+        self._directed = False  #: following a path with directions of travel
+
+    def reset(self, goal, path=None, direction=None) -> None:
+        super().reset(goal, path)
+        self._stretches, self._sign, self._after = [], 1.0, 0.0
+        self._directed = direction is not None
+        if direction is None:
+            return
+        if self.replan:
+            raise ValueError("pure_pursuit cannot replan a path with headings and reverse stretches; leave replan off")
+        self._stretches = split_at_cusps(self.path, direction)[::-1]  # popped from the end
+        self._next_stretch()
+
+    def _next_stretch(self) -> None:
+        points, self._sign = self._stretches.pop()
+        self.path, self.index = points, 1 if len(points) > 1 else 0
+        self._after = sum(float(np.sum(np.hypot(*np.diff(p, axis=0).T))) for p, _ in self._stretches)
+
+    def _stalled(self, t: float, pose) -> bool:
+        remaining = math.hypot(*(self.path[self.index] - pose[:2])) + \
+            float(np.sum(np.linalg.norm(np.diff(self.path[self.index:], axis=0), axis=1))) + self._after
+        return self.stall.stalled(t, remaining)
+
+    def _at_cusp(self, pose) -> bool:
+        """Whether the robot has come to the end of a stretch that a cusp follows."""
+        end = self.path[-1]
+        offset = pose[:2] - end
+        if math.hypot(*offset) < self.cusp_radius:
+            return True
+        if len(self.path) < 2 or math.hypot(*offset) > self.lookahead:
+            return False
+        tangent = end - self.path[-2]  # the way the stretch runs into the cusp
+        return float(offset @ tangent) >= 0.0
 
     def _target(self, pose) -> np.ndarray:
         """The first point at distance ≥ lookahead on the path after the
@@ -201,19 +251,25 @@ class PurePursuit(_Follower):
         return b
 
     def command(self, t: float, pose, points=None) -> Command:
+        while self._stretches and self._at_cusp(pose):
+            self._next_stretch()
         goal = self.path[-1]
         dist = math.hypot(*(goal - pose[:2]))
-        if dist < self.goal_radius:
+        if dist < self.goal_radius and not self._stretches:
             return Command(status=REACHED)
         if self._stalled(t, pose):
             return Command(status=STALLED)
         if self._wait_or_replan(t, pose, points):
             return self._evade(pose) or Command()
         tx, ty = self._target(pose) - pose[:2]
-        alpha = _wrap(math.atan2(ty, tx) - pose[2])
         ld = max(math.hypot(tx, ty), 1e-9)
-        v = self.speed * min(1.0, dist / self.lookahead) if self.index == len(self.path) - 1 else self.speed
-        v = max(v, 0.03)
+        last = self.index == len(self.path) - 1
+        v = max(self.speed * min(1.0, dist / self.lookahead) if last else self.speed, 0.03)
+        if self._directed:
+            # pursue in the direction of travel: backwards, the arc is the one of the robot turned round
+            alpha = _wrap(math.atan2(ty, tx) - pose[2] - (math.pi if self._sign < 0 else 0.0))
+            return Command(self._sign * v, 0.0, v * 2.0 * math.sin(alpha) / ld)
+        alpha = _wrap(math.atan2(ty, tx) - pose[2])
         if abs(alpha) > math.pi / 2:  # target behind: turn in place first
             return Command(0.0, 0.0, math.copysign(1.5, alpha))
         return Command(v, 0.0, v * 2.0 * math.sin(alpha) / ld)

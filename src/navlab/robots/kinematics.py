@@ -1,4 +1,5 @@
-"""Wheeled-robot kinematics: a differential drive and a three-wheel omni.
+"""Wheeled-robot kinematics: a differential drive, a three-wheel omni and a car
+(the kinematic bicycle).
 
 Frames: the *body* frame has x forward and y to the left of the robot; the
 *world* frame is the map's. A pose is ``(x, y, θ)`` in the world frame, θ the
@@ -184,6 +185,86 @@ class Jackal(DiffDrive):
     laser = {"beams": 720, "fov": math.radians(270.0), "range_max": 30.0, "range_min": 0.06}
 
 
+@ROBOTS.register("car")
+@dataclass
+class Car(DiffDrive):
+    """A car: the kinematic bicycle model, its pose the middle of the rear axle.
+
+    The rear axle moves along its heading at speed v (forward or reverse) and
+    turns at ω = v·tan(δ)/L for a steering angle δ, L the wheelbase, so the
+    rear axle's path is made of arcs of radius at least the minimum
+    **turning radius** ``L / tan(max_steer)`` — the curves Dubins and
+    Reeds–Shepp planners draw (Dubins, 1957; Reeds and Shepp, 1990). The
+    steering angle is taken to change at once (no steering-rate limit). The
+    encoders sit on the rear wheels, so odometry is a differential drive's
+    with the rear track. The defaults are a compact car, as the ``parking``
+    scene's: 4.4 × 1.8 m with the rear axle 1.0 m from the back, wheelbase
+    2.7 m, maximum steering atan(2.7 / 4.5) ≈ 30.96°, hence a 4.5 m turning radius.
+
+    Parameters
+    ----------
+    wheelbase : float
+        Rear axle to front axle, m (2.7).
+    max_steer : float
+        Largest steering angle, rad (atan(2.7/4.5) ≈ 0.5404, below π/2).
+    track : float
+        Distance between the rear wheels, m (1.55).
+    wheel_radius : float
+        m (0.3).
+    max_speed : float
+        Forward and reverse, m/s (2.0).
+    footprint : list of [x, y] or Footprint
+        In the rear-axle frame, m (the 4.4 × 1.8 m rectangle from x = −1.0 to 3.4).
+    radius : float
+        The footprint's inscribed radius (0.9 m): the clearance a point planner keeps.
+
+    References
+    ----------
+    R. Rajamani, *Vehicle Dynamics and Control*, 2nd ed., Springer 2012, §2.2
+    (the kinematic bicycle model). L. E. Dubins, "On curves of minimal length
+    with a constraint on average curvature", Am. J. Math. 79(3), 1957.
+    """
+
+    wheelbase: float = 2.7
+    max_steer: float = math.atan2(2.7, 4.5)
+    track: float = 1.55
+    wheel_radius: float = 0.3
+    max_speed: float = 2.0
+    max_turn_rate: float = 10.0  #: [rad/s] only a cap on ω; the steering limit |ω| ≤ |v|/turning_radius binds first
+    radius: float = 0.9
+    footprint: Any = ((-1.0, -0.9), (3.4, -0.9), (3.4, 0.9), (-1.0, 0.9))
+    max_accel: Optional[float] = 2.0
+    max_angular_accel: Optional[float] = None
+    steers = True  #: cannot turn in place: its turn rate is bounded by its speed
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        _positive("wheelbase", self.wheelbase)
+        _positive("max_steer", self.max_steer)
+        if not self.max_steer < 0.5 * math.pi:
+            raise ValueError(f"max_steer must be below π/2 rad (90°), got {self.max_steer!r}")
+
+    @property
+    def turning_radius(self) -> float:
+        """The rear axle's smallest turning radius, m: ``wheelbase / tan(max_steer)``."""
+        return self.wheelbase / math.tan(self.max_steer)
+
+    def steering_angle(self, vx: float, omega: float) -> float:
+        """The steering angle δ that turns at ω while driving at vx (0 when standing)."""
+        return 0.0 if vx == 0.0 else math.atan(omega * self.wheelbase / vx)
+
+    def limit(self, vx: float, vy: float, omega: float) -> Tuple[float, float, float]:
+        """Clip the speed, drop vy, and bound the turn rate by the steering:
+        |ω| ≤ |vx| / turning_radius (a car standing still cannot turn)."""
+        vx, _, omega = super().limit(vx, 0.0, omega)
+        return vx, 0.0, self.steer(vx, omega)
+
+    def steer(self, vx: float, omega: float) -> float:
+        """ω clipped to what the steering allows at speed vx."""
+        most = abs(vx) / self.turning_radius
+        return min(max(omega, -most), most)
+
+
 @ROBOTS.register("omni3")
 @dataclass
 class Omni3(_Shaped):
@@ -272,7 +353,7 @@ class Omni3(_Shaped):
 
 
 def make_robot(name: str, **params) -> object:
-    """A registered robot by name (``diff``, ``omni3``, ``jackal``) with its settings."""
+    """A registered robot by name (``diff``, ``omni3``, ``jackal``, ``car``) with its settings."""
     from ..registry import check_finite, check_params
 
     cls = ROBOTS.get(name)

@@ -97,7 +97,9 @@ def grid_from_msg(msg, occupied_threshold: int = 65, free_threshold: int = 25, n
 
 
 def path_to_msg(points: np.ndarray, frame_id: str = "map", stamp=None):
-    """nav_msgs/Path through (N, 2) points; each pose faces the next point."""
+    """nav_msgs/Path through (N, 2) points, each pose facing the next point; or
+    through (N, 3) poses with their own headings (a pose planner's: on a reverse
+    stretch they face away from the way the robot goes, as Nav2's planners publish it)."""
     from geometry_msgs.msg import PoseStamped
     from nav_msgs.msg import Path
 
@@ -106,6 +108,13 @@ def path_to_msg(points: np.ndarray, frame_id: str = "map", stamp=None):
     if stamp is not None:
         msg.header.stamp = stamp
     pts = np.asarray(points, float)
+    if pts.ndim == 2 and pts.shape[1] == 3:
+        for x, y, yaw in pts:
+            ps = PoseStamped()
+            ps.header = msg.header
+            ps.pose = pose_msg(x, y, yaw)
+            msg.poses.append(ps)
+        return msg
     for i, (x, y) in enumerate(pts):
         nxt = pts[min(i + 1, len(pts) - 1)] if i + 1 < len(pts) else pts[i] + (pts[i] - pts[i - 1] if i else 0)
         yaw = math.atan2(nxt[1] - y, nxt[0] - x) if np.any(nxt != pts[i]) else 0.0

@@ -17,6 +17,7 @@ import numpy as np
 from ..control.base import REACHED, STALLED, Controller
 from ..grid.occupancy import OccupancyGrid
 from ..planning import is_grid_planner, plan
+from ..pose_queries import POSE_PLANNERS, is_pose_query
 from ..result import Result
 from ..world.world import World
 
@@ -26,7 +27,8 @@ STOP: Twist = (0.0, 0.0, 0.0)
 
 
 def _xy(p) -> str:
-    return f"({p[0]:.3f}, {p[1]:.3f})"
+    """(x, y), or (x, y, θ rad) for a pose."""
+    return f"({p[0]:.3f}, {p[1]:.3f}" + (f", {p[2]:.3f} rad)" if len(p) > 2 else ")")
 
 
 def finite(values, what: str, log: Log) -> bool:
@@ -49,7 +51,7 @@ def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, 
     ``robot_radius`` away from the path. ``sampler`` goes to the tree
     planners only."""
     world = World.from_grid(grid, start, goal, robot_radius=robot_radius, allow_unknown=allow_unknown)
-    extra = {"sampler": None} if is_grid_planner(algorithm) else {"sampler": sampler}
+    extra = {"sampler": None} if algorithm in POSE_PLANNERS or is_grid_planner(algorithm) else {"sampler": sampler}
     return plan(world, planner=algorithm, seed=seed, **extra, **params)
 
 
@@ -100,8 +102,15 @@ class GoalPlanner:
                  on_tree: Optional[Callable[[np.ndarray, np.ndarray], None]] = None, **params: Any) -> None:
         if not (inflation_radius >= 0 and math.isfinite(inflation_radius)):
             raise ValueError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
-        self.tree_planner = not is_grid_planner(algorithm)  # unknown names: "did you mean"
-        if not self.tree_planner:
+        hybrid = algorithm in POSE_PLANNERS
+        self.tree_planner = not hybrid and not is_grid_planner(algorithm)  # unknown names: "did you mean"
+        #: plans between poses (hybrid_astar, or a tree planner with motion dubins / reeds_shepp): the goal's and
+        #: the odometry's headings are kept and the path's poses carry the planned headings
+        self.poses = is_pose_query(algorithm, params)
+        if hybrid:
+            if sampler != "uniform":
+                raise ValueError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
+        elif not self.tree_planner:
             if sampler != "uniform":
                 raise ValueError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
             params = {**GRID_DEFAULTS, **params}
@@ -123,7 +132,7 @@ class GoalPlanner:
         q = dict(self.query)
         params = dict(q.pop("params"))
         limit = params.get("max_iter")
-        if self.tree_planner and (limit is None or (type(limit) is int and limit > 64)):
+        if self.tree_planner and not self.poses and (limit is None or (type(limit) is int and limit > 64)):
             params["max_iter"] = 64  # a short run (a bad value stays, for the planner to refuse)
         empty = OccupancyGrid(np.zeros((20, 20), bool), 0.1, (0.0, 0.0, 0.0))
         try:
@@ -139,11 +148,12 @@ class GoalPlanner:
     def set_pose(self, pose) -> Optional[np.ndarray]:
         if not finite(pose, "a pose", self.log):
             return None
-        self.pose = np.asarray(pose, float)[:2]
+        self.pose = np.asarray(pose, float)[:3 if self.poses else 2]
         return self._plan_pending()
 
     def set_goal(self, goal) -> Optional[np.ndarray]:
-        goal = np.asarray(goal, float)[:2]
+        """Plan to ``goal`` — (x, y), or (x, y, θ) whose heading a pose planner keeps."""
+        goal = np.asarray(goal, float)[:3 if self.poses else 2]
         if not finite(goal, "a goal", self.log):
             return None
         if self.grid is None or self.pose is None:
@@ -164,7 +174,7 @@ class GoalPlanner:
     def _where_blocked(self, p) -> Optional[str]:
         """Why the robot cannot stand at p, or None."""
         grid = self.grid
-        cell = grid.world_to_cell(np.asarray(p, float)[None])[0]
+        cell = grid.world_to_cell(np.asarray(p, float)[None, :2])[0]
         if not grid.contains(cell)[0]:
             ox, oy = grid.origin[:2]
             return (f"is outside the map ({grid.width * grid.resolution:g} x {grid.height * grid.resolution:g} m "
@@ -174,12 +184,13 @@ class GoalPlanner:
             return "is in an obstacle"
         if grid.unknown[y, x] and not self.query["allow_unknown"]:
             return "is in unknown space (set allow_unknown to plan through it)"
-        if self.inflated.blocked[y, x]:
+        if self.inflated.blocked[y, x] and not self.poses:  # a pose planner checks the footprint itself
             return f"is closer to an obstacle than the inflation radius {self.inflation_radius:g} m"
         return None
 
     def plan(self, start, goal) -> Optional[np.ndarray]:
-        """The path from start to goal as (N, 2) world points, or None (logged)."""
+        """The path from start to goal as (N, 2) world points — (N, 3) poses for a pose
+        planner — or None (logged)."""
         for label, p in (("start", start), ("goal", goal)):
             why = self._where_blocked(p)
             if why is not None:
@@ -198,7 +209,7 @@ class GoalPlanner:
             self.log("error", f"no path from {_xy(start)} to {_xy(goal)} ({what}): {result.status.name} {result.reason}")
             return None
         path = np.array(result.path, float)
-        length = float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1)))
+        length = float(np.sum(np.linalg.norm(np.diff(path[:, :2], axis=0), axis=1)))
         self.log("info", f"path from {_xy(start)} to {_xy(goal)} ({what}): {len(path)} poses, "
                          f"{length:.2f} m, {result.stats['time_s'] * 1000:.1f} ms")
         return path

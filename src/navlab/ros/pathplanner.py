@@ -4,8 +4,12 @@ planner's search tree goes to ``/plan_tree`` (visualization_msgs/MarkerArray,
 for RViz and Foxglove).
 
 The algorithm is a parameter: the grid searches (``astar``, ``dijkstra``,
-``jps``, ``theta_star``; seed 002) or the RRT family (``rrt``, ``rrt_star``,
-``informed_rrt_star``, ``growth_ratio_rrt``) with any ``sampler``. Every
+``jps``, ``theta_star``; seed 002), the RRT family (``rrt``, ``rrt_star``,
+``informed_rrt_star``, ``growth_ratio_rrt``) with any ``sampler``, or a
+planner between poses (``hybrid_astar``, or a tree planner with
+``-p motion:=reeds_shepp``/``dubins``): it keeps the goal's orientation and
+the odometry's heading, and the published poses carry the planned headings
+(facing backwards on reverse stretches, as Nav2's Smac planners publish them). Every
 other setting of the planner or sampler is a parameter of the same name
 (``-p max_iter:=3000 -p goal_sample_rate:=0.1``), routed as ``navlab.plan``
 routes them. The odometry frame is taken to coincide with the map frame (the
@@ -33,7 +37,7 @@ class PathPlanner(NavlabNode):
     NODE_NAME = "pathplanner"
     PARAMETERS = (
         Param("algorithm", "astar", "any registered planner: astar, dijkstra, jps, theta_star, rrt, rrt_star, "
-                                    "informed_rrt_star, growth_ratio_rrt"),
+                                    "informed_rrt_star, growth_ratio_rrt, hybrid_astar (between poses)"),
         Param("sampler", "uniform", "tree planners: uniform, gaussian, boundary, integration or goal_bias"),
         Param("seed", 0, "tree planners: random seed of every plan (same map, pose and goal: same path)"),
         Param("inflation_radius", 0.175, "keep this far from obstacles (m): robot radius + margin"),
@@ -97,7 +101,7 @@ class PathPlanner(NavlabNode):
         frame = msg.header.frame_id
         if frame and frame != self.params["frame_id"]:
             self.log("warn", f"goal in frame '{frame}' read as '{self.params['frame_id']}' (no tf here)")
-        self.publish(self.core.set_goal(pose_from_msg(msg.pose)[:2]))
+        self.publish(self.core.set_goal(pose_from_msg(msg.pose)))
 
     def on_odom(self, msg) -> None:
         self.publish(self.core.set_pose(pose_from_msg(msg.pose.pose)))

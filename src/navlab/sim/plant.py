@@ -21,7 +21,7 @@ class Plant:
     Parameters
     ----------
     scene : Scene
-    robot : DiffDrive or Omni3
+    robot : DiffDrive, Omni3 or Car
     start : (x, y, θ)
     encoders : WheelEncoders
     compass : Compass, optional
@@ -43,8 +43,12 @@ class Plant:
         something hit the robot (moving obstacles move over the same step;
         the pose is then the colliding one and :attr:`hit` says who hit whom)."""
         robot, enc = self.robot, self.encoders
-        self.last_twist = accelerate(self.last_twist, robot.limit(vx, vy, omega), dt,
-                                     getattr(robot, "max_accel", None), getattr(robot, "max_angular_accel", None))
+        twist = accelerate(self.last_twist, robot.limit(vx, vy, omega), dt,
+                           getattr(robot, "max_accel", None), getattr(robot, "max_angular_accel", None))
+        if getattr(robot, "steers", False):
+            # a car's turn rate follows its speed: the speed reached under the acceleration limit bounds it
+            twist = (twist[0], 0.0, robot.steer(twist[0], twist[2]))
+        self.last_twist = twist
         rotation = enc.actual_speeds(robot.inverse(*self.last_twist), rng) * dt
         bx, by, bw = robot.forward(enc.ground_rotation(rotation, rng) / dt)
         new_pose = integrate_pose(self.pose, bx, by, bw, dt)

@@ -18,7 +18,7 @@ from .simulation import SimResult, Simulation
 #: the omni robot follows a global plan with the potential field as its local
 #: avoider (the plain field stalls in traps and clutter); the diff drive
 #: follows the plan with seed 002's goto_waypoint
-DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint", "jackal": "rpp"}
+DEFAULT_CONTROLLER = {"omni3": "hybrid", "diff": "goto_waypoint", "jackal": "rpp", "car": "rear_wheel_feedback"}
 #: followers that can replan around what the LiDAR sees; the default one does
 #: so by itself in worlds with moving obstacles
 REPLANNING_FOLLOWERS = ("goto_waypoint", "pure_pursuit")
@@ -37,52 +37,87 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
              planner: Optional[str] = None, lidar: Optional[str] = None, robot_params: Optional[Dict] = None,
              controller_params: Optional[Dict] = None, dt: float = 0.05, max_time: Optional[float] = None,
              seed: Any = 0, sampler: str = "uniform", lidar_timing: Optional[Dict] = None,
-             odometry_timing: Optional[Dict] = None) -> Tuple[SimResult, Any, Simulation]:
+             odometry_timing: Optional[Dict] = None,
+             plan_params: Optional[Dict] = None) -> Tuple[SimResult, Any, Simulation]:
     """Build and run one simulation; every input is checked before it runs.
 
     ``max_time`` defaults to :func:`default_max_time` of the path (or the
-    straight line) to the goal. Returns the result, the world or grid, and
-    the Simulation.
+    straight line) to the goal. ``goal`` may be a pose (x, y, θ): the run
+    then plans between poses (as it does for a car, a world that names its
+    robot's footprint, ``planner='hybrid_astar'`` or ``plan_params={'motion':
+    ...}``; see :mod:`navlab.sim.pose_path`) and ends REACHED only with the
+    heading within :data:`~navlab.sim.simulation.GOAL_YAW_TOLERANCE`.
+    ``plan_params`` go to the global planner. Returns the result, the world
+    or grid, and the Simulation.
     """
+    from .pose_path import CAR_FOLLOWER, POSE_FOLLOWERS, plan_pose_path, scene_robot_params, wants_pose_path
+
     from ..limits import check_coordinate, check_seed
 
-    for name, values, sizes in (("start", start, (2, 3)), ("goal", goal, (2,))):
+    for name, values in (("start", start), ("goal", goal)):
         if values is None:
             continue
-        if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__len__") or len(values) not in sizes:
-            shape = "(x, y) or (x, y, θ)" if len(sizes) == 2 else "(x, y)"
-            raise ValueError(f"{name} must be {shape}, got {values!r}")
+        if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__len__") or len(values) not in (2, 3):
+            raise ValueError(f"{name} must be (x, y) or (x, y, θ), got {values!r}")
         for axis, v in zip("xyθ", values):
             check_coordinate(f"{name} {axis}", v, "rad" if axis == "θ" else "m")
-    for name, value in (("robot_params", robot_params), ("controller_params", controller_params)):
+    for name, value in (("robot_params", robot_params), ("controller_params", controller_params),
+                        ("plan_params", plan_params)):
         if value is not None and not isinstance(value, dict):
             raise ValueError(f"{name} must be a mapping of name: value, got {value!r}")
     check_seed(seed)
     scene_world = load_scene_world(world)
-    bot = make_robot(robot, **(robot_params or {}))
+    plan_params = dict(plan_params or {})
+    poses = wants_pose_path(scene_world, robot, planner, goal, plan_params)
+    bot = make_robot(robot, **(scene_robot_params(scene_world, robot, robot_params or {}) if poses
+                               else (robot_params or {})))
     params = dict(controller_params or {})
-    if controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
+    if poses:
+        if controller is not None and controller not in POSE_FOLLOWERS:
+            raise ValueError(f"controller '{controller}' cannot follow a path of poses with reverse stretches (this "
+                             f"run plans between poses); use {', '.join(POSE_FOLLOWERS)}")
+        follower = controller or POSE_FOLLOWERS[0]
+        if getattr(bot, "steers", False):
+            params = {**CAR_FOLLOWER[follower], **params}
+        # a follower's turn rate is worked out for its speed: asked to drive faster than the robot can, the
+        # robot's speed limit would cut the speed and not the turn rate, and the curvature would be wrong
+        default_speed = params.get("speed", make_controller(follower).speed)
+        if isinstance(default_speed, (int, float)) and default_speed > bot.max_speed:
+            if "speed" in (controller_params or {}):
+                raise ValueError(f"controller {follower} speed {default_speed:g} m/s is more than the robot's "
+                                 f"max_speed {bot.max_speed:g} m/s")
+            params["speed"] = bot.max_speed
+    elif controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
         # the default follower watches the path ahead where obstacles move (crossing): blind, it drove into them
         params.setdefault("replan", True)
-    ctrl = make_controller(controller or DEFAULT_CONTROLLER[robot], **params)
+    ctrl = make_controller(controller or (POSE_FOLLOWERS[0] if poses else DEFAULT_CONTROLLER[robot]), **params)
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:
         if is_grid:
             raise ValueError("a map has no start of its own: give --start X Y THETA")
-        start = (*scene_world.start, 0.0)
+        start = (*scene_world.start, getattr(scene_world, "start_heading", None) or 0.0)
     if goal is None:
         if is_grid:
             raise ValueError("a map has no goal of its own: give --goal X Y")
-        goal = scene_world.goal
+        heading = getattr(scene_world, "goal_heading", None)
+        goal = tuple(scene_world.goal) + ((heading,) if poses and heading is not None else ())
     start = tuple(float(v) for v in start) if len(start) == 3 else (float(start[0]), float(start[1]), 0.0)
+    goal_heading = float(goal[2]) if len(goal) == 3 else None
     goal = (float(goal[0]), float(goal[1]))
     if planner is not None and not ctrl.needs_path:
         raise ValueError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
                          "and pure_pursuit")
-    if getattr(ctrl, "needs_costmap", False) and planner is None:
+    direction = None
+    if poses:
+        result, path, direction = plan_pose_path(scene_world, bot, start, goal + ((goal_heading,) if goal_heading
+                                                                                  is not None else ()),
+                                                 planner, plan_params, seed)
+        if not result.success:
+            raise NoPathError(f"no path between the poses: {result.status.name} {result.reason}")
+    elif getattr(ctrl, "needs_costmap", False) and planner is None:
         path = costmap_path(scene_world, bot, ctrl, start, goal)
     else:
-        path = plan_path(scene_world, bot, start, goal, planner, sampler) if ctrl.needs_path else None
+        path = plan_path(scene_world, bot, start, goal, planner, sampler, plan_params) if ctrl.needs_path else None
     if ctrl.needs_path and hasattr(ctrl, "replanner"):  # replans use the same planner as the first plan
         ctrl.replanner = Replanner(scene_world, bot.radius, goal, planner, sampler)
     if max_time is None:
@@ -95,7 +130,8 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     sim = Simulation(scene_world, bot, ctrl, start, goal, lidar=sensor,
                      encoders=WheelEncoders(noise=0.02 if noisy else 0.0, slip=0.01 if noisy else 0.0),
                      compass=Compass(noise_deg=1.0) if noisy else None, dt=dt, max_time=max_time, path=path,
-                     lidar_timing=lidar_timing, odometry_timing=odometry_timing)
+                     lidar_timing=lidar_timing, odometry_timing=odometry_timing, direction=direction,
+                     goal_heading=goal_heading)
     return sim.run(seed), scene_world, sim
 
 
@@ -120,7 +156,8 @@ def costmap_path(scene_world, robot, controller, start, goal) -> np.ndarray:
     return path
 
 
-def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform") -> np.ndarray:
+def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform",
+              params: Optional[Dict] = None) -> np.ndarray:
     """A collision-free path for the robot's footprint (plus a margin)."""
     from ..sim.scene import Scene
 
@@ -128,7 +165,7 @@ def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: 
     for label, p in (("start", start), ("goal", goal)):
         if not scene.free(p):
             raise ValueError(f"the {label} is in collision: {scene.describe(p)}")
-    path = _plan_path(scene_world, robot.radius, start, goal, planner, sampler)
+    path = _plan_path(scene_world, robot.radius, start, goal, planner, sampler, params=params or None)
     if not isinstance(path, np.ndarray):
         raise NoPathError(f"no path for the robot from {start[:2]} to {goal}: {path.status.name} {path.reason}")
     return path

@@ -41,6 +41,9 @@ MAX_DT = 0.2
 #: [m] the run is REACHED only when the *true* pose ends this close to the goal (the controller
 #: judges its own, odometry, estimate): beyond it the status is OFF_GOAL
 GOAL_TOLERANCE = 0.3
+#: [rad] a goal with a heading is REACHED only with the true heading this close to it (Nav2's
+#: ``yaw_goal_tolerance`` default)
+GOAL_YAW_TOLERANCE = 0.25
 #: the most steps one run may take (max_time / dt): about two hours of computing at 0.08 ms a step
 MAX_STEPS = 100_000_000
 
@@ -103,7 +106,7 @@ class SimResult:
         """Largest distance of the true trajectory from the planned path (m)."""
         if self.path is None or len(self.path) < 2:
             return float("nan")
-        return float(np.max(distance_to_polyline(self.true_poses[:, :2], self.path)))
+        return float(np.max(distance_to_polyline(self.true_poses[:, :2], self.path[:, :2])))
 
     def to_dict(self, trajectory: bool = False) -> Dict[str, Any]:
         out = {"status": self.status.name, "reason": self.reason, "goal": self.goal.tolist(),
@@ -145,12 +148,19 @@ class Simulation:
         Rate, latency and jitter of the LiDAR and of the odometry
         (``{rate: 10, latency: 0.5}``); the controller acts on the newest
         measurement that has arrived. Default: every step, no delay.
+    direction : (N,) array, optional
+        With a path of poses: +1 forward, −1 reverse, on the way into each
+        pose (``Result.direction``); the controller follows it with its cusps.
+    goal_heading : float, optional
+        [rad] The run is REACHED only with the true heading within
+        :data:`GOAL_YAW_TOLERANCE` of it.
     """
 
     def __init__(self, scene_world, robot, controller: Controller, start, goal, lidar: Optional[Lidar] = None,
                  encoders: Optional[WheelEncoders] = None, compass: Optional[Compass] = None, dt: float = 0.05,
                  max_time: float = 120.0, path=None, record_scans: bool = False,
-                 lidar_timing: Optional[SensorTiming] = None, odometry_timing: Optional[SensorTiming] = None) -> None:
+                 lidar_timing: Optional[SensorTiming] = None, odometry_timing: Optional[SensorTiming] = None,
+                 direction=None, goal_heading: Optional[float] = None) -> None:
         if not (isinstance(dt, (int, float)) and dt > 0 and math.isfinite(dt)):
             raise ValueError(f"time step dt must be a positive number of seconds, got {dt!r}")
         if dt < MIN_DT:
@@ -178,6 +188,12 @@ class Simulation:
         self.start = np.array(start, float) if len(start) == 3 else np.array((*start, 0.0))
         self.goal = np.asarray(goal, float)[:2]
         self.path = None if path is None else np.asarray(path, float)
+        self.direction = None if direction is None else np.asarray(direction, float)
+        if self.direction is not None and (self.path is None or len(self.direction) != len(self.path)):
+            raise ValueError("direction needs a path with one direction per pose")
+        if goal_heading is not None and not (isinstance(goal_heading, (int, float)) and math.isfinite(goal_heading)):
+            raise ValueError(f"goal_heading must be a finite number of radians, got {goal_heading!r}")
+        self.goal_heading = None if goal_heading is None else float(goal_heading)
         self.record_scans = record_scans
         self.lidar_timing = SensorTiming.from_dict(lidar_timing, "lidar")
         self.odometry_timing = SensorTiming.from_dict(odometry_timing, "odometry")
@@ -194,7 +210,8 @@ class Simulation:
             self.costmap_feed = CostmapFeed(scene_world, robot.shape, controller, self.goal)
         if not self.scene.free(self.start):
             raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
-        if not any(self.scene.free(np.array((*self.goal, heading))) for heading in np.linspace(0, np.pi, 8, False)):
+        headings = np.linspace(0, np.pi, 8, False) if self.goal_heading is None else (self.goal_heading,)
+        if not any(self.scene.free(np.array((*self.goal, heading))) for heading in headings):
             raise ValueError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
 
     def run(self, seed: Any = 0) -> SimResult:
@@ -218,7 +235,10 @@ class Simulation:
         scene = self.scene
         scene.set_time(0.0)
         plant = Plant(scene, self.robot, self.start, self.encoders, self.compass)
-        self.controller.reset(self.goal, self.path)
+        if self.direction is None:
+            self.controller.reset(self.goal, self.path)
+        else:
+            self.controller.reset(self.goal, self.path, direction=self.direction)
         true[0], odo[0] = plant.pose, plant.odometry.pose
         status, reason = SimStatus.TIMEOUT, f"goal not reached in {self.max_time:g} s of simulated time"
         dt = self.dt
@@ -254,8 +274,14 @@ class Simulation:
             if command.status == REACHED:
                 # the controller judged its estimate; the run is judged on where the robot really is
                 off = float(np.hypot(*(plant.pose[:2] - self.goal[:2])))
-                if off <= GOAL_TOLERANCE:
+                turn = 0.0 if self.goal_heading is None else abs(math.remainder(plant.pose[2] - self.goal_heading,
+                                                                                 2.0 * math.pi))
+                if off <= GOAL_TOLERANCE and turn <= GOAL_YAW_TOLERANCE:
                     status, reason = SimStatus.REACHED, ""
+                elif off <= GOAL_TOLERANCE:
+                    status, reason = SimStatus.OFF_GOAL, (
+                        f"the robot stopped at the goal facing {plant.pose[2]:.3f} rad, {turn:.3g} rad from the goal's "
+                        f"heading (more than {GOAL_YAW_TOLERANCE:g} rad)")
                 else:
                     status, reason = SimStatus.OFF_GOAL, (
                         f"the controller stopped at its estimate of the goal, but the robot is {off:.3g} m from it "
@@ -273,9 +299,13 @@ class Simulation:
                 break
         wall = time.perf_counter() - wall0
         steps = n - 1
+        meta = {}
+        if self.goal_heading is not None:
+            meta = {"goal_heading": self.goal_heading,
+                    "heading_error_rad": abs(math.remainder(true[n - 1, 2] - self.goal_heading, 2.0 * math.pi))}
         return SimResult(status, steps * dt, steps, wall, np.arange(n) * dt, true[:n].copy(), odo[:n].copy(),
                          cmds[:n].copy(), self.goal.copy(), self.path,
-                         None if scans is None else scans[:n].copy(), reason,
+                         None if scans is None else scans[:n].copy(), reason, meta,
                          replans=list(getattr(replanner, "paths", ())[replans_before:])
                          + (self.costmap_feed.paths if self.costmap_feed is not None else []))
 

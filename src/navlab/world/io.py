@@ -177,7 +177,7 @@ def _obstacle(where: str, item: Any) -> Obstacle:
 # --- the whole document ---------------------------------------------------------------------------
 
 _TOP_FIELDS = {"name": False, "bounds": True, "start": True, "goal": True, "robot_radius": False,
-               "goal_tolerance": False, "obstacles": False, "footprint": False}
+               "goal_tolerance": False, "obstacles": False, "footprint": False, "turning_radius": False}
 
 
 def _point_or_pose(field: str, value: Any) -> Tuple[float, ...]:
@@ -220,6 +220,9 @@ def _world(data: Any, default_name: str) -> World:
     for key in ("robot_radius", "goal_tolerance"):
         if data.get(key) is not None:
             kwargs[key] = _length(key, data[key])
+    if data.get("turning_radius") is not None:
+        # the world's robot's smallest turning radius: the heading-aware planners' default for it
+        kwargs["meta"] = {"turning_radius": _length("turning_radius", data["turning_radius"], allow_zero=False)}
     try:
         return World(name=str(name), bounds=Bounds(x0, x1, y0, y1), obstacles=obstacles, **kwargs)
     except ValueError as exc:  # a rule the World adds beyond the per-field checks above

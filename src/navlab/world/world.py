@@ -211,4 +211,6 @@ class World:
             "goal_tolerance": self.goal_tolerance,
             "obstacles": [o.to_dict() for o in self.obstacles],
             **({"footprint": self.footprint.to_value()} if self.footprint is not None else {}),
+            **({"turning_radius": self.meta["turning_radius"]}
+               if isinstance(self.meta, dict) and self.meta.get("turning_radius") is not None else {}),
         }

@@ -56,7 +56,8 @@ from shapely.geometry import Point, Polygon
 from ..limits import check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
-from ..sampling.curves import LETTERS, MAX_SEGMENTS, NOP, CurvePath, check_pose, check_turning_radius, trace_word
+from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, CurvePath, check_pose, check_turning_radius,
+                              trace_word)
 from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, free_cells, lattice_for,
                                           robot_outline)
 from .occupancy import OccupancyGrid
@@ -83,30 +84,61 @@ GATE_MARGIN = 1e-9
 @njit(cache=True)
 def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.ndarray:
     """Shortest 8-connected distances [m] from cell (gx, gy) over ``passable``
-    cells (Dijkstra; diagonal steps only between two free orthogonal cells)."""
+    cells (Dijkstra; diagonal steps only between two free orthogonal cells).
+
+    Dial's bucket queue instead of a heap: buckets a little narrower than the
+    shortest step (one cell), so no cell can improve another of its own bucket
+    and each bucket's cells are final in any order. A step is at most √2 cells,
+    so a relaxed cell lands one or two buckets ahead and three buckets, reused
+    in turn, hold the whole frontier. Every cell ends at the minimum over its
+    neighbours of (their distance + step), as with a heap, so the values are
+    the same bit for bit.
+    """
     h, w = passable.shape
     dist = np.full((h, w), np.inf)
+    done = np.zeros((h, w), dtype=np.bool_)
     dist[gy, gx] = 0.0
-    heap = [(0.0, gy * w + gx)]
+    width = res * (1.0 - 1e-6)  # below one step even after rounding
     diag = math.sqrt(2.0) * res
-    while heap:
-        d, v = heapq.heappop(heap)
-        y, x = v // w, v % w
-        if d > dist[y, x]:
-            continue
-        for dy in (-1, 0, 1):
-            for dx in (-1, 0, 1):
-                if dx == 0 and dy == 0:
-                    continue
-                nx, ny = x + dx, y + dy
-                if nx < 0 or ny < 0 or nx >= w or ny >= h or not passable[ny, nx]:
-                    continue
-                if dx != 0 and dy != 0 and not (passable[y, nx] and passable[ny, x]):
-                    continue
-                nd = d + (diag if dx != 0 and dy != 0 else res)
-                if nd < dist[ny, nx]:
-                    dist[ny, nx] = nd
-                    heapq.heappush(heap, (nd, ny * w + nx))
+    cap = 1024
+    cells = np.empty((3, cap), dtype=np.int64)
+    size = np.zeros(3, dtype=np.int64)
+    cells[0, 0] = gy * w + gx
+    size[0] = 1
+    pending = 1
+    bucket = 0
+    while pending > 0:
+        slot = bucket % 3
+        i = 0
+        while i < size[slot]:
+            v = cells[slot, i]
+            i += 1
+            pending -= 1
+            y, x = v // w, v % w
+            if done[y, x]:  # entered again after an improvement: settled already
+                continue
+            done[y, x] = True
+            d = dist[y, x]
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    nx, ny = x + dx, y + dy
+                    if nx < 0 or ny < 0 or nx >= w or ny >= h or done[ny, nx] or not passable[ny, nx]:
+                        continue
+                    if dx != 0 and dy != 0 and not (passable[y, nx] and passable[ny, x]):
+                        continue
+                    nd = d + (diag if dx != 0 and dy != 0 else res)
+                    if nd < dist[ny, nx]:
+                        dist[ny, nx] = nd
+                        to = int(nd / width) % 3
+                        if size[to] == cap:
+                            grown = np.empty((3, 2 * cap), dtype=np.int64)
+                            grown[:, :cap] = cells
+                            cells, cap = grown, 2 * cap
+                        cells[to, size[to]] = ny * w + nx
+                        size[to] += 1
+                        pending += 1
+        size[slot] = 0
+        bucket += 1
     return dist
 
 
@@ -365,8 +397,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     found, nx, ny, nb, parent, prim, last, akinds, alens, expansions = _search(
         blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
         motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-        lattice.swept, lattice.swept_start, _clear_cells(blocked, lattice.swept), lattice.pose_cells, lattice.pose_start, lattice.ds, hfield, penalties,
-        analytic_max, int(max_expansions), bool(analytic_expansion))
+        lattice.swept, lattice.swept_start, _clear_cells(blocked, lattice.swept), lattice.pose_cells,
+        lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions), bool(analytic_expansion))
     stats["expansions"], stats["nodes"] = int(expansions), int(len(nx))
     if not found:
         why = "the search space is exhausted" if expansions < max_expansions else \
@@ -436,27 +468,66 @@ def _cell_mask(shape, x, y) -> np.ndarray:
 def _shortcut(segments, start, r, motion, blocked, lattice, common):
     """Greedy smoothing: from each waypoint, jump to the farthest later waypoint
     whose exact Dubins/Reeds–Shepp path is shorter and collision-free."""
-    solver = reeds_shepp if motion == "reeds_shepp" else dubins
     # waypoints: the pose after each segment
     poses = [start]
     for kind, s in segments:
         poses.append(CurvePath(poses[-1], LETTERS[kind], (s,), r).end)
     # cumulative length along the original path
     acc = np.concatenate([[0.0], np.cumsum([abs(s) for _, s in segments])])
+    waypoints = np.array(poses, dtype=float)
+    kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
+    lengths = np.zeros(MAX_SEGMENTS)
     out = []
     i, n = 0, len(poses) - 1
     while i < n:
-        jumped = False
-        for j in range(n, i + 1, -1):
-            path = solver.shortest(poses[i], poses[j], r)
-            if path.length >= acc[j] - acc[i] - 1e-9:
-                continue
-            kinds, lengths = path._codes()
-            if curve_free(blocked, common[0], *poses[i], kinds, lengths, r, lattice.ds, *common[1:]):
-                out.extend(zip(kinds.tolist(), lengths.tolist()))
-                i, jumped = j, True
-                break
-        if not jumped:
+        j, used = _farthest_shortcut(waypoints, acc, i, r, motion == "reeds_shepp", blocked, common[0], lattice.ds,
+                                     *common[1:], kinds, lengths)
+        if j > 0:
+            out.extend(zip(kinds[:used].tolist(), lengths[:used].tolist()))
+            i = j
+        else:
             out.append(segments[i])
             i += 1
     return out
+
+
+@njit(cache=True)
+def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins, pose_cells,
+                       pose_start, kinds, lengths):
+    """The farthest waypoint j > i + 1 whose shortest path from waypoint i is
+    shorter than the path between them and collision-free, and how many
+    segments that path has (written to ``kinds``, ``lengths`` [m], without
+    padding and without segments of no length, as :meth:`CurvePath.of_word`
+    drops them); (0, 0) when there is none. The same paths and lengths as
+    :func:`dubins.shortest` / :func:`reeds_shepp.shortest`, without a Python
+    call per candidate."""
+    seg = np.zeros(MAX_SEGMENTS)
+    word_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
+    word_lens = np.zeros(MAX_SEGMENTS)
+    x0, y0, t0 = waypoints[i, 0], waypoints[i, 1], waypoints[i, 2]
+    for j in range(waypoints.shape[0] - 1, i + 1, -1):
+        x1, y1, t1 = waypoints[j, 0], waypoints[j, 1], waypoints[j, 2]
+        if reverse:
+            lx, ly, phi = reeds_shepp._local(x0, y0, t0, x1, y1, t1, radius)
+            reeds_shepp._shortest_into(lx, ly, phi, seg, word_kinds, word_lens)
+            for k in range(MAX_SEGMENTS):
+                word_lens[k] *= radius
+        else:
+            d, a, b = dubins._normalised(x0, y0, t0, x1, y1, t1, radius)
+            word, t, p, q = dubins.solve(d, a, b)
+            for k in range(MAX_SEGMENTS):
+                word_kinds[k] = dubins.WORDS[word, k] if k < 3 else NOP
+            word_lens[0], word_lens[1], word_lens[2] = t * radius, p * radius, q * radius
+        used = 0
+        length = 0.0
+        for k in range(MAX_SEGMENTS):
+            if word_kinds[k] != NOP and abs(word_lens[k]) > NEGLIGIBLE * radius:
+                kinds[used], lengths[used] = word_kinds[k], word_lens[k]
+                length += abs(word_lens[k])
+                used += 1
+        if length >= acc[j] - acc[i] - 1e-9:
+            continue
+        if curve_free(blocked, res, x0, y0, t0, kinds[:used], lengths[:used], radius, ds, theta0, step, bins,
+                      pose_cells, pose_start):
+            return j, used
+    return 0, 0

@@ -16,7 +16,9 @@ shape; navlab follows it:
   (the exact Dubins or Reeds–Shepp length, :mod:`navlab.sampling.dubins`,
   :mod:`navlab.sampling.reeds_shepp`) and the holonomic-with-obstacles
   distance (an 8-connected Dijkstra field from the goal over the cells the
-  robot's inscribed circle fits in);
+  robot's inscribed circle fits in); the Reeds–Shepp length is solved only
+  where the Dubins length, an upper bound on it, exceeds the field
+  (:func:`_heuristic`), so the value is exact at a fraction of the cost;
 - travel costs multiply a primitive's length by penalties for turning and
   reversing, and add one for changing direction (Nav2's defaults);
 - an analytic expansion tries the exact Dubins/Reeds–Shepp path to the goal

@@ -29,6 +29,28 @@ Robot Path Tracking", Autonomous Robots 47, 2023. Each cycle:
    is within the inscribed radius of the outline, not that the body touches it,
    so treating it as a collision stops a rectangle at every gap narrower than its
    width plus its inscribed diameter.
+
+navlab's extensions (off by default): ``creep_when_blocked`` (creep along the
+path where Nav2 would stop) and ``plan_poses``: where the robot has
+made no progress for ``pose_plan_after`` s, the costmap feed plans a forward
+path of poses for the footprint itself from where it stands
+(:func:`~navlab.grid.cost_search.plan_poses_on_costmap`, Hybrid A* with a
+``pose_plan_turning_radius`` curve) and RPP tracks it with the path-following
+feedback law of Samson (1995),
+
+    ω = v·κ·cos(eθ) / (1 − κ·e) − k_θ·v·eθ − k_e·v·sinc(eθ)·e,
+
+κ the path's curvature at the reference pose nearest the robot, e the robot's
+signed lateral offset from it, eθ its heading error, k_θ = 2/ℓ and k_e = 1/ℓ²
+with ℓ = ``pose_track_settling`` (linearised in arc length, e'' + k_θ·e' + k_e·e
+= 0: critically damped), the speed limited by the curvature ahead (RPP's
+curvature regulation, braking at ``max_linear_accel``) and by the cost at the
+robot. The curvature is fed forward, so the robot does not cut the corners the
+footprint-aware path turns round; pure pursuit does.
+
+C. Samson, "Control of chained systems: application to path following and
+time-varying point-stabilization of mobile robots", IEEE Trans. Automatic
+Control 40(1), 1995.
 """
 
 from __future__ import annotations
@@ -94,6 +116,13 @@ class RegulatedPurePursuit(CostmapController):
     creep_when_blocked : bool
         navlab's extension, off by default: where Nav2 would stop, creep along the path at the lowest
         speed with the shortest look-ahead, or turn in place towards it when that is free (False).
+    plan_poses : bool
+        navlab's extension, off by default: after ``pose_plan_after`` s without progress, follow a
+        path of poses planned for the footprint from where the robot stands (see the module) (False).
+        The robot starts on such a path when its footprint grown by ``pose_plan_clearance`` meets a LETHAL
+        cell somewhere along the costmap path (at the path's heading, smoothed over ±0.25 m).
+    pose_plan_clearance, pose_plan_after, pose_plan_turning_radius, pose_track_settling : float
+        [m], [s], [m], [m] (0.05, 3.0, 0.2, 0.2).
     inflation_radius, cost_scaling_factor : float
         The costmap's inflation (0.55 m, 3.0 1/m: Nav2's defaults).
     """
@@ -110,12 +139,15 @@ class RegulatedPurePursuit(CostmapController):
                  inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0, layers: str = "static",
                  replan_interval: float = 1.0, controller_frequency: float = 20.0, stall_window: float = 20.0,
                  stall_progress: float = 0.05, creep_when_blocked: bool = False, footprint_padding: float = 0.0,
-                 costmap_resolution: float = 0.05) -> None:
+                 costmap_resolution: float = 0.05, plan_poses: bool = False,
+                 pose_plan_clearance: float = 0.05, pose_plan_after: float = 3.0, pose_plan_turning_radius: float = 0.2,
+                 pose_track_settling: float = 0.2) -> None:
         super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
                          layers, replan_interval, footprint_padding, costmap_resolution)
         for name, flag in (("use_velocity_scaled_lookahead_dist", use_velocity_scaled_lookahead_dist),
                            ("use_cost_regulated_linear_velocity_scaling", use_cost_regulated_linear_velocity_scaling),
-                           ("creep_when_blocked", creep_when_blocked)):
+                           ("creep_when_blocked", creep_when_blocked),
+                           ("plan_poses", plan_poses)):
             if not isinstance(flag, bool):
                 raise ValueError(f"{name} must be true or false, got {flag!r}")
         self.desired_linear_vel = check_number("desired_linear_vel", desired_linear_vel)
@@ -144,7 +176,49 @@ class RegulatedPurePursuit(CostmapController):
                                            max_allowed_time_to_collision_up_to_carrot)
         self.period = 1.0 / check_number("controller_frequency", controller_frequency, high=1e4)
         self.creep_when_blocked = creep_when_blocked
+        self.plan_poses = plan_poses
+        self.pose_plan_clearance = check_number("pose_plan_clearance", pose_plan_clearance, allow_low=True,
+                                                high=10.0)
+        self.pose_plan_after = check_number("pose_plan_after", pose_plan_after, high=1e4)
+        self.pose_plan_turning_radius = check_number("pose_plan_turning_radius", pose_plan_turning_radius,
+                                                     high=100.0)
+        self.pose_track_settling = check_number("pose_track_settling", pose_track_settling, high=100.0)
         self.last_carrot = None
+        self._reset_poses()
+
+    def _reset_poses(self) -> None:
+        self.poses = None  #: (N, 3) the footprint-aware path being tracked (None: following ``path``)
+        self.wants_pose_plan = False  #: read by the costmap feed, which then calls set_pose_path
+        self._progress = (0.0, math.inf)  # (since when, the distance left then)
+        self._track_index = 0
+
+    def reset(self, goal, path=None) -> None:
+        super().reset(goal, path)
+        self._reset_poses()
+        if path is not None and np.ndim(path) == 2 and np.shape(path)[1] == 3:  # a path of poses
+            self.set_pose_path(path)
+
+    def set_path(self, path) -> None:
+        super().set_path(path)
+        self.poses = None
+
+    def set_pose_path(self, poses) -> None:
+        """Track these poses (N, 3) from now on (the costmap feed's answer to ``wants_pose_plan``)."""
+        poses = np.ascontiguousarray(np.asarray(poses, float)[:, :3])
+        super().set_path(poses[:, :2])
+        self.poses = poses
+        self.wants_pose_plan = False
+        self._track_index = 0
+        seg = np.hypot(*np.diff(poses[:, :2], axis=0).T)
+        turn = np.diff(np.unwrap(poses[:, 2]))
+        kappa = np.where(seg > 1e-9, turn / np.maximum(seg, 1e-9), 0.0)
+        self._kappa = np.concatenate((kappa, [kappa[-1] if len(kappa) else 0.0]))  #: curvature into each pose
+        self._along = np.concatenate(([0.0], np.cumsum(seg)))
+
+    def pose_plan_failed(self, t: float) -> None:
+        """No pose path from here: keep following ``path`` and ask again after ``pose_plan_after`` s."""
+        self.wants_pose_plan = False
+        self._progress = (t, self._progress[1])
 
     def lookahead(self) -> float:
         if not self.scaled_lookahead:
@@ -165,6 +239,16 @@ class RegulatedPurePursuit(CostmapController):
         return inscribed - math.log(cost / MAX_NON_OBSTACLE) / factor if factor > 0 else inscribed
 
     def plan(self, t: float, pose: np.ndarray):
+        if self.plan_poses:
+            left = self.remaining(pose)
+            since, then = self._progress
+            if left < then - self.stall.progress:
+                self._progress = (t, left)
+            elif t - since >= self.pose_plan_after and not self.wants_pose_plan:
+                self.wants_pose_plan = True
+                self._progress = (t, left)
+        if self.poses is not None:
+            return self._track_poses(pose)
         lookahead = self.lookahead()
         carrot = carrot_on_path(self.path, pose, lookahead)
         self.last_carrot = carrot
@@ -212,12 +296,58 @@ class RegulatedPurePursuit(CostmapController):
         w = min(max(v * 2.0 * y / dist2, -self.max_angular_vel), self.max_angular_vel)
         if abs(math.atan2(y, x)) < self.rotate_min_angle and not self.collision_ahead(pose, v, w, math.sqrt(dist2)):
             return v, 0.0, w
-        turn = math.copysign(min(self.rotate_vel, 1.0), math.atan2(y, x))
+        return self._turn_in_place(pose, math.atan2(y, x))
+
+    def _turn_in_place(self, pose, towards: float):
+        """Turn in place (at most 1 rad/s) the way of the angle ``towards`` when the next five
+        cycles of that turn keep the footprint off LETHAL cells; else stop."""
+        turn = math.copysign(min(self.rotate_vel, 1.0), towards)
         headings = pose[2] + turn * self.period * np.arange(1, 6)
         turned = np.column_stack((np.full(5, pose[0]), np.full(5, pose[1]), headings))
         if (self.costmap.footprint_cost(turned, self.footprint) < LETHAL_OBSTACLE).all():
             return 0.0, 0.0, turn
         return 0.0, 0.0, 0.0
+
+    def _track_poses(self, pose):
+        """Samson's path-following law on ``poses`` (see the module); stop where the arc ahead is blocked."""
+        poses, along = self.poses, self._along
+        i0 = self._track_index
+        i1 = int(np.searchsorted(along, along[i0] + 1.0, side="right"))  # a window: U-turns must not pull ahead
+        d = np.hypot(*(poses[i0:i1 + 1, :2] - pose[:2]).T)
+        i = i0 + int(np.argmin(d))
+        self._track_index = i
+        ref = poses[i]
+        c, s = math.cos(ref[2]), math.sin(ref[2])
+        e = -s * (pose[0] - ref[0]) + c * (pose[1] - ref[1])  # left of the path positive
+        e_th = (pose[2] - ref[2] + math.pi) % (2 * math.pi) - math.pi
+        # the speed: RPP's curvature regulation on every pose within braking reach, so the robot
+        # arrives at a tight curve already slow enough for it
+        ahead = slice(i, int(np.searchsorted(along, along[i] + 1.5, side="right")))
+        radius = 1.0 / np.maximum(np.abs(self._kappa[ahead]), 1e-9)
+        allowed = self.desired_linear_vel * np.minimum(radius / self.min_radius, 1.0)
+        allowed = np.maximum(allowed, min(self.min_speed, self.desired_linear_vel))
+        v = float(np.min(np.sqrt(allowed ** 2 + 2.0 * self.max_linear_accel * (along[ahead] - along[i]))))
+        if self.cost_regulation:
+            dist = self.obstacle_distance(pose)
+            if dist < self.cost_scaling_dist:
+                v = max(v * self.cost_scaling_gain * dist / self.cost_scaling_dist, self.min_speed)
+        to_goal = float(np.hypot(*(self.goal - pose[:2])))
+        if to_goal < self.approach_dist:
+            v = min(v, max(self.desired_linear_vel * to_goal / self.approach_dist, 0.05))
+        if abs(e_th) > self.rotate_min_angle:  # far off the path's heading (a new path): turn to it first
+            return self._turn_in_place(pose, -e_th)
+        room = self.max_linear_accel * self.period
+        v = min(max(v, self.velocity[0] - room), self.velocity[0] + room)
+        k_th, k_e = 2.0 / self.pose_track_settling, 1.0 / self.pose_track_settling ** 2
+        kappa = float(self._kappa[min(i + 1, len(poses) - 1)])
+        sinc = math.sin(e_th) / e_th if abs(e_th) > 1e-9 else 1.0
+        w = v * kappa * math.cos(e_th) / max(1.0 - kappa * e, 0.1) - k_th * v * e_th - k_e * v * sinc * e
+        if abs(w) > self.max_angular_vel:  # keep the curve, not the speed: slow down until the turn rate fits
+            v *= self.max_angular_vel / abs(w)
+            w = math.copysign(self.max_angular_vel, w)
+        if self.collision_ahead(pose, v, w, max(v * self.period * 2, self.costmap.resolution)):
+            return 0.0, 0.0, 0.0
+        return v, 0.0, w
 
     def collision_ahead(self, pose, v: float, w: float, carrot_dist: float) -> bool:
         """Whether the footprint's outline meets a LETHAL (or unknown, off-map) cell on the projected arc

@@ -163,3 +163,45 @@ def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = 
     path = np.vstack([np.asarray(start_xy[:2], float), centres[1:-1], np.asarray(goal_xy[:2], float)]) \
         if len(centres) > 2 else np.array([start_xy[:2], goal_xy[:2]], float)
     return path, total * costmap.resolution, ""
+
+
+def plan_poses_on_costmap(costmap, footprint, start_pose, goal_pose, turning_radius: float,
+                          allow_unknown: bool = False, max_expansions: int = 200_000):
+    """A forward path of poses for the footprint itself on a costmap (Hybrid A*, Dubins motion).
+
+    Where the costmap A* path (planned for the centre, its cells below
+    ``INSCRIBED``) leads a rectangle into a gap its inscribed disc fits and its
+    corners do not at the path's heading, the footprint needs a path planned
+    between poses: :func:`~navlab.grid.hybrid_astar.plan_hybrid` on the
+    costmap's ``LETHAL`` cells (and ``NO_INFORMATION`` ones unless
+    ``allow_unknown``), forward only (a Dubins car with a small
+    ``turning_radius``: a differential drive can follow any such curve), its
+    footprint certified clear of every blocked cell along the way.
+
+    Parameters
+    ----------
+    costmap : Costmap
+    footprint : Footprint
+    start_pose, goal_pose : (x, y, θ)
+        [m, m, rad].
+    turning_radius : float
+        [m] the tightest curve of the path.
+    allow_unknown : bool
+        Treat unknown cells as free.
+    max_expansions : int
+        Hybrid A*'s search budget.
+
+    Returns
+    -------
+    Result
+        Hybrid A*'s: ``path`` (N, 3) poses, ``status`` and ``reason``.
+    """
+    from ..world.costmap import LETHAL_OBSTACLE
+    from .hybrid_astar import plan_hybrid
+    from .occupancy import OccupancyGrid
+
+    costs = costmap.costs
+    blocked = (costs == LETHAL_OBSTACLE) if allow_unknown else (costs >= LETHAL_OBSTACLE)
+    grid = OccupancyGrid(blocked, costmap.resolution, (costmap.origin[0], costmap.origin[1], 0.0))
+    return plan_hybrid(grid, tuple(float(v) for v in start_pose[:3]), tuple(float(v) for v in goal_pose[:3]),
+                       turning_radius, "dubins", footprint=footprint, max_expansions=max_expansions)

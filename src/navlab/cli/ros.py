@@ -26,7 +26,8 @@ def _require_rclpy() -> None:
 @click.group("ros")
 def ros_group() -> None:
     """ROS 2 nodes: map_server, sim, pathplanner (alias astar_pathplanner), goto_waypoint,
-    potential_field_navigator; `navlab ros demo` runs a whole pipeline.
+    potential_field_navigator, local_planner (dwa, mppi, rpp on a costmap); `navlab ros demo` runs a
+    whole pipeline.
 
     Run a node with ROS arguments, e.g.
 

@@ -20,6 +20,7 @@ NODES: Dict[str, Tuple[str, str]] = {
     "astar_pathplanner": ("navlab.ros.astar_pathplanner", "AStarPathPlanner"),  # its first name
     "goto_waypoint": ("navlab.ros.goto_waypoint", "GotoWaypointNode"),
     "potential_field_navigator": ("navlab.ros.potential_field_navigator", "PotentialFieldNavigator"),
+    "local_planner": ("navlab.ros.local_planner", "LocalPlannerNode"),
 }
 
 NodeSpec = Tuple[str, Dict[str, Any]]

@@ -95,7 +95,7 @@ def test_the_bucket_queue_field_equals_heap_dijkstra_bit_for_bit():
 def reference_shortcut(segments, start, r, motion, blocked, lattice, common):
     """The smoother with the public solvers, one Python call per candidate (as before it was compiled)."""
     from navlab.sampling.curves import LETTERS, CurvePath
-    from navlab.sampling.footprint_lattice import curve_free
+    from navlab.sampling.footprint_lattice import NO_CLEARANCE, curve_free
 
     solver = reeds_shepp if motion == "reeds_shepp" else dubins
     poses = [start]
@@ -109,7 +109,7 @@ def reference_shortcut(segments, start, r, motion, blocked, lattice, common):
             if path.length >= acc[j] - acc[i] - 1e-9:
                 continue
             kinds, lengths = path._codes()
-            if curve_free(blocked, common[0], *poses[i], kinds, lengths, r, lattice.ds, *common[1:]):
+            if curve_free(blocked, common[0], *poses[i], kinds, lengths, r, lattice.ds, *common[1:], *NO_CLEARANCE):
                 out.extend(zip(kinds.tolist(), lengths.tolist()))
                 i = j
                 break

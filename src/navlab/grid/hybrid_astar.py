@@ -226,7 +226,7 @@ def _search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radi
                     akinds[i] = dubins.WORDS[word, i]
                 alens[0], alens[1], alens[2] = t * radius, p * radius, q * radius
             if curve_free(blocked, res, x, y, theta, akinds, alens, radius, ds, theta0, step, bins, pose_cells,
-                           pose_start):
+                           pose_start, np.zeros((0, 0)), np.zeros(3)):
                 return 1, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, alens, \
                     expansions
         elif not use_analytic:
@@ -530,6 +530,6 @@ def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, the
         if length >= acc[j] - acc[i] - 1e-9:
             continue
         if curve_free(blocked, res, x0, y0, t0, kinds[:used], lengths[:used], radius, ds, theta0, step, bins,
-                      pose_cells, pose_start):
+                      pose_cells, pose_start, np.zeros((0, 0)), np.zeros(3)):
             return j, used
     return 0, 0

@@ -73,9 +73,9 @@ def _tau_omega(u: float, v: float, xi: float, eta: float, phi: float) -> Tuple[f
 
 
 @njit(cache=True)
-def _family(k: int, x: float, y: float, phi: float, out: np.ndarray) -> bool:
-    """Segment lengths of base family ``k`` at (x, y, φ) into ``out``; False if it has no solution there."""
-    sp, cp = math.sin(phi), math.cos(phi)
+def _family(k: int, x: float, y: float, phi: float, sp: float, cp: float, out: np.ndarray) -> bool:
+    """Segment lengths of base family ``k`` at (x, y, φ) into ``out``; False if it has no solution there.
+    ``sp``, ``cp`` are sin φ and cos φ (the caller's, computed once for all 44 evaluations)."""
     if k == 0:  # 8.1
         u = math.hypot(x - sp, y - 1.0 + cp)
         t = math.atan2(y - 1.0 + cp, x - sp)
@@ -186,8 +186,10 @@ def _shortest_into(x: float, y: float, phi: float, seg: np.ndarray, best_kinds: 
             for sym in range(4):  # identity, timeflip, reflect, both
                 flip, reflect = sym == 1 or sym == 3, sym >= 2
                 seg[:] = 0.0
-                if not _family(k, -bx if flip else bx, -by if reflect else by,
-                               -phi if flip != reflect else phi, seg):
+                # sin is odd and cos even, exactly in floating point: the symmetries need no new trigonometry
+                negate = flip != reflect
+                if not _family(k, -bx if flip else bx, -by if reflect else by, -phi if negate else phi,
+                               -sp if negate else sp, cp, seg):
                     continue
                 length = 0.0
                 for i in range(n):

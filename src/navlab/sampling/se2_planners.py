@@ -21,6 +21,7 @@ import numpy as np
 from ..result import Result, Status, Tree
 from . import se2_tree as K
 from .curves import MAX_SEGMENTS, NOP
+from .footprint_lattice import clearance_map
 from .regions import BoxRegion, InformedRegion
 from .samplers import Sampler
 
@@ -120,7 +121,7 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     fparams[K.F_MODE] = SE2_MODES[planner]
     fparams[K.F_EPS] = 1e-9 * max(1.0, diagonal)
     lat = (blocked, lattice.resolution, lattice.ds, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells,
-           lattice.pose_start)
+           lattice.pose_start, clearance_map(blocked, lattice.resolution), lattice.clear_disc)
     K.try_goal(0, 0, a.pose, a.goal_node, a.goal_extra, a.goal_kinds, a.goal_len, istate, fparams, *lat)
     if planner == "rrt" and istate[K.S_GOALS] > 0:
         max_iter = 0  # the start reaches the goal in one step: nothing to grow

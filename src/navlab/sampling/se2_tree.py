@@ -12,16 +12,17 @@ Nearest neighbours are exact under the steering distance: the steering
 length is never below the Euclidean distance of the positions, so a uniform
 grid of cells over the positions is visited ring by ring from the sample and
 the search stops once the next ring is farther (in Euclidean distance) than
-the best steering length found. Near sets gather the nodes whose positions
+the best steering length found; within it a node steers only when a lower
+bound (the larger of the Euclidean distance and r·|Δθ|, :func:`lower_bound`)
+is below the best found. Near sets gather the nodes whose positions
 lie within the near radius and keep those whose steering length does.
 
 Every edge is checked with the robot's footprint on the map's cells
 (:mod:`navlab.sampling.footprint_lattice`: certified, conservative by at
 most ``√2·res + δ/2 + R·sin(Δθ/2)``). Choosing a parent and rewiring use
-the Euclidean distance as a lower bound first: a near node steers (a
-Reeds–Shepp solve costs about as much as a hundred distances) only when
-that bound could improve a cost, and an edge is collision-checked only when
-its exact cost does.
+that lower bound first: a near node steers (a Reeds–Shepp solve costs
+about as much as a hundred distances) only when the bound could improve a
+cost, and an edge is collision-checked only when its exact cost does.
 """
 
 from __future__ import annotations
@@ -104,6 +105,18 @@ def end_pose(x, y, theta, kinds, lengths, radius):
 
 
 @njit(cache=True, inline="always")
+def lower_bound(x0, y0, t0, x1, y1, t1, radius):
+    """A lower bound on the Dubins or Reeds–Shepp length between two poses: the
+    positions' distance, and the heading change times the turning radius (only
+    arcs turn the car, by their length over r, so the shortest turn between the
+    headings needs r·|Δθ| of arc)."""
+    turn = np.fmod(abs(t1 - t0), 2.0 * math.pi)
+    turn = min(turn, 2.0 * math.pi - turn)
+    # (a relative 1e-9 below: rounding must never lift the bound above an exact length)
+    return max(math.hypot(x1 - x0, y1 - y0), radius * turn) * (1.0 - 1e-9)
+
+
+@njit(cache=True, inline="always")
 def _cell(v, v0, cell, n):
     k = int(math.floor((v - v0) / cell))
     return 0 if k < 0 else (n - 1 if k >= n else k)
@@ -137,7 +150,7 @@ def _nearest(qx, qy, qt, pose, head, nxt, gridp, dims, radius, reverse, seg, kin
                 if 0 <= i < dims[0]:
                     k = head[j * dims[0] + i]
                     while k >= 0:
-                        e = math.hypot(pose[k, 0] - qx, pose[k, 1] - qy)
+                        e = lower_bound(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius)
                         if e < best_d or (e == best_d and k < best):
                             d = steer_length(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius, reverse, seg,
                                              kinds, lengths)
@@ -176,10 +189,10 @@ def _near(qx, qy, reach, pose, head, nxt, gridp, dims, out):
 
 @njit(cache=True)
 def _edge_free(pose, a, x1, y1, t1, kinds, lengths, radius, lat_blocked, lat_res, lat_ds, lat_theta0, lat_step,
-               lat_bins, lat_cells, lat_start, istate):
+               lat_bins, lat_cells, lat_start, lat_clear, lat_disc, istate):
     istate[S_EDGE_CHECKS] += 1
     return curve_free(lat_blocked, lat_res, pose[a, 0], pose[a, 1], pose[a, 2], kinds, lengths, radius, lat_ds,
-                      lat_theta0, lat_step, lat_bins, lat_cells, lat_start)
+                      lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc)
 
 
 @njit(cache=True)
@@ -222,7 +235,7 @@ def _best_goal(goal_node, goal_extra, cost, istate):
 
 @njit(cache=True)
 def try_goal(k, it, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, fparams, lat_blocked, lat_res,
-             lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start):
+             lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc):
     """Connect node ``k`` to the goal pose, exactly, by steering: kept when
     within the step η and collision-free. Returns whether it was kept."""
     seg = np.zeros(MAX_SEGMENTS)
@@ -235,7 +248,7 @@ def try_goal(k, it, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, f
         return False
     if dg > 1e-12 and not _edge_free(pose, k, fparams[F_GX], fparams[F_GY], fparams[F_GT], kinds, lengths, radius,
                                      lat_blocked, lat_res, lat_ds, lat_theta0, lat_step, lat_bins, lat_cells,
-                                     lat_start, istate):
+                                     lat_start, lat_clear, lat_disc, istate):
         return False
     g = istate[S_GOALS]
     goal_node[g], goal_extra[g] = k, dg
@@ -250,7 +263,7 @@ def try_goal(k, it, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, f
 @njit(cache=True)
 def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len, head, nxt, gridp, dims, goal_node,
          goal_extra, goal_kinds, goal_len, trace, istate, fparams, lat_blocked, lat_res, lat_ds, lat_theta0, lat_step,
-         lat_bins, lat_cells, lat_start):
+         lat_bins, lat_cells, lat_start, lat_clear, lat_disc):
     """Run one iteration per sample (M, 3); returns the iterations run (fewer
     when RRT reached the goal). ``trace[it]`` is the best goal cost after iteration ``it``.
 
@@ -282,7 +295,8 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
         else:
             x, y, t = qx, qy, qt
         if d <= 1e-9 or not _edge_free(pose, a, x, y, t, kinds, lengths, radius, lat_blocked, lat_res, lat_ds,
-                                       lat_theta0, lat_step, lat_bins, lat_cells, lat_start, istate):
+                                       lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc,
+                                       istate):
             trace[it] = best_cost
             continue
         k = n
@@ -295,12 +309,12 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
         if star:
             rn = min(eta, gamma * (math.log(n + 1.0) / (n + 1.0)) ** (1.0 / 3.0))
             m = _near(x, y, rn, pose, head, nxt, gridp, dims, near)
-            # candidate parents in the order of a lower bound on the cost they would give (the
-            # Euclidean distance never exceeds the steering length): steer and check only while
+            # candidate parents in the order of a lower bound on the cost they would give
+            # (lower_bound never exceeds the steering length): steer and check only while
             # that bound is below the best cost found, and check collisions only for improvements
             for i in range(m):
                 q = near[i]
-                near_d[i] = cost[q] + math.hypot(pose[q, 0] - x, pose[q, 1] - y)
+                near_d[i] = cost[q] + lower_bound(pose[q, 0], pose[q, 1], pose[q, 2], x, y, t, radius)
             order[:m] = np.argsort(near_d[:m], kind="mergesort")
             for i in range(m):
                 j = order[i]
@@ -311,7 +325,7 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
                 if dq > rn or cost[q] + dq >= c_new:
                     continue
                 if _edge_free(pose, q, x, y, t, kinds, lengths, radius, lat_blocked, lat_res, lat_ds, lat_theta0,
-                              lat_step, lat_bins, lat_cells, lat_start, istate):
+                              lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc, istate):
                     p, c_new = q, cost[q] + dq
                     edge_kinds[k, :] = kinds
                     edge_len[k, :] = lengths
@@ -323,13 +337,14 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
         if star:
             for i in range(m):
                 q = near[i]
-                if q == p or c_new + math.hypot(pose[q, 0] - x, pose[q, 1] - y) >= cost[q] - eps:
-                    continue  # not even the straight line would improve it
+                if q == p or c_new + lower_bound(x, y, t, pose[q, 0], pose[q, 1], pose[q, 2], radius) >= cost[q] - eps:
+                    continue  # not even the lower bound would improve it
                 dq = steer(x, y, t, pose[q, 0], pose[q, 1], pose[q, 2], radius, reverse, seg, kinds, lengths)
                 if dq > rn or c_new + dq >= cost[q] - eps:
                     continue
                 if not _edge_free(pose, k, pose[q, 0], pose[q, 1], pose[q, 2], kinds, lengths, radius, lat_blocked,
-                                  lat_res, lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start, istate):
+                                  lat_res, lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear,
+                                  lat_disc, istate):
                     continue
                 delta = c_new + dq - cost[q]
                 edge_kinds[q, :] = kinds
@@ -341,7 +356,7 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
                 istate[S_REWIRES] += 1
         rewired = istate[S_REWIRES] > rewires_before
         if try_goal(k, it, pose, goal_node, goal_extra, goal_kinds, goal_len, istate, fparams, lat_blocked, lat_res,
-                    lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start) or rewired:
+                    lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc) or rewired:
             best_cost = _best_goal(goal_node, goal_extra, cost, istate)  # costs change only by these two
         trace[it] = best_cost
         if not star and istate[S_GOALS] > 0:

@@ -131,9 +131,23 @@ def _insert(k, pose, head, nxt, gridp, dims):
     head[c] = k
 
 
+#: up to this many nodes the nearest one is found by a scan: the grid, sized for the whole run, would be
+#: mostly empty cells to walk (a narrow aisle keeps its tree at a few dozen nodes for thousands of samples)
+SCAN_NODES = 256
+
+
 @njit(cache=True)
-def _nearest(qx, qy, qt, pose, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths):
-    """The node of least steering length to (qx, qy, qt); ties: the lowest index."""
+def _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths):
+    """The node of least steering length to (qx, qy, qt) among the ``n`` in the tree; ties: the lowest index."""
+    if n <= SCAN_NODES:
+        best, best_d = -1, math.inf
+        for k in range(n):
+            if lower_bound(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius) < best_d:
+                d = steer_length(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius, reverse, seg, kinds,
+                                 lengths)
+                if d < best_d:
+                    best, best_d = k, d
+        return best, best_d
     ci = _cell(qx, gridp[0], gridp[2], dims[0])
     cj = _cell(qy, gridp[1], gridp[2], dims[1])
     best, best_d = -1, math.inf
@@ -287,7 +301,7 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
         it = it0 + s
         n = istate[S_SIZE]
         qx, qy, qt = samples[s, 0], samples[s, 1], samples[s, 2]
-        a, d = _nearest(qx, qy, qt, pose, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths)
+        a, d = _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths)
         steer(pose[a, 0], pose[a, 1], pose[a, 2], qx, qy, qt, radius, reverse, seg, kinds, lengths)
         if d > eta:
             x, y, t = truncate(pose[a, 0], pose[a, 1], pose[a, 2], kinds, lengths, radius, eta)

@@ -254,9 +254,9 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
                pose_start, clear, disc) -> bool:
     """Whether the footprint is free at every pose :func:`trace_word` gives
     along the word at spacing ``ds`` (exactly those poses, computed the same
-    way), visited coarse to fine: every :data:`COARSE_STRIDE`-th pose of each
-    segment first, then the rest, so a blocked curve is usually rejected after
-    a few poses. Nothing is allocated but the segments' start poses.
+    way), the last one first, then coarse to fine: every :data:`COARSE_STRIDE`-th
+    pose of each segment, then the rest, so a blocked curve is usually rejected
+    after a few poses. Nothing is allocated but the segments' start poses.
 
     With a clearance map (:func:`clearance_map`, ``disc`` the lattice's
     :attr:`~Lattice.clear_disc`; or :data:`NO_CLEARANCE`), a pose whose disc
@@ -277,6 +277,15 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     if clear_slack(clear, res, x, y, theta, disc) < 0.0 and \
             not pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start):
         return False
+    # the end first: a tree's curves mostly end in what they hit (a sample inside an obstacle)
+    last = n - 1
+    while last >= 0 and pieces[last] == 0:
+        last -= 1
+    if last >= 0:
+        ex, ey, et = advance(start[last, 0], start[last, 1], start[last, 2], kinds[last], lengths[last], radius)
+        if clear_slack(clear, res, ex, ey, et, disc) < 0.0 and \
+                not pose_free(blocked, res, ex, ey, et, theta0, step, bins, pose_cells, pose_start):
+            return False
     offset = math.hypot(disc[0], disc[1])
     for fine in range(2):
         for j in range(n):

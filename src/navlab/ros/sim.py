@@ -44,8 +44,9 @@ from .convert import odometry_msg, scan_to_msg, tf_message_type, time_msg, trans
 class SimNode(NavlabNode):
     PARAMETERS = (
         Param("world", "", "map_server YAML, Moving AI .map, world YAML or built-in scene name"),
-        Param("robot", "diff", "diff (TurtleBot3 Burger), omni3 (seed 004's three-wheel omni) or jackal (BARN's "
-                               "0.42 × 0.33 m rectangle; its footprint is what collides)"),
+        Param("robot", "diff", "diff (TurtleBot3 Burger), omni3 (seed 004's three-wheel omni), jackal (BARN's "
+                               "0.42 × 0.33 m rectangle; its footprint is what collides) or car (a kinematic "
+                               "bicycle: /cmd_vel's turn rate is bounded by its speed over its turning radius)"),
         Param("costmap_inflation_radius", 0.0, "publish the world's Nav2-style costmap for the robot's footprint "
                                                "on /costmap with this inflation radius (m; 0: none)", low=0.0),
         Param("costmap_cost_scaling_factor", 3.0, "the costmap's cost_scaling_factor (1/m)", low=0.0),

@@ -104,16 +104,27 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     a = _TreeArrays(expected, trace_length=expected - 1)
     gs, gg = to_grid(*start), to_grid(*goal)
     a.pose[0] = gs
-    # the position index: about two nodes per cell at the expected size, cells no smaller than the map's
+    # the position index: about two nodes per cell, cells no smaller than the map's; rebuilt each time the
+    # tree has grown fourfold (sized for max_iter, a narrow aisle's few thousand nodes sat in 50 000 mostly
+    # empty cells, and every nearest-neighbour query walked them ring by ring)
     h, w = blocked.shape
-    extent_x, extent_y = w * lattice.resolution, h * lattice.resolution
-    cell = max(lattice.resolution, math.sqrt(extent_x * extent_y / max(1.0, expected / 2.0)))
-    dims = np.array([max(1, math.ceil(extent_x / cell)), max(1, math.ceil(extent_y / cell))], dtype=np.int64)
-    gridp = np.array([0.0, 0.0, cell])
-    head = np.full(int(dims[0] * dims[1]), -1, dtype=np.int64)
-    K._insert(0, a.pose, head, a.nxt, gridp, dims)
+    extent = (w * lattice.resolution, h * lattice.resolution)
+    indexed = [0]
+
+    def index(nodes: int):
+        cell = max(lattice.resolution, math.sqrt(extent[0] * extent[1] / max(1.0, nodes / 2.0)))
+        dims = np.array([max(1, math.ceil(extent[0] / cell)), max(1, math.ceil(extent[1] / cell))], dtype=np.int64)
+        gridp = np.array([0.0, 0.0, cell])
+        head = np.full(int(dims[0] * dims[1]), -1, dtype=np.int64)
+        n = int(istate[K.S_SIZE])
+        K.index_positions(a.pose, n, head, a.nxt, gridp, dims)
+        indexed[0] = n
+        return head, gridp, dims
+
     istate = np.zeros(6, dtype=np.int64)
-    istate[K.S_SIZE], istate[K.S_FIRST_ITER], istate[K.S_BEST] = 1, -1, -1
+    istate[K.S_SIZE] = 1
+    head, gridp, dims = index(min(expected, 4 * K.SCAN_NODES))
+    istate[K.S_FIRST_ITER], istate[K.S_BEST] = -1, -1
     fparams = np.zeros(9)
     fparams[[K.F_ETA, K.F_GAMMA, K.F_RADIUS, K.F_REVERSE]] = (
         eta, gamma, turning_radius, 1.0 if motion == "reeds_shepp" else 0.0)
@@ -139,6 +150,8 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
             region = InformedRegion(start[:2], goal[:2], c_best, b)
         m = min(batch, max_iter - it)
         a.ensure(int(istate[K.S_SIZE]) + m, it + m)
+        if istate[K.S_SIZE] >= 4 * max(indexed[0], K.SCAN_NODES):
+            head, gridp, dims = index(4 * int(istate[K.S_SIZE]))
         points = np.asarray(sampler.sample(world, rng, m, checker=checker, region=region), dtype=float)
         headings = rng.uniform(-math.pi, math.pi, len(points))
         at_goal = np.all(points == gpoint, axis=1)

@@ -131,6 +131,14 @@ def _insert(k, pose, head, nxt, gridp, dims):
     head[c] = k
 
 
+@njit(cache=True)
+def index_positions(pose, n, head, nxt, gridp, dims):
+    """(Re)build the position grid over the first ``n`` nodes (``head`` cleared first)."""
+    head[:] = -1
+    for k in range(n):
+        _insert(k, pose, head, nxt, gridp, dims)
+
+
 #: up to this many nodes the nearest one is found by a scan: the grid, sized for the whole run, would be
 #: mostly empty cells to walk (a narrow aisle keeps its tree at a few dozen nodes for thousands of samples)
 SCAN_NODES = 256

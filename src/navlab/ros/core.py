@@ -247,7 +247,9 @@ class Drive:
         self.log("info", f"following {what} to {_xy(goal)}")
         return None
 
-    def _heard(self, now: float) -> None:
+    def heard(self, now: float) -> None:
+        """Note that odometry arrived at monotonic time ``now`` (for the watchdog) without
+        commanding anything: for a node that runs its controller at a lower rate than /odom."""
         self.last_odom = now
         if self.odom_lost:
             self.odom_lost = False
@@ -256,7 +258,7 @@ class Drive:
     def on_odom(self, t: float, pose, now: float, points=None) -> Optional[Twist]:
         """The command for a new pose (None when idle). ``t`` is the pose's
         time stamp (for stall detection), ``now`` a monotonic clock."""
-        self._heard(now)
+        self.heard(now)
         if not self.active:
             return None
         command = self.controller.command(t, pose, points)
@@ -273,7 +275,7 @@ class Drive:
     def hold(self, now: float) -> Optional[Twist]:
         """A new pose arrived but the controller cannot run (a sensor it
         needs is missing): stand still while driving."""
-        self._heard(now)
+        self.heard(now)
         return STOP if self.active else None
 
     def watchdog(self, now: float) -> Optional[Twist]:

@@ -225,7 +225,7 @@ class CostmapDrive:
             self._waiting = None
         last = self.next_cycle - self.period
         if last <= t < self.next_cycle - 1e-9:
-            self.drive._heard(now)  # between cycles: only the watchdog hears it
+            self.drive.heard(now)  # between cycles: only the watchdog hears it
             return None
         # on the period's grid; after a gap, or stamps that went back (a restarted sim), from this stamp
         self.next_cycle = self.next_cycle + self.period if last <= t < self.next_cycle + self.period \

@@ -69,6 +69,10 @@ def coerce(param: Param, value: Any) -> Any:
     return value
 
 
+#: parameters every rclpy node has, or that configure ROS itself: never a planner's or controller's setting
+ROS_OWN = frozenset({"use_sim_time", "start_type_description_service"})
+
+
 class NavlabNode(Node):
     """A node with declared parameters (``self.params``) and a ``log(level,
     text)`` for the decision cores."""
@@ -84,6 +88,28 @@ class NavlabNode(Node):
                 self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
                                                                              dynamic_typing=True))
             self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
+
+    def passed_settings(self, convert: Optional[Callable[[str, Any], Any]] = None) -> Dict[str, Any]:
+        """The ``-p NAME:=VALUE`` parameters that are neither the node's own nor ROS's
+        (``use_sim_time``, QoS overrides, ...): the settings a node hands on to the
+        planner or controller it runs, each passed through ``convert(name, value)``
+        when given; arrays as lists."""
+        own = {q.name for q in self.PARAMETERS} | ROS_OWN
+        out = {}
+        for name, param in self.get_parameters_by_prefix("").items():
+            if name in own or name.startswith("qos_overrides."):
+                continue
+            value = param.value if convert is None else convert(name, param.value)
+            out[name] = list(value) if isinstance(value, (list, tuple)) or hasattr(value, "tolist") else value
+        return out
+
+    def read(self, convert: Callable[[Any], Any], msg: Any, topic: str) -> Any:
+        """``convert(msg)``, or None with one error line naming the topic when the message is malformed."""
+        try:
+            return convert(msg)
+        except (ValueError, TypeError) as exc:
+            self.log("error", f"ignoring a malformed {topic}: {exc}")
+            return None
 
     def log(self, level: str, text: str) -> None:
         # one call site per severity: rclpy refuses a call site whose severity changes

@@ -35,12 +35,9 @@ class GotoWaypointNode(DriveNode):
                                  qos_overriding_options=QoSOverridingOptions(PLAN_QOS_OVERRIDES))
 
     def on_plan(self, msg) -> None:
-        try:
-            path = path_from_msg(msg)
-        except (ValueError, TypeError) as exc:
-            self.log("error", f"ignoring a malformed /plan: {exc}")
-            return
-        self.send(self.drive.set_target(path[-1] if len(path) else None, path))
+        path = self.read(path_from_msg, msg, "/plan")
+        if path is not None:
+            self.send(self.drive.set_target(path[-1] if len(path) else None, path))
 
 
 main = node_main(GotoWaypointNode)

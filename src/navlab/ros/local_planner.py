@@ -31,9 +31,6 @@ from .costmap_drive import CostmapDrive
 from .drive_node import ODOM_TIMEOUT
 from .goto_waypoint import PLAN_QOS_OVERRIDES
 
-#: parameters every rclpy node has, or that configure ROS itself: not the controller's
-ROS_OWN = {"use_sim_time", "start_type_description_service"}
-
 
 class LocalPlannerNode(NavlabNode):
     PARAMETERS = (
@@ -74,31 +71,18 @@ class LocalPlannerNode(NavlabNode):
                          f"{self.core.footprint.describe()}, {p['controller_frequency']:g} Hz")
 
     def controller_params(self) -> Dict[str, Any]:
-        """The parameters set on the command line that are not the node's own."""
-        own = {q.name for q in self.PARAMETERS} | ROS_OWN
-        out = {}
-        for name, param in self.get_parameters_by_prefix("").items():
-            if name in own or name.startswith("qos_overrides."):
-                continue
-            value = param.value
-            out[name] = list(value) if isinstance(value, (list, tuple)) or hasattr(value, "tolist") else value
-        return out
+        """The settings given on the command line for the controller."""
+        return self.passed_settings()
 
     def on_map(self, msg) -> None:
-        try:
-            grid = grid_from_msg(msg)
-        except ValueError as exc:
-            self.log("error", f"ignoring a malformed /map: {exc}")
-            return
-        self.publish_costmap(self.core.set_map(grid))
+        grid = self.read(grid_from_msg, msg, "/map")
+        if grid is not None:
+            self.publish_costmap(self.core.set_map(grid))
 
     def on_plan(self, msg) -> None:
-        try:
-            path = path_from_msg(msg)
-        except (ValueError, TypeError) as exc:
-            self.log("error", f"ignoring a malformed /plan: {exc}")
-            return
-        self.send(self.core.set_plan(path))
+        path = self.read(path_from_msg, msg, "/plan")
+        if path is not None:
+            self.send(self.core.set_plan(path))
 
     def on_scan(self, msg) -> None:
         if len(msg.ranges) == 0:

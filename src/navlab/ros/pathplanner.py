@@ -29,9 +29,6 @@ from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, NavlabNode, Param, node_main
 from .convert import grid_from_msg, path_to_msg, pose_from_msg, tree_to_markers
 from .core import GoalPlanner
 
-#: parameters every rclpy node has, or that configure ROS itself: not the planner's
-ROS_OWN = {"use_sim_time", "start_type_description_service"}
-
 
 class PathPlanner(NavlabNode):
     NODE_NAME = "pathplanner"
@@ -59,17 +56,10 @@ class PathPlanner(NavlabNode):
         self.create_subscription(Odometry, "odom", self.on_odom, DEFAULT_QOS)
 
     def planner_params(self) -> Dict[str, Any]:
-        """The parameters set on the command line that are not the node's own."""
-        own = {q.name for q in self.PARAMETERS} | ROS_OWN
-        out = {}
-        for name, param in self.get_parameters_by_prefix("").items():
-            if name in own or name.startswith("qos_overrides."):
-                continue
-            value = param.value
-            if isinstance(value, str) and value.lstrip().startswith("{"):
-                value = self.mapping(name, value)
-            out[name] = list(value) if isinstance(value, (list, tuple)) or hasattr(value, "tolist") else value
-        return out
+        """The settings given on the command line for the planner (a mapping such as
+        integration's ``weights`` comes as YAML text: see :meth:`mapping`)."""
+        return self.passed_settings(lambda name, value: self.mapping(name, value)
+                                    if isinstance(value, str) and value.lstrip().startswith("{") else value)
 
     @staticmethod
     def mapping(name: str, text: str) -> dict:
@@ -90,12 +80,9 @@ class PathPlanner(NavlabNode):
         self.tree = (nodes, parent)
 
     def on_map(self, msg) -> None:
-        try:
-            grid = grid_from_msg(msg)
-        except ValueError as exc:
-            self.log("error", f"ignoring a malformed /map: {exc}")
-            return
-        self.publish(self.core.set_map(grid))
+        grid = self.read(grid_from_msg, msg, "/map")
+        if grid is not None:
+            self.publish(self.core.set_map(grid))
 
     def on_goal(self, msg) -> None:
         frame = msg.header.frame_id

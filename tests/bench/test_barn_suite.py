@@ -61,6 +61,12 @@ def test_any_navlab_planner_as_the_global_planner(tmp_path):
     (["--data", str(BARN), "--controller", "nonesuch"], "unknown controller 'nonesuch'"),
     (["--data", str(BARN), "--controller", "rpp:lookahead_dist=-1"], "lookahead_dist must be > 0"),
     (["--data", str(BARN), "--controller", "rpp", "--controller", "rpp"], "named twice"),
+    # settings only a run can judge are judged on the first world before any trial (they failed every trial)
+    (["--data", str(BARN), "--worlds", "0", "--controller", "rpp:inflation_radius=0.1"],
+     "inflation_radius = 0.1 m is below the footprint's inscribed radius"),
+    (["--data", str(BARN), "--worlds", "0", "--controller", "potential_field"], "commands sideways motion"),
+    (["--data", str(BARN), "--worlds", "0", "--controller", "rpp", "--planner", "hybrid_astar"],
+     "cannot follow a path of poses"),
     ([], "needs --data"),
 ])
 def test_bad_input_is_one_line(args, words, tmp_path):

@@ -124,7 +124,9 @@ def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
     ({"footprint": [[1, 1], [2, 1], [2, 2]]}, "origin"),
     ({"footprint": [[-1, -1], [1, 1], [1, -1], [-1, 1]]}, "cross"),
     ({"footprint": [[0, 0], [1, float("nan")], [1, 1]]}, "finite"), ({"heading_bins": 3}, "heading_bins"),
-    ({"reverse_penalty": 0.5}, "reverse_penalty")])
+    ({"reverse_penalty": 0.5}, "reverse_penalty"),
+    ({"analytic_expansion": "fals"}, "analytic_expansion must be true or false"),  # bool("fals") would be True
+    ({"smooth": "maybe"}, "smooth must be true or false")])
 def test_bad_input_is_named(kwargs, field):
     args = {"grid": aisle(), "start": (1.2, 1.55, 0.0), "goal": (4.05, 4.6, 1.5), "turning_radius": 0.5,
             "footprint": ROBOT}

@@ -118,8 +118,12 @@ def make_study(data, worlds: Optional[str], navigators: Iterable[Navigator], run
     return BarnStudy(Path(data), chosen, navigators, runs, seed, optimal_times=optimal, straight_line=straight_line)
 
 
-def check_navigator(nav: Navigator) -> None:
-    """Refuse a navigator that cannot drive the Jackal (unknown controller, bad settings) before any run."""
+def check_navigator(nav: Navigator, world_file: Optional[str] = None) -> None:
+    """Refuse a navigator that cannot drive the Jackal (unknown controller, bad settings) before any run.
+
+    With ``world_file`` the navigator is also set up there as a run would be, for one step: settings
+    that only the simulation can judge (an inflation radius below the padded footprint's inscribed
+    radius, a planner the controller cannot use, ...) are one line here rather than a failed study."""
     from ..control import make_controller
 
     make_controller(nav.controller, **nav.params)
@@ -130,6 +134,17 @@ def check_navigator(nav: Navigator) -> None:
         if nav.planner not in planner_names():
             raise UnknownNameError(f"unknown planner {nav.planner!r}; valid: {', '.join(planner_names())}."
                                    + suggest(nav.planner, planner_names()))
+    if world_file is None:
+        return
+    from ..sim.runner import NoPathError, simulate
+
+    try:
+        simulate(_world(world_file), robot="jackal", controller=nav.controller, start=barn.START, goal=barn.GOAL,
+                 planner=nav.planner, lidar="exact", controller_params=dict(nav.params), dt=DT, max_time=DT)
+    except NoPathError:
+        pass  # an answer about that world, not about the settings
+    except ValueError as exc:
+        raise ExperimentError(f"navigator {nav.label}: {exc}") from None
 
 
 _WORLDS: Dict[str, Any] = {}
@@ -225,7 +240,7 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
     from .store import ResultStore
 
     for nav in study.navigators:
-        check_navigator(nav)
+        check_navigator(nav, str(study.data / f"world_{study.worlds[0]}.world") if study.worlds else None)
     check_executor(executor, scheduler)
     run_trials = EXECUTORS.get(executor)
     t0 = time.perf_counter()

@@ -88,7 +88,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
       navlab sim one_obstacle --controller potential_field --lidar-timing rate=10,latency=0.5
       navlab sim ../shared/data/barn/world_0.world --robot jackal --controller rpp --start -2 3 1.57 --trajectory t.csv
       navlab sim parking --robot car --plot parking.png
-      navlab sim trap --robot car --goal 16 6 0 --plan-param turning_radius=5
+      navlab sim trap --robot diff --goal 16 6 3.14159 --plan-param turning_radius=0.5
     """
     if experiment:
         if world:
@@ -136,6 +136,9 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         click.echo(f"  final true pose ({result.final_true[0]:.3f}, {result.final_true[1]:.3f}) m, "
                    f"{1000 * result.error_true:.1f} mm from the goal; odometry says "
                    f"({result.final_odom[0]:.3f}, {result.final_odom[1]:.3f}), travelled {result.distance:.2f} m")
+        if "goal_heading" in result.meta:
+            click.echo(f"  final heading {result.final_true[2]:.3f} rad, {result.meta['heading_error_rad']:.3f} rad "
+                       f"from the goal's {result.meta['goal_heading']:.3f}")
         if result.path is not None:
             click.echo(f"  followed a {len(result.path)}-waypoint path, max tracking error "
                        f"{result.tracking_error():.3f} m")

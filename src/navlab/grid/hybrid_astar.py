@@ -344,6 +344,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                              ("change_penalty", change_penalty, 0.0)):
         if finite_number(name, value) < low:
             raise ValueError(f"{name} must be at least {low:g}, got {value!r}")
+    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth)):
+        if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
+            raise ValueError(f"{name} must be true or false, got {value!r}")
     analytic_max = check_length("analytic_expansion_max_length", analytic_expansion_max_length)
     if isinstance(max_expansions, bool) or not isinstance(max_expansions, (int, np.integer)) or max_expansions < 1:
         raise ValueError(f"max_expansions must be a positive whole number, got {max_expansions!r}")

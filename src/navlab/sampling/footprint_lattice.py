@@ -184,7 +184,7 @@ def check_turning_scale(turning_radius: float, vertices: np.ndarray, disc: float
     smallest = reach / (delta / (FINEST_SPACING * resolution) - 1.0)
     if turning_radius < smallest:
         raise ValueError(f"turning_radius {turning_radius:g} m is too small for a footprint reaching {reach:g} m "
-                         f"on {resolution:g} m cells: at least {smallest:.3g} m (or use motion=holonomic)")
+                         f"on {resolution:g} m cells: at least {smallest:.3g} m (or plan on finer cells: resolution)")
     step_arc = turning_radius * 2.0 * math.pi / bins
     if step_arc > extent:
         raise ValueError(f"turning_radius {turning_radius:g} m: one heading step ({360 / bins:g}°) of arc is "

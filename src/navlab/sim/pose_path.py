@@ -89,9 +89,11 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
                          f"{', '.join((*POSE_PLANNERS, *TREE_POSE_PLANNERS))}")
     params.setdefault("motion", "reeds_shepp")
     if getattr(robot, "steers", False):
+        from ..sampling.curves import check_turning_radius
+
         least = robot.turning_radius
-        given = params.setdefault("turning_radius", least * STEERING_ROOM)
-        if isinstance(given, (int, float)) and given < least * (1 - 1e-12):
+        given = check_turning_radius(params.setdefault("turning_radius", least * STEERING_ROOM))
+        if given < least * (1 - 1e-12):
             raise ValueError(f"turning_radius {given:g} m is tighter than the car can turn "
                              f"({least:.4g} m = wheelbase / tan(max_steer))")
     params.setdefault("footprint", robot.shape.to_value())

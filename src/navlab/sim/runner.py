@@ -73,6 +73,10 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
                                else (robot_params or {})))
     params = dict(controller_params or {})
     if poses:
+        if controller is not None:
+            from ..control.base import CONTROLLERS
+
+            CONTROLLERS.get(controller)  # an unknown name first: "did you mean"
         if controller is not None and controller not in POSE_FOLLOWERS:
             raise ValueError(f"controller '{controller}' cannot follow a path of poses with reverse stretches (this "
                              f"run plans between poses); use {', '.join(POSE_FOLLOWERS)}")

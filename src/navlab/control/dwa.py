@@ -514,7 +514,8 @@ class DWABarn(DWA):
     gdist 1.0, occdist 0.1, heading_lookahead 0.325, escape at −0.5 m/s reset after 0.1 m or 0.1 rad,
     oscillation reset 0.05 m, xy tolerance 0.25 m, controller_frequency 20 Hz);
     ``costmap_common_params.yaml`` (``footprint_padding`` 0.1 m, inflation 0.30 m; costmap_2d's
-    ``cost_scaling_factor`` 10 and 0.05 m cells); ``local_costmap_params.yaml`` (10 × 10 m rolling
+    ``cost_scaling_factor`` 10 and 0.05 m cells; an obstacle layer fed by the laser and an inflation
+    layer, no static map, hence ``layers='sensor'``); ``local_costmap_params.yaml`` (10 × 10 m rolling
     window); ``move_base_params.yaml`` (``planner_frequency`` 20 Hz, ``controller_patience`` 15 s,
     ``planner_patience`` 5 s, ``oscillation_timeout`` 0: no give-up while commands are found, hence
     a ``stall_window`` longer than any run).

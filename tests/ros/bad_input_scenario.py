@@ -6,7 +6,6 @@ and records what comes back. Prints one JSON object of observations."""
 import json
 import math
 import sys
-import time
 
 import numpy as np
 import rclpy
@@ -26,6 +25,7 @@ from navlab.ros.base import MAP_QOS, PLAN_QOS
 from navlab.ros.goto_waypoint import GotoWaypointNode
 from navlab.ros.potential_field_navigator import PotentialFieldNavigator
 from navlab.ros.sim import SimNode
+from scenario_tools import spinner
 
 
 class Probe(Node):
@@ -92,13 +92,7 @@ def main(workdir):
     for node in (planner, follower, sim, navigator, probe):
         ex.add_node(node)
 
-    def spin(seconds, until=None):
-        end = time.monotonic() + seconds
-        while time.monotonic() < end:
-            ex.spin_once(timeout_sec=0.02)
-            if until is not None and until():
-                return True
-        return False
+    spin = spinner(ex)
 
     def drive_a_little():
         """Five /odom messages 50 ms apart: a follower with a plan answers each."""

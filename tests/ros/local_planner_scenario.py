@@ -28,6 +28,7 @@ from navlab.ros import convert as C
 from navlab.ros.base import MAP_QOS, PLAN_QOS
 from navlab.ros.local_planner import LocalPlannerNode
 from navlab.ros.sim import SimNode
+from scenario_tools import spinner
 
 JACKAL = "[[-0.21, -0.165], [-0.21, 0.165], [0.21, 0.165], [0.21, -0.165]]"
 WALL_TIME_S = 60.0
@@ -60,13 +61,7 @@ def main(workdir, controller, settings):
     for node in (sim, local, probe):
         ex.add_node(node)
 
-    def spin(seconds, until=None):
-        end = time.monotonic() + seconds
-        while time.monotonic() < end:
-            ex.spin_once(timeout_sec=0.02)
-            if until is not None and until():
-                return True
-        return False
+    spin = spinner(ex)
 
     def said(who, *words):
         return [text for _, name, text in probe.logs if name == who and any(w in text for w in words)]

@@ -5,7 +5,6 @@ came; the probe records the /plan. Prints one JSON object of observations."""
 
 import json
 import math
-import time
 
 import numpy as np
 import rclpy
@@ -21,6 +20,7 @@ from navlab.grid import OccupancyGrid
 from navlab.ros import convert as C
 from navlab.ros.base import MAP_QOS, PLAN_QOS
 from navlab.ros.pathplanner import PathPlanner
+from scenario_tools import spinner
 
 
 class Probe(Node):
@@ -44,13 +44,7 @@ def main():
     for node in (planner, probe):
         ex.add_node(node)
 
-    def spin(seconds, until=None):
-        end = time.monotonic() + seconds
-        while time.monotonic() < end:
-            ex.spin_once(timeout_sec=0.02)
-            if until is not None and until():
-                return True
-        return False
+    spin = spinner(ex)
 
     spin(5.0, lambda: probe.goal_pub.get_subscription_count() >= 1 and probe.odom_pub.get_subscription_count() >= 1)
     # an empty 6 × 4 m room; the robot at (1, 2) facing east, the goal 3 m east of it facing west

@@ -18,6 +18,7 @@ L_SHAPE = [[-0.2, -0.2], [0.3, -0.2], [0.3, 0.0], [0.0, 0.0], [0.0, 0.25], [-0.2
 
 @pytest.mark.parametrize("points, words", [
     ([[0, 0], [1, 1]], "at least 3 points"),
+    ([[0, 0], [0, 0], [0, 0]], "at least 3 distinct points, got 1 among its 3"),
     ([[-1, -1], [1, 1], [1, -1], [-1, 1]], "self-intersecting"),
     ([[0.1, 0.1], [1, 0.1], [1, 1]], "does not contain the robot's origin"),
     ([[-1, -1], [float("nan"), 1], [1, -1]], "finite"),

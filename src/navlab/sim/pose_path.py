@@ -95,7 +95,8 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
         given = check_turning_radius(params.setdefault("turning_radius", least * STEERING_ROOM))
         if given < least * (1 - 1e-12):
             raise ValueError(f"turning_radius {given:g} m is tighter than the car can turn "
-                             f"({least:.4g} m = wheelbase / tan(max_steer))")
+                             f"({least:.4g} m = wheelbase / tan(max_steer); its plans are drawn at "
+                             f"{STEERING_ROOM:g} × that, {least * STEERING_ROOM:.4g} m, unless turning_radius is given)")
     params.setdefault("footprint", robot.shape.to_value())
     result = plan(scene_world, planner=planner, start=tuple(start), goal=tuple(goal), seed=seed, **params)
     if not result.success:

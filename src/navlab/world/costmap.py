@@ -271,7 +271,8 @@ class LayeredCostmap:
         self.inflation_radius = _positive("inflation_radius", inflation_radius, allow_zero=True)
         if self.inflation_radius < self.inscribed:
             raise CostmapError(f"inflation_radius = {inflation_radius:g} m is below the footprint's inscribed radius "
-                               f"{self.inscribed:g} m: cells the robot's body reaches would cost nothing")
+                               f"{self.inscribed:g} m (footprint_padding included): cells the robot's body reaches "
+                               "would cost nothing")
         self.cost_scaling_factor = _positive("cost_scaling_factor", cost_scaling_factor, allow_zero=True)
         self.obstacle_range = _positive("obstacle_range", obstacle_range)
         self.raytrace_range = _positive("raytrace_range", raytrace_range)

@@ -185,6 +185,9 @@ def _checked_polygon(points: Any) -> Tuple[Tuple[float, float], ...]:
         raise FootprintError(f"footprint points must be [[x, y], ...] numbers, got {_show(points)}") from None
     if v.ndim != 2 or v.shape[1] != 2:
         raise FootprintError(f"footprint points must be [[x, y], ...] pairs, got shape {v.shape}")
+    distinct = len(np.unique(v, axis=0)) if len(v) else 0
+    if len(v) >= 3 and distinct < 3:
+        raise FootprintError(f"footprint needs at least 3 distinct points, got {distinct} among its {len(v)}")
     if len(v) > 1 and np.array_equal(v[0], v[-1]):
         v = v[:-1]  # a closed ring: the last point repeats the first
     if len(v) < 3:

@@ -136,6 +136,20 @@ class NavlabNode(Node):
         return t if t > 0 else self.get_clock().now().nanoseconds * 1e-9
 
 
+def _executor():
+    """rclpy's SingleThreadedExecutor, built with SIGINT and SIGTERM held back until it is whole:
+    a signal during its ``__init__`` (a demo stopped as its nodes start) left a half-built executor
+    whose ``__del__`` printed a traceback ("no attribute '_sigint_gc'")."""
+    from rclpy.executors import SingleThreadedExecutor
+
+    held = {signal.SIGINT, signal.SIGTERM}
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
+    try:
+        return SingleThreadedExecutor()
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
 def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> int:
     """Initialise ROS, build the node and spin until Ctrl-C or shutdown.
 
@@ -157,8 +171,10 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
             if rclpy.ok():
                 raise
             return 0  # Ctrl-C while the node was being built: rclpy has shut down under it
+        executor = _executor()
         try:
-            rclpy.spin(node)
+            executor.add_node(node)
+            executor.spin()
         except (KeyboardInterrupt, ExternalShutdownException):
             pass
         except Exception:

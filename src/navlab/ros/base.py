@@ -137,15 +137,24 @@ class NavlabNode(Node):
 
 
 def _executor():
-    """rclpy's SingleThreadedExecutor, built with SIGINT and SIGTERM held back until it is whole:
-    a signal during its ``__init__`` (a demo stopped as its nodes start) left a half-built executor
-    whose ``__del__`` printed a traceback ("no attribute '_sigint_gc'")."""
+    """rclpy's SingleThreadedExecutor, built with SIGINT and SIGTERM held back in this thread; None
+    when a signal has already shut ROS down (the demo stopped as its nodes start: building one on a
+    shut-down context raises, and the half-built executor's ``__del__`` printed a traceback)."""
     from rclpy.executors import SingleThreadedExecutor
+
+    class Executor(SingleThreadedExecutor):
+        def __del__(self) -> None:
+            if hasattr(self, "_sigint_gc"):  # only a whole one has anything to release
+                super().__del__()
 
     held = {signal.SIGINT, signal.SIGTERM}
     previous = signal.pthread_sigmask(signal.SIG_BLOCK, held)
     try:
-        return SingleThreadedExecutor()
+        return Executor()
+    except Exception:
+        if rclpy.ok():
+            raise
+        return None  # a signal (delivered to another thread) shut ROS down first
     finally:
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
@@ -173,6 +182,8 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
             return 0  # Ctrl-C while the node was being built: rclpy has shut down under it
         executor = _executor()
         try:
+            if executor is None:
+                return 0
             executor.add_node(node)
             executor.spin()
         except (KeyboardInterrupt, ExternalShutdownException):

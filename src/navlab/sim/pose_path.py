@@ -7,7 +7,8 @@ world names its robot's footprint (the heading scenes ``parking``,
 ``narrow_aisle``, ``trap_car``), when the goal has a heading, when the
 planner is heading-aware, or when ``motion`` is asked for. The robot then
 follows the plan's poses and directions of travel, reversing at cusps
-(``pure_pursuit``; see :class:`navlab.control.followers.PurePursuit`).
+(``rear_wheel_feedback`` by default, :mod:`navlab.control.path_tracking`;
+``pure_pursuit`` also can).
 """
 
 from __future__ import annotations

@@ -4,8 +4,9 @@ The grid is a flat ``uint8`` array of passable cells padded with a blocked
 border one cell wide, so neighbour lookups need no bounds checks: cell (x, y)
 sits at index ``(y + 1) * S + (x + 1)`` with stride ``S = W + 2``.
 
-Per-cell search state (g, parent) is allocated once per grid and validated by
-a generation mark, so a query never clears whole-grid arrays; the open list is
+Per-cell search state is one float64 per cell (and a parent index for JPS
+and Theta*), allocated once per grid; a query clears only the rows and
+columns the previous one wrote (:func:`clear_touched`). The open list is
 described below.
 """
 
@@ -180,9 +181,8 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 # minimum of the lowest non-empty bucket and redistributes that bucket into
 # lower ones. On maze512 this is ~15% faster than the 4-ary heap: a push is
 # O(1), and each node moves about five times before it is popped. A better
-# path to an open cell lowers its node's key in place when the bucket stays
-# the same, and otherwise marks the node dead (freed when its bucket is next
-# reached), so stale entries are never popped.
+# path to an open cell just pushes another node (no per-cell slot index: 4
+# bytes per cell less); the older node is skipped when popped.
 N_BUCKETS = 65
 HEAD_FREE, HEAD_BUMP = N_BUCKETS, N_BUCKETS + 1  # slots of ``head`` after the buckets
 
@@ -206,28 +206,28 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     loop (about 8% of A*'s time when they were arguments). Numba caches each
     variant on disk like any other kernel.
 
-    The returned kernel ``astar(free, S, start, goal, weight, g, parent, mark,
-    slot, gen, key, bits, cell, nxt, head, stack)`` uses ``key``/``bits``
-    (float64 and its uint64 view), ``cell`` and ``nxt`` as the open list's node
-    pool (node 0 holds the last minimum; ``cell`` -1 marks a node superseded
-    by a better push), and ``head`` (``N_BUCKETS + 2`` slots) for the buckets
-    and the pool's free list. ``slot[v]`` is the pool node of open cell v
-    (-1 while v waits on the stack). ``mark[v]`` is ``2·gen`` while
-    v is open and ``2·gen + 1`` once closed; anything else means unseen this
-    query. Returns (status, expanded) with status 1 found, 0 no path,
+    The returned kernel ``astar(free, S, start, goal, weight, gs, parent, lo,
+    hi, extent, key, bits, cell, nxt, head, stack)`` keeps all per-cell state
+    in ``gs`` (see :func:`clear_touched`); ``parent`` is written only with
+    ``any_angle`` (A*'s paths are read back from ``gs`` by :func:`trace_back`).
+    ``key``/``bits`` (float64 and its uint64 view), ``cell`` and ``nxt`` are
+    the open list's node pool (node 0 holds the last minimum) and ``head``
+    (``N_BUCKETS + 2`` slots) its buckets and free list. A better path to an
+    open cell pushes a second node; the first is skipped when popped, as its
+    cell is closed by then (the better node, with the lower key, comes out
+    first). Returns (status, expanded) with status 1 found, 0 no path,
     OVERFLOW when the pool or the stack ran out of room.
     """
     n_moves = 8 if conn == 8 else 4
 
     @njit(cache=True)
-    def astar(free, S, start, goal, weight, g, parent, mark, slot, gen, key, bits, cell, nxt, head, stack):
+    def astar(free, S, start, goal, weight, gs, parent, lo, hi, extent, key, bits, cell, nxt, head, stack):
         gx = goal % S
         gy = goal // S
-        opened = 2 * gen
-        closed = 2 * gen + 1
-        g[start] = 0.0
-        parent[start] = start
-        mark[start] = opened
+        gs[start] = 1.0
+        if any_angle:
+            parent[start] = start
+        rmin = rmax = start // S
         for b in range(N_BUCKETS):
             head[b] = -1
         key[0] = key[1] = weight * heuristic(hcode, start % S, start // S, gx, gy)
@@ -240,6 +240,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
         top = 0
         fcur = -np.inf
         expanded = 0
+        status = 0
         cap_pool = key.shape[0]
         cap_stack = stack.shape[0]
         while size > 0 or top > 0:
@@ -251,29 +252,21 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                     b = 1
                     while head[b] < 0:
                         b += 1
-                    best = -1
                     n = head[b]
+                    best = n
                     while n >= 0:
-                        if cell[n] >= 0 and (best < 0 or key[n] < key[best]):
+                        if key[n] < key[best]:
                             best = n
                         n = nxt[n]
-                    if best >= 0:
-                        key[0] = key[best]
+                    key[0] = key[best]
                     n = head[b]
                     head[b] = -1
                     while n >= 0:
                         after = nxt[n]
-                        if cell[n] < 0:  # superseded by a better push: free it
-                            nxt[n] = head[HEAD_FREE]
-                            head[HEAD_FREE] = n
-                            size -= 1
-                        else:
-                            to = _bit_length(bits[n] ^ bits[0])
-                            nxt[n] = head[to]
-                            head[to] = n
+                        to = _bit_length(bits[n] ^ bits[0])
+                        nxt[n] = head[to]
+                        head[to] = n
                         n = after
-                    if best < 0:
-                        continue
                 n = head[0]
                 head[0] = nxt[n]
                 fcur = key[n]
@@ -281,17 +274,25 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 nxt[n] = head[HEAD_FREE]
                 head[HEAD_FREE] = n
                 size -= 1
-                if u < 0:
-                    continue
-            if mark[u] == closed:
+            gu = gs[u]
+            if gu < 0.0:  # closed already: a node superseded by a better push
                 continue
-            mark[u] = closed
+            gs[u] = -gu
             expanded += 1
-            if u == goal:
-                return 1, expanded
-            gu = g[u]
             ux = u % S
             uy = u // S
+            # rows and columns this expansion may write around (what clear_touched resets)
+            if ux < lo[uy]:
+                lo[uy] = ux
+            if ux > hi[uy]:
+                hi[uy] = ux
+            if uy < rmin:
+                rmin = uy
+            elif uy > rmax:
+                rmax = uy
+            if u == goal:
+                status = 1
+                break
             pu = parent[u] if any_angle else u
             # Orthogonal neighbours first; a diagonal needs both of its sides free.
             east = free[u + 1] != 0
@@ -322,8 +323,8 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 v = u + dx + dy * S
                 if k >= 4 and free[v] == 0:
                     continue
-                mv = mark[v]
-                if mv == closed:
+                gv = gs[v]
+                if gv < 0.0:
                     continue
                 ng = gu + (SQRT2 if k >= 4 else 1.0)
                 par = u
@@ -331,26 +332,19 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                     pux = pu % S
                     puy = pu // S
                     if los_supercover(free, S, pux - 1, puy - 1, ux + dx - 1, uy + dy - 1):
-                        ng = g[pu] + math.sqrt((ux + dx - pux) ** 2 + (uy + dy - puy) ** 2)
+                        ng = -gs[pu] + math.sqrt((ux + dx - pux) ** 2 + (uy + dy - puy) ** 2)
                         par = pu
-                if mv != opened or ng < g[v]:
-                    g[v] = ng
-                    parent[v] = par
+                if gv == 0.0 or ng < gv:
+                    gs[v] = ng
+                    if any_angle:
+                        parent[v] = par
                     f = ng + weight * heuristic(hcode, ux + dx, uy + dy, gx, gy)
-                    if mv == opened and slot[v] >= 0:
-                        n = slot[v]
-                        if f > fcur + TIE and _bit_length(bits[n] ^ bits[0]) == _bit_length(
-                                np.float64(f).view(np.uint64) ^ bits[0]):
-                            key[n] = f  # the same bucket: lower the key in place
-                            continue
-                        cell[n] = -1  # dropped when its bucket is next reached
-                    mark[v] = opened
                     if f <= fcur + TIE:
                         if top == cap_stack:
-                            return OVERFLOW, expanded
+                            status = OVERFLOW
+                            break
                         stack[top] = v
                         top += 1
-                        slot[v] = -1
                         continue
                     n = head[HEAD_FREE]
                     if n >= 0:
@@ -359,17 +353,113 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                         n = head[HEAD_BUMP]
                         head[HEAD_BUMP] = n + 1
                     else:
-                        return OVERFLOW, expanded
+                        status = OVERFLOW
+                        break
                     key[n] = f
                     cell[n] = v
-                    slot[v] = n
                     to = _bit_length(bits[n] ^ bits[0])
                     nxt[n] = head[to]
                     head[to] = n
                     size += 1
-        return 0, expanded
+            if status == OVERFLOW:
+                break
+        extent[0] = min(extent[0], rmin)
+        extent[1] = max(extent[1], rmax)
+        return status, expanded
 
     return astar
+
+
+# -- per-cell search state -------------------------------------------------------
+# One float64 per cell is all A* keeps: 0.0 unseen, g + 1 while open, -(g + 1)
+# once closed (g + 1 > 0 keeps the start's g = 0 apart from "unseen"). With the
+# padded grid's byte that is 9 bytes per cell (21 with separate g, parent,
+# mark and slot arrays): fewer bytes and one cache line per neighbour. The
+# state starts as np.zeros (untouched pages stay unallocated), and a query
+# records the rows and columns it expanded so that the next query can zero
+# just those (:func:`clear_touched`) instead of the whole grid.
+@njit(cache=True, inline="always")
+def _record(lo, hi, x, y):
+    if x < lo[y]:
+        lo[y] = x
+    if x > hi[y]:
+        hi[y] = x
+
+
+@njit(cache=True)
+def clear_touched(gs, S, lo, hi, extent):
+    """Zero the state a query wrote: every cell within one of a recorded cell
+    (each row's recorded columns in ``lo``/``hi``, its rows in ``extent``),
+    which covers everything a search writes (expanded cells and their
+    neighbours; JPS records its jump points). Leaves the records empty."""
+    r0 = extent[0]
+    r1 = extent[1]
+    for r in range(r0 - 1, r1 + 2):
+        a = S
+        b = -1
+        for q in range(max(r - 1, r0), min(r + 1, r1) + 1):
+            a = min(a, lo[q])
+            b = max(b, hi[q])
+        for v in range(r * S + a - 1, r * S + b + 2):
+            gs[v] = 0.0
+    for q in range(r0, r1 + 1):
+        lo[q] = S
+        hi[q] = -1
+    extent[0] = lo.shape[0]
+    extent[1] = -1
+
+
+@njit(cache=True)
+def _predecessor(free, S, gs, v, n_moves):
+    """A reached neighbour u of v with |gs[u]| + step(u, v) == |gs[v]| (the
+    same float sum that set gs[v]), over a legal move; -1 if there is none."""
+    gv = abs(gs[v])
+    for k in range(n_moves):
+        dx = MOVES_X[k]
+        dy = MOVES_Y[k]
+        u = v - dx - dy * S
+        if free[u] == 0 or gs[u] == 0.0:
+            continue
+        if k >= 4 and (free[u + dx] == 0 or free[u + dy * S] == 0):
+            continue
+        if abs(gs[u]) + (SQRT2 if k >= 4 else 1.0) == gv:
+            return u
+    return -1
+
+
+@njit(cache=True)
+def trace_back(free, S, gs, start, goal, conn):
+    """Cells (x, y) from start to goal of the path A* found, read from ``gs``
+    alone (A* keeps no parents).
+
+    Why this works: every reached cell v other than the start got its g as
+    ``g[u] + step(u, v)`` from a cell u that was closed then, and closed
+    cells never change again, so at the end v has at least one reached
+    neighbour u with ``|gs[u]| + step == |gs[v]|`` exactly: a predecessor
+    always exists. Any such u (not only the one that set v) lies on a path of
+    cost g[v], since every stored g is the length of a path the search
+    built; so the walk from the goal returns a path of exactly the cost the
+    search found, optimal when the goal's g is (A* with a consistent
+    heuristic). It ends: g falls by at least 1 per step, and the start is the
+    only cell with g + 1 = 1. Returns an empty array if the walk breaks
+    (which would be a bug in the search).
+    """
+    n_moves = 8 if conn == 8 else 4
+    count = 1
+    v = goal
+    while v != start:
+        v = _predecessor(free, S, gs, v, n_moves)
+        if v < 0:
+            return np.empty((0, 2), dtype=np.int64)
+        count += 1
+    out = np.empty((count, 2), dtype=np.int64)
+    v = goal
+    for m in range(count - 1, -1, -1):
+        out[m, 0] = v % S - 1
+        out[m, 1] = v // S - 1
+        if m > 0:
+            v = _predecessor(free, S, gs, v, n_moves)
+    return out
 
 
 # -- Jump Point Search (8-connected, no corner cutting) -------------------------
@@ -411,22 +501,23 @@ def _octile_between(a, b, S):
 
 
 @njit(cache=True)
-def jps(free, S, start, goal, g, parent, mark, gen, heap, stack, dirs):
+def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
     """Jump Point Search for 8-connected grids without corner cutting.
 
-    Same open list and return values as :func:`astar`; parents link jump points.
+    Same per-cell state (``gs``, recorded rows) and return values as the A*
+    kernel (:func:`make_astar`); parents link jump points.
     """
-    opened = 2 * gen
-    closed = 2 * gen + 1
-    g[start] = 0.0
+    gs[start] = 1.0
     parent[start] = start
-    mark[start] = opened
+    rmin = rmax = start // S
+    _record(lo, hi, start % S, start // S)
     heap[0, 0] = _octile_between(start, goal, S)
     heap[0, 1] = start
     size = 1
     top = 0
     fcur = -np.inf
     expanded = 0
+    status = 0
     while size > 0 or top > 0:
         if top > 0:
             top -= 1
@@ -434,12 +525,14 @@ def jps(free, S, start, goal, g, parent, mark, gen, heap, stack, dirs):
         else:
             fcur, u = _heap_pop(heap, size)
             size -= 1
-        if mark[u] == closed:
+        gu = gs[u]
+        if gu < 0.0:
             continue
-        mark[u] = closed
+        gs[u] = -gu
         expanded += 1
         if u == goal:
-            return 1, expanded
+            status = 1
+            break
         # Successor directions (dx, dy) pruned by the direction of arrival.
         n = 0
         p = parent[u]
@@ -493,25 +586,37 @@ def jps(free, S, start, goal, g, parent, mark, gen, heap, stack, dirs):
                 jp = _jump_straight(free, S, v, ddx, goal)
             else:
                 jp = _jump_straight(free, S, v, ddy * S, goal)
-            if jp < 0 or mark[jp] == closed:
+            if jp < 0:
                 continue
-            ng = g[u] + _octile_between(u, jp, S)
-            if mark[jp] != opened or ng < g[jp]:
-                mark[jp] = opened
-                g[jp] = ng
+            gj = gs[jp]
+            if gj < 0.0:
+                continue
+            ng = gu + _octile_between(u, jp, S)
+            if gj == 0.0 or ng < gj:
+                gs[jp] = ng
                 parent[jp] = u
+                jy = jp // S
+                _record(lo, hi, jp % S, jy)
+                rmin = min(rmin, jy)
+                rmax = max(rmax, jy)
                 f = ng + _octile_between(jp, goal, S)
                 if f <= fcur + TIE:
                     if top == stack.shape[0]:
-                        return OVERFLOW, expanded
+                        status = OVERFLOW
+                        break
                     stack[top] = jp
                     top += 1
                 else:
                     if size == heap.shape[0]:
-                        return OVERFLOW, expanded
+                        status = OVERFLOW
+                        break
                     _heap_push(heap, size, f, jp)
                     size += 1
-    return 0, expanded
+        if status == OVERFLOW:
+            break
+    extent[0] = min(extent[0], rmin)
+    extent[1] = max(extent[1], rmax)
+    return status, expanded
 
 
 @njit(cache=True)

@@ -68,22 +68,25 @@ class PaddedGrid:
 
 
 class GridSearcher:
-    """Scratch state for one query at a time on one grid (g, parents, marks, open lists).
+    """Scratch state for one query at a time on one grid (per-cell state, open lists).
 
     Queries lease one from the grid's :class:`SearcherPool`, so threads planning
     on the same grid never share it; a searcher is reused by later queries,
-    so only the first query on a grid (per concurrent thread) pays for its arrays.
+    so only the first query on a grid (per concurrent thread) pays for its
+    arrays. ``g`` holds all of A*'s per-cell state (``kernels.clear_touched``);
+    JPS and Theta* add ``parent``, allocated when one of them first runs.
     """
 
     def __init__(self, grid: PaddedGrid) -> None:
         self.stride = grid.stride
         self.free = grid.free
         n = self.free.size
-        self.g = np.empty(n)
-        self.parent = np.empty(n, dtype=np.int32)
-        self.mark = np.zeros(n, dtype=np.int32)
-        self.slot = np.empty(n, dtype=np.int32)  # A*: a cell's open-list node
-        self.gen = 0
+        rows = n // self.stride
+        self.g = np.zeros(n)  # zero pages are mapped when first written: a search pays for the cells it reaches
+        self.parent = np.empty(0, dtype=np.int32)
+        self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
+        self.hi = np.full(rows, -1, dtype=np.int64)
+        self.extent = np.array([rows, -1], dtype=np.int64)  # and the rows they spanned
         # Open lists (A*'s radix-heap pool, JPS's heap) and the same-f stack;
         # grown (and the query rerun) if one fills up.
         room = min(n + 16, 1 << 16)
@@ -95,36 +98,37 @@ class GridSearcher:
     def _pool(self, room: int) -> None:
         self.key = np.empty(room)
         self.key_bits = self.key.view(np.uint64)
-        self.cell = np.empty(room, dtype=np.int64)
-        self.next = np.empty(room, dtype=np.int64)
+        self.cell = np.empty(room, dtype=np.int32)
+        self.next = np.empty(room, dtype=np.int32)
         self.head = np.empty(K.N_BUCKETS + 2, dtype=np.int64)
 
     def index(self, x: int, y: int) -> int:
         return (y + 1) * self.stride + (x + 1)
 
-    def next_generation(self) -> int:
-        self.gen += 1
-        if 2 * self.gen + 1 >= 2**31:  # int32 marks would wrap: start over
-            self.mark[:] = 0
-            self.gen = 1
-        return self.gen
-
     def search(self, algorithm: str, a: int, b: int, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
         """One query from flat index ``a`` to ``b``, rerun with larger open
         lists until they suffice: (status, expanded) as the kernels return."""
+        if algorithm in ("jps", "theta_star") and self.parent.size == 0:
+            self.parent = np.empty(self.free.size, dtype=np.int32)
         while True:
-            gen = self.next_generation()
+            K.clear_touched(self.g, self.stride, self.lo, self.hi, self.extent)  # what the last query wrote
             if algorithm == "jps":
-                status, expanded = K.jps(self.free, self.stride, a, b, self.g, self.parent, self.mark, gen,
-                                         self.heap, self.stack, self.dirs)
+                status, expanded = K.jps(self.free, self.stride, a, b, self.g, self.parent, self.lo, self.hi,
+                                         self.extent, self.heap, self.stack, self.dirs)
             else:
                 kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
-                status, expanded = kernel(self.free, self.stride, a, b, weight, self.g, self.parent, self.mark,
-                                          self.slot, gen, self.key, self.key_bits, self.cell, self.next, self.head,
-                                          self.stack)
+                status, expanded = kernel(self.free, self.stride, a, b, weight, self.g, self.parent, self.lo,
+                                          self.hi, self.extent, self.key, self.key_bits, self.cell, self.next,
+                                          self.head, self.stack)
             if status != K.OVERFLOW:
                 return status, expanded
             self.grow()
+
+    def cells(self, algorithm: str, connectivity: int, a: int, b: int) -> np.ndarray:
+        """The path the last search (from ``a``, which reached ``b``) found, as cells (x, y)."""
+        if algorithm in ("jps", "theta_star"):
+            return K.trace_path(self.parent, b, self.stride, algorithm == "jps")
+        return K.trace_back(self.free, self.stride, self.g, a, b, connectivity)
 
     def grow(self) -> None:
         self.heap = np.empty((self.heap.shape[0] * 4, 2))
@@ -193,8 +197,9 @@ def _warmed(algorithm: str, connectivity: int, hcode: int, smooth: bool) -> floa
     pool = pool_for(OccupancyGrid(blocked), False)
     code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
     with pool.lease() as s:
-        s.search(algorithm, pool.grid.index(0, 1), pool.grid.index(3, 2), connectivity, code, 1.0)
-        cells = K.trace_path(s.parent, pool.grid.index(3, 2), s.stride, algorithm == "jps")
+        a, b = pool.grid.index(0, 1), pool.grid.index(3, 2)
+        s.search(algorithm, a, b, connectivity, code, 1.0)
+        cells = s.cells(algorithm, connectivity, a, b)
     if smooth:
         for bresenham in (True, False):
             K.smooth_path(pool.grid.free, pool.grid.stride, np.ascontiguousarray(cells), bresenham)
@@ -318,15 +323,14 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
     code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
-    b = pool.grid.index(*g_cell)
+    a, b = pool.grid.index(*s_cell), pool.grid.index(*g_cell)
     with pool.lease() as s:  # the search state belongs to this call until the path is read out
-        status, expanded = s.search(algorithm, pool.grid.index(*s_cell), b, connectivity, code,
-                                    float(weight) if algorithm == "astar" else 1.0)
+        status, expanded = s.search(algorithm, a, b, connectivity, code, float(weight) if algorithm == "astar" else 1.0)
         if status != 1:
             return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded, warmup_s=warmup_s),
                           cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
-        cells = K.trace_path(s.parent, b, s.stride, algorithm == "jps")
+        cells = s.cells(algorithm, connectivity, a, b)
     raw = None
     raw_cost = path_cost(cells)
     if smooth and len(cells) > 2:

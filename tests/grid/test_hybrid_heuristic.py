@@ -139,3 +139,28 @@ def test_the_same_query_gives_the_same_path_bit_for_bit():
     grid = OccupancyGrid(blocked, resolution=0.05)
     runs = [plan_hybrid(grid, (1.0, 4.0, 0.0), (6.5, 4.0, math.pi), 0.5, robot_radius=0.2) for _ in range(2)]
     assert np.array_equal(runs[0].path, runs[1].path) and runs[0].stats["segments"] == runs[1].stats["segments"]
+
+
+def test_the_search_queue_pops_in_heapq_tuple_order():
+    """The compiled heap must give the (key, node) order a heapq of tuples gives, ties included,
+    so the search expands the nodes it did with heapq."""
+    from navlab.grid.hybrid_search import _pop, _push
+
+    rng = np.random.default_rng(5)
+    n = 3000
+    key = rng.integers(0, 40, n).astype(float)  # many equal keys
+    node = rng.integers(0, 500, n)
+    heap, size, order, reference = np.empty(n, np.int64), 0, [], []
+    for e in range(n):
+        _push(heap, size, key, node, e)
+        size += 1
+        heapq.heappush(reference, (key[e], node[e]))
+        if rng.random() < 0.4:
+            e_out = _pop(heap, size, key, node)
+            size -= 1
+            order.append((key[e_out], node[e_out]))
+            assert order[-1] == heapq.heappop(reference)
+    while size:
+        e_out = _pop(heap, size, key, node)
+        size -= 1
+        assert (key[e_out], node[e_out]) == heapq.heappop(reference)

@@ -45,14 +45,12 @@ shared with the SE(2) trees.
 
 from __future__ import annotations
 
-import heapq
 import math
 import time
 from typing import Any, Dict, Optional
 
 import numpy as np
-from numba import njit, types
-from numba.typed import Dict as TypedDict
+from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..limits import check_length, finite_number
@@ -60,8 +58,8 @@ from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
 from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, CurvePath, check_pose, check_turning_radius,
                               trace_word)
-from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, free_cells, lattice_for,
-                                          robot_outline)
+from ..sampling.footprint_lattice import check_turning_scale, curve_free, first_overlap, lattice_for, robot_outline
+from .hybrid_search import GATE_MARGIN, _heuristic, holonomic_field, search  # noqa: F401 (GATE_MARGIN, _heuristic: API)
 from .occupancy import OccupancyGrid
 
 MOTIONS = ("dubins", "reeds_shepp")
@@ -73,216 +71,6 @@ DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
     "analytic_expansion_max_length": 3.0,  # [m]
     "max_expansions": 200_000,
 }
-#: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
-GATE_MARGIN = 1e-9
-
-
-# ---------------------------------------------------------------------------
-# footprint and its cells
-# ---------------------------------------------------------------------------
-# ---------------------------------------------------------------------------
-# compiled search
-# ---------------------------------------------------------------------------
-@njit(cache=True)
-def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.ndarray:
-    """Shortest 8-connected distances [m] from cell (gx, gy) over ``passable``
-    cells (Dijkstra; diagonal steps only between two free orthogonal cells).
-
-    Dial's bucket queue instead of a heap: buckets a little narrower than the
-    shortest step (one cell), so no cell can improve another of its own bucket
-    and each bucket's cells are final in any order. A step is at most √2 cells,
-    so a relaxed cell lands one or two buckets ahead and three buckets, reused
-    in turn, hold the whole frontier. Every cell ends at the minimum over its
-    neighbours of (their distance + step), as with a heap, so the values are
-    the same bit for bit.
-    """
-    h, w = passable.shape
-    dist = np.full((h, w), np.inf)
-    done = np.zeros((h, w), dtype=np.bool_)
-    dist[gy, gx] = 0.0
-    width = res * (1.0 - 1e-6)  # below one step even after rounding
-    diag = math.sqrt(2.0) * res
-    cap = 1024
-    cells = np.empty((3, cap), dtype=np.int64)
-    size = np.zeros(3, dtype=np.int64)
-    cells[0, 0] = gy * w + gx
-    size[0] = 1
-    pending = 1
-    bucket = 0
-    while pending > 0:
-        slot = bucket % 3
-        i = 0
-        while i < size[slot]:
-            v = cells[slot, i]
-            i += 1
-            pending -= 1
-            y, x = v // w, v % w
-            if done[y, x]:  # entered again after an improvement: settled already
-                continue
-            done[y, x] = True
-            d = dist[y, x]
-            for dy in (-1, 0, 1):
-                for dx in (-1, 0, 1):
-                    nx, ny = x + dx, y + dy
-                    if nx < 0 or ny < 0 or nx >= w or ny >= h or done[ny, nx] or not passable[ny, nx]:
-                        continue
-                    if dx != 0 and dy != 0 and not (passable[y, nx] and passable[ny, x]):
-                        continue
-                    nd = d + (diag if dx != 0 and dy != 0 else res)
-                    if nd < dist[ny, nx]:
-                        dist[ny, nx] = nd
-                        to = int(nd / width) % 3
-                        if size[to] == cap:
-                            grown = np.empty((3, 2 * cap), dtype=np.int64)
-                            grown[:, :cap] = cells
-                            cells, cap = grown, 2 * cap
-                        cells[to, size[to]] = ny * w + nx
-                        size[to] += 1
-                        pending += 1
-        size[slot] = 0
-        bucket += 1
-    return dist
-
-
-@njit(cache=True)
-def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
-    """The larger of ``field`` (the holonomic distance at the node's cell) and the
-    exact obstacle-free Dubins / Reeds–Shepp distance from pose (x, y, θ) to the goal.
-
-    A Reeds–Shepp solve (44 closed forms) costs about twenty Dubins solves, and
-    far from the goal the field is usually the larger. Every Dubins path is a
-    Reeds–Shepp path, so the Dubins length bounds the Reeds–Shepp length from
-    above: when it is no more than the field, the maximum is the field and the
-    Reeds–Shepp solve is skipped. The value is the same as always solving, so
-    the search expands the same nodes; the relative margin keeps rounding in
-    the two closed forms from deciding.
-    """
-    d, a, b = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
-    _, t, p, q = dubins.solve(d, a, b)
-    forward = (t + p + q) * radius
-    if not reverse:
-        return max(field, forward)
-    if forward * (1.0 + GATE_MARGIN) + GATE_MARGIN * radius <= field:
-        return field
-    dx, dy = gx - x, gy - y
-    c, s = math.cos(theta), math.sin(theta)
-    return max(field, reeds_shepp._shortest_into((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
-                                                 gtheta - theta, seg, kinds, lengths) * radius)
-
-
-@njit(cache=True)
-def _search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
-            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, clear, pose_cells, pose_start, ds,
-            hfield, penalties, analytic_max, max_expansions, use_analytic):
-    """The Hybrid A* loop. Returns (status, nodes arrays, goal node, analytic word, expansions)."""
-    h, w = blocked.shape
-    nprim = prim_kind.shape[0]
-    cap = 1024
-    nx = np.empty(cap)
-    ny = np.empty(cap)
-    nb = np.empty(cap, dtype=np.int64)
-    ng = np.empty(cap)
-    nparent = np.empty(cap, dtype=np.int64)
-    nprim_of = np.empty(cap, dtype=np.int64)
-    closed = np.zeros(cap, dtype=np.bool_)
-    index = TypedDict.empty(key_type=types.int64, value_type=types.int64)  # discrete state -> node
-    seg = np.zeros(MAX_SEGMENTS)
-    akinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
-    alens = np.zeros(MAX_SEGMENTS)
-    best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
-    best_lens = np.zeros(MAX_SEGMENTS)
-    straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
-
-    nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
-    count = 1
-    index[(int(sy // res) * w + int(sx // res)) * bins + sbin] = 0
-    heap = [(0.0, 0)]
-    expansions = 0
-    while heap:
-        f, v = heapq.heappop(heap)
-        if closed[v]:
-            continue
-        closed[v] = True
-        expansions += 1
-        x, y, b = nx[v], ny[v], nb[v]
-        theta = theta0 + b * step
-        # analytic expansion near the goal: the exact obstacle-free path, if it is free
-        if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
-            for i in range(MAX_SEGMENTS):
-                akinds[i] = NOP
-                alens[i] = 0.0
-            if reverse:
-                dxg, dyg = gx - x, gy - y
-                c, s = math.cos(theta), math.sin(theta)
-                reeds_shepp._shortest_into((c * dxg + s * dyg) / radius, (-s * dxg + c * dyg) / radius,
-                                           gtheta - theta, seg, best_kinds, best_lens)
-                for i in range(MAX_SEGMENTS):
-                    akinds[i] = best_kinds[i]
-                    alens[i] = best_lens[i] * radius
-            else:
-                d, a, bb = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
-                word, t, p, q = dubins.solve(d, a, bb)
-                for i in range(3):
-                    akinds[i] = dubins.WORDS[word, i]
-                alens[0], alens[1], alens[2] = t * radius, p * radius, q * radius
-            if curve_free(blocked, res, x, y, theta, akinds, alens, radius, ds, theta0, step, bins, pose_cells,
-                           pose_start, np.zeros((0, 0)), np.zeros(3)):
-                return 1, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, alens, \
-                    expansions
-        elif not use_analytic:
-            if int(x // res) == int(gx // res) and int(y // res) == int(gy // res) and \
-                    (b - int(round((gtheta - theta0) / step))) % bins == 0:
-                return 1, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, alens, \
-                    expansions
-        if expansions >= max_expansions:
-            break
-        cx, cy = int(x // res), int(y // res)
-        # a node whose cell has no blocked cell within the primitives' reach needs no swept-cell checks
-        roomy = clear[cy, cx]
-        for j in range(nprim):
-            x2, y2 = x + pdx[b, j], y + pdy[b, j]
-            b2 = (b + pdbin[j]) % bins
-            cx2, cy2 = int(x2 // res), int(y2 // res)
-            if cx2 < 0 or cy2 < 0 or cx2 >= w or cy2 >= h:
-                continue
-            length = abs(prim_len[j])
-            cost = length * (straight_pen if prim_kind[j] == 2 else turn_pen)
-            backwards = prim_len[j] < 0
-            if backwards:
-                cost *= reverse_pen
-            if nprim_of[v] >= 0 and (prim_len[nprim_of[v]] < 0) != backwards:
-                cost += change_pen
-            g2 = ng[v] + cost
-            key = (cy2 * w + cx2) * bins + b2
-            u = index[key] if key in index else -1
-            if u >= 0 and (closed[u] or ng[u] <= g2):
-                continue
-            # the collision check last: it is the dearest test, and it decides nothing a cheaper one rejected
-            if not roomy and not free_cells(blocked, cx, cy, swept, swept_start[b * nprim + j],
-                                            swept_start[b * nprim + j + 1]):
-                continue
-            if u < 0:
-                if count == cap:
-                    cap *= 2
-                    nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
-                    nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
-                u = count
-                count += 1
-                index[key] = u
-                closed[u] = False
-            nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
-            h2 = _heuristic(hfield[cy2, cx2], x2, y2, theta0 + b2 * step, gx, gy, gtheta, radius, reverse,
-                            seg, best_kinds, best_lens)
-            heapq.heappush(heap, (g2 + h2, u))
-    return 0, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, expansions
-
-
-@njit(cache=True)
-def _grow(a, cap):
-    out = np.empty(cap, dtype=a.dtype)
-    out[:a.shape[0]] = a
-    return out
-
 
 # ---------------------------------------------------------------------------
 # the planner
@@ -399,12 +187,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     gcx, gcy = int(lgx // res), int(lgy // res)
     hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
-    found, nx, ny, nb, parent, prim, last, akinds, alens, expansions = _search(
+    found, nx, ny, nb, parent, prim, last, akinds, alens, expansions, solved = search(
         blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
         motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
         lattice.swept, lattice.swept_start, _clear_cells(blocked, lattice.swept), lattice.pose_cells,
         lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions), bool(analytic_expansion))
-    stats["expansions"], stats["nodes"] = int(expansions), int(len(nx))
+    stats["expansions"], stats["nodes"], stats["distances_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
         why = "the search space is exhausted" if expansions < max_expansions else \
             f"max_expansions ({max_expansions}) reached"

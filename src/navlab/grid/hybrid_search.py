@@ -1,0 +1,368 @@
+"""Hybrid A*'s compiled search: the holonomic field, the heuristic and the loop.
+
+The planner (:func:`navlab.grid.hybrid_astar.plan_hybrid`) sets up the map, the
+lattice and the field, then calls :func:`search`; this module holds only the
+compiled kernels. The loop is Dolgov et al.'s ("Path planning for autonomous
+vehicles in unknown semi-structured environments", IJRR 29(5), 2010): one
+continuous pose per discrete state (cell, heading bin), three primitives per
+driving direction, closed states never re-opened.
+
+Two choices make it fast without changing which nodes it expands:
+
+- **lazy heuristic** (Partial / lazy A*; Pearl, *Heuristics*, 1984, §3.2):
+  a child enters the queue keyed by ``g + field`` — the holonomic field alone,
+  a lower bound of the heuristic ``max(field, exact distance)`` — and the exact
+  Dubins / Reeds–Shepp distance is solved only when that entry reaches the top.
+  If it raises the key the entry goes back in with the true key, else it is
+  expanded at once. An entry reaching the top under a lower bound is no later
+  than under its true key, and every other entry's true key is at least its
+  queue key, so the entry expanded next is the one an eager queue would pop:
+  the same least ``(key, node)`` pair, ties broken by node number as the eager
+  ``heapq`` of ``(key, node)`` tuples did. Entries popped for a state already
+  closed are dropped unsolved, and so are entries still queued when the search
+  ends — often most of the children generated;
+- **dense state index**: a state's node is found through a per-cell block of
+  ``bins`` slots, allocated the first time the cell is reached (no hash map).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from ..sampling import dubins, reeds_shepp
+from ..sampling.curves import MAX_SEGMENTS, NOP
+from ..sampling.footprint_lattice import curve_free, free_cells
+
+#: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
+GATE_MARGIN = 1e-9
+
+
+@njit(cache=True)
+def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.ndarray:
+    """Shortest 8-connected distances [m] from cell (gx, gy) over ``passable``
+    cells (Dijkstra; diagonal steps only between two free orthogonal cells).
+
+    Dial's bucket queue instead of a heap: buckets a little narrower than the
+    shortest step (one cell), so no cell can improve another of its own bucket
+    and each bucket's cells are final in any order. A step is at most √2 cells,
+    so a relaxed cell lands one or two buckets ahead and three buckets, reused
+    in turn, hold the whole frontier. Every cell ends at the minimum over its
+    neighbours of (their distance + step), as with a heap, so the values are
+    the same bit for bit.
+    """
+    h, w = passable.shape
+    dist = np.full((h, w), np.inf)
+    done = np.zeros((h, w), dtype=np.bool_)
+    dist[gy, gx] = 0.0
+    width = res * (1.0 - 1e-6)  # below one step even after rounding
+    diag = math.sqrt(2.0) * res
+    cap = 1024
+    cells = np.empty((3, cap), dtype=np.int64)
+    size = np.zeros(3, dtype=np.int64)
+    cells[0, 0] = gy * w + gx
+    size[0] = 1
+    pending = 1
+    bucket = 0
+    while pending > 0:
+        slot = bucket % 3
+        i = 0
+        while i < size[slot]:
+            v = cells[slot, i]
+            i += 1
+            pending -= 1
+            y, x = v // w, v % w
+            if done[y, x]:  # entered again after an improvement: settled already
+                continue
+            done[y, x] = True
+            d = dist[y, x]
+            for dy in (-1, 0, 1):
+                for dx in (-1, 0, 1):
+                    nx, ny = x + dx, y + dy
+                    if nx < 0 or ny < 0 or nx >= w or ny >= h or done[ny, nx] or not passable[ny, nx]:
+                        continue
+                    if dx != 0 and dy != 0 and not (passable[y, nx] and passable[ny, x]):
+                        continue
+                    nd = d + (diag if dx != 0 and dy != 0 else res)
+                    if nd < dist[ny, nx]:
+                        dist[ny, nx] = nd
+                        to = int(nd / width) % 3
+                        if size[to] == cap:
+                            grown = np.empty((3, 2 * cap), dtype=np.int64)
+                            grown[:, :cap] = cells
+                            cells, cap = grown, 2 * cap
+                        cells[to, size[to]] = ny * w + nx
+                        size[to] += 1
+                        pending += 1
+        size[slot] = 0
+        bucket += 1
+    return dist
+
+
+@njit(cache=True)
+def _forward(x, y, theta, gx, gy, gtheta, radius) -> float:
+    """The Dubins length [m] from pose (x, y, θ) to the goal."""
+    d, a, b = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
+    _, t, p, q = dubins.solve(d, a, b)
+    return (t + p + q) * radius
+
+
+@njit(cache=True, inline="always")
+def _above(forward, radius) -> float:
+    """``forward`` (a Dubins length [m]) raised by the gate's margin: no less than the
+    Reeds–Shepp length as computed, whose closed forms round differently."""
+    return forward * (1.0 + GATE_MARGIN) + GATE_MARGIN * radius
+
+
+@njit(cache=True)
+def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
+    """:func:`_heuristic` given the Dubins length ``forward`` [m] already solved."""
+    if not reverse:
+        return max(field, forward)
+    if _above(forward, radius) <= field:
+        return field
+    dx, dy = gx - x, gy - y
+    c, s = math.cos(theta), math.sin(theta)
+    return max(field, reeds_shepp._shortest_into((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
+                                                 gtheta - theta, seg, kinds, lengths) * radius)
+
+
+@njit(cache=True)
+def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
+    """The larger of ``field`` (the holonomic distance at the node's cell) and the
+    exact obstacle-free Dubins / Reeds–Shepp distance from pose (x, y, θ) to the goal.
+
+    A Reeds–Shepp solve (44 closed forms) costs about ten Dubins solves, and
+    far from the goal the field is usually the larger. Every Dubins path is a
+    Reeds–Shepp path, so the Dubins length bounds the Reeds–Shepp length from
+    above: when it is no more than the field, the maximum is the field and the
+    Reeds–Shepp solve is skipped. The value is the same as always solving, so
+    the search expands the same nodes; the relative margin keeps rounding in
+    the two closed forms from deciding.
+    """
+    forward = _forward(x, y, theta, gx, gy, gtheta, radius)
+    return _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths)
+
+
+# ---------------------------------------------------------------------------
+# the priority queue: a binary heap of entry numbers ordered by (key, node)
+# ---------------------------------------------------------------------------
+@njit(cache=True, inline="always")
+def _before(key, node, i, j) -> bool:
+    """Entry i comes out before entry j: the smaller key, then the smaller node (heapq's tuple order)."""
+    return key[i] < key[j] or (key[i] == key[j] and node[i] < node[j])
+
+
+@njit(cache=True)
+def _push(heap, size, key, node, e) -> None:
+    i = size
+    while i > 0:
+        up = (i - 1) >> 1
+        if not _before(key, node, e, heap[up]):
+            break
+        heap[i] = heap[up]
+        i = up
+    heap[i] = e
+
+
+@njit(cache=True)
+def _pop(heap, size, key, node) -> int:
+    """Remove and return the first entry of a heap of ``size`` (> 0) entries."""
+    top = heap[0]
+    size -= 1
+    last = heap[size]
+    i = 0
+    while True:
+        child = 2 * i + 1
+        if child >= size:
+            break
+        if child + 1 < size and _before(key, node, heap[child + 1], heap[child]):
+            child += 1
+        if not _before(key, node, heap[child], last):
+            break
+        heap[i] = heap[child]
+        i = child
+    heap[i] = last
+    return top
+
+
+@njit(cache=True)
+def _grow(a, cap):
+    out = np.empty((cap,) + a.shape[1:], dtype=a.dtype)
+    out[:a.shape[0]] = a
+    return out
+
+
+@njit(cache=True)
+def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins, pose_cells,
+              pose_start, seg, best_kinds, best_lens, akinds, alens) -> bool:
+    """The exact obstacle-free path from (x, y, θ) to the goal into ``akinds``/``alens`` [m]; whether it is free."""
+    for i in range(MAX_SEGMENTS):
+        akinds[i] = NOP
+        alens[i] = 0.0
+    if reverse:
+        dxg, dyg = gx - x, gy - y
+        c, s = math.cos(theta), math.sin(theta)
+        reeds_shepp._shortest_into((c * dxg + s * dyg) / radius, (-s * dxg + c * dyg) / radius,
+                                   gtheta - theta, seg, best_kinds, best_lens)
+        for i in range(MAX_SEGMENTS):
+            akinds[i] = best_kinds[i]
+            alens[i] = best_lens[i] * radius
+    else:
+        d, a, bb = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
+        word, t, p, q = dubins.solve(d, a, bb)
+        for i in range(3):
+            akinds[i] = dubins.WORDS[word, i]
+        alens[0], alens[1], alens[2] = t * radius, p * radius, q * radius
+    return curve_free(blocked, res, x, y, theta, akinds, alens, radius, ds, theta0, step, bins, pose_cells,
+                      pose_start, np.zeros((0, 0)), np.zeros(3))
+
+
+@njit(cache=True)
+def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
+           prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, clear, pose_cells, pose_start, ds,
+           hfield, penalties, analytic_max, max_expansions, use_analytic):
+    """The Hybrid A* loop. Returns (found, node x, y, bin, parent, primitive, goal node, analytic word
+    (kinds, lengths [m]), expansions, exact distances solved)."""
+    h, w = blocked.shape
+    nprim = prim_kind.shape[0]
+    cap = 1024
+    nx = np.empty(cap)
+    ny = np.empty(cap)
+    nb = np.empty(cap, dtype=np.int64)
+    ng = np.empty(cap)
+    nparent = np.empty(cap, dtype=np.int64)
+    nprim_of = np.empty(cap, dtype=np.int64)
+    closed = np.zeros(cap, dtype=np.bool_)
+    # discrete state -> node: a block of `bins` node numbers per cell reached
+    block_of = np.full(h * w, -1, dtype=np.int64)
+    blocks = np.full((64, bins), -1, dtype=np.int64)
+    nblocks = 0
+    # queue entries: key, node, and what the key was computed from (g and pose at the push) while lazy
+    ecap = 1024
+    ekey = np.empty(ecap)
+    enode = np.empty(ecap, dtype=np.int64)
+    eg = np.empty(ecap)
+    ex = np.empty(ecap)
+    ey = np.empty(ecap)
+    elazy = np.zeros(ecap, dtype=np.bool_)
+    heap = np.empty(ecap, dtype=np.int64)
+    nentries = 0
+    hsize = 0
+    seg = np.zeros(MAX_SEGMENTS)
+    akinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
+    alens = np.zeros(MAX_SEGMENTS)
+    best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
+    best_lens = np.zeros(MAX_SEGMENTS)
+    straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
+
+    nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
+    count = 1
+    cell = int(sy // res) * w + int(sx // res)
+    block_of[cell] = 0
+    blocks[0, sbin] = 0
+    nblocks = 1
+    ekey[0], enode[0], elazy[0] = 0.0, 0, False
+    heap[0] = 0
+    nentries, hsize = 1, 1
+    expansions = 0
+    solved = 0
+    while hsize > 0:
+        e = _pop(heap, hsize, ekey, enode)
+        hsize -= 1
+        v = enode[e]
+        if closed[v]:
+            continue
+        if elazy[e]:
+            elazy[e] = False
+            theta = theta0 + nb[v] * step
+            field = hfield[int(ey[e] // res), int(ex[e] // res)]
+            forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
+            # the order needs the key only against the next entry's: an upper bound below it settles that
+            # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
+            if reverse and (hsize == 0 or eg[e] + max(field, _above(forward, radius)) < ekey[heap[0]]):
+                f = ekey[e]
+            else:
+                solved += 1
+                f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius, reverse,
+                                            seg, best_kinds, best_lens)
+            if f != ekey[e]:
+                # the true key is larger: back in the queue (the same entry, so ties still go by node)
+                ekey[e] = f
+                _push(heap, hsize, ekey, enode, e)
+                hsize += 1
+                continue
+        closed[v] = True
+        expansions += 1
+        x, y, b = nx[v], ny[v], nb[v]
+        theta = theta0 + b * step
+        # analytic expansion near the goal: the exact obstacle-free path, if it is free
+        if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
+            if _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
+                         pose_cells, pose_start, seg, best_kinds, best_lens, akinds, alens):
+                return True, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, \
+                    alens, expansions, solved
+        elif not use_analytic:
+            if int(x // res) == int(gx // res) and int(y // res) == int(gy // res) and \
+                    (b - int(round((gtheta - theta0) / step))) % bins == 0:
+                return True, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, \
+                    alens, expansions, solved
+        if expansions >= max_expansions:
+            break
+        cx, cy = int(x // res), int(y // res)
+        # a node whose cell has no blocked cell within the primitives' reach needs no swept-cell checks
+        roomy = clear[cy, cx]
+        for j in range(nprim):
+            x2, y2 = x + pdx[b, j], y + pdy[b, j]
+            b2 = (b + pdbin[j]) % bins
+            cx2, cy2 = int(x2 // res), int(y2 // res)
+            if cx2 < 0 or cy2 < 0 or cx2 >= w or cy2 >= h:
+                continue
+            length = abs(prim_len[j])
+            cost = length * (straight_pen if prim_kind[j] == 2 else turn_pen)
+            backwards = prim_len[j] < 0
+            if backwards:
+                cost *= reverse_pen
+            if nprim_of[v] >= 0 and (prim_len[nprim_of[v]] < 0) != backwards:
+                cost += change_pen
+            g2 = ng[v] + cost
+            cell = cy2 * w + cx2
+            blk = block_of[cell]
+            u = blocks[blk, b2] if blk >= 0 else -1
+            if u >= 0 and (closed[u] or ng[u] <= g2):
+                continue
+            # the collision check last: it is the dearest test, and it decides nothing a cheaper one rejected
+            if not roomy and not free_cells(blocked, cx, cy, swept, swept_start[b * nprim + j],
+                                            swept_start[b * nprim + j + 1]):
+                continue
+            if u < 0:
+                if count == cap:
+                    cap *= 2
+                    nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
+                    nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
+                if blk < 0:
+                    if nblocks == blocks.shape[0]:
+                        blocks = _grow(blocks, 2 * nblocks)
+                        blocks[nblocks:] = -1
+                    blk = nblocks
+                    nblocks += 1
+                    block_of[cell] = blk
+                u = count
+                count += 1
+                blocks[blk, b2] = u
+                closed[u] = False
+            nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
+            if nentries == ecap:
+                ecap *= 2
+                ekey, enode, eg, ex, ey = _grow(ekey, ecap), _grow(enode, ecap), _grow(eg, ecap), \
+                    _grow(ex, ecap), _grow(ey, ecap)
+                elazy, heap = _grow(elazy, ecap), _grow(heap, ecap)
+            ekey[nentries], enode[nentries], eg[nentries] = g2 + hfield[cy2, cx2], u, g2
+            ex[nentries], ey[nentries], elazy[nentries] = x2, y2, True
+            _push(heap, hsize, ekey, enode, nentries)
+            hsize += 1
+            nentries += 1
+    return False, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \
+        expansions, solved

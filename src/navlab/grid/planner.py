@@ -87,7 +87,7 @@ class GridSearcher:
         self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
         self.hi = np.full(rows, -1, dtype=np.int64)
         self.extent = np.array([rows, -1], dtype=np.int64)  # and the rows they spanned
-        # Open lists (A*'s radix-heap pool, JPS's heap) and the same-f stack;
+        # Open lists (A*'s bucket-queue pool, JPS's heap) and the same-f stack;
         # grown (and the query rerun) if one fills up.
         room = min(n + 16, 1 << 16)
         self.heap = np.empty((room, 2))
@@ -97,10 +97,9 @@ class GridSearcher:
 
     def _pool(self, room: int) -> None:
         self.key = np.empty(room)
-        self.key_bits = self.key.view(np.uint64)
         self.cell = np.empty(room, dtype=np.int32)
         self.next = np.empty(room, dtype=np.int32)
-        self.head = np.empty(K.N_BUCKETS + 2, dtype=np.int64)
+        self.head = np.empty(K.N_BUCKETS, dtype=np.int32)
 
     def index(self, x: int, y: int) -> int:
         return (y + 1) * self.stride + (x + 1)
@@ -118,7 +117,7 @@ class GridSearcher:
             else:
                 kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
                 status, expanded = kernel(self.free, self.stride, a, b, weight, self.g, self.parent, self.lo,
-                                          self.hi, self.extent, self.key, self.key_bits, self.cell, self.next,
+                                          self.hi, self.extent, self.key, self.cell, self.next,
                                           self.head, self.stack)
             if status != K.OVERFLOW:
                 return status, expanded

@@ -1,0 +1,107 @@
+"""Search state reused across queries, paths read back without parents, and the bucket queue's window.
+
+A searcher keeps one float64 per cell and zeroes only what the previous query
+wrote; A* reads its path back from those values. These tests check the
+answers against scipy's Dijkstra on the explicit graph (tests/grid/test_search.py's
+``explicit_graph``) and against fresh grids.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy.sparse.csgraph import dijkstra as scipy_dijkstra
+
+from navlab import Status
+from navlab.grid import OccupancyGrid, plan
+from navlab.grid import kernels as K
+from navlab.grid.planner import pool_for
+
+from grid.test_search import explicit_graph  # tests/ is on the path (pyproject: pythonpath)
+
+ALGORITHMS = [("astar", 8), ("dijkstra", 8), ("jps", 8), ("theta_star", 8), ("astar", 4), ("dijkstra", 4)]
+
+
+def legal_steps(grid, cells, connectivity):
+    """Every step moves to a free 8- (or 4-) neighbour without cutting a blocked corner."""
+    assert not grid.blocked[cells[:, 1], cells[:, 0]].any()
+    step = np.diff(cells, axis=0)
+    assert np.all(np.abs(step).max(axis=1) == 1)
+    if connectivity == 4:
+        assert np.all(np.abs(step).sum(axis=1) == 1)
+    diag = np.all(np.abs(step) == 1, axis=1)
+    a, s = cells[:-1][diag], step[diag]
+    assert not grid.blocked[a[:, 1], a[:, 0] + s[:, 0]].any()
+    assert not grid.blocked[a[:, 1] + s[:, 1], a[:, 0]].any()
+
+
+def test_one_grid_answers_a_mixed_stream_of_queries_like_fresh_grids():
+    """Queries of every algorithm, failing ones included (they touch a whole
+    component), one after another on one grid: each equals the same query on a
+    fresh grid, and the optimal ones equal scipy's distances."""
+    rng = np.random.default_rng(11)
+    blocked = rng.random((40, 50)) < 0.3
+    blocked[:, 25] = True  # two halves: queries across them fail after searching a whole side
+    blocked[20, 25] = False
+    shared = OccupancyGrid(blocked)
+    free = np.argwhere(~blocked)
+    truth = {c: scipy_dijkstra(explicit_graph(blocked, c)) for c in (4, 8)}
+    for q in range(120):
+        (sy, sx), (gy, gx) = free[rng.integers(len(free), size=2)]
+        algorithm, connectivity = ALGORITHMS[q % len(ALGORITHMS)]
+        kw = dict(algorithm=algorithm, connectivity=connectivity)
+        got = plan(shared, (sx, sy), (gx, gy), **kw)
+        fresh = plan(OccupancyGrid(blocked), (sx, sy), (gx, gy), **kw)
+        assert got.status == fresh.status and got.cost == fresh.cost
+        assert np.array_equal(got.cells, fresh.cells)
+        d = truth[connectivity][sy * blocked.shape[1] + sx, gy * blocked.shape[1] + gx]
+        if math.isinf(d):
+            assert got.status is Status.FAILED
+        elif algorithm == "theta_star":
+            assert got.success and got.cost <= d + 1e-9
+        else:
+            assert got.success and got.cost == pytest.approx(d, abs=1e-9)
+            legal_steps(shared, got.cells, connectivity)
+
+
+@pytest.mark.parametrize("algorithm", ["astar", "jps", "theta_star"])
+def test_the_next_query_starts_from_all_zero_state(algorithm):
+    """What a query wrote is exactly what the next one clears (nothing is left behind)."""
+    rng = np.random.default_rng(5)
+    grid = OccupancyGrid(rng.random((60, 70)) < 0.25)
+    free = np.argwhere(~grid.blocked)
+    pool = pool_for(grid, False)
+    for _ in range(10):
+        (sy, sx), (gy, gx) = free[rng.integers(len(free), size=2)]
+        plan(grid, (sx, sy), (gx, gy), algorithm=algorithm)
+        (s,) = pool._idle
+        assert np.any(s.g != 0)
+        K.clear_touched(s.g, s.stride, s.lo, s.hi, s.extent)
+        assert not np.any(s.g != 0) and np.all(s.lo == s.stride) and np.all(s.hi == -1)
+
+
+@pytest.mark.parametrize("heuristic, weight", [("octile", 1.5), ("octile", 40.0), ("manhattan", 1.0),
+                                               ("manhattan", 7.0), ("euclidean", 3.0), ("chebyshev", 1.0)])
+def test_weighted_and_inconsistent_searches_return_legal_bounded_paths(heuristic, weight):
+    """The bucket queue's window grows with the weight and covers heuristics
+    whose f can drop (Manhattan on 8-connected grids): paths stay legal and
+    within weight x optimum (within the optimum for admissible ones at weight 1)."""
+    rng = np.random.default_rng(9)
+    for _ in range(8):
+        blocked = rng.random((30, 36)) < 0.25
+        grid = OccupancyGrid(blocked)
+        dist = scipy_dijkstra(explicit_graph(blocked, 8))
+        free = np.argwhere(~blocked)
+        for _ in range(10):
+            (sy, sx), (gy, gx) = free[rng.integers(len(free), size=2)]
+            d = dist[sy * 36 + sx, gy * 36 + gx]
+            r = plan(grid, (sx, sy), (gx, gy), heuristic=heuristic, weight=weight)
+            if math.isinf(d):
+                assert r.status is Status.FAILED
+                continue
+            assert r.success and tuple(r.cells[0]) == (sx, sy) and tuple(r.cells[-1]) == (gx, gy)
+            legal_steps(grid, r.cells, 8)
+            inflation = math.sqrt(2) if heuristic == "manhattan" else 1.0  # Manhattan prices a diagonal 2, not √2
+            assert d - 1e-9 <= r.cost <= weight * inflation * d + 1e-9
+            if heuristic != "manhattan" and weight == 1.0:
+                assert r.cost == pytest.approx(d, abs=1e-9)

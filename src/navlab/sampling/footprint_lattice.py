@@ -76,21 +76,29 @@ def _near_outline(px: float, py: float, vertices: np.ndarray, disc: float, margi
 def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.ndarray, margin: float,
                    res: float) -> np.ndarray:
     """Offsets (dx, dy) of the cells, relative to the cell whose centre is the
-    origin, with a centre within ``margin`` of the outline at any of ``poses``."""
-    span = int(math.ceil((reach + margin + np.abs(poses[:, :2]).max()) / res)) + 1
+    origin, with a centre within ``margin`` of the outline at any of ``poses``.
+
+    Each pose reads only the cells of its own box of half-width ``reach + margin``
+    (a cell outside it fails the disc test below for that pose anyway)."""
+    far = reach + margin
+    span = int(math.ceil((far + np.abs(poses[:, :2]).max()) / res)) + 1
     size = 2 * span + 1
     hit = np.zeros((size, size), dtype=np.bool_)
     local = np.empty(2)
     for p in range(poses.shape[0]):
         c, s = math.cos(poses[p, 2]), math.sin(poses[p, 2])
-        for iy in range(size):
-            for ix in range(size):
+        lo_x = max(0, int(math.floor((poses[p, 0] - far) / res)) + span - 1)
+        hi_x = min(size, int(math.ceil((poses[p, 0] + far) / res)) + span + 2)
+        lo_y = max(0, int(math.floor((poses[p, 1] - far) / res)) + span - 1)
+        hi_y = min(size, int(math.ceil((poses[p, 1] + far) / res)) + span + 2)
+        for iy in range(lo_y, hi_y):
+            for ix in range(lo_x, hi_x):
                 if hit[iy, ix]:
                     continue
                 # the cell centre in the body frame of this pose
                 wx, wy = (ix - span) * res - poses[p, 0], (iy - span) * res - poses[p, 1]
                 local[0], local[1] = c * wx + s * wy, -s * wx + c * wy
-                if local[0] * local[0] + local[1] * local[1] > (reach + margin) ** 2:
+                if local[0] * local[0] + local[1] * local[1] > far ** 2:
                     continue
                 if _near_outline(local[0], local[1], vertices, disc, margin):
                     hit[iy, ix] = True
@@ -101,13 +109,72 @@ def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.nd
     return out
 
 
-def _pack(groups) -> Tuple[np.ndarray, np.ndarray]:
+@njit(cache=True)
+def _swept_table(vertices, disc, reach, theta0, step, bins, prim_kind, prim_len, radius, ds, margin, res):
+    """Per (bin, primitive), in that order, the primitive's end (dx, dy, Δbin) and the cells
+    :func:`_cells_touched` gives along it, packed (:func:`_packed`).
+
+    A quarter turn maps cells onto cells, so when ``bins`` is a multiple of 4
+    only the first quarter of the bins is traced: bin ``b + q·bins/4`` is bin
+    ``b`` turned q quarter turns, its cells (dx, dy) → (−dy, dx) q times (the
+    outline, the primitive and the margin turn with it). The ends are traced for
+    every bin: the search adds them to poses, so they are kept as exact as before."""
+    nprim = prim_kind.shape[0]
+    dx, dy = np.empty((bins, nprim)), np.empty((bins, nprim))
+    dbin = np.empty(nprim, dtype=np.int64)
+    kinds, lengths = np.empty(1, dtype=np.int64), np.empty(1)
+    traced = bins // 4 if bins % 4 == 0 else bins
+    groups = []
+    for b in range(bins):
+        theta = theta0 + b * step
+        for j in range(nprim):
+            kinds[0], lengths[0] = prim_kind[j], prim_len[j]
+            poses, _ = trace_word(0.0, 0.0, theta, kinds, lengths, radius, ds)
+            dx[b, j], dy[b, j] = poses[-1, 0], poses[-1, 1]
+            dbin[j] = round((poses[-1, 2] - theta) / step)
+            if b < traced:
+                groups.append(_cells_touched(vertices, disc, reach, poses, margin, res))
+            else:
+                groups.append(_quarter_turned(groups[(b - traced) * nprim + j]))
+    flat, starts = _packed(groups)
+    return dx, dy, dbin, flat, starts
+
+
+@njit(cache=True)
+def _quarter_turned(cells: np.ndarray) -> np.ndarray:
+    """Cell offsets turned a quarter turn counter-clockwise about the origin's cell."""
+    out = np.empty_like(cells)
+    out[:, 0] = -cells[:, 1]
+    out[:, 1] = cells[:, 0]
+    return out
+
+
+@njit(cache=True)
+def _pose_table(vertices, disc, reach, theta0, step, bins, margin, res):
+    """Per bin, the cells :func:`_cells_touched` gives for the outline at the bin's heading
+    (quarter turns as in :func:`_swept_table`), packed (:func:`_packed`)."""
+    traced = bins // 4 if bins % 4 == 0 else bins
+    groups = []
+    pose = np.zeros((1, 3))
+    for b in range(bins):
+        if b < traced:
+            pose[0, 2] = theta0 + b * step
+            groups.append(_cells_touched(vertices, disc, reach, pose, margin, res))
+        else:
+            groups.append(_quarter_turned(groups[b - traced]))
+    return _packed(groups)
+
+
+@njit(cache=True)
+def _packed(groups):
     """Ragged lists of (K_i, 2) offsets as (flat offsets, start index per group + end)."""
     starts = np.zeros(len(groups) + 1, dtype=np.int64)
-    for i, g in enumerate(groups):
-        starts[i + 1] = starts[i] + len(g)
-    flat = np.concatenate(groups) if groups else np.empty((0, 2), np.int64)
-    return np.ascontiguousarray(flat, dtype=np.int64), starts
+    for i in range(len(groups)):
+        starts[i + 1] = starts[i] + groups[i].shape[0]
+    flat = np.empty((starts[-1], 2), dtype=np.int64)
+    for i in range(len(groups)):
+        flat[starts[i]:starts[i + 1]] = groups[i]
+    return flat, starts
 
 
 class Lattice:
@@ -136,23 +203,12 @@ class Lattice:
         prims = [(kind, d * self.length) for d in directions for kind in (2, 1, 3)]  # straight, left, right
         self.prim_kind = np.array([p[0] for p in prims], dtype=np.int64)
         self.prim_len = np.array([p[1] for p in prims])
-        n = len(prims)
-        self.dx, self.dy = np.empty((bins, n)), np.empty((bins, n))
-        self.dbin = np.empty(n, dtype=np.int64)
-        swept = []
-        for b in range(bins):
-            theta = theta0 + b * self.step
-            for j, (kind, s) in enumerate(prims):
-                poses, _ = trace_word(0.0, 0.0, theta, np.array([kind]), np.array([s]), r, self.ds)
-                self.dx[b, j], self.dy[b, j] = poses[-1, 0], poses[-1, 1]
-                self.dbin[j] = round((poses[-1, 2] - theta) / self.step)
-                swept.append(_cells_touched(verts, disc, reach, poses, diag + 0.5 * self.delta, res))
-        self.swept, self.swept_start = _pack(swept)
+        self.dx, self.dy, self.dbin, self.swept, self.swept_start = _swept_table(
+            verts, disc, reach, theta0, self.step, bins, self.prim_kind, self.prim_len, r, self.ds,
+            diag + 0.5 * self.delta, res)
         # per-bin outlines for any heading within the bin (analytic and smoothed segments)
         margin = diag + 0.5 * self.delta + reach * math.sin(self.step / 2.0)
-        self.pose_cells, self.pose_start = _pack([
-            _cells_touched(verts, disc, reach, np.array([[0.0, 0.0, theta0 + b * self.step]]), margin, res)
-            for b in range(bins)])
+        self.pose_cells, self.pose_start = _pose_table(verts, disc, reach, theta0, self.step, bins, margin, res)
         # the disc around the footprint's bounding-box centre c0 (body frame) that holds every cell a
         # pose's check reads: those cells' centres lie within margin of the outline placed at the pose's
         # cell centre (≤ diag/2 away) and bin heading (c0 moves ≤ |c0|·Δθ/2), so none is blocked when no

@@ -1,0 +1,76 @@
+"""Hybrid A*'s footprint lattice against its plain construction: every bin and
+primitive traced and its cells found directly, no quarter-turn reuse."""
+
+import math
+
+import numpy as np
+import pytest
+
+from navlab.sampling.curves import trace_word
+from navlab.sampling.footprint_lattice import Lattice, _cells_touched
+
+OUTLINES = {
+    "car": ([[-1.0, -1.0], [3.3, -1.0], [3.3, 1.0], [-1.0, 1.0]], 0.0, 4.385, 1.0),
+    "small car": ([[-0.25, -0.2], [0.25, -0.2], [0.25, 0.2], [-0.25, 0.2]], 0.0, 0.4, 0.05),
+    "skew triangle": ([[-0.3, -0.2], [0.5, 0.05], [-0.1, 0.3]], 0.0, 0.7, 0.04),
+    "disc": ([], 0.3, 0.5, 0.05),
+}
+
+
+def cell_set(cells):
+    return {tuple(c) for c in cells.tolist()}
+
+
+@pytest.mark.parametrize("name", sorted(OUTLINES))
+@pytest.mark.parametrize("bins", [72, 16, 18])
+def test_the_lattice_cells_are_those_traced_at_every_bin(name, bins):
+    vertices, disc, radius, res = OUTLINES[name]
+    verts = np.array(vertices, float).reshape(-1, 2)
+    for theta0 in (0.0, 0.3, -2.1):
+        lattice = Lattice(tuple(map(tuple, vertices)), disc, radius, res, bins, True, theta0)
+        reach, diag = lattice.circumscribed, math.sqrt(2.0) * res
+        nprim = len(lattice.prim_kind)
+        pose_margin = diag + 0.5 * lattice.delta + reach * math.sin(lattice.step / 2.0)
+        for b in range(bins):
+            theta = theta0 + b * lattice.step
+            pose = _cells_touched(verts, disc, reach, np.array([[0.0, 0.0, theta]]), pose_margin, res)
+            assert cell_set(lattice.pose_cells[lattice.pose_start[b]:lattice.pose_start[b + 1]]) == cell_set(pose)
+            for j in range(nprim):
+                poses, _ = trace_word(0.0, 0.0, theta, lattice.prim_kind[j:j + 1], lattice.prim_len[j:j + 1],
+                                      radius, lattice.ds)
+                assert (lattice.dx[b, j], lattice.dy[b, j]) == (poses[-1, 0], poses[-1, 1])
+                cells = _cells_touched(verts, disc, reach, poses, diag + 0.5 * lattice.delta, res)
+                k = b * nprim + j
+                got = lattice.swept[lattice.swept_start[k]:lattice.swept_start[k + 1]]
+                assert cell_set(got) == cell_set(cells), (b, j)
+
+
+@pytest.mark.parametrize("name", ["car", "skew triangle", "disc"])
+def test_the_cells_touched_are_those_shapely_finds_near_the_outline(name):
+    """Every cell whose centre lies within the margin of the outline at some traced pose, by shapely over a
+    window wider than the motion, and no other."""
+    import shapely
+
+    vertices, disc, radius, res = OUTLINES[name]
+    verts = np.array(vertices, float).reshape(-1, 2)
+    lattice = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 16, True, 0.4)
+    margin = math.sqrt(2.0) * res + 0.5 * lattice.delta
+    span = int((lattice.circumscribed + margin + lattice.length) / res) + 3
+    ix, iy = np.meshgrid(np.arange(-span, span + 1), np.arange(-span, span + 1))
+    centres = shapely.points(ix.ravel() * res, iy.ravel() * res)
+    for b in range(16):
+        for j in range(len(lattice.prim_kind)):
+            poses, _ = trace_word(0.0, 0.0, 0.4 + b * lattice.step, lattice.prim_kind[j:j + 1],
+                                  lattice.prim_len[j:j + 1], radius, lattice.ds)
+            near = np.zeros(centres.shape, bool)
+            for x, y, th in poses:
+                if len(verts):
+                    c, s = math.cos(th), math.sin(th)
+                    shape = shapely.Polygon(np.column_stack([x + c * verts[:, 0] - s * verts[:, 1],
+                                                             y + s * verts[:, 0] + c * verts[:, 1]]))
+                    near |= shapely.dwithin(shape, centres, margin)
+                else:
+                    near |= shapely.dwithin(shapely.Point(x, y), centres, disc + margin)
+            expected = set(zip(ix.ravel()[near].tolist(), iy.ravel()[near].tolist()))
+            got = _cells_touched(verts, disc, lattice.circumscribed, poses, margin, res)
+            assert cell_set(got) == expected, (b, j)

@@ -18,7 +18,9 @@ shape; navlab follows it:
   distance (an 8-connected Dijkstra field from the goal over the cells the
   robot's inscribed circle fits in); the Reeds–Shepp length is solved only
   where the Dubins length, an upper bound on it, exceeds the field
-  (:func:`_heuristic`), so the value is exact at a fraction of the cost;
+  (:func:`_heuristic`), so the value is exact at a fraction of the cost, and
+  only for queue entries that reach the top (:mod:`navlab.grid.hybrid_search`:
+  the same expansions as solving every child);
 - travel costs multiply a primitive's length by penalties for turning and
   reversing, and add one for changing direction (Nav2's defaults);
 - an analytic expansion tries the exact Dubins/Reeds–Shepp path to the goal
@@ -118,7 +120,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     Result
         ``path`` (N, 3) poses ``(x, y, θ)``, ``direction`` (N,) +1 forward / −1
         reverse, ``cost`` the length driven [m], ``stats`` with ``expansions``,
-        ``nodes``, ``cusps``, ``time_s`` and the penalised search cost ``g``.
+        ``nodes``, ``cusps``, ``time_s``, ``heuristics_solved`` (exact distances
+        the lazy queue needed) and ``g``, the search's penalised cost of the
+        primitives driven (before the analytic tail and the smoother).
     """
     t0 = time.perf_counter()
     if motion not in MOTIONS:
@@ -187,12 +191,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     gcx, gcy = int(lgx // res), int(lgy // res)
     hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
-    found, nx, ny, nb, parent, prim, last, akinds, alens, expansions, solved = search(
+    found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = search(
         blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
         motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
         lattice.swept, lattice.swept_start, _clear_cells(blocked, lattice.swept), lattice.pose_cells,
         lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions), bool(analytic_expansion))
-    stats["expansions"], stats["nodes"], stats["distances_solved"] = int(expansions), int(len(nx)), int(solved)
+    stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
         why = "the search space is exhausted" if expansions < max_expansions else \
             f"max_expansions ({max_expansions}) reached"
@@ -207,7 +211,6 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         v = parent[v]
     segments = [(int(lattice.prim_kind[j]), float(lattice.prim_len[j])) for j in reversed(chain)]
     segments += [(int(k), float(s)) for k, s in zip(akinds, alens) if k != NOP and abs(s) > 1e-12 * r]
-    g_cost = float(sum(abs(s) for _, s in segments))
     if smooth:
         segments = _shortcut(segments, (lsx, lsy, lst), r, motion, blocked, lattice, common)
     segments = _merged(segments)
@@ -221,7 +224,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     world = np.column_stack([ox + c * poses[:, 0] - s * poses[:, 1], oy + s * poses[:, 0] + c * poses[:, 1],
                              poses[:, 2] + yaw])
     length = float(np.abs(lengths).sum())
-    stats["g"] = g_cost
+    stats["g"] = float(ng[last])
     stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
     stats["cusps"] = int(np.count_nonzero(np.diff(np.sign(lengths[lengths != 0])) != 0)) if len(lengths) else 0

@@ -224,8 +224,8 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, clear, pose_cells, pose_start, ds,
            hfield, penalties, analytic_max, max_expansions, use_analytic):
-    """The Hybrid A* loop. Returns (found, node x, y, bin, parent, primitive, goal node, analytic word
-    (kinds, lengths [m]), expansions, exact distances solved)."""
+    """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
+    analytic word (kinds, lengths [m]), expansions, heuristics solved)."""
     h, w = blocked.shape
     nprim = prim_kind.shape[0]
     cap = 1024
@@ -302,12 +302,12 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
             if _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
                          pose_cells, pose_start, seg, best_kinds, best_lens, akinds, alens):
-                return True, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, \
+                return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
                     alens, expansions, solved
         elif not use_analytic:
             if int(x // res) == int(gx // res) and int(y // res) == int(gy // res) and \
                     (b - int(round((gtheta - theta0) / step))) % bins == 0:
-                return True, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], v, akinds, \
+                return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
                     alens, expansions, solved
         if expansions >= max_expansions:
             break
@@ -364,5 +364,5 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             _push(heap, hsize, ekey, enode, nentries)
             hsize += 1
             nentries += 1
-    return False, nx[:count], ny[:count], nb[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \
+    return False, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \
         expansions, solved

@@ -18,7 +18,7 @@ shape; navlab follows it:
   distance (an 8-connected Dijkstra field from the goal over the cells the
   robot's inscribed circle fits in); the Reeds–Shepp length is solved only
   where the Dubins length, an upper bound on it, exceeds the field
-  (:func:`_heuristic`), so the value is exact at a fraction of the cost, and
+  (:func:`~navlab.grid.hybrid_search._heuristic`), so the value is exact at a fraction of the cost, and
   only for queue entries that reach the top (:mod:`navlab.grid.hybrid_search`:
   the same expansions as solving every child);
 - travel costs multiply a primitive's length by penalties for turning and
@@ -58,10 +58,11 @@ from shapely.geometry import Point, Polygon
 from ..limits import check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
-from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, CurvePath, check_pose, check_turning_radius,
-                              trace_word)
-from ..sampling.footprint_lattice import check_turning_scale, curve_free, first_overlap, lattice_for, robot_outline
-from .hybrid_search import GATE_MARGIN, _heuristic, holonomic_field, search  # noqa: F401 (GATE_MARGIN, _heuristic: API)
+from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap, advance, check_pose,
+                              check_turning_radius, trace_word)
+from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, lattice_for, pose_free,
+                                          robot_outline)
+from .hybrid_search import holonomic_field, search
 from .occupancy import OccupancyGrid
 
 MOTIONS = ("dubins", "reeds_shepp")
@@ -178,6 +179,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
     for label, pose, status in (("start", (lsx, lsy, lst), Status.INVALID_START),
                                 ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL)):
+        if pose_free(blocked, *common[:1], *pose, *common[1:]):
+            continue  # the lattice's cells for the pose are a superset of what it overlaps: no shapely needed
         hit = first_overlap(blocked, res, vertices, disc, np.array([pose]), 0.0)
         if hit is not None:
             what = "leaves the map at" if hit[0] in (-1, grid.width) or hit[1] in (-1, grid.height) else \
@@ -266,8 +269,9 @@ def _shortcut(segments, start, r, motion, blocked, lattice, common):
     whose exact Dubins/Reeds–Shepp path is shorter and collision-free."""
     # waypoints: the pose after each segment
     poses = [start]
-    for kind, s in segments:
-        poses.append(CurvePath(poses[-1], LETTERS[kind], (s,), r).end)
+    for kind, s in segments:  # as CurvePath(...).end computes it, without a path object per segment
+        x, y, theta = advance(*poses[-1], kind, s, r)
+        poses.append((x, y, _wrap(theta)))
     # cumulative length along the original path
     acc = np.concatenate([[0.0], np.cumsum([abs(s) for _, s in segments])])
     waypoints = np.array(poses, dtype=float)

@@ -74,3 +74,25 @@ def test_the_cells_touched_are_those_shapely_finds_near_the_outline(name):
             expected = set(zip(ix.ravel()[near].tolist(), iy.ravel()[near].tolist()))
             got = _cells_touched(verts, disc, lattice.circumscribed, poses, margin, res)
             assert cell_set(got) == expected, (b, j)
+
+
+def test_the_search_swept_check_answers_as_reading_every_cell():
+    """The search stops reading a primitive's cells at the first one nearer than the nearest blocked
+    cell; its answers must be free_cells' (every cell read) on random maps, at every cell and primitive."""
+    from navlab.grid.hybrid_astar import _nearest_blocked2
+    from navlab.grid.hybrid_search import _swept_free
+    from navlab.sampling.footprint_lattice import free_cells
+
+    rng = np.random.default_rng(8)
+    vertices, disc, radius, res = OUTLINES["small car"]
+    lattice = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 16, True, 0.2)
+    groups = len(lattice.swept_start) - 1
+    for density in (0.002, 0.01, 0.05):
+        blocked = rng.random((40, 50)) < density
+        near2 = _nearest_blocked2(blocked)
+        for cy in range(0, 40, 3):
+            for cx in range(0, 50, 3):
+                for k in range(groups):
+                    lo, hi = lattice.swept_start[k], lattice.swept_start[k + 1]
+                    assert _swept_free(blocked, near2, cx, cy, lattice.swept, lo, hi) == \
+                        free_cells(blocked, cx, cy, lattice.swept, lo, hi)

@@ -197,7 +197,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = search(
         blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
         motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-        lattice.swept, lattice.swept_start, _clear_cells(blocked, lattice.swept), lattice.pose_cells,
+        lattice.swept, lattice.swept_start, _nearest_blocked2(blocked), lattice.pose_cells,
         lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions), bool(analytic_expansion))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
@@ -245,16 +245,15 @@ def _merged(segments):
     return out
 
 
-def _clear_cells(blocked: np.ndarray, offsets: np.ndarray) -> np.ndarray:
-    """Cells with no blocked cell, and no cell beyond the map's edge, within the
-    largest Chebyshev reach of ``offsets``: there every swept-cell check passes."""
-    from scipy.ndimage import maximum_filter
+def _nearest_blocked2(blocked: np.ndarray) -> np.ndarray:
+    """Squared distance [cells²] from each cell's centre to the nearest blocked or off-map cell's
+    centre (0 on blocked cells): whole numbers, so the search's comparisons with it are exact."""
+    from scipy.ndimage import distance_transform_edt
 
-    reach = int(np.abs(offsets).max()) if len(offsets) else 0
-    padded = np.ones((blocked.shape[0] + 2 * reach, blocked.shape[1] + 2 * reach), dtype=bool)
-    padded[reach:reach + blocked.shape[0], reach:reach + blocked.shape[1]] = blocked
-    near = maximum_filter(padded, size=2 * reach + 1, mode="constant", cval=True)
-    return ~near[reach:reach + blocked.shape[0], reach:reach + blocked.shape[1]]
+    padded = np.zeros((blocked.shape[0] + 2, blocked.shape[1] + 2), dtype=bool)
+    padded[1:-1, 1:-1] = ~blocked
+    d = distance_transform_edt(padded)[1:-1, 1:-1]
+    return np.rint(d * d).astype(np.int64)
 
 
 def _cell_mask(shape, x, y) -> np.ndarray:

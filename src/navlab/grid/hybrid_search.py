@@ -34,7 +34,7 @@ from numba import njit
 
 from ..sampling import dubins, reeds_shepp
 from ..sampling.curves import MAX_SEGMENTS, NOP
-from ..sampling.footprint_lattice import curve_free, free_cells
+from ..sampling.footprint_lattice import curve_free
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
@@ -196,6 +196,26 @@ def _grow(a, cap):
 
 
 @njit(cache=True)
+def _swept_free(blocked, near2, cx, cy, offsets, lo, hi) -> bool:
+    """Whether none of the cells ``offsets[lo:hi]`` from cell (cx, cy) is blocked or off the map:
+    :func:`~navlab.sampling.footprint_lattice.free_cells`' answer, reading fewer cells.
+
+    ``near2`` is the squared distance [cells²] from each cell to the nearest blocked or off-map
+    cell (centre to centre), and the offsets come outermost first: from the first offset nearer
+    than that, every remaining one is nearer too, so none of them can be blocked."""
+    h, w = blocked.shape
+    inside = near2[cy, cx]
+    for i in range(lo, hi):
+        ox, oy = offsets[i, 0], offsets[i, 1]
+        if ox * ox + oy * oy < inside:
+            return True
+        x, y = cx + ox, cy + oy
+        if x < 0 or y < 0 or x >= w or y >= h or blocked[y, x]:
+            return False
+    return True
+
+
+@njit(cache=True)
 def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins, pose_cells,
               pose_start, seg, best_kinds, best_lens, akinds, alens) -> bool:
     """The exact obstacle-free path from (x, y, θ) to the goal into ``akinds``/``alens`` [m]; whether it is free."""
@@ -222,7 +242,7 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
-           prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, clear, pose_cells, pose_start, ds,
+           prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, near2, pose_cells, pose_start, ds,
            hfield, penalties, analytic_max, max_expansions, use_analytic):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved)."""
@@ -312,8 +332,6 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         if expansions >= max_expansions:
             break
         cx, cy = int(x // res), int(y // res)
-        # a node whose cell has no blocked cell within the primitives' reach needs no swept-cell checks
-        roomy = clear[cy, cx]
         for j in range(nprim):
             x2, y2 = x + pdx[b, j], y + pdy[b, j]
             b2 = (b + pdbin[j]) % bins
@@ -334,8 +352,8 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             if u >= 0 and (closed[u] or ng[u] <= g2):
                 continue
             # the collision check last: it is the dearest test, and it decides nothing a cheaper one rejected
-            if not roomy and not free_cells(blocked, cx, cy, swept, swept_start[b * nprim + j],
-                                            swept_start[b * nprim + j + 1]):
+            if not _swept_free(blocked, near2, cx, cy, swept, swept_start[b * nprim + j],
+                               swept_start[b * nprim + j + 1]):
                 continue
             if u < 0:
                 if count == cap:

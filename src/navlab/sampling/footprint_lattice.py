@@ -118,7 +118,8 @@ def _swept_table(vertices, disc, reach, theta0, step, bins, prim_kind, prim_len,
     only the first quarter of the bins is traced: bin ``b + q·bins/4`` is bin
     ``b`` turned q quarter turns, its cells (dx, dy) → (−dy, dx) q times (the
     outline, the primitive and the margin turn with it). The ends are traced for
-    every bin: the search adds them to poses, so they are kept as exact as before."""
+    every bin: the search adds them to poses, so they are kept as exact as before.
+    Each primitive's cells are listed outermost first (:func:`_outermost_first`)."""
     nprim = prim_kind.shape[0]
     dx, dy = np.empty((bins, nprim)), np.empty((bins, nprim))
     dbin = np.empty(nprim, dtype=np.int64)
@@ -133,11 +134,20 @@ def _swept_table(vertices, disc, reach, theta0, step, bins, prim_kind, prim_len,
             dx[b, j], dy[b, j] = poses[-1, 0], poses[-1, 1]
             dbin[j] = round((poses[-1, 2] - theta) / step)
             if b < traced:
-                groups.append(_cells_touched(vertices, disc, reach, poses, margin, res))
+                groups.append(_outermost_first(_cells_touched(vertices, disc, reach, poses, margin, res)))
             else:
                 groups.append(_quarter_turned(groups[(b - traced) * nprim + j]))
     flat, starts = _packed(groups)
     return dx, dy, dbin, flat, starts
+
+
+@njit(cache=True)
+def _outermost_first(cells: np.ndarray) -> np.ndarray:
+    """Cell offsets sorted by distance from the origin's cell, farthest first (ties in their order):
+    a check can stop at the first offset nearer than the nearest blocked cell (Hybrid A*'s search),
+    and a blocked cell is usually met near the outline, so a failing check ends sooner."""
+    order = np.argsort(-(cells[:, 0] * cells[:, 0] + cells[:, 1] * cells[:, 1]), kind="mergesort")
+    return cells[order]
 
 
 @njit(cache=True)

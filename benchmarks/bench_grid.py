@@ -3,6 +3,7 @@
     pip install -e '.[bench]'          # adds pyastar2d (C++ core)
     python benchmarks/bench_grid.py [--every 5] [--repeat 3]
     python benchmarks/bench_grid.py --large [--repeat 3]   # issue 22's maps: 4096² random 20 %, 1001² maze
+    python benchmarks/bench_grid.py --large --scipy        # and Dijkstra against scipy's on them
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an
@@ -35,9 +36,12 @@ def main() -> None:
     ap.add_argument("--large", action="store_true",
                     help="corner-to-corner queries on a 4096x4096 random map (20%% blocked) and a 1001x1001 maze, "
                          "first query on a fresh grid timed apart, bytes per expanded cell")
+    ap.add_argument("--scipy", action="store_true",
+                    help="with --large: navlab's Dijkstra against scipy's on the explicit graph "
+                         "(builds it first: about 35 s and 3.3 GB on the 4096x4096 map)")
     args = ap.parse_args()
     if args.large:
-        large_maps(args.repeat)
+        large_maps(args.repeat, args.scipy)
         return
     try:
         import pyastar2d
@@ -93,23 +97,35 @@ def _large_maps():
     yield "maze1001", lambda: make_maze(100, 100, seed=1, cell_size=0.5, wall=0.05, resolution=0.05)
 
 
-def large_maps(repeat: int) -> None:
+def timed(fn):
+    """(wall seconds, this thread's CPU seconds, result) of one call: on a
+    shared machine the CPU time is what other jobs' load inflates least."""
+    w0, c0 = time.perf_counter(), time.thread_time()
+    out = fn()
+    return time.perf_counter() - w0, time.thread_time() - c0, out
+
+
+def large_maps(repeat: int, with_scipy: bool) -> None:
     """A* (8-connected, octile, no corner cutting), JPS and 4-connected A*
     against pyastar2d on big maps, corner to corner. The first query on a
-    fresh grid (kernels already loaded) is timed apart from repeated ones.
-    Bytes per expanded cell: the search state the query touched over the
-    cells it expanded, counted two ways: cells written (their 8-byte state,
-    4 more for JPS's parent, and the padded grid's byte) and whole 4 KB pages
-    of the state array written (what a first query pays to map)."""
+    fresh grid (kernels already loaded) is timed apart from repeated ones;
+    medians of wall and of CPU time (``cpu`` ratios). Bytes per expanded
+    cell: the search state the query touched over the cells it expanded,
+    counted two ways: cells written (their 8-byte state, 4 more for JPS's
+    parent, and the padded grid's byte) and whole 4 KB pages of the state
+    array written (what a first query pays to map). With ``with_scipy``,
+    navlab's Dijkstra against scipy's on the explicit graph (built apart,
+    untimed; scipy has no goal, so it settles every reachable cell)."""
     import pyastar2d
 
     from conditions import load_line, spread
 
     print(load_line("at start"))
-    for kw in ({}, {"algorithm": "jps"}, {"connectivity": 4, "heuristic": "manhattan"}):
+    for kw in ({}, {"algorithm": "jps"}, {"algorithm": "dijkstra"}, {"connectivity": 4, "heuristic": "manhattan"}):
         plan(load_map_free(8), (0, 0), (7, 7), **kw)  # kernels loaded before any timing
     print(f"{'map':<16} {'planner':<10} {'first s':>8} {'repeat s':>9} {'range':>12} {'pyastar2d s':>12} "
-          f"{'first/pya':>9} {'rep/pya':>8} {'expanded':>9} {'B/exp cells':>11} {'B/exp pages':>11}")
+          f"{'first/pya':>9} {'rep/pya':>8} {'cpu f/pya':>9} {'cpu r/pya':>9} {'expanded':>9} "
+          f"{'B/exp cells':>11} {'B/exp pages':>11}")
     for name, make in _large_maps():
         grid = make()
         free = np.argwhere(~grid.blocked)
@@ -118,28 +134,67 @@ def large_maps(repeat: int) -> None:
         for label, kw, diagonal in (("astar", {}, True), ("jps", {"algorithm": "jps"}, True),
                                     ("astar-4", {"connectivity": 4, "heuristic": "manhattan"}, False)):
             fresh = grid.replace()  # same cells, empty cache: the first query pays for its search state
-            t0 = time.perf_counter()
-            r = plan(fresh, s, t, **kw)
-            first = time.perf_counter() - t0
-            reps, pya = [], []
+            first, first_cpu, r = timed(lambda: plan(fresh, s, t, **kw))
+            runs, pya = [], []
             for _ in range(repeat):  # interleaved with pyastar2d
-                t0 = time.perf_counter()
-                plan(fresh, s, t, **kw)
-                reps.append(time.perf_counter() - t0)
-                t0 = time.perf_counter()
-                pyastar2d.astar_path(weights, (s[1], s[0]), (t[1], t[0]), allow_diagonal=diagonal)
-                pya.append(time.perf_counter() - t0)
-            rep, ref = statistics.median(reps), statistics.median(pya)
+                runs.append(timed(lambda: plan(fresh, s, t, **kw))[:2])
+                pya.append(timed(lambda: pyastar2d.astar_path(weights, (s[1], s[0]), (t[1], t[0]),
+                                                              allow_diagonal=diagonal))[:2])
+            reps = [w for w, _ in runs]
+            rep, rep_cpu = statistics.median(reps), statistics.median(c for _, c in runs)
+            ref, ref_cpu = statistics.median(w for w, _ in pya), statistics.median(c for _, c in pya)
             cells_b, pages_b = touched_bytes(fresh, label == "jps")
             expanded = max(r.stats["expanded"], 1)
             print(f"{name:<16} {label:<10} {first:>8.3f} {rep:>9.3f} {spread(reps, 3, ' s'):>12} {ref:>12.3f} "
-                  f"{first / ref:>9.2f} {rep / ref:>8.2f} {r.stats['expanded']:>9} "
-                  f"{cells_b / expanded:>11.1f} {pages_b / expanded:>11.1f}")
+                  f"{first / ref:>9.2f} {rep / ref:>8.2f} {first_cpu / ref_cpu:>9.2f} {rep_cpu / ref_cpu:>9.2f} "
+                  f"{r.stats['expanded']:>9} {cells_b / expanded:>11.1f} {pages_b / expanded:>11.1f}")
+        if with_scipy:
+            scipy_dijkstra(grid, s, t, repeat)
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
-    print("astar-4 and pyastar2d's 4-connected mode solve the same problem. B/expanded: search-state bytes per")
-    print("expanded cell: the cells the last query wrote (8 B of state each, +4 for JPS's parent, +1 grid byte),")
-    print("and the 4 KB pages of the state array it wrote.")
+    print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
+    print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (8 B of")
+    print("state each, +4 for JPS's parent, +1 grid byte), and the 4 KB pages of the state array it wrote.")
     print(load_line("at end"))
+
+
+def grid_graph(blocked: np.ndarray):
+    """The explicit graph of 8-connected moves without corner cutting (CSR,
+    cell y * W + x), built with array operations."""
+    from scipy.sparse import csr_matrix
+
+    h, w = blocked.shape
+    free = ~blocked
+    index = np.arange(h * w, dtype=np.int32).reshape(h, w)
+    rows, cols, costs = [], [], []
+    for dx, dy in ((1, 0), (-1, 0), (0, 1), (0, -1), (1, 1), (-1, 1), (1, -1), (-1, -1)):
+        ys, yd = (slice(0, h - dy), slice(dy, h)) if dy >= 0 else (slice(-dy, h), slice(0, h + dy))
+        xs, xd = (slice(0, w - dx), slice(dx, w)) if dx >= 0 else (slice(-dx, w), slice(0, w + dx))
+        ok = free[ys, xs] & free[yd, xd]
+        if dx and dy:  # both cells beside a diagonal move free
+            ok &= free[ys, xd] & free[yd, xs]
+        rows.append(index[ys, xs][ok])
+        cols.append(index[yd, xd][ok])
+        costs.append(np.full(rows[-1].size, math.sqrt(2) if dx and dy else 1.0))
+    return csr_matrix((np.concatenate(costs), (np.concatenate(rows), np.concatenate(cols))), shape=(h * w, h * w))
+
+
+def scipy_dijkstra(grid, s, t, repeat: int) -> None:
+    """navlab's Dijkstra against scipy.sparse.csgraph.dijkstra from the same
+    start (medians, interleaved), with both distances to the goal."""
+    from scipy.sparse.csgraph import dijkstra
+
+    graph = grid_graph(grid.blocked)
+    source, target = s[1] * grid.width + s[0], t[1] * grid.width + t[0]
+    ours, theirs = [], []
+    for _ in range(repeat):
+        wall, cpu, r = timed(lambda: plan(grid, s, t, algorithm="dijkstra"))
+        ours.append((wall, cpu))
+        wall, cpu, dist = timed(lambda: dijkstra(graph, indices=source))
+        theirs.append((wall, cpu))
+    med = [statistics.median(v) for v in zip(*ours)] + [statistics.median(v) for v in zip(*theirs)]
+    print(f"{grid.name:<16} {'dijkstra':<10} {'':>8} {med[0]:>9.3f} {'scipy':>12} {med[2]:>12.3f} {'':>9} "
+          f"{med[0] / med[2]:>8.2f} {'':>9} {med[1] / med[3]:>9.2f} {r.stats['expanded']:>9}  "
+          f"cost {r.stats['cost_cells']:.9f} scipy {dist[target]:.9f}")
 
 
 def touched_bytes(grid, parents: bool):

@@ -29,7 +29,7 @@ import functools
 import math
 import threading
 import time
-from typing import Any, Dict, Iterator, Tuple
+from typing import Any, Dict, Iterator, Optional, Tuple
 
 import numpy as np
 
@@ -53,13 +53,21 @@ for _name, _doc in (("dijkstra", "uniform-cost search (no heuristic)"),
 
 
 class PaddedGrid:
-    """A grid's passable cells with a blocked border, flattened: read-only, shared by every query."""
+    """A grid's passable cells with a blocked border, flattened: read-only, shared by every query.
 
-    def __init__(self, passable: np.ndarray) -> None:
-        h, w = passable.shape
+    Built from ``blocked`` (and ``unknown`` cells, also closed unless None)
+    straight into the padded array: no whole-grid temporaries, which on a
+    first query cost as much as the search's own state (fresh pages).
+    """
+
+    def __init__(self, blocked: np.ndarray, unknown: Optional[np.ndarray] = None) -> None:
+        h, w = blocked.shape
         self.stride = w + 2
         padded = np.zeros((h + 2, w + 2), dtype=np.uint8)
-        padded[1:-1, 1:-1] = passable
+        inner = padded[1:-1, 1:-1].view(np.bool_)
+        np.logical_not(blocked, out=inner)
+        if unknown is not None and unknown.any():
+            inner[unknown] = False
         self.free = padded.ravel()
         self.free.flags.writeable = False
 
@@ -146,8 +154,8 @@ class SearcherPool:
     (search, path tracing, smoothing) and gives it back. Thread-safe: two
     threads planning on the same grid at once each get their own."""
 
-    def __init__(self, passable: np.ndarray) -> None:
-        self.grid = PaddedGrid(passable)
+    def __init__(self, blocked: np.ndarray, unknown: Optional[np.ndarray] = None) -> None:
+        self.grid = PaddedGrid(blocked, unknown)
         self._idle: list = []
         self._lock = threading.Lock()
 
@@ -170,7 +178,7 @@ def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
     pool = grid._cache.get(key)
     if pool is None:
         # setdefault is atomic: two threads' first queries end up sharing one pool
-        pool = grid._cache.setdefault(key, SearcherPool(grid.passable(allow_unknown)))
+        pool = grid._cache.setdefault(key, SearcherPool(grid.blocked, None if allow_unknown else grid.unknown))
     return pool
 
 

@@ -117,6 +117,17 @@ def _above(forward, radius) -> float:
 
 
 @njit(cache=True)
+def _below_reeds_shepp(x, y, theta, gx, gy, gtheta, radius) -> float:
+    """A lower bound [m] on the Reeds–Shepp length from pose (x, y, θ) to the goal: no shorter than the
+    straight line, and only arcs turn the heading, by at most 1/r per metre, so no shorter than
+    r·|Δθ| (Δθ wrapped to [−π, π]). Lowered by the gate's margin, so it stays below the closed
+    forms' rounding."""
+    turn = abs(reeds_shepp._mod_pi(gtheta - theta))
+    bound = max(math.hypot(gx - x, gy - y), radius * turn)
+    return bound * (1.0 - GATE_MARGIN) - GATE_MARGIN * radius
+
+
+@njit(cache=True)
 def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
     """:func:`_heuristic` given the Dubins length ``forward`` [m] already solved."""
     if not reverse:
@@ -304,6 +315,15 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
             if reverse and (hsize == 0 or eg[e] + max(field, _above(forward, radius)) < ekey[heap[0]]):
                 f = ekey[e]
+            elif reverse and eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)) > \
+                    ekey[heap[0]]:
+                # a better lower bound already puts it after the next entry: back in the queue, still
+                # unsolved (entries that never come back to the top are never solved)
+                ekey[e] = eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius))
+                elazy[e] = True
+                _push(heap, hsize, ekey, enode, e)
+                hsize += 1
+                continue
             else:
                 solved += 1
                 f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius, reverse,

@@ -151,17 +151,17 @@ def test_the_search_queue_pops_in_heapq_tuple_order():
     n = 3000
     key = rng.integers(0, 40, n).astype(float)  # many equal keys
     node = rng.integers(0, 500, n)
-    heap, size, order, reference = np.empty(n, np.int64), 0, [], []
+    hkey, hnode, hentry = np.empty(n), np.empty(n, np.int64), np.empty(n, np.int64)
+    size, reference = 0, []
     for e in range(n):
-        _push(heap, size, key, node, e)
+        _push(hkey, hnode, hentry, size, key[e], node[e], e)
         size += 1
         heapq.heappush(reference, (key[e], node[e]))
         if rng.random() < 0.4:
-            e_out = _pop(heap, size, key, node)
+            k, v, out = _pop(hkey, hnode, hentry, size)
             size -= 1
-            order.append((key[e_out], node[e_out]))
-            assert order[-1] == heapq.heappop(reference)
+            assert (k, v) == heapq.heappop(reference) == (key[out], node[out])
     while size:
-        e_out = _pop(heap, size, key, node)
+        k, v, out = _pop(hkey, hnode, hentry, size)
         size -= 1
-        assert (key[e_out], node[e_out]) == heapq.heappop(reference)
+        assert (k, v) == heapq.heappop(reference) == (key[out], node[out])

@@ -158,45 +158,42 @@ def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, 
 
 
 # ---------------------------------------------------------------------------
-# the priority queue: a binary heap of entry numbers ordered by (key, node)
+# the priority queue: a binary heap of (key, node, entry) ordered by (key, node)
 # ---------------------------------------------------------------------------
-@njit(cache=True, inline="always")
-def _before(key, node, i, j) -> bool:
-    """Entry i comes out before entry j: the smaller key, then the smaller node (heapq's tuple order)."""
-    return key[i] < key[j] or (key[i] == key[j] and node[i] < node[j])
-
-
 @njit(cache=True)
-def _push(heap, size, key, node, e) -> None:
+def _push(hkey, hnode, hentry, size, key, node, entry) -> None:
+    """Add (key, node, entry) to the heap of ``size`` entries held in the three arrays."""
     i = size
     while i > 0:
         up = (i - 1) >> 1
-        if not _before(key, node, e, heap[up]):
+        if hkey[up] < key or (hkey[up] == key and hnode[up] <= node):
             break
-        heap[i] = heap[up]
+        hkey[i], hnode[i], hentry[i] = hkey[up], hnode[up], hentry[up]
         i = up
-    heap[i] = e
+    hkey[i], hnode[i], hentry[i] = key, node, entry
 
 
 @njit(cache=True)
-def _pop(heap, size, key, node) -> int:
-    """Remove and return the first entry of a heap of ``size`` (> 0) entries."""
-    top = heap[0]
+def _pop(hkey, hnode, hentry, size):
+    """Remove the first (smallest key, then smallest node) of ``size`` (> 0) entries: (key, node, entry),
+    the order of heapq's (key, node) tuples."""
+    key, node, entry = hkey[0], hnode[0], hentry[0]
     size -= 1
-    last = heap[size]
+    lk, ln, le = hkey[size], hnode[size], hentry[size]
     i = 0
     while True:
         child = 2 * i + 1
         if child >= size:
             break
-        if child + 1 < size and _before(key, node, heap[child + 1], heap[child]):
+        if child + 1 < size and (hkey[child + 1] < hkey[child] or
+                                 (hkey[child + 1] == hkey[child] and hnode[child + 1] < hnode[child])):
             child += 1
-        if not _before(key, node, heap[child], last):
+        if lk < hkey[child] or (lk == hkey[child] and ln <= hnode[child]):
             break
-        heap[i] = heap[child]
+        hkey[i], hnode[i], hentry[i] = hkey[child], hnode[child], hentry[child]
         i = child
-    heap[i] = last
-    return top
+    hkey[i], hnode[i], hentry[i] = lk, ln, le
+    return key, node, entry
 
 
 @njit(cache=True)
@@ -271,15 +268,15 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     block_of = np.full(h * w, -1, dtype=np.int64)
     blocks = np.full((64, bins), -1, dtype=np.int64)
     nblocks = 0
-    # queue entries: key, node, and what the key was computed from (g and pose at the push) while lazy
+    # queue entries: what the key was computed from (g and pose at the push) and whether it is lazy
     ecap = 1024
-    ekey = np.empty(ecap)
-    enode = np.empty(ecap, dtype=np.int64)
     eg = np.empty(ecap)
     ex = np.empty(ecap)
     ey = np.empty(ecap)
     elazy = np.zeros(ecap, dtype=np.bool_)
-    heap = np.empty(ecap, dtype=np.int64)
+    hkey = np.empty(ecap)
+    hnode = np.empty(ecap, dtype=np.int64)
+    hentry = np.empty(ecap, dtype=np.int64)
     nentries = 0
     hsize = 0
     seg = np.zeros(MAX_SEGMENTS)
@@ -295,15 +292,14 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     block_of[cell] = 0
     blocks[0, sbin] = 0
     nblocks = 1
-    ekey[0], enode[0], elazy[0] = 0.0, 0, False
-    heap[0] = 0
+    elazy[0] = False
+    hkey[0], hnode[0], hentry[0] = 0.0, 0, 0
     nentries, hsize = 1, 1
     expansions = 0
     solved = 0
     while hsize > 0:
-        e = _pop(heap, hsize, ekey, enode)
+        key, v, e = _pop(hkey, hnode, hentry, hsize)
         hsize -= 1
-        v = enode[e]
         if closed[v]:
             continue
         if elazy[e]:
@@ -313,25 +309,24 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
             # the order needs the key only against the next entry's: an upper bound below it settles that
             # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
-            if reverse and (hsize == 0 or eg[e] + max(field, _above(forward, radius)) < ekey[heap[0]]):
-                f = ekey[e]
+            if reverse and (hsize == 0 or eg[e] + max(field, _above(forward, radius)) < hkey[0]):
+                f = key
             elif reverse and eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)) > \
-                    ekey[heap[0]]:
+                    hkey[0]:
                 # a better lower bound already puts it after the next entry: back in the queue, still
                 # unsolved (entries that never come back to the top are never solved)
-                ekey[e] = eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius))
                 elazy[e] = True
-                _push(heap, hsize, ekey, enode, e)
+                _push(hkey, hnode, hentry, hsize,
+                      eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)), v, e)
                 hsize += 1
                 continue
             else:
                 solved += 1
                 f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius, reverse,
                                             seg, best_kinds, best_lens)
-            if f != ekey[e]:
-                # the true key is larger: back in the queue (the same entry, so ties still go by node)
-                ekey[e] = f
-                _push(heap, hsize, ekey, enode, e)
+            if f != key:
+                # the true key is larger: back in the queue (ties still go by node)
+                _push(hkey, hnode, hentry, hsize, f, v, e)
                 hsize += 1
                 continue
         closed[v] = True
@@ -394,12 +389,10 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
             if nentries == ecap:
                 ecap *= 2
-                ekey, enode, eg, ex, ey = _grow(ekey, ecap), _grow(enode, ecap), _grow(eg, ecap), \
-                    _grow(ex, ecap), _grow(ey, ecap)
-                elazy, heap = _grow(elazy, ecap), _grow(heap, ecap)
-            ekey[nentries], enode[nentries], eg[nentries] = g2 + hfield[cy2, cx2], u, g2
-            ex[nentries], ey[nentries], elazy[nentries] = x2, y2, True
-            _push(heap, hsize, ekey, enode, nentries)
+                eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
+                hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
+            eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, True
+            _push(hkey, hnode, hentry, hsize, g2 + hfield[cy2, cx2], u, nentries)
             hsize += 1
             nentries += 1
     return False, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \

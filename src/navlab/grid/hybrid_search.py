@@ -265,8 +265,8 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     nprim_of = np.empty(cap, dtype=np.int64)
     closed = np.zeros(cap, dtype=np.bool_)
     # discrete state -> node: a block of `bins` node numbers per cell reached
-    block_of = np.full(h * w, -1, dtype=np.int64)
-    blocks = np.full((64, bins), -1, dtype=np.int64)
+    block_of = np.full(h * w, -1, dtype=np.int32)  # int32: half what the field takes a cell
+    blocks = np.full((64, bins), -1, dtype=np.int32)
     nblocks = 0
     # queue entries: what the key was computed from (g and pose at the push) and whether it is lazy
     ecap = 1024

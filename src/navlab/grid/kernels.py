@@ -194,6 +194,45 @@ def los_bresenham(free, S, x0, y0, x1, y1):
             y += sy
 
 
+# -- per-cell search state -------------------------------------------------------
+# One float64 per cell is all A* keeps: 0.0 unseen, g + 1 while open, -(g + 1)
+# once closed (g + 1 > 0 keeps the start's g = 0 apart from "unseen"). With the
+# padded grid's byte that is 9 bytes per cell (21 with separate g, parent,
+# mark and slot arrays): fewer bytes and one cache line per neighbour. The
+# state starts as np.zeros (untouched pages stay unallocated), and a query
+# records the rows and columns it expanded so that the next query can zero
+# just those (:func:`clear_touched`) instead of the whole grid.
+@njit(cache=True, inline="always")
+def _record(lo, hi, x, y):
+    if x < lo[y]:
+        lo[y] = x
+    if x > hi[y]:
+        hi[y] = x
+
+
+@njit(cache=True)
+def clear_touched(gs, S, lo, hi, extent):
+    """Zero the state a query wrote: every cell within one of a recorded cell
+    (each row's recorded columns in ``lo``/``hi``, its rows in ``extent``),
+    which covers everything a search writes (expanded cells and their
+    neighbours; JPS records its jump points). Leaves the records empty."""
+    r0 = extent[0]
+    r1 = extent[1]
+    for r in range(r0 - 1, r1 + 2):
+        a = S
+        b = -1
+        for q in range(max(r - 1, r0), min(r + 1, r1) + 1):
+            a = min(a, lo[q])
+            b = max(b, hi[q])
+        for v in range(r * S + a - 1, r * S + b + 2):
+            gs[v] = 0.0
+    for q in range(r0, r1 + 1):
+        lo[q] = S
+        hi[q] = -1
+    extent[0] = lo.shape[0]
+    extent[1] = -1
+
+
 # -- A* family -----------------------------------------------------------------
 # A*'s open list is a circular bucket queue (Dial 1969) whose buckets hold
 # keys within one bucket width of each other, with the exact minimum found by
@@ -228,8 +267,9 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
 
     The returned kernel ``astar(free, S, start, goal, weight, gs, parent, lo,
     hi, extent, key, cell, nxt, head, stack)`` keeps all per-cell state in
-    ``gs`` (see :func:`clear_touched`); ``parent`` is written only with
-    ``any_angle`` (A*'s paths are read back from ``gs`` by :func:`trace_back`).
+    ``gs``, first clearing what the previous query wrote (:func:`clear_touched`);
+    ``parent`` is written only with ``any_angle`` (A*'s paths are read back
+    from ``gs`` by :func:`trace_back`).
     ``key``, ``cell`` and ``nxt`` are the open list's node pool and ``head``
     (``N_BUCKETS`` int32) its buckets. Returns (status, expanded) with status
     1 found, 0 no path, OVERFLOW when the pool or the stack ran out of room.
@@ -238,6 +278,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
 
     @njit(cache=True)
     def astar(free, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack):
+        clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
         gx = goal % S
         gy = goal // S
         mask = N_BUCKETS - 1
@@ -394,45 +435,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     return astar
 
 
-# -- per-cell search state -------------------------------------------------------
-# One float64 per cell is all A* keeps: 0.0 unseen, g + 1 while open, -(g + 1)
-# once closed (g + 1 > 0 keeps the start's g = 0 apart from "unseen"). With the
-# padded grid's byte that is 9 bytes per cell (21 with separate g, parent,
-# mark and slot arrays): fewer bytes and one cache line per neighbour. The
-# state starts as np.zeros (untouched pages stay unallocated), and a query
-# records the rows and columns it expanded so that the next query can zero
-# just those (:func:`clear_touched`) instead of the whole grid.
-@njit(cache=True, inline="always")
-def _record(lo, hi, x, y):
-    if x < lo[y]:
-        lo[y] = x
-    if x > hi[y]:
-        hi[y] = x
-
-
-@njit(cache=True)
-def clear_touched(gs, S, lo, hi, extent):
-    """Zero the state a query wrote: every cell within one of a recorded cell
-    (each row's recorded columns in ``lo``/``hi``, its rows in ``extent``),
-    which covers everything a search writes (expanded cells and their
-    neighbours; JPS records its jump points). Leaves the records empty."""
-    r0 = extent[0]
-    r1 = extent[1]
-    for r in range(r0 - 1, r1 + 2):
-        a = S
-        b = -1
-        for q in range(max(r - 1, r0), min(r + 1, r1) + 1):
-            a = min(a, lo[q])
-            b = max(b, hi[q])
-        for v in range(r * S + a - 1, r * S + b + 2):
-            gs[v] = 0.0
-    for q in range(r0, r1 + 1):
-        lo[q] = S
-        hi[q] = -1
-    extent[0] = lo.shape[0]
-    extent[1] = -1
-
-
 @njit(cache=True)
 def _predecessor(free, S, gs, v, n_moves):
     """A reached neighbour u of v with |gs[u]| + step(u, v) == |gs[v]| (the
@@ -531,6 +533,7 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
     Same per-cell state (``gs``, recorded rows) and return values as the A*
     kernel (:func:`make_astar`); parents link jump points.
     """
+    clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
     gs[start] = 1.0
     parent[start] = start
     rmin = rmax = start // S

@@ -118,7 +118,6 @@ class GridSearcher:
         if algorithm in ("jps", "theta_star") and self.parent.size == 0:
             self.parent = np.empty(self.free.size, dtype=np.int32)
         while True:
-            K.clear_touched(self.g, self.stride, self.lo, self.hi, self.extent)  # what the last query wrote
             if algorithm == "jps":
                 status, expanded = K.jps(self.free, self.stride, a, b, self.g, self.parent, self.lo, self.hi,
                                          self.extent, self.heap, self.stack, self.dirs)
@@ -332,7 +331,8 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
     a, b = pool.grid.index(*s_cell), pool.grid.index(*g_cell)
     with pool.lease() as s:  # the search state belongs to this call until the path is read out
-        status, expanded = s.search(algorithm, a, b, connectivity, code, float(weight) if algorithm == "astar" else 1.0)
+        status, expanded = s.search(algorithm, a, b, connectivity, code,
+                                    float(weight) if algorithm == "astar" else 1.0)
         if status != 1:
             return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded, warmup_s=warmup_s),
                           cells=np.empty((0, 2), dtype=np.int64),

@@ -52,16 +52,19 @@ circle of half the local costmap's width (``transformGlobalPlan``), all
 on the ``local_costmap_size`` rolling window around the robot.
 
 move_base around it (``move_base_params.yaml``): the global path is planned
-again on the global costmap (navlab's cost-weighted A* standing for navfn)
-from the robot every ``1 / planner_frequency`` s (0: only when the local
-planner fails, as move_base does); when the local planner has found no
-command for ``controller_patience`` s, or the global planner no path for
-``planner_patience`` s, move_base runs its recovery behaviours and aborts;
-here the run ends ``STALLED`` then (see :meth:`DWA.command` for why the
-recoveries change nothing in these worlds). ``oscillation_timeout`` is 0 in
-the challenge (off), so a robot that keeps finding commands keeps trying
-until the run's time limit: ``dwa_barn``'s ``stall_window`` is longer than
-any BARN run.
+again on the global costmap by navfn, move_base's default global planner and
+the challenge's (:mod:`~navlab.control.move_base_navfn`: its 50 + 0.8·cost
+cell weights and interpolated potential, not navlab's 8-connected A*), from
+the robot every ``1 / planner_frequency`` s (0: only when the local planner
+fails, as move_base does; with a sensed costmap and ``planner_frequency`` 0
+the costmap feed replans every ``replan_interval`` s instead); when the
+local planner has found no command for ``controller_patience`` s, or the
+global planner no path for ``planner_patience`` s, move_base runs its
+recovery behaviours and aborts; here the run ends ``STALLED`` then (see
+:meth:`DWA.command` for why the recoveries change nothing in these worlds).
+``oscillation_timeout`` is 0 in the challenge (off), so a robot that keeps
+finding commands keeps trying until the run's time limit: ``dwa_barn``'s
+``stall_window`` is longer than any BARN run.
 
 References
 ----------
@@ -69,7 +72,7 @@ D. Fox, W. Burgard, S. Thrun, "The Dynamic Window Approach to Collision
 Avoidance", IEEE Robotics & Automation Magazine 4(1), 1997. ROS 1
 navigation: ``base_local_planner/src/trajectory_planner.cpp``,
 ``costmap_model.cpp``, ``map_grid.cpp``, ``trajectory_planner_ros.cpp``,
-``goal_functions.cpp``; ``move_base/src/move_base.cpp``.
+``goal_functions.cpp``; ``move_base/src/move_base.cpp``; ``navfn/src/navfn.cpp``.
 """
 
 from __future__ import annotations
@@ -83,6 +86,7 @@ from numba import njit
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS, RUNNING, STALLED, Command
 from .local import CostmapController, check_count, check_number
+from .move_base_navfn import plan_navfn
 
 #: a distance no cell can have: the cell is unreachable from the path or goal (MapGrid's obstacleCosts)
 UNREACHABLE = 1e18
@@ -234,9 +238,9 @@ class DWA(CostmapController):
         [m] the side of the rolling local costmap the planner sees (10, costmap_2d's default and the
         challenge's).
     planner_frequency : float
-        [Hz] move_base plans the global path again from the robot this often (0: only after the local
-        planner fails, move_base's default). With a sensor layer the costmap feed does it: this sets its
-        ``replan_interval`` to ``1 / planner_frequency``.
+        [Hz] move_base plans the global path again (navfn) from the robot this often (0: only after the
+        local planner fails, move_base's default). Above 0 with a sensor layer, the costmap feed's own
+        replanning is switched off (``replan_interval`` = ∞): move_base plans on the sensed costmap.
     controller_patience, planner_patience : float
         [s] move_base recovers and aborts (the run ends STALLED) after this long without a command, or
         without a global path (15, 5).
@@ -284,8 +288,10 @@ class DWA(CostmapController):
         self.oscillation_reset_dist = check_number("oscillation_reset_dist", oscillation_reset_dist)
         self.local_costmap_size = check_number("local_costmap_size", local_costmap_size, high=1000.0)
         self.planner_frequency = check_number("planner_frequency", planner_frequency, allow_low=True, high=1e4)
-        if self.planner_frequency > 0 and self.needs_scan:  # the costmap feed replans on a sensed costmap
-            self.replan_interval = 1.0 / self.planner_frequency
+        if self.planner_frequency > 0 and self.needs_scan:
+            # move_base's planner (replan) plans on the sensed costmap itself, with navfn's costs: the
+            # costmap feed's own replanning (Nav2-style, its A* weighting) is switched off
+            self.replan_interval = math.inf
         self.controller_patience = check_number("controller_patience", controller_patience)
         self.planner_patience = check_number("planner_patience", planner_patience)
         self.last_scores: Optional[np.ndarray] = None  #: the last cycle's forward samples' costs (< 0 rejected)
@@ -330,11 +336,10 @@ class DWA(CostmapController):
         return cmd
 
     def replan(self, t: float, pose: np.ndarray) -> None:
-        """move_base's global planner: a new path from the robot on the whole costmap."""
-        from ..grid.cost_search import plan_on_costmap
-
+        """move_base's global planner (navfn, its default and the challenge's): a new path from the robot
+        on the whole costmap."""
         self._last_plan, self._replan_now = t, False
-        path, _, _ = plan_on_costmap(self.costmap, pose, self.goal, allow_unknown=self.needs_scan)
+        path = plan_navfn(self.costmap, pose, self.goal, allow_unknown=self.needs_scan)
         if path is None:
             self._no_plan_since = t if self._no_plan_since is None else self._no_plan_since
             return
@@ -431,7 +436,7 @@ class DWA(CostmapController):
 
     def plan(self, t: float, pose: np.ndarray):
         self.stats["cycles"] += 1
-        if self._replan_now or (self.planner_frequency > 0 and not self.needs_scan
+        if self._replan_now or (self.planner_frequency > 0
                                 and t - self._last_plan >= 1.0 / self.planner_frequency - 1e-9):
             self.replan(t, pose)
         plan = self.local_plan(pose)
@@ -518,7 +523,8 @@ class DWABarn(DWA):
     layer, no static map, hence ``layers='sensor'``); ``local_costmap_params.yaml`` (10 × 10 m rolling
     window); ``move_base_params.yaml`` (``planner_frequency`` 20 Hz, ``controller_patience`` 15 s,
     ``planner_patience`` 5 s, ``oscillation_timeout`` 0: no give-up while commands are found, hence
-    a ``stall_window`` longer than any run).
+    a ``stall_window`` longer than any run); ``move_base_DWA.launch`` (``base_global_planner``
+    ``navfn/NavfnROS`` with its defaults: :mod:`~navlab.control.move_base_navfn`).
     """
 
     def __init__(self, max_vel_x: float = 0.5, min_vel_x: float = 0.1, max_vel_theta: float = 1.57,

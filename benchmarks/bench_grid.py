@@ -149,7 +149,7 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
                   f"{first / ref:>9.2f} {rep / ref:>8.2f} {first_cpu / ref_cpu:>9.2f} {rep_cpu / ref_cpu:>9.2f} "
                   f"{r.stats['expanded']:>9} {cells_b / expanded:>11.1f} {pages_b / expanded:>11.1f}")
         if with_scipy:
-            scipy_dijkstra(grid, s, t, repeat)
+            scipy_dijkstra(name, grid, s, t, repeat)
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
     print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
     print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (8 B of")
@@ -178,7 +178,7 @@ def grid_graph(blocked: np.ndarray):
     return csr_matrix((np.concatenate(costs), (np.concatenate(rows), np.concatenate(cols))), shape=(h * w, h * w))
 
 
-def scipy_dijkstra(grid, s, t, repeat: int) -> None:
+def scipy_dijkstra(name: str, grid, s, t, repeat: int) -> None:
     """navlab's Dijkstra against scipy.sparse.csgraph.dijkstra from the same
     start (medians, interleaved), with both distances to the goal."""
     from scipy.sparse.csgraph import dijkstra
@@ -192,7 +192,7 @@ def scipy_dijkstra(grid, s, t, repeat: int) -> None:
         wall, cpu, dist = timed(lambda: dijkstra(graph, indices=source))
         theirs.append((wall, cpu))
     med = [statistics.median(v) for v in zip(*ours)] + [statistics.median(v) for v in zip(*theirs)]
-    print(f"{grid.name:<16} {'dijkstra':<10} {'':>8} {med[0]:>9.3f} {'scipy':>12} {med[2]:>12.3f} {'':>9} "
+    print(f"{name:<16} {'dijkstra':<10} {'':>8} {med[0]:>9.3f} {'scipy':>12} {med[2]:>12.3f} {'':>9} "
           f"{med[0] / med[2]:>8.2f} {'':>9} {med[1] / med[3]:>9.2f} {r.stats['expanded']:>9}  "
           f"cost {r.stats['cost_cells']:.9f} scipy {dist[target]:.9f}")
 

@@ -134,7 +134,10 @@ class GridSearcher:
         """The path the last search (from ``a``, which reached ``b``) found, as cells (x, y)."""
         if algorithm in ("jps", "theta_star"):
             return K.trace_path(self.parent, b, self.stride, algorithm == "jps")
-        return K.trace_back(self.free, self.stride, self.g, a, b, connectivity)
+        cells = K.trace_back(self.free, self.stride, self.g, a, b, connectivity)
+        if len(cells) == 0:  # impossible after a successful search (kernels.trace_back); never report it as found
+            raise RuntimeError(f"grid search state broken: no predecessor chain from {b} back to {a}")
+        return cells
 
     def grow(self) -> None:
         self.heap = np.empty((self.heap.shape[0] * 4, 2))

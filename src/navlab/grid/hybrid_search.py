@@ -9,18 +9,21 @@ driving direction, closed states never re-opened.
 
 Two choices make it fast without changing which nodes it expands:
 
-- **lazy heuristic** (Partial / lazy A*; Pearl, *Heuristics*, 1984, §3.2):
-  a child enters the queue keyed by ``g + field`` — the holonomic field alone,
-  a lower bound of the heuristic ``max(field, exact distance)`` — and the exact
-  Dubins / Reeds–Shepp distance is solved only when that entry reaches the top.
-  If it raises the key the entry goes back in with the true key, else it is
-  expanded at once. An entry reaching the top under a lower bound is no later
-  than under its true key, and every other entry's true key is at least its
-  queue key, so the entry expanded next is the one an eager queue would pop:
-  the same least ``(key, node)`` pair, ties broken by node number as the eager
-  ``heapq`` of ``(key, node)`` tuples did. Entries popped for a state already
-  closed are dropped unsolved, and so are entries still queued when the search
-  ends — often most of the children generated;
+- **lazy heuristic** for Reeds–Shepp motion (Lazy A*: Tolpin, Beja, Shimony,
+  Felner and Karpas, "Toward rational deployment of multiple heuristics in
+  A*", IJCAI 2013): a child enters the queue keyed by ``g + field`` — the
+  holonomic field alone, a lower bound of the heuristic ``max(field, exact
+  distance)`` — and the exact distance is solved only when that entry reaches
+  the top. If it raises the key the entry goes back in with the true key, else
+  it is expanded at once. An entry reaching the top under a lower bound is no
+  later than under its true key, and every other entry's true key is at least
+  its queue key, so the entry expanded next is the one an eager queue would
+  pop: the same least ``(key, node)`` pair, ties broken by node number as the
+  eager ``heapq`` of ``(key, node)`` tuples did. Entries popped for a state
+  already closed are dropped unsolved, and so are entries still queued when
+  the search ends (on the 384² bench map 17 000 solves for 130 000 children).
+  A Dubins solve costs little more than putting it off, so Dubins keys are
+  computed when the child is queued;
 - **dense state index**: a state's node is found through a per-cell block of
   ``bins`` slots, allocated the first time the cell is reached (no hash map).
 """
@@ -391,8 +394,12 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                 ecap *= 2
                 eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
                 hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
-            eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, True
-            _push(hkey, hnode, hentry, hsize, g2 + hfield[cy2, cx2], u, nentries)
+            eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, reverse
+            if reverse:
+                _push(hkey, hnode, hentry, hsize, g2 + hfield[cy2, cx2], u, nentries)
+            else:  # a Dubins solve costs little more than the queue's bookkeeping for putting it off
+                _push(hkey, hnode, hentry, hsize, g2 + max(hfield[cy2, cx2], _forward(x2, y2, theta0 + b2 * step, gx, gy,
+                                                                                       gtheta, radius)), u, nentries)
             hsize += 1
             nentries += 1
     return False, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \

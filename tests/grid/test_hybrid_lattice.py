@@ -96,3 +96,19 @@ def test_the_search_swept_check_answers_as_reading_every_cell():
                     lo, hi = lattice.swept_start[k], lattice.swept_start[k + 1]
                     assert _swept_free(blocked, near2, cx, cy, lattice.swept, lo, hi) == \
                         free_cells(blocked, cx, cy, lattice.swept, lo, hi)
+
+
+def test_the_nearest_blocked_distances_count_the_map_edge_as_blocked():
+    """One transform and the distance to the edge give what a transform of the map ringed by blocked cells gives."""
+    from scipy.ndimage import distance_transform_edt
+
+    from navlab.grid.hybrid_astar import _nearest_blocked2
+
+    rng = np.random.default_rng(4)
+    for _ in range(200):
+        h, w = rng.integers(1, 40, 2)
+        blocked = rng.random((h, w)) < rng.choice([0.0, 0.001, 0.01, 0.1, 0.5])
+        ringed = np.zeros((h + 2, w + 2), bool)
+        ringed[1:-1, 1:-1] = ~blocked
+        expected = np.rint(distance_transform_edt(ringed)[1:-1, 1:-1] ** 2).astype(np.int64)
+        assert np.array_equal(_nearest_blocked2(blocked), expected)

@@ -189,15 +189,15 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     # holonomic heuristic over the cells the inscribed circle fits in (admissible for the centre's path)
     inscribed = Polygon(vertices).exterior.distance(Point(0, 0)) if len(vertices) else disc
     from scipy.ndimage import distance_transform_edt
-    clearance = distance_transform_edt(~blocked) * res
-    passable = clearance > max(0.0, inscribed - math.sqrt(2.0) * res)
+    cells_clear = distance_transform_edt(~blocked)  # [cells]; on a map with nothing blocked, see _nearest_blocked2
+    passable = cells_clear * res > max(0.0, inscribed - math.sqrt(2.0) * res)
     gcx, gcy = int(lgx // res), int(lgy // res)
     hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
     found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = search(
         blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
         motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-        lattice.swept, lattice.swept_start, _nearest_blocked2(blocked), lattice.pose_cells,
+        lattice.swept, lattice.swept_start, _nearest_blocked2(blocked, cells_clear), lattice.pose_cells,
         lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions), bool(analytic_expansion))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
@@ -245,15 +245,25 @@ def _merged(segments):
     return out
 
 
-def _nearest_blocked2(blocked: np.ndarray) -> np.ndarray:
+def _nearest_blocked2(blocked: np.ndarray, cells_clear: Optional[np.ndarray] = None) -> np.ndarray:
     """Squared distance [cells²] from each cell's centre to the nearest blocked or off-map cell's
-    centre (0 on blocked cells): whole numbers, so the search's comparisons with it are exact."""
-    from scipy.ndimage import distance_transform_edt
+    centre (0 on blocked cells): whole numbers, so the search's comparisons with it are exact.
 
-    padded = np.zeros((blocked.shape[0] + 2, blocked.shape[1] + 2), dtype=bool)
-    padded[1:-1, 1:-1] = ~blocked
-    d = distance_transform_edt(padded)[1:-1, 1:-1]
-    return np.rint(d * d).astype(np.int64)
+    ``cells_clear`` is ``distance_transform_edt(~blocked)`` if already computed. The nearest
+    off-map cell is straight across the nearest edge, so the map's edge needs no second
+    transform. (With nothing blocked scipy measures to a cell beyond the corner, an off-map
+    cell no nearer than the edge's, so the minimum is right then too; it is left out anyway.)"""
+    h, w = blocked.shape
+    ys, xs = np.ogrid[:h, :w]
+    edge = np.minimum(np.minimum(xs + 1, w - xs), np.minimum(ys + 1, h - ys)).astype(np.int64)
+    near = edge * edge
+    if blocked.any():
+        if cells_clear is None:
+            from scipy.ndimage import distance_transform_edt
+
+            cells_clear = distance_transform_edt(~blocked)
+        near = np.minimum(near, np.rint(cells_clear * cells_clear).astype(np.int64))
+    return np.ascontiguousarray(near)
 
 
 def _cell_mask(shape, x, y) -> np.ndarray:

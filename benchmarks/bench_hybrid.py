@@ -183,8 +183,8 @@ def reference_map(runs: int = 5) -> None:
 
     Each run is timed twice, motions interleaved: from a cleared footprint
     lattice (a query with a new start heading) and again with it cached.
-    ``solves`` counts the heuristic values the search's lazy queue computed (Dubins, and Reeds–Shepp
-    where the Dubins length does not settle it).
+    ``solves`` counts the heuristic values the search's lazy queue computed (Reeds–Shepp motion;
+    Dubins keys are computed as children are queued, so it is 0 there).
     """
     res, n = 0.05, 384
     blocked = np.zeros((n, n), dtype=bool)

@@ -112,3 +112,43 @@ def test_the_nearest_blocked_distances_count_the_map_edge_as_blocked():
         ringed[1:-1, 1:-1] = ~blocked
         expected = np.rint(distance_transform_edt(ringed)[1:-1, 1:-1] ** 2).astype(np.int64)
         assert np.array_equal(_nearest_blocked2(blocked), expected)
+
+
+def test_the_shapely_recheck_finds_an_overlap_exactly_when_one_exists():
+    """first_overlap builds only the cells a footprint can reach; against every blocked cell and the ring
+    of cells around the map, by shapely: None exactly when nothing overlaps, else a cell the first
+    overlapping pose does overlap."""
+    import shapely
+
+    from navlab.sampling.footprint_lattice import first_overlap
+
+    rng = np.random.default_rng(12)
+    for _ in range(150):
+        h, w = rng.integers(5, 40, 2)
+        res = rng.uniform(0.02, 1.0)
+        blocked = rng.random((h, w)) < rng.choice([0.002, 0.02, 0.1])
+        if rng.random() < 0.5:
+            verts, disc = np.array(OUTLINES["car"][0]) * rng.uniform(0.05, 1.0) * res, 0.0
+        else:
+            verts, disc = np.empty((0, 2)), rng.uniform(0.0, 3.0) * res
+        k = rng.integers(1, 20)
+        poses = np.column_stack([rng.uniform(0, w * res, k), rng.uniform(0, h * res, k), rng.uniform(-3, 3, k)])
+        grow = rng.choice([0.0, 0.3 * res])
+        ringed = np.ones((h + 2, w + 2), bool)
+        ringed[1:-1, 1:-1] = blocked
+        ys, xs = np.nonzero(ringed)
+        cells = shapely.box((xs - 1) * res - grow, (ys - 1) * res - grow, xs * res + grow, ys * res + grow)
+        if len(verts):
+            c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+            shapes = shapely.polygons(np.stack([poses[:, :1] + c * verts[:, 0] - s * verts[:, 1],
+                                                poses[:, 1:2] + s * verts[:, 0] + c * verts[:, 1]], axis=-1))
+        else:
+            shapes = shapely.buffer(shapely.points(poses[:, :2]), disc, quad_segs=16) if disc > 0 \
+                else shapely.points(poses[:, :2])
+        overlapping = [i for i in range(k) if shapely.intersects(shapes[i], cells).any()]
+        hit = first_overlap(blocked, res, verts, disc, poses, grow)
+        assert (hit is None) == (not overlapping)
+        if hit is not None:
+            x, y = hit
+            box = shapely.box(x * res - grow, y * res - grow, (x + 1) * res + grow, (y + 1) * res + grow)
+            assert ringed[y + 1, x + 1] and shapely.intersects(shapes[overlapping[0]], box)

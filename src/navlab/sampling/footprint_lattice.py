@@ -411,10 +411,27 @@ def first_overlap(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: f
     if len(xs_) == 0:
         return None
     cx, cy = xs_ + lo_x - 1, ys_ + lo_y - 1  # cells in the grid's numbering
+    # only cells a footprint can reach: its outline lies within `reach` of its pose, so a grown cell
+    # it touches has its centre within reach + grow + half a cell diagonal of the pose, and so within
+    # reach + grow + a cell diagonal of the pose's cell centre (+1 µm); the others are dropped before
+    # shapely builds them. One distance transform from the poses' cells tells which those are.
+    from scipy.ndimage import distance_transform_edt
+
+    reach = max(disc, float(np.hypot(*vertices.T).max()) if len(vertices) else 0.0)
+    limit = reach + grow + res * math.sqrt(2.0) + 1e-6
+    window = np.ones((hi_y + 1 - lo_y, hi_x + 1 - lo_x), dtype=bool)
+    px = np.clip(np.floor(poses[:, 0] / res).astype(np.int64) + 1 - lo_x, 0, window.shape[1] - 1)
+    py = np.clip(np.floor(poses[:, 1] / res).astype(np.int64) + 1 - lo_y, 0, window.shape[0] - 1)
+    window[py, px] = False
+    keep = distance_transform_edt(window)[ys_, xs_] * res <= limit
+    if not keep.any():
+        return None
+    cx, cy = cx[keep], cy[keep]
     boxes = shapely.box(cx * res - grow, cy * res - grow, (cx + 1) * res + grow, (cy + 1) * res + grow)
     tree = shapely.STRtree(boxes)
     pairs = tree.query(shapes, predicate="intersects")
     if pairs.shape[1] == 0:
         return None
-    first = pairs[:, np.argmin(pairs[0])]
-    return int(cx[first[1]]), int(cy[first[1]])
+    # the first pose's lowest cell (row by row), whatever order the tree answers in
+    first = pairs[1][pairs[0] == pairs[0].min()].min()
+    return int(cx[first]), int(cy[first])

@@ -48,7 +48,8 @@ def test_a_free_space_path_is_the_straight_line():
     path = plan_navfn(costmap, start, goal)
     line = shapely.LineString([start, goal])
     assert max(line.distance(shapely.Point(p)) for p in path) <= RES  # within a cell of the straight line
-    assert np.allclose(path[0], costmap.cell_to_world([costmap.world_to_cell([start])[0]])[0])  # robot's cell
+    # the robot's cell, at its corner: NavfnROS::mapToWorld adds no half cell
+    assert np.allclose(path[0], costmap.world_to_cell([start])[0] * RES)
     assert np.allclose(path[-1], goal)
     length = float(np.hypot(*np.diff(path, axis=0).T).sum())
     assert length == pytest.approx(float(np.hypot(*(goal - start))), abs=2 * RES)
@@ -60,7 +61,7 @@ def test_the_path_keeps_off_walls_and_is_nearly_the_shortest_through_the_gap():
     costmap = Costmap(costs, RES)
     start, goal = np.array((1.0, 0.5)), np.array((1.0, 3.5))
     path = plan_navfn(costmap, start, goal)
-    cells = costmap.world_to_cell(path)
+    cells = np.rint(path / RES).astype(int)  # navfn's nearest cell to each point (its frame has no half cell)
     assert (costs[cells[:, 1], cells[:, 0]] < 253).all()
     # the shortest way round the wall's end (3.5, 1.9)–(3.5, 2.1), by hand
     shortest = 2 * math.hypot(2.5, 1.4) + 0.2
@@ -79,7 +80,7 @@ def test_navfns_weighting_decides_between_a_band_and_a_detour(band, detour):
     around = 50 * (math.hypot(1.0, 0.5) + 0.2 + math.hypot(1.8, 0.5)) / RES
     assert (around < straight) == detour  # band 200: 3 640 vs 3 186; band 40: 3 128 vs 3 186
     path = plan_navfn(costmap, start, goal)
-    cells = costmap.world_to_cell(path)
+    cells = np.rint(path / RES).astype(int)
     assert (costs[cells[:, 1], cells[:, 0]] == band).any() != detour
 
 

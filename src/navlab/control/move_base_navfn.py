@@ -21,8 +21,10 @@ the goal back to the robot (``navfn.cpp``):
    bilinearly interpolated normalised gradient (``gradCell``); next to
    unreached cells, or when the path oscillates, a step to the lowest of
    the 8 neighbours instead; done within ``COST_NEUTRAL`` of the robot.
-   ``NavfnROS`` puts each point at its cell's centre (``convert_offset`` 0.5),
-   runs it robot → goal and appends the goal itself.
+   ``NavfnROS::mapToWorld`` turns cell coordinates into metres with no half
+   cell added (``origin + c · resolution``: a whole cell index is the cell's
+   corner; global_planner's ``convert_offset`` 0.5 is not navfn's), runs the
+   path robot → goal and appends the goal itself.
 
 References
 ----------
@@ -266,6 +268,6 @@ def plan_navfn(costmap, start_xy, goal_xy, allow_unknown: bool = True) -> Option
     cells_path = navfn_path(pot, nx, goal, robot, 4 * max(nx, ny))
     if not len(cells_path):
         return None
-    # the path runs goal → robot: NavfnROS reverses it, puts points at cell centres and appends the goal
-    world = np.asarray(costmap.origin) + (cells_path[::-1] - 1 + 0.5) * costmap.resolution
+    # the path runs goal → robot: NavfnROS reverses it, maps it with no half-cell offset, appends the goal
+    world = np.asarray(costmap.origin) + (cells_path[::-1] - 1) * costmap.resolution
     return np.vstack((world, np.asarray(goal_xy[:2], float)))

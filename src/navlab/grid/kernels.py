@@ -498,12 +498,13 @@ def _jump_straight(free, S, v, d, goal):
     """Jump from v in straight direction d (±1 or ±S); returns a jump point or -1."""
     side = S if (d == 1 or d == -1) else 1
     while True:
-        if free[v] == 0:
+        if free[np.uint64(v)] == 0:
             return -1
         if v == goal:
             return v
         # A forced neighbour: a side cell opens where it was blocked behind us.
-        if (free[v + side] != 0 and free[v + side - d] == 0) or (free[v - side] != 0 and free[v - side - d] == 0):
+        if ((free[np.uint64(v + side)] != 0 and free[np.uint64(v + side - d)] == 0)
+                or (free[np.uint64(v - side)] != 0 and free[np.uint64(v - side - d)] == 0)):
             return v
         v += d
 
@@ -512,13 +513,13 @@ def _jump_straight(free, S, v, d, goal):
 def _jump_diagonal(free, S, v, dx, dy, goal):
     """Jump from v in diagonal direction (dx, dy); returns a jump point or -1."""
     while True:
-        if free[v] == 0:
+        if free[np.uint64(v)] == 0:
             return -1
         if v == goal:
             return v
         if _jump_straight(free, S, v + dx, dx, goal) >= 0 or _jump_straight(free, S, v + dy * S, dy * S, goal) >= 0:
             return v
-        if free[v + dx] == 0 or free[v + dy * S] == 0:
+        if free[np.uint64(v + dx)] == 0 or free[np.uint64(v + dy * S)] == 0:
             return -1
         v += dx + dy * S
 
@@ -535,11 +536,13 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
     """Jump Point Search for 8-connected grids without corner cutting.
 
     Same per-cell state (``gs``, recorded rows) and return values as the A*
-    kernel (:func:`make_astar`); parents link jump points.
+    kernel (:func:`make_astar`); parents link jump points. Indexed through
+    ``np.uint64`` like A* (no negative-index wrapping: 18% of JPS's time on
+    random4096, 27% on maze1001, in-process A/B).
     """
     clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
-    gs[start] = 1.0
-    parent[start] = start
+    gs[np.uint64(start)] = 1.0
+    parent[np.uint64(start)] = start
     rmin = rmax = start // S
     _record(lo, hi, start % S, start // S)
     heap[0, 0] = _octile_between(start, goal, S)
@@ -552,27 +555,27 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
     while size > 0 or top > 0:
         if top > 0:
             top -= 1
-            u = stack[top]
+            u = stack[np.uint64(top)]
         else:
             fcur, u = _heap_pop(heap, size)
             size -= 1
-        gu = gs[u]
+        gu = gs[np.uint64(u)]
         if gu < 0.0:
             continue
-        gs[u] = -gu
+        gs[np.uint64(u)] = -gu
         expanded += 1
         if u == goal:
             status = 1
             break
         # Successor directions (dx, dy) pruned by the direction of arrival.
         n = 0
-        p = parent[u]
+        p = parent[np.uint64(u)]
         if p == u:
             for ddx in (-1, 0, 1):
                 for ddy in (-1, 0, 1):
                     if ddx == 0 and ddy == 0:
                         continue
-                    if ddx != 0 and ddy != 0 and (free[u + ddx] == 0 or free[u + ddy * S] == 0):
+                    if ddx != 0 and ddy != 0 and (free[np.uint64(u + ddx)] == 0 or free[np.uint64(u + ddy * S)] == 0):
                         continue
                     dirs[n, 0] = ddx
                     dirs[n, 1] = ddy
@@ -584,7 +587,7 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
                 dirs[0, 0], dirs[0, 1] = 0, ddy
                 dirs[1, 0], dirs[1, 1] = ddx, 0
                 n = 2
-                if free[u + ddx] != 0 and free[u + ddy * S] != 0:
+                if free[np.uint64(u + ddx)] != 0 and free[np.uint64(u + ddy * S)] != 0:
                     dirs[2, 0], dirs[2, 1] = ddx, ddy
                     n = 3
             elif ddx != 0:
@@ -592,9 +595,9 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
                 dirs[1, 0], dirs[1, 1] = 0, 1
                 dirs[2, 0], dirs[2, 1] = 0, -1
                 n = 3
-                if free[u + ddx] != 0:
+                if free[np.uint64(u + ddx)] != 0:
                     for s in (1, -1):
-                        if free[u + s * S] != 0:
+                        if free[np.uint64(u + s * S)] != 0:
                             dirs[n, 0], dirs[n, 1] = ddx, s
                             n += 1
             else:
@@ -602,9 +605,9 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
                 dirs[1, 0], dirs[1, 1] = 1, 0
                 dirs[2, 0], dirs[2, 1] = -1, 0
                 n = 3
-                if free[u + ddy * S] != 0:
+                if free[np.uint64(u + ddy * S)] != 0:
                     for s in (1, -1):
-                        if free[u + s] != 0:
+                        if free[np.uint64(u + s)] != 0:
                             dirs[n, 0], dirs[n, 1] = s, ddy
                             n += 1
         for k in range(n):
@@ -619,13 +622,13 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
                 jp = _jump_straight(free, S, v, ddy * S, goal)
             if jp < 0:
                 continue
-            gj = gs[jp]
+            gj = gs[np.uint64(jp)]
             if gj < 0.0:
                 continue
             ng = gu + _octile_between(u, jp, S)
             if gj == 0.0 or ng < gj:
-                gs[jp] = ng
-                parent[jp] = u
+                gs[np.uint64(jp)] = ng
+                parent[np.uint64(jp)] = u
                 jy = jp // S
                 _record(lo, hi, jp % S, jy)
                 rmin = min(rmin, jy)
@@ -635,7 +638,7 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
                     if top == stack.shape[0]:
                         status = OVERFLOW
                         break
-                    stack[top] = jp
+                    stack[np.uint64(top)] = jp
                     top += 1
                 else:
                     if size == heap.shape[0]:

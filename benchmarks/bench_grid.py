@@ -4,6 +4,7 @@
     python benchmarks/bench_grid.py [--every 5] [--repeat 3]
     python benchmarks/bench_grid.py --large [--repeat 3]   # issue 22's maps: 4096² random 20 %, 1001² maze
     python benchmarks/bench_grid.py --large --scipy        # and Dijkstra against scipy's on them
+    python benchmarks/bench_grid.py --large --bound        # could a bidirectional search expand fewer cells?
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an
@@ -39,7 +40,14 @@ def main() -> None:
     ap.add_argument("--scipy", action="store_true",
                     help="with --large: navlab's Dijkstra against scipy's on the explicit graph "
                          "(builds it first: about 35 s and 3.3 GB on the 4096x4096 map)")
+    ap.add_argument("--bound", action="store_true",
+                    help="with --large: the fewest cells any front-to-end bidirectional search must expand on "
+                         "each map (from two Dijkstra fields; no timing)")
     args = ap.parse_args()
+    if args.large and args.bound:
+        for name, make in _large_maps():
+            bidirectional_bound(name, make())
+        return
     if args.large:
         large_maps(args.repeat, args.scipy)
         return
@@ -195,6 +203,54 @@ def scipy_dijkstra(name: str, grid, s, t, repeat: int) -> None:
     print(f"{name:<16} {'dijkstra':<10} {'':>8} {med[0]:>9.3f} {'scipy':>12} {med[2]:>12.3f} {'':>9} "
           f"{med[0] / med[2]:>8.2f} {'':>9} {med[1] / med[3]:>9.2f} {r.stats['expanded']:>9}  "
           f"cost {r.stats['cost_cells']:.9f} scipy {dist[target]:.9f}")
+
+
+def bidirectional_bound(name: str, grid) -> None:
+    """The fewest expansions any front-to-end bidirectional search can make,
+    against forward A*'s, on the corner-to-corner query.
+
+    A pair (u forward, v backward) must be expanded on one side when
+    max(f_F(u), f_B(v), g_F(u) + g_B(v) + eps) < C* (eps = 1, the cheapest
+    move), and the fewest expansions is the minimum vertex cover of those
+    pairs (Eckerle et al., ICAPS 2017; Shaham et al., SoCS 2017). The pair condition is a
+    threshold on g_F + g_B, so the cover is the k cells of smallest g_F plus
+    every backward cell paired with the next one, minimised over k. Exact
+    g_F and g_B come from two Dijkstra searches, which close every cell with
+    g < C*. Also printed: how many cells MM (Holte et al. 2016), which
+    expands u while max(f, 2 g) < C*, would expand.
+    """
+    from navlab.grid import kernels as K
+    from navlab.grid.planner import SearcherPool
+
+    free = np.argwhere(~grid.blocked)
+    s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+    pool = SearcherPool(grid.blocked, grid.unknown)
+    fields = []
+    for a, b in ((s, t), (t, s)):
+        with pool.lease() as searcher:
+            searcher.search("dijkstra", searcher.index(*a), searcher.index(*b), 8, K.H_ZERO, 1.0)
+            closed = searcher.g < 0  # exact distances (g + 1 stored)
+            fields.append((closed, -searcher.g - 1.0))
+    with pool.lease() as searcher:
+        expanded = searcher.search("astar", searcher.index(*s), searcher.index(*t), 8, K.H_OCTILE, 1.0)[1]
+    stride = grid.width + 2
+    xs, ys = np.divmod(np.arange(fields[0][0].size), stride)[::-1]
+
+    def octile(x, y):
+        dx, dy = np.abs(xs - 1 - x), np.abs(ys - 1 - y)
+        return np.maximum(dx, dy) + (math.sqrt(2) - 1) * np.minimum(dx, dy)
+
+    (closed_f, g_f), (closed_b, g_b) = fields
+    cost = g_f[(t[1] + 1) * stride + t[0] + 1]
+    tie = 1e-9
+    fwd = closed_f & (g_f + octile(*t) < cost - tie)
+    bwd = closed_b & (g_b + octile(*s) < cost - tie)
+    gf, gb = np.sort(g_f[fwd]), np.sort(g_b[bwd])
+    cover = np.arange(gf.size) + np.searchsorted(gb, cost - tie - 1.0 - gf)
+    mm = sum(int(np.count_nonzero(c & (np.maximum(g + octile(*x), 2 * g) < cost - tie)))
+             for (c, g), x in zip(fields, (t, s)))
+    print(f"{name:<16} C* {cost:.3f}  A* expanded {expanded}  f_F < C*: {gf.size}  f_B < C*: {gb.size}  "
+          f"bidirectional at least {min(gf.size, int(cover.min()))}  MM {mm}")
 
 
 def touched_bytes(grid, parents: bool):

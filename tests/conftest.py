@@ -22,3 +22,11 @@ settings.load_profile(os.environ.get("NAVLAB_HYPOTHESIS_PROFILE", "default"))
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)
+
+
+def pytest_collection_modifyitems(config, items):
+    """The documented-commands test first: it is the longest file (every
+    document's commands, mostly waiting on simulated clocks and ROS nodes), so
+    under pytest-xdist it starts at once and the other files fill the other
+    workers around it instead of leaving it to run alone at the end."""
+    items.sort(key=lambda item: item.nodeid.split("::")[0] != "tests/test_documented_commands.py")

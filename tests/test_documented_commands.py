@@ -38,8 +38,9 @@ block); the right side is one of
     the whole block is one script in one private network namespace (a node
     started with ``&`` and a command that talks to it);
 ``serve SECONDS``
-    a ROS node that runs until stopped: it must still be running after
-    SECONDS, and then end cleanly (exit 0) on Ctrl-C (SIGINT);
+    a ROS node that runs until stopped: once it has logged its first line
+    (it is up), it must still be running SECONDS later, and then end cleanly
+    (exit 0) on Ctrl-C (SIGINT);
 ``needs MODULE``
     an optional extra: skipped, saying so, when MODULE cannot be imported;
 ``skip: REASON``
@@ -61,6 +62,7 @@ import subprocess
 import sys
 import textwrap
 import threading
+import time
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Tuple
 
@@ -207,23 +209,34 @@ def _run(cmd: Command, cwd: Path, env: Dict[str, str]) -> subprocess.CompletedPr
     args, env = _command_line(cmd, env)
     if cmd.action != "serve":
         return subprocess.run(args, cwd=cwd, env=env, capture_output=True, text=True, timeout=TIMEOUT_S)
-    # a node: still up after the wait, then a clean end on Ctrl-C
-    proc = subprocess.Popen(args, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    # a node: up (its first log line), still up SECONDS later, then a clean end on Ctrl-C
+    proc = subprocess.Popen(args, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+    lines: List[str] = []
+    reader = threading.Thread(target=lambda: lines.extend(proc.stdout), daemon=True)
+    reader.start()
+    deadline = time.monotonic() + TIMEOUT_S  # a loaded machine may take long to import and start ROS
+    while not lines and proc.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.1)
     try:
-        out, err = proc.communicate(timeout=float(cmd.argument))
-        return subprocess.CompletedProcess(args, f"ended by itself with {proc.returncode}", out, err)
+        proc.wait(timeout=float(cmd.argument))
+        reader.join(5)
+        return subprocess.CompletedProcess(args, f"ended by itself with {proc.returncode}", "".join(lines), "")
     except subprocess.TimeoutExpired:
+        up = bool(lines)
         proc.send_signal(signal.SIGINT)
-        out, err = proc.communicate(timeout=30)
-        return subprocess.CompletedProcess(args, proc.returncode, out, err)
+        proc.wait(timeout=30)
+        reader.join(5)
+        status = proc.returncode if up else f"printed nothing in {TIMEOUT_S} s"
+        return subprocess.CompletedProcess(args, status, "".join(lines), "")
 
 
 def _has_module(name: str) -> bool:
     return importlib.util.find_spec(name) is not None
 
 
-def run_document(document: Path, tmp_path: Path) -> Tuple[List[str], List[str]]:
-    """Run one document's commands in order in a fresh folder: (failures, not run)."""
+def run_document(document: Path, tmp_path: Path) -> Tuple[List[str], List[str], List[Tuple[float, str]]]:
+    """Run one document's commands in order in a fresh folder: (failures, not
+    run, (seconds, command) of each command run)."""
     commands = collect(document)
     work = tmp_path / "work"
     (tmp_path / "home").mkdir()
@@ -232,7 +245,7 @@ def run_document(document: Path, tmp_path: Path) -> Tuple[List[str], List[str]]:
     if has_shared:
         (tmp_path / "shared").symlink_to(SHARED)
     env = _navlab_env(tmp_path)
-    failures, skipped = [], []
+    failures, skipped, seconds = [], [], []
     for cmd in commands:
         if cmd.action == "skip":
             if not cmd.argument:
@@ -249,18 +262,21 @@ def run_document(document: Path, tmp_path: Path) -> Tuple[List[str], List[str]]:
             skipped.append(f"{cmd} (needs {cmd.argument}, an optional extra)")
             continue
         expected = int(cmd.argument) if cmd.action == "exit" else 0
+        t0 = time.perf_counter()
         try:
             done = _run(cmd, work, env)
         except subprocess.TimeoutExpired:
             failures.append(f"{cmd}\n    did not finish in {TIMEOUT_S} s")
             continue
+        finally:
+            seconds.append((time.perf_counter() - t0, str(cmd)))
         tail = (done.stderr.strip() or done.stdout.strip()).splitlines()[-6:]
         if done.returncode != expected:
             failures.append(f"{cmd}\n    exit {done.returncode}, the text promises {expected}\n    "
                             + "\n    ".join(tail))
         elif "Traceback (most recent call last)" in done.stderr and cmd.lang != "python":
             failures.append(f"{cmd}\n    printed a traceback\n    " + "\n    ".join(tail))
-    return failures, skipped
+    return failures, skipped, seconds
 
 
 @pytest.fixture(scope="module")
@@ -285,6 +301,9 @@ def all_documents(tmp_path_factory) -> Dict[str, Any]:
     return outcomes
 
 
+# The first document's test also runs every document (the fixture): ~90 commands
+# on a machine the other test files share, so it gets more than the suite's 300 s.
+@pytest.mark.timeout(1200)
 @pytest.mark.parametrize("document", DOCUMENTS, ids=lambda p: p.name)
 def test_documented_commands_run_as_written(document: Path, all_documents) -> None:
     if not collect(document):
@@ -292,9 +311,13 @@ def test_documented_commands_run_as_written(document: Path, all_documents) -> No
     outcome = all_documents[document.name]
     if isinstance(outcome, BaseException):
         raise outcome
-    failures, skipped = outcome
+    failures, skipped, seconds = outcome
     if skipped:
         print("not run:\n  " + "\n  ".join(skipped))
+    # where the suite's time goes (shown with -s or -rP; the documents run at once, so these overlap)
+    slowest = sorted(seconds, reverse=True)[:5]
+    print(f"{document.name}: {sum(s for s, _ in seconds):.0f} s in {len(seconds)} commands; slowest:\n  "
+          + "\n  ".join(f"{s:5.1f} s  {c}" for s, c in slowest))
     assert not failures, "\n".join(failures)
 
 

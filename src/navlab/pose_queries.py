@@ -84,10 +84,17 @@ def query_headings(world) -> Tuple[float, float]:
             towards if world.goal_heading is None else world.goal_heading)
 
 
+def declared_turning_radius(world) -> Optional[float]:
+    """The turning radius a scene or world file gives for its robot
+    (``meta["turning_radius"]``), or None when it names none."""
+    meta = getattr(world, "meta", None)
+    value = meta.get("turning_radius") if isinstance(meta, dict) else None
+    return float(value) if isinstance(value, (int, float)) else None
+
+
 def scene_turning_radius(world) -> float:
-    """The turning radius a scene gives for its robot (``meta["turning_radius"]``),
-    else :data:`DEFAULT_TURNING_RADIUS`."""
-    value = world.meta.get("turning_radius") if isinstance(world.meta, dict) else None
+    """The turning radius a scene gives for its robot, else :data:`DEFAULT_TURNING_RADIUS`."""
+    value = declared_turning_radius(world)
     return DEFAULT_TURNING_RADIUS if value is None else value
 
 

@@ -50,6 +50,7 @@ def scene_robot_params(scene_world, robot_name: str, robot_params: Dict[str, Any
     :data:`STEERING_ROOM` times tighter than the scene's turning radius with
     the car's wheelbase (unless given), so that its plan is drawn at the
     scene's radius."""
+    from ..pose_queries import declared_turning_radius
     from ..robots.kinematics import ROBOTS
 
     params = dict(robot_params)
@@ -58,19 +59,13 @@ def scene_robot_params(scene_world, robot_name: str, robot_params: Dict[str, Any
         params["footprint"] = footprint.to_value()
         if "radius" not in params:
             params["radius"] = footprint.inscribed_radius
-    radius = _scene_turning_radius(scene_world)
+    radius = declared_turning_radius(scene_world)
     cls = ROBOTS.get(robot_name)
     if getattr(cls, "steers", False) and radius is not None and "max_steer" not in params:
         wheelbase = params.get("wheelbase", cls.wheelbase)
         if isinstance(wheelbase, (int, float)) and math.isfinite(wheelbase) and wheelbase > 0:
             params["max_steer"] = math.atan2(wheelbase, radius / STEERING_ROOM)
     return params
-
-
-def _scene_turning_radius(scene_world) -> Optional[float]:
-    meta = getattr(scene_world, "meta", None)
-    value = meta.get("turning_radius") if isinstance(meta, dict) else None
-    return float(value) if isinstance(value, (int, float)) else None
 
 
 def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan_params: Dict[str, Any],

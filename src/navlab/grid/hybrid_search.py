@@ -35,7 +35,7 @@ import math
 import numpy as np
 from numba import njit
 
-from ..sampling import dubins, reeds_shepp
+from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.footprint_lattice import curve_free
 
@@ -139,8 +139,8 @@ def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse
         return field
     dx, dy = gx - x, gy - y
     c, s = math.cos(theta), math.sin(theta)
-    return max(field, reeds_shepp._shortest_into((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
-                                                 gtheta - theta, seg, kinds, lengths) * radius)
+    return max(field, reeds_shepp_length.length((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
+                                                gtheta - theta) * radius)
 
 
 @njit(cache=True)

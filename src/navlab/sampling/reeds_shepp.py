@@ -52,7 +52,8 @@ _BACKWARDS = np.array([False, False, True, False, False, True, True, False])
 @njit(cache=True, inline="always")
 def _mod_pi(a: float) -> float:
     """``a`` in [−π, π]."""
-    v = np.fmod(a, 2.0 * PI)
+    # fmod returns an ``a`` inside (−2π, 2π) unchanged, and most angles here are: skip the call
+    v = a if -2.0 * PI < a < 2.0 * PI else np.fmod(a, 2.0 * PI)
     if v < -PI:
         v += 2.0 * PI
     elif v > PI:

@@ -32,7 +32,7 @@ import math
 import numpy as np
 from numba import njit
 
-from . import dubins, reeds_shepp
+from . import dubins, reeds_shepp, reeds_shepp_length
 from .curves import MAX_SEGMENTS, NOP, advance
 from .footprint_lattice import curve_free
 from .tree_kernel import _remove_child
@@ -71,7 +71,7 @@ def steer(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths):
 def steer_length(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths):
     """:func:`steer`'s length only (Dubins without filling the word)."""
     if reverse:
-        return steer(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths)
+        return reeds_shepp_length.length(*reeds_shepp._local(x0, y0, t0, x1, y1, t1, radius)) * radius
     d, a, b = dubins._normalised(x0, y0, t0, x1, y1, t1, radius)
     _, t, p, q = dubins.solve(d, a, b)
     return (t + p + q) * radius

@@ -1,0 +1,233 @@
+"""The Reeds–Shepp length alone, exactly as :mod:`navlab.sampling.reeds_shepp` computes it, faster.
+
+Nearest-neighbour searches in SE(2) and the Hybrid A* heuristic need only the
+length of the shortest Reeds–Shepp word (Reeds and Shepp, Pacific J. Math.
+145(2), 1990), not its segments. :func:`length` evaluates the same closed
+forms (the paper's 8.1–8.11, with the corrections OMPL's
+``ReedsSheppStateSpace`` uses) under the same symmetries, with the same
+floating-point operations in the same order, so every word's length is the
+same double; it returns their minimum, which does not depend on the order
+the words are tried in. It saves time in three ways:
+
+- the CSC words (8.1, 8.2, the usual optimum away from the start) go first,
+  so the best length found is small early;
+- a word is dropped as soon as a part of its length is no shorter than the
+  best found: a length is a sum of non-negative terms added left to right,
+  and rounding to nearest is monotone, so the sum of any of its terms (in
+  the same order) is never above it; the part is usually one straight
+  segment or one arc, known before the word's atan2 calls;
+- no segment arrays are written, and an angle already in (−2π, 2π) is not
+  passed through ``fmod`` (which would return it unchanged).
+
+The result equals :func:`navlab.sampling.reeds_shepp.distances` bit for bit
+(``tests/sampling/test_rs_length.py``).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .reeds_shepp import _BACKWARDS, HALF_PI, PI, ZERO, _local, _mod_pi, _tau_omega
+
+#: a lower bound is lowered by this relative and absolute margin before it may drop a word: it is
+#: computed from cheap stand-ins (a squared norm instead of ``hypot``, no ``atan2``) whose rounding
+#: must never lift it above the length as computed
+_SAFE = 1e-9
+#: a squared norm ``xi*xi + eta*eta`` is within this relative distance of ``hypot(xi, eta)**2``
+_NORM = 1e-12
+FRAMES = 8  # 4 symmetries (identity, timeflip, reflect, both) x (forwards, backwards)
+FAMILIES = 8  # as in reeds_shepp._KINDS
+
+
+@njit(cache=True, inline="always")
+def _frame(f, x, y, phi, sp, cp, xb, yb):
+    """Frame ``f``'s pose (x, y, φ, sin φ) as reeds_shepp._shortest_into hands it to a family: timeflip
+    negates x, reflect y, either (not both) φ; frames 4–7 are the goal's view of the start."""
+    flip, reflect = f % 4 == 1 or f % 4 == 3, f % 4 >= 2
+    negate = flip != reflect
+    bx, by = (xb, yb) if f >= 4 else (x, y)
+    return -bx if flip else bx, -by if reflect else by, -phi if negate else phi, -sp if negate else sp
+
+
+@njit(cache=True)
+def _word(k, x, y, phi, sp, cp, best):
+    """The shorter of ``best`` and family ``k``'s length at (x, y, φ): reeds_shepp._family's
+    operations, without its segment array, stopping once a part of the sum reaches ``best``."""
+    if k == 0:  # 8.1: the straight segment is part of the sum
+        xi, eta = x - sp, y - 1.0 + cp
+        u = math.hypot(xi, eta)
+        if u < best:
+            t = math.atan2(eta, xi)
+            if t >= -ZERO:
+                v = _mod_pi(phi - t)
+                if v >= -ZERO:
+                    best = min(best, abs(t) + u + abs(v))
+    elif k == 1:  # 8.2
+        xi, eta = x + sp, y - 1.0 - cp
+        rho2 = xi * xi + eta * eta
+        if rho2 >= 4.0:
+            u = math.sqrt(rho2 - 4.0)
+            if u < best:
+                t = _mod_pi(math.atan2(eta, xi) + math.atan2(2.0, u))
+                if t >= -ZERO:
+                    v = _mod_pi(t - phi)
+                    if v >= -ZERO:
+                        best = min(best, abs(t) + u + abs(v))
+    elif k == 2:  # 8.3: the middle arc
+        xi, eta = x - sp, y - 1.0 + cp
+        rho = math.hypot(xi, eta)
+        if rho <= 4.0:
+            u = -2.0 * math.asin(0.25 * rho)
+            if -u < best:
+                t = _mod_pi(math.atan2(eta, xi) + 0.5 * u + PI)
+                if t >= -ZERO and u <= ZERO:
+                    v = _mod_pi(phi - t + u)
+                    best = min(best, abs(t) + abs(u) + abs(v))
+    elif k == 3 or k == 4:  # 8.7, 8.8: the two middle arcs
+        xi, eta = x + sp, y - 1.0 - cp
+        if k == 3:
+            rho = 0.25 * (2.0 + math.hypot(xi, eta))
+            ok = rho <= 1.0
+            u = math.acos(rho) if ok else 0.0
+            w = -u
+        else:
+            rho = (20.0 - xi * xi - eta * eta) / 16.0
+            ok = 0.0 <= rho <= 1.0
+            u = -math.acos(rho) if ok else 0.0
+            ok = ok and u >= -HALF_PI
+            w = u
+        if ok and abs(u) + abs(w) < best:
+            t, v = _tau_omega(u, w, xi, eta, phi)
+            if t >= -ZERO and (v <= ZERO if k == 3 else v >= -ZERO):
+                best = min(best, abs(t) + abs(u) + abs(w) + abs(v))
+    elif k == 5:  # 8.9: the fixed π/2 arc and the straight segment
+        xi, eta = x - sp, y - 1.0 + cp
+        rho = math.hypot(xi, eta)
+        if rho >= 2.0:
+            r = math.sqrt(rho * rho - 4.0)
+            u = 2.0 - r
+            if u <= ZERO and HALF_PI + abs(u) < best:
+                t = _mod_pi(math.atan2(eta, xi) + math.atan2(r, -2.0))
+                if t >= -ZERO:
+                    v = _mod_pi(phi - HALF_PI - t)
+                    if v <= ZERO:
+                        best = min(best, abs(t) + HALF_PI + abs(u) + abs(v))
+    elif k == 6:  # 8.10
+        xi, eta = x + sp, y - 1.0 - cp
+        rho = math.hypot(-eta, xi)
+        if rho >= 2.0:
+            u = 2.0 - rho
+            if u <= ZERO and HALF_PI + abs(u) < best:
+                t = math.atan2(xi, -eta)
+                if t >= -ZERO:
+                    v = _mod_pi(t + HALF_PI - phi)
+                    if v <= ZERO:
+                        best = min(best, abs(t) + HALF_PI + abs(u) + abs(v))
+    else:  # 8.11: two π/2 arcs and the straight segment
+        xi, eta = x + sp, y - 1.0 - cp
+        rho = math.hypot(xi, eta)
+        if rho >= 2.0:
+            u = 4.0 - math.sqrt(rho * rho - 4.0)
+            if u <= ZERO and HALF_PI + abs(u) + HALF_PI < best:
+                t = _mod_pi(math.atan2((4.0 - u) * xi - 2.0 * eta, -2.0 * xi + (u - 4.0) * eta))
+                v = _mod_pi(t - phi)
+                if t >= -ZERO and v >= -ZERO:
+                    best = min(best, abs(t) + HALF_PI + abs(u) + HALF_PI + abs(v))
+    return best
+
+
+@njit(cache=True, inline="always")
+def _mod_2pi(a):
+    """A lower bound on the sum s >= 0 of two arcs in [0, π] that turn by ``a`` (mod 2π): ``a`` in
+    [0, 2π), taken as 0 near 2π, where rounding may have wrapped a sum of almost 0."""
+    m = a - 2.0 * PI * math.floor(a / (2.0 * PI))
+    return m if m < 2.0 * PI - 1e-6 else 0.0
+
+
+@njit(cache=True, inline="always")
+def _bound(k, x, y, phi, sp, cp, turn):
+    """A cheap lower bound on family ``k``'s length at (x, y, φ) (inf where it surely has no
+    solution), from squared norms only. ``turn`` = |φ wrapped to [−π, π]|: every word turns the car
+    by its arcs' total length at most, so no word is shorter (Reeds and Shepp, section 2)."""
+    if k == 0 or k == 2 or k == 5:
+        xi, eta = x - sp, y - 1.0 + cp
+    else:
+        xi, eta = x + sp, y - 1.0 - cp
+    rho2 = xi * xi + eta * eta
+    lo2, hi2 = rho2 * (1.0 - _NORM), rho2 * (1.0 + _NORM)
+    if k == 0:
+        # t = atan2(eta, xi) must be >= 0: below the x axis it is not; t + v = φ mod 2π, both in [0, π]
+        if eta < 0.0 and (xi <= 0.0 or -eta > 1e-12 * xi):
+            return math.inf
+        return math.sqrt(lo2) + _mod_2pi(phi)
+    if k == 1:  # t − v = φ mod 2π, both in [0, π]
+        return math.sqrt(rho2 - 4.0) + turn if rho2 >= 4.0 else math.inf
+    if k == 2:
+        if lo2 > 16.0:
+            return math.inf
+        # |u| = 2 asin(ρ/4) >= ρ/2 =: a, and t >= 0, t + |u| + v = φ (mod 2π), so the length is at least
+        # |u| + |φ − |u|| (wrapped), which never decreases as |u| grows: at least its value at a
+        a = 0.5 * math.sqrt(lo2)
+        return a + abs(_mod_pi(phi - a))
+    # CCCC: u = acos(z) >= sqrt(2 (1 − z)), as cos θ >= 1 − θ²/2; two arcs of |u|; the word turns by φ
+    if k == 3:  # needs ρ <= 2; z = (2 + ρ)/4
+        return max(2.0 * math.sqrt(max(0.5 * (2.0 - math.sqrt(hi2)), 0.0)), turn) if lo2 <= 4.0 else math.inf
+    if k == 4:  # needs 0 <= z = (20 − ρ²)/16 <= 1
+        if hi2 < 4.0 or lo2 > 20.0:
+            return math.inf
+        return 2.0 * math.sqrt(max(lo2 - 4.0, 0.0) / 8.0) + turn
+    if k == 5:  # needs u = 2 − sqrt(ρ² − 4) <= 0
+        if hi2 < 7.9:
+            return math.inf
+        # t >= 0 >= v and t + v = φ − π/2 (mod 2π): |t| + |v| >= |t + v|
+        return HALF_PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 2.0, 0.0) + abs(_mod_pi(phi - HALF_PI))
+    if k == 6:  # needs u = 2 − ρ <= 0; t >= 0 >= v and t − v = φ − π/2 (mod 2π), in [0, 2π]
+        if hi2 < 3.9:
+            return math.inf
+        return HALF_PI + max(math.sqrt(lo2) - 2.0, 0.0) + _mod_2pi(phi - HALF_PI)
+    # 8.11 needs u = 4 − sqrt(ρ² − 4) <= 0; t, v >= 0 and t − v = φ (mod 2π)
+    if hi2 < 19.9:
+        return math.inf
+    return PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 4.0, 0.0) + turn
+
+
+@njit(cache=True)
+def length(x: float, y: float, phi: float) -> float:
+    """The length of the shortest Reeds–Shepp word to the pose (x, y, φ), seen from the start and
+    scaled by r: :func:`navlab.sampling.reeds_shepp.solve`'s length, bit for bit.
+
+    Branch and bound over the 44 words: a cheap lower bound for each, then the words in increasing
+    order of their bounds until the next bound reaches the best length found.
+
+    References
+    ----------
+    Reeds, J. A. and Shepp, L. A., "Optimal paths for a car that goes both forwards and backwards",
+    Pacific J. Math. 145(2), 1990, formulas 8.1–8.11.
+    """
+    cp, sp = math.cos(phi), math.sin(phi)
+    xb, yb = x * cp + y * sp, x * sp - y * cp  # the goal's view of the start, for words read backwards
+    turn = abs(_mod_pi(phi))
+    best = math.inf
+    # CSC first (the usual optimum), so that the best length is small early; then the rest
+    for stage in range(2):
+        for f in range(4 if stage == 0 else FRAMES):
+            fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
+            for k in range(2) if stage == 0 else range(2, FAMILIES):
+                if (f < 4 or _BACKWARDS[k]) and _bound(k, fx, fy, fphi, fsp, cp, turn) * (1.0 - _SAFE) - _SAFE < best:
+                    best = _word(k, fx, fy, fphi, fsp, cp, best)
+    return best
+
+
+@njit(cache=True)
+def lengths(starts: np.ndarray, goals: np.ndarray, radius: float) -> np.ndarray:
+    """Reeds–Shepp path lengths [m] from each ``starts[i]`` to ``goals[i]`` ((N, 3) poses):
+    :func:`navlab.sampling.reeds_shepp.distances`, bit for bit."""
+    n = starts.shape[0]
+    out = np.empty(n)
+    for i in range(n):
+        x, y, phi = _local(starts[i, 0], starts[i, 1], starts[i, 2], goals[i, 0], goals[i, 1], goals[i, 2], radius)
+        out[i] = length(x, y, phi) * radius
+    return out

@@ -54,6 +54,8 @@ class PathPlanner(NavlabNode):
         self.create_subscription(GridMsg, "map", self.on_map, MAP_QOS)
         self.create_subscription(PoseStamped, "goal_pose", self.on_goal, DEFAULT_QOS)
         self.create_subscription(Odometry, "odom", self.on_odom, DEFAULT_QOS)
+        # said once, so a user (and a launcher) can tell a node that is up from one still starting
+        self.log("info", f"{p['algorithm']} ready: plans on /map from /odom to each /goal_pose")
 
     def planner_params(self) -> Dict[str, Any]:
         """The settings given on the command line for the planner (a mapping such as

@@ -9,6 +9,7 @@ import pytest
 from click.testing import CliRunner
 
 from navlab.bench import barn
+from navlab.bench.barn_run import Navigator, make_study
 from navlab.cli import main
 
 BARN = Path(__file__).resolve().parents[3] / "shared" / "data" / "barn"
@@ -89,3 +90,26 @@ def test_a_world_without_its_path_file(tmp_path):
     assert ran.exit_code == 0, ran.output
     row = json.loads((tmp_path / "b" / "results.jsonl").read_text().splitlines()[0])
     assert row["ot_s"] == pytest.approx(5.0)
+
+
+def test_a_noisy_laser_makes_the_runs_of_a_world_differ_and_is_recorded(tmp_path):
+    """--lidar rplidar_a1: the runs of one world get different scans (their seeds), as the challenge's
+    ten Gazebo runs per world do; the study and its rows say which laser, and an exact study's folder is
+    another study (its fingerprint), while an exact study's fingerprint is what it was before the option."""
+    out = tmp_path / "noisy"
+    result = _run("--data", str(BARN), "--worlds", "0", "--controller", "rpp", "--lidar", "rplidar_a1",
+                  "--trials", "2", "--out", str(out), "--no-plots")
+    assert result.exit_code == 0, result.output
+    rows = [json.loads(line) for line in (out / "results.jsonl").read_text().splitlines()]
+    assert len(rows) == 2 and rows[0]["seed"] != rows[1]["seed"]
+    # different scans drive different trajectories: the runs' distances differ
+    assert rows[0]["distance_m"] != rows[1]["distance_m"]
+    assert "Laser: rplidar_a1" in (out / "report.md").read_text()
+    exact = make_study(BARN, "0", [Navigator("rpp")])
+    noisy = make_study(BARN, "0", [Navigator("rpp")], lidar="rplidar_a1")
+    assert "lidar" not in exact.to_dict() and exact.fingerprint() != noisy.fingerprint()
+    assert all(spec["lidar"] == "rplidar_a1" for spec in noisy.trial_specs())
+    bad = _run("--data", str(BARN), "--lidar", "sick_lms")
+    assert bad.exit_code == 2 and "sick_lms" in bad.output
+    elsewhere = CliRunner().invoke(main, ["bench", "--world", "trap", "--lidar", "rplidar_a1"])
+    assert elsewhere.exit_code == 2 and "go with --suite barn" in elsewhere.output

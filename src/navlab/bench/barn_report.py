@@ -39,6 +39,13 @@ def means_table(summary: Dict[str, Any]) -> List[str]:
     return lines
 
 
+def _laser(study) -> str:
+    if getattr(study, "lidar", "exact") == "rplidar_a1":
+        return ("rplidar_a1 (a noisy laser, 2 % wheel-speed noise, 1 % slip: the runs of a world differ by "
+                "their seed, as the challenge's Gazebo runs do)")
+    return "exact (every run of a world sees the same scans: runs differ only by a controller's own sampling)"
+
+
 def write_barn_report(study, rows: List[Dict[str, Any]], summary: Dict[str, Any], folder: Path,
                       plots: bool = True) -> None:
     lines = [f"# BARN: {len(study.worlds)} worlds × {len(study.navigators)} navigator(s) × {study.runs} run(s)", "",
@@ -47,7 +54,7 @@ def write_barn_report(study, rows: List[Dict[str, Any]], summary: Dict[str, Any]
              "the goal with no collision within 100 s of the robot's first 0.1 m; score = 1[success] · OT / "
              "clip(AT, 2·OT, 8·OT), OT the reference path (start, path file, goal) at 2 m/s, so at most 0.5. "
              "Means per world first, then over worlds (the challenge's report_test.py); time over succeeded runs.",
-             "", *means_table(summary), ""]
+             "", f"Laser: {_laser(study)}.", "", *means_table(summary), ""]
     if summary.get("published"):
         lines.append(f"Published baseline: {summary['published']['file']}, the {len(summary['published']['worlds'])}"
                      " of its worlds in this study, 10 runs each, scores recomputed with the formula above.")

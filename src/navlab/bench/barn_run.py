@@ -62,11 +62,16 @@ class BarnStudy:
     name: str = "barn"
     optimal_times: Dict[int, float] = field(default_factory=dict)
     straight_line: bool = False
+    #: the Jackal's sensors: "exact", or "rplidar_a1" (noisy laser, wheels and compass: runs differ by seed)
+    lidar: str = "exact"
 
     def to_dict(self) -> Dict[str, Any]:
-        return {"name": self.name, "suite": "barn", "data": str(self.data), "worlds": list(self.worlds),
-                "navigators": [n.to_dict() for n in self.navigators], "runs": self.runs, "seed": self.seed,
-                "straight_line": self.straight_line}
+        out = {"name": self.name, "suite": "barn", "data": str(self.data), "worlds": list(self.worlds),
+               "navigators": [n.to_dict() for n in self.navigators], "runs": self.runs, "seed": self.seed,
+               "straight_line": self.straight_line}
+        if self.lidar != "exact":  # named only when not the default, so folders made before it still resume
+            out["lidar"] = self.lidar
+        return out
 
     def fingerprint(self) -> str:
         """Identity of the results: the runs count and world list are left out (they extend a result set)."""
@@ -82,7 +87,7 @@ class BarnStudy:
                     specs.append({"trial_id": f"{cid}-w{world:03d}-{run:03d}", "cell_id": cid, "trial": run,
                                   "world_index": world, "world_file": str(self.data / f"world_{world}.world"),
                                   "navigator": nav.to_dict(), "label": nav.label,
-                                  "optimal_time": self.optimal_times[world],
+                                  "optimal_time": self.optimal_times[world], "lidar": self.lidar,
                                   "seed": trial_seed(self.seed, f"{cid}-{world}", run)})
         return specs
 
@@ -90,9 +95,18 @@ class BarnStudy:
         return []
 
 
+#: the lasers a BARN study can give the Jackal (see :mod:`navlab.sensors.lidar`)
+BARN_LIDARS = ("exact", "rplidar_a1")
+
+
 def make_study(data, worlds: Optional[str], navigators: Iterable[Navigator], runs: int = 1, seed: int = 0,
-               straight_line: bool = False) -> BarnStudy:
+               straight_line: bool = False, lidar: str = "exact") -> BarnStudy:
     """A study over the worlds of ``data`` (see :func:`navlab.bench.barn.find_worlds`).
+
+    ``lidar`` ``"rplidar_a1"`` gives the Jackal noisy sensors (the laser's
+    datasheet noise, 2 % wheel-speed noise, 1 % slip, a compass; see
+    :func:`navlab.sim.runner.simulate`), so the runs of one world differ by
+    their seed, as the challenge's Gazebo runs do.
 
     Raises
     ------
@@ -100,6 +114,8 @@ def make_study(data, worlds: Optional[str], navigators: Iterable[Navigator], run
         No such folder or worlds; worlds without path files (named) unless
         ``straight_line`` (then their OT is the straight line's 5 s).
     """
+    if lidar not in BARN_LIDARS:
+        raise ExperimentError(f"lidar '{lidar}': the BARN suite's Jackal has {' or '.join(BARN_LIDARS)}")
     found = barn.find_worlds(data)
     chosen = barn.select_worlds(worlds, list(found))
     missing = [w for w in chosen if found[w][1] is None]
@@ -115,7 +131,8 @@ def make_study(data, worlds: Optional[str], navigators: Iterable[Navigator], run
     labels = [n.label for n in navigators]
     if len(set(labels)) != len(labels):
         raise ExperimentError(f"a navigator is named twice: {', '.join(labels)}")
-    return BarnStudy(Path(data), chosen, navigators, runs, seed, optimal_times=optimal, straight_line=straight_line)
+    return BarnStudy(Path(data), chosen, navigators, runs, seed, optimal_times=optimal, straight_line=straight_line,
+                     lidar=lidar)
 
 
 def check_navigator(nav: Navigator, world_file: Optional[str] = None) -> None:
@@ -172,7 +189,7 @@ def run_barn_trial(spec: Dict[str, Any]) -> Dict[str, Any]:
         try:
             result, _, sim = simulate(_world(spec["world_file"]), robot="jackal", controller=nav["controller"],
                                       start=barn.START, goal=barn.GOAL, planner=nav["planner"],
-                                      lidar="exact", controller_params=params, dt=DT,
+                                      lidar=spec.get("lidar", "exact"), controller_params=params, dt=DT,
                                       max_time=barn.TIME_LIMIT + SLACK_S, seed=spec["seed"])
         except NoPathError as exc:
             row.update(status="timeout", time_s=0.0, score=0.0, success=False, reason=f"no global path: {exc}",

@@ -96,9 +96,13 @@ def export_cmd(folder, fmt, out) -> None:
                    "(default: dwa_barn).")
 @click.option("--straight-line", is_flag=True,
               help="--suite barn: score worlds without a path file against the 10 m straight line (OT 5 s).")
+@click.option("--lidar", "barn_lidar", type=click.Choice(["exact", "rplidar_a1"]), default="exact", show_default=True,
+              help="--suite barn: the Jackal's sensors. rplidar_a1: a noisy laser (RPLIDAR A1 datasheet), 2 %% "
+                   "wheel-speed noise, 1 %% slip and a compass, so the runs of one world differ by seed as Gazebo's "
+                   "do (give --trials N runs per world; the challenge ran 10).")
 def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, params, grid, trials, max_iter, max_time,
               seed, executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet, data, barn_worlds,
-              controllers, straight_line) -> None:
+              controllers, straight_line, barn_lidar) -> None:
     """Run a benchmark: EXPERIMENT (a YAML file) or --suite NAME, optionally
     changed by flags, or an experiment made of flags alone (--world, --planner).
 
@@ -125,10 +129,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         raise click.UsageError("--resume keeps the finished trials and --overwrite discards them: give one")
     if suite == "barn":
         _barn(data, barn_worlds, controllers, planners, params, trials, seed, out, executor, jobs, scheduler, resume,
-              overwrite, no_plots, quiet, straight_line, experiment or worlds or samplers or grid or show)
+              overwrite, no_plots, quiet, straight_line, barn_lidar, experiment or worlds or samplers or grid or show)
         return
-    if data or barn_worlds or controllers or straight_line:
-        raise click.UsageError("--data, --worlds, --controller and --straight-line go with --suite barn")
+    if data or barn_worlds or controllers or straight_line or barn_lidar != "exact":
+        raise click.UsageError("--data, --worlds, --controller, --straight-line and --lidar go with --suite barn")
     if experiment and suite:
         raise click.UsageError("give an experiment file or --suite, not both")
     if experiment or suite:
@@ -214,7 +218,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
 
 
 def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor, jobs, scheduler, resume,
-          overwrite, no_plots, quiet, straight_line, other) -> None:
+          overwrite, no_plots, quiet, straight_line, lidar, other) -> None:
     """``navlab bench --suite barn``: see :mod:`navlab.bench.barn_run`."""
     from ..bench.barn_run import Navigator, make_study, run_barn
     from ..bench.runner import Interrupted
@@ -234,7 +238,8 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
         name, _, rest = text.partition(":")
         own = parse_params(tuple(p for p in rest.split(",") if p.strip()), "--controller") if rest else {}
         navigators.append(Navigator(name.strip(), {**shared, **own}, planners[0] if planners else None))
-    study = make_study(data, worlds, navigators, runs=runs or 1, seed=seed or 0, straight_line=straight_line)
+    study = make_study(data, worlds, navigators, runs=runs or 1, seed=seed or 0, straight_line=straight_line,
+                       lidar=lidar)
     folder = out or "bench-results/barn"
     try:
         folder, rows, summary = run_barn(study, folder, executor=executor, jobs=jobs, scheduler=scheduler,

@@ -7,10 +7,14 @@ forms (the paper's 8.1–8.11, with the corrections OMPL's
 ``ReedsSheppStateSpace`` uses) under the same symmetries, with the same
 floating-point operations in the same order, so every word's length is the
 same double; it returns their minimum, which does not depend on the order
-the words are tried in. It saves time in three ways:
+the words are tried in. It saves time in four ways:
 
 - the CSC words (8.1, 8.2, the usual optimum away from the start) go first,
   so the best length found is small early;
+- a word is not solved when a cheap lower bound on its length (from a
+  squared norm instead of ``hypot``, and from the heading its arcs must
+  turn) is no shorter than the best found; these bounds are lowered by a
+  margin far above their rounding;
 - a word is dropped as soon as a part of its length is no shorter than the
   best found: a length is a sum of non-negative terms added left to right,
   and rounding to nearest is monotone, so the sum of any of its terms (in
@@ -30,7 +34,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .reeds_shepp import _BACKWARDS, HALF_PI, PI, ZERO, _local, _mod_pi, _tau_omega
+from .reeds_shepp import HALF_PI, PI, ZERO, _local, _mod_pi, _tau_omega
 
 #: a lower bound is lowered by this relative and absolute margin before it may drop a word: it is
 #: computed from cheap stand-ins (a squared norm instead of ``hypot``, no ``atan2``) whose rounding
@@ -39,7 +43,6 @@ _SAFE = 1e-9
 #: a squared norm ``xi*xi + eta*eta`` is within this relative distance of ``hypot(xi, eta)**2``
 _NORM = 1e-12
 FRAMES = 8  # 4 symmetries (identity, timeflip, reflect, both) x (forwards, backwards)
-FAMILIES = 8  # as in reeds_shepp._KINDS
 
 
 @njit(cache=True, inline="always")
@@ -52,10 +55,25 @@ def _frame(f, x, y, phi, sp, cp, xb, yb):
     return -bx if flip else bx, -by if reflect else by, -phi if negate else phi, -sp if negate else sp
 
 
+@njit(cache=True, inline="always")
+def _mod_2pi(a):
+    """A lower bound on the sum s >= 0 of two arcs in [0, π] that turn by ``a`` (mod 2π): ``a`` in
+    [0, 2π), taken as 0 near 2π, where rounding may have wrapped a sum of almost 0."""
+    m = a - 2.0 * PI * math.floor(a / (2.0 * PI))
+    return m if m < 2.0 * PI - 1e-6 else 0.0
+
+
+@njit(cache=True, inline="always")
+def _below(bound):
+    """``bound`` lowered by the margin, so that rounding cannot lift it above the length as computed."""
+    return bound * (1.0 - _SAFE) - _SAFE
+
+
 @njit(cache=True)
-def _word(k, x, y, phi, sp, cp, best):
+def _word(k, x, y, phi, sp, cp, turn, best):
     """The shorter of ``best`` and family ``k``'s length at (x, y, φ): reeds_shepp._family's
-    operations, without its segment array, stopping once a part of the sum reaches ``best``."""
+    operations, without its segment array, stopping once a part of the sum (or a bound from the
+    heading it must turn, ``turn`` = |φ| wrapped to [−π, π]) reaches ``best``."""
     if k == 0:  # 8.1: the straight segment is part of the sum
         xi, eta = x - sp, y - 1.0 + cp
         u = math.hypot(xi, eta)
@@ -81,7 +99,8 @@ def _word(k, x, y, phi, sp, cp, best):
         rho = math.hypot(xi, eta)
         if rho <= 4.0:
             u = -2.0 * math.asin(0.25 * rho)
-            if -u < best:
+            # t >= 0 and t + |u| + v = φ (mod 2π): |t| + |v| >= |φ − |u|| (wrapped)
+            if _below(-u + abs(_mod_pi(phi + u))) < best:
                 t = _mod_pi(math.atan2(eta, xi) + 0.5 * u + PI)
                 if t >= -ZERO and u <= ZERO:
                     v = _mod_pi(phi - t + u)
@@ -99,7 +118,8 @@ def _word(k, x, y, phi, sp, cp, best):
             u = -math.acos(rho) if ok else 0.0
             ok = ok and u >= -HALF_PI
             w = u
-        if ok and abs(u) + abs(w) < best:
+        # 8.7: t >= 0 >= v and t − v = φ + 2u (mod 2π), in [0, 2π]; 8.8: t, v >= 0 and t − v = φ (mod 2π)
+        if ok and _below(abs(u) + abs(w) + (_mod_2pi(phi + 2.0 * u) if k == 3 else turn)) < best:
             t, v = _tau_omega(u, w, xi, eta, phi)
             if t >= -ZERO and (v <= ZERO if k == 3 else v >= -ZERO):
                 best = min(best, abs(t) + abs(u) + abs(w) + abs(v))
@@ -140,58 +160,59 @@ def _word(k, x, y, phi, sp, cp, best):
 
 
 @njit(cache=True, inline="always")
-def _mod_2pi(a):
-    """A lower bound on the sum s >= 0 of two arcs in [0, π] that turn by ``a`` (mod 2π): ``a`` in
-    [0, 2π), taken as 0 near 2π, where rounding may have wrapped a sum of almost 0."""
-    m = a - 2.0 * PI * math.floor(a / (2.0 * PI))
-    return m if m < 2.0 * PI - 1e-6 else 0.0
+def _csc(x, y, phi, sp, cp, turn, best):
+    """8.1 and 8.2 at (x, y, φ) where cheap lower bounds (a squared norm for ``hypot``, no atan2) do not
+    rule them out; returns the shorter of ``best`` and their lengths."""
+    xi, eta = x - sp, y - 1.0 + cp
+    # 8.1: t = atan2(eta, xi) >= 0 fails below the x axis; t, v in [0, π] turn by φ (mod 2π)
+    if eta >= 0.0 or (xi > 0.0 and -eta <= 1e-12 * xi):
+        if _below(math.sqrt((xi * xi + eta * eta) * (1.0 - _NORM)) + _mod_2pi(phi)) < best:
+            best = _word(0, x, y, phi, sp, cp, turn, best)
+    xi, eta = x + sp, y - 1.0 - cp
+    rho2 = xi * xi + eta * eta
+    # 8.2: its straight segment is computed from rho2 exactly so; t, v in [0, π] and t − v = φ (mod 2π)
+    if rho2 >= 4.0 and _below(math.sqrt(rho2 - 4.0) + turn) < best:
+        best = _word(1, x, y, phi, sp, cp, turn, best)
+    return best
 
 
 @njit(cache=True, inline="always")
-def _bound(k, x, y, phi, sp, cp, turn):
-    """A cheap lower bound on family ``k``'s length at (x, y, φ) (inf where it surely has no
-    solution), from squared norms only. ``turn`` = |φ wrapped to [−π, π]|: every word turns the car
-    by its arcs' total length at most, so no word is shorter (Reeds and Shepp, section 2)."""
-    if k == 0 or k == 2 or k == 5:
-        xi, eta = x - sp, y - 1.0 + cp
-    else:
-        xi, eta = x + sp, y - 1.0 - cp
+def _others(x, y, phi, sp, cp, turn, backwards, best):
+    """The other families at (x, y, φ) (only 8.3, 8.9, 8.10 when ``backwards``), each where cheap lower
+    bounds do not rule it out; returns the shorter of ``best`` and their lengths. ``lo2``/``hi2``
+    bracket the squared ``hypot`` the closed forms compute."""
+    xi, eta = x - sp, y - 1.0 + cp
     rho2 = xi * xi + eta * eta
     lo2, hi2 = rho2 * (1.0 - _NORM), rho2 * (1.0 + _NORM)
-    if k == 0:
-        # t = atan2(eta, xi) must be >= 0: below the x axis it is not; t + v = φ mod 2π, both in [0, π]
-        if eta < 0.0 and (xi <= 0.0 or -eta > 1e-12 * xi):
-            return math.inf
-        return math.sqrt(lo2) + _mod_2pi(phi)
-    if k == 1:  # t − v = φ mod 2π, both in [0, π]
-        return math.sqrt(rho2 - 4.0) + turn if rho2 >= 4.0 else math.inf
-    if k == 2:
-        if lo2 > 16.0:
-            return math.inf
-        # |u| = 2 asin(ρ/4) >= ρ/2 =: a, and t >= 0, t + |u| + v = φ (mod 2π), so the length is at least
-        # |u| + |φ − |u|| (wrapped), which never decreases as |u| grows: at least its value at a
+    # 8.3 needs ρ <= 4; |u| = 2 asin(ρ/4) >= ρ/2 =: a; t >= 0 and t + |u| + v = φ (mod 2π), so the length
+    # is at least |u| + |φ − |u|| (wrapped), which never decreases as |u| grows: at least its value at a
+    if lo2 <= 16.0:
         a = 0.5 * math.sqrt(lo2)
-        return a + abs(_mod_pi(phi - a))
-    # CCCC: u = acos(z) >= sqrt(2 (1 − z)), as cos θ >= 1 − θ²/2; two arcs of |u|; the word turns by φ
-    if k == 3:  # needs ρ <= 2; z = (2 + ρ)/4
-        return max(2.0 * math.sqrt(max(0.5 * (2.0 - math.sqrt(hi2)), 0.0)), turn) if lo2 <= 4.0 else math.inf
-    if k == 4:  # needs 0 <= z = (20 − ρ²)/16 <= 1
-        if hi2 < 4.0 or lo2 > 20.0:
-            return math.inf
-        return 2.0 * math.sqrt(max(lo2 - 4.0, 0.0) / 8.0) + turn
-    if k == 5:  # needs u = 2 − sqrt(ρ² − 4) <= 0
-        if hi2 < 7.9:
-            return math.inf
-        # t >= 0 >= v and t + v = φ − π/2 (mod 2π): |t| + |v| >= |t + v|
-        return HALF_PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 2.0, 0.0) + abs(_mod_pi(phi - HALF_PI))
-    if k == 6:  # needs u = 2 − ρ <= 0; t >= 0 >= v and t − v = φ − π/2 (mod 2π), in [0, 2π]
-        if hi2 < 3.9:
-            return math.inf
-        return HALF_PI + max(math.sqrt(lo2) - 2.0, 0.0) + _mod_2pi(phi - HALF_PI)
+        if _below(a + abs(_mod_pi(phi - a))) < best:
+            best = _word(2, x, y, phi, sp, cp, turn, best)
+    # 8.9 needs u = 2 − sqrt(ρ² − 4) <= 0; t >= 0 >= v and t + v = φ − π/2 (mod 2π)
+    if hi2 >= 7.9 and _below(HALF_PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 2.0, 0.0)
+                             + abs(_mod_pi(phi - HALF_PI))) < best:
+        best = _word(5, x, y, phi, sp, cp, turn, best)
+    xi, eta = x + sp, y - 1.0 - cp
+    rho2 = xi * xi + eta * eta
+    lo2, hi2 = rho2 * (1.0 - _NORM), rho2 * (1.0 + _NORM)
+    # 8.10 needs u = 2 − ρ <= 0; t >= 0 >= v and t − v = φ − π/2 (mod 2π), in [0, 2π]
+    if hi2 >= 3.9 and _below(HALF_PI + max(math.sqrt(lo2) - 2.0, 0.0) + _mod_2pi(phi - HALF_PI)) < best:
+        best = _word(6, x, y, phi, sp, cp, turn, best)
+    if backwards:
+        return best
+    # CCCC: u = acos(z) >= sqrt(2 (1 − z)) (as cos θ >= 1 − θ²/2), two arcs of |u|, and the word turns by φ
+    # 8.7 needs ρ <= 2; z = (2 + ρ)/4
+    if lo2 <= 4.0 and _below(max(2.0 * math.sqrt(max(0.5 * (2.0 - math.sqrt(hi2)), 0.0)), turn)) < best:
+        best = _word(3, x, y, phi, sp, cp, turn, best)
+    # 8.8 needs 0 <= z = (20 − ρ²)/16 <= 1; t, v >= 0 and t − v = φ (mod 2π)
+    if hi2 >= 4.0 and lo2 <= 20.0 and _below(2.0 * math.sqrt(max(lo2 - 4.0, 0.0) / 8.0) + turn) < best:
+        best = _word(4, x, y, phi, sp, cp, turn, best)
     # 8.11 needs u = 4 − sqrt(ρ² − 4) <= 0; t, v >= 0 and t − v = φ (mod 2π)
-    if hi2 < 19.9:
-        return math.inf
-    return PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 4.0, 0.0) + turn
+    if hi2 >= 19.9 and _below(PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 4.0, 0.0) + turn) < best:
+        best = _word(7, x, y, phi, sp, cp, turn, best)
+    return best
 
 
 @njit(cache=True)
@@ -199,8 +220,8 @@ def length(x: float, y: float, phi: float) -> float:
     """The length of the shortest Reeds–Shepp word to the pose (x, y, φ), seen from the start and
     scaled by r: :func:`navlab.sampling.reeds_shepp.solve`'s length, bit for bit.
 
-    Branch and bound over the 44 words: a cheap lower bound for each, then the words in increasing
-    order of their bounds until the next bound reaches the best length found.
+    Branch and bound over the 44 word evaluations: the CSC words of the four symmetries first, then
+    the others, each skipped when a cheap lower bound on its length is no shorter than the best found.
 
     References
     ----------
@@ -209,15 +230,14 @@ def length(x: float, y: float, phi: float) -> float:
     """
     cp, sp = math.cos(phi), math.sin(phi)
     xb, yb = x * cp + y * sp, x * sp - y * cp  # the goal's view of the start, for words read backwards
-    turn = abs(_mod_pi(phi))
+    turn = abs(_mod_pi(phi))  # every word turns the car by φ (mod 2π), by its arcs, at most 1 rad per r
     best = math.inf
-    # CSC first (the usual optimum), so that the best length is small early; then the rest
-    for stage in range(2):
-        for f in range(4 if stage == 0 else FRAMES):
-            fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
-            for k in range(2) if stage == 0 else range(2, FAMILIES):
-                if (f < 4 or _BACKWARDS[k]) and _bound(k, fx, fy, fphi, fsp, cp, turn) * (1.0 - _SAFE) - _SAFE < best:
-                    best = _word(k, fx, fy, fphi, fsp, cp, best)
+    for f in range(4):
+        fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
+        best = _csc(fx, fy, fphi, fsp, cp, turn, best)
+    for f in range(FRAMES):
+        fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
+        best = _others(fx, fy, fphi, fsp, cp, turn, f >= 4, best)
     return best
 
 

@@ -76,6 +76,21 @@ def _push(buf, size, pending, costarr, n):
 
 
 @njit(cache=True)
+def _push_neighbours(buf, size, pending, costarr, n, nx, p32, l, r, u, d, le, re, ue, de):
+    """navfn's updateCell tail: each neighbour whose potential the new value ``p32`` plus its edge
+    would lower goes on ``buf`` (left, right, up, down, in navfn's order)."""
+    if l > p32 + le:
+        size = _push(buf, size, pending, costarr, n - 1)
+    if r > p32 + re:
+        size = _push(buf, size, pending, costarr, n + 1)
+    if u > p32 + ue:
+        size = _push(buf, size, pending, costarr, n - nx)
+    if d > p32 + de:
+        size = _push(buf, size, pending, costarr, n + nx)
+    return size
+
+
+@njit(cache=True)
 def navfn_potential(costarr, nx, robot, goal, cycles):
     """navfn's potential (flat float32 array) spread from cell ``robot`` (0) over the flat costs
     ``costarr`` (row length ``nx``) until cell ``goal`` is reached or ``cycles`` bands are spent
@@ -119,24 +134,11 @@ def navfn_potential(costarr, nx, robot, goal, cycles):
                 le, re = INVSQRT2 * costarr[n - 1], INVSQRT2 * costarr[n + 1]
                 ue, de = INVSQRT2 * costarr[n - nx], INVSQRT2 * costarr[n + nx]
                 pot[n] = p32
+                # below the band's threshold the neighbours go on the next list, else on the overflow
                 if p32 < cur_t:
-                    if l > p32 + le:
-                        nxt_n = _push(nxt, nxt_n, pending, costarr, n - 1)
-                    if r > p32 + re:
-                        nxt_n = _push(nxt, nxt_n, pending, costarr, n + 1)
-                    if u > p32 + ue:
-                        nxt_n = _push(nxt, nxt_n, pending, costarr, n - nx)
-                    if d > p32 + de:
-                        nxt_n = _push(nxt, nxt_n, pending, costarr, n + nx)
+                    nxt_n = _push_neighbours(nxt, nxt_n, pending, costarr, n, nx, p32, l, r, u, d, le, re, ue, de)
                 else:
-                    if l > p32 + le:
-                        over_n = _push(over, over_n, pending, costarr, n - 1)
-                    if r > p32 + re:
-                        over_n = _push(over, over_n, pending, costarr, n + 1)
-                    if u > p32 + ue:
-                        over_n = _push(over, over_n, pending, costarr, n - nx)
-                    if d > p32 + de:
-                        over_n = _push(over, over_n, pending, costarr, n + nx)
+                    over_n = _push_neighbours(over, over_n, pending, costarr, n, nx, p32, l, r, u, d, le, re, ue, de)
         cur, nxt = nxt, cur
         cur_n, nxt_n = nxt_n, 0
         if cur_n == 0:  # this band is done: the overflow is next

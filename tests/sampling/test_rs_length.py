@@ -61,3 +61,16 @@ def test_hand_derived_lengths():
     assert length(0.0, 2.0, math.pi) == pytest.approx(math.pi, rel=1e-12)  # a left half turn, radius 1
     assert length(1.0, 1.0, math.pi / 2) == pytest.approx(math.pi / 2, rel=1e-12)  # a left quarter turn
     assert length(-1.0, 1.0, -math.pi / 2) == pytest.approx(math.pi / 2, rel=1e-12)  # the same in reverse
+
+
+def test_below_a_cutoff_exact_and_above_it_inf():
+    a, b = hard_pairs(20_000, seed=9, span=3.0)
+    full = reeds_shepp.distances(a, b, 1.0)
+    rng = np.random.default_rng(2)
+    cutoff = full * rng.uniform(0.5, 1.5, len(full))
+    cutoff[::7] = full[::7]  # a cutoff equal to the length is not below it
+    below = np.array([reeds_shepp_length.length_below(*reeds_shepp._local(*p, *q, 1.0), c)
+                      for p, q, c in zip(a, b, cutoff)])
+    inside = full < cutoff
+    np.testing.assert_array_equal(below[inside].view(np.int64), full[inside].view(np.int64))
+    assert np.isinf(below[~inside]).all()

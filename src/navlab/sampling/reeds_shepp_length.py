@@ -216,9 +216,11 @@ def _others(x, y, phi, sp, cp, turn, backwards, best):
 
 
 @njit(cache=True)
-def length(x: float, y: float, phi: float) -> float:
+def length_below(x: float, y: float, phi: float, cutoff: float) -> float:
     """The length of the shortest Reeds–Shepp word to the pose (x, y, φ), seen from the start and
-    scaled by r: :func:`navlab.sampling.reeds_shepp.solve`'s length, bit for bit.
+    scaled by r, if it is below ``cutoff``, else inf: :func:`navlab.sampling.reeds_shepp.solve`'s
+    length, bit for bit. A nearest-neighbour search passes its best distance so far: most candidates
+    are then dropped by the cheap bounds alone.
 
     Branch and bound over the 44 word evaluations: the CSC words of the four symmetries first, then
     the others, each skipped when a cheap lower bound on its length is no shorter than the best found.
@@ -231,14 +233,22 @@ def length(x: float, y: float, phi: float) -> float:
     cp, sp = math.cos(phi), math.sin(phi)
     xb, yb = x * cp + y * sp, x * sp - y * cp  # the goal's view of the start, for words read backwards
     turn = abs(_mod_pi(phi))  # every word turns the car by φ (mod 2π), by its arcs, at most 1 rad per r
-    best = math.inf
+    best = cutoff
     for f in range(4):
         fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
         best = _csc(fx, fy, fphi, fsp, cp, turn, best)
     for f in range(FRAMES):
         fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
         best = _others(fx, fy, fphi, fsp, cp, turn, f >= 4, best)
-    return best
+    return best if best < cutoff else math.inf
+
+
+@njit(cache=True)
+def length(x: float, y: float, phi: float) -> float:
+    """The length of the shortest Reeds–Shepp word to the pose (x, y, φ), seen from the start and
+    scaled by r: :func:`navlab.sampling.reeds_shepp.solve`'s length, bit for bit
+    (:func:`length_below` with no cutoff)."""
+    return length_below(x, y, phi, math.inf)
 
 
 @njit(cache=True)

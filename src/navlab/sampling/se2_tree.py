@@ -68,10 +68,15 @@ def steer(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths):
 
 
 @njit(cache=True)
-def steer_length(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths):
-    """:func:`steer`'s length only (Dubins without filling the word)."""
+def steer_length(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths, cutoff=math.inf):
+    """:func:`steer`'s length only (Dubins without filling the word). A Reeds–Shepp length above
+    ``cutoff`` may come back as inf (a nearest search passes its best so far: most candidates are
+    then dropped by cheap bounds); at or below it, it is exact (the cutoff is widened by 1e-9 so
+    that a tie with the best is still seen, bit for bit)."""
     if reverse:
-        return reeds_shepp_length.length(*reeds_shepp._local(x0, y0, t0, x1, y1, t1, radius)) * radius
+        local = reeds_shepp._local(x0, y0, t0, x1, y1, t1, radius)
+        return reeds_shepp_length.length_below(local[0], local[1], local[2],
+                                               cutoff / radius * (1.0 + 1e-9)) * radius
     d, a, b = dubins._normalised(x0, y0, t0, x1, y1, t1, radius)
     _, t, p, q = dubins.solve(d, a, b)
     return (t + p + q) * radius
@@ -152,7 +157,7 @@ def _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, 
         for k in range(n):
             if lower_bound(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius) < best_d:
                 d = steer_length(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius, reverse, seg, kinds,
-                                 lengths)
+                                 lengths, best_d)
                 if d < best_d:
                     best, best_d = k, d
         return best, best_d
@@ -175,7 +180,7 @@ def _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, 
                         e = lower_bound(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius)
                         if e < best_d or (e == best_d and k < best):
                             d = steer_length(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius, reverse, seg,
-                                             kinds, lengths)
+                                             kinds, lengths, best_d)
                             if d < best_d or (d == best_d and k < best):
                                 best, best_d = k, d
                         k = nxt[k]

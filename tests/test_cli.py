@@ -127,3 +127,22 @@ def test_list_shows_everything(run):
 def test_help_explains(run):
     out = run("plan", "--help").output
     assert "--param" in out and "--plot" in out and "seed" in out
+
+
+def test_a_point_planner_in_a_world_with_an_outline_says_what_it_ignored():
+    """parking names a 4.4 x 1.8 m car and headings: rrt_star's path is for a point, and the CLI says so
+    (on stderr, the exit status unchanged); hybrid_astar plans for the outline and says nothing."""
+    point = CliRunner().invoke(main, ["plan", "parking", "--max-iter", "500"])
+    assert point.exit_code in (0, 1)
+    assert "note: parking names a robot outline and headings" in point.stderr
+    assert "--planner hybrid_astar" in point.stderr and "note:" not in point.stdout
+    plain = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "500"])
+    assert "note:" not in plain.stderr  # trap names no outline
+
+
+def test_a_heading_beyond_two_pi_gets_a_degrees_hint_and_is_still_taken():
+    res = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "180", "--json"])
+    assert "--goal heading 180 is more than 2π: headings are radians (180° would be 3.1416)" in res.stderr
+    assert res.exit_code in (0, 1) and json.loads(res.stdout)["status"]
+    quiet = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "3.14"])
+    assert "more than 2π" not in quiet.stderr

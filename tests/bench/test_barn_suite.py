@@ -104,11 +104,15 @@ def test_a_noisy_laser_makes_the_runs_of_a_world_differ_and_is_recorded(tmp_path
     assert len(rows) == 2 and rows[0]["seed"] != rows[1]["seed"]
     # different scans drive different trajectories: the runs' distances differ
     assert rows[0]["distance_m"] != rows[1]["distance_m"]
-    assert "Laser: rplidar_a1" in (out / "report.md").read_text()
+    report = (out / "report.md").read_text()
+    assert "Laser: rplidar_a1" in report and "a noisy LiDAR" in report and "noise-free" not in report
+    assert "a noisy LiDAR" in result.output
     exact = make_study(BARN, "0", [Navigator("rpp")])
     noisy = make_study(BARN, "0", [Navigator("rpp")], lidar="rplidar_a1")
     assert "lidar" not in exact.to_dict() and exact.fingerprint() != noisy.fingerprint()
     assert all(spec["lidar"] == "rplidar_a1" for spec in noisy.trial_specs())
+    typo = CliRunner().invoke(main, ["bench", "--suite", "barnn"])
+    assert typo.exit_code == 2 and "Did you mean 'barn'?" in typo.output
     bad = _run("--data", str(BARN), "--lidar", "sick_lms")
     assert bad.exit_code == 2 and "sick_lms" in bad.output
     elsewhere = CliRunner().invoke(main, ["bench", "--world", "trap", "--lidar", "rplidar_a1"])

@@ -9,12 +9,18 @@ from typing import Any, Dict, List
 
 from ..atomic import write_text_atomic
 
-#: what every BARN report says first
-DISCLAIMER = ("navlab's BARN runs are a 2D kinematic simulation: the Jackal's exact rectangular footprint moving "
-              "along exact arcs among the worlds' cylinders, a noise-free LiDAR at the robot's centre, no wheel "
-              "slip, inertia beyond the acceleration limits, or ROS timing. The published move_base figures come "
-              "from Gazebo's physics with ROS in the loop; they are the field's reference, not a like-for-like "
-              "measurement.")
+def disclaimer(lidar: str = "exact") -> str:
+    """What every BARN report says first (its sensors as the study ran them)."""
+    sensors = ("a noise-free LiDAR at the robot's centre, no wheel slip" if lidar == "exact" else
+               "a noisy LiDAR at the robot's centre, 2 % wheel-speed noise and 1 % slip (--lidar rplidar_a1)")
+    return ("navlab's BARN runs are a 2D kinematic simulation: the Jackal's exact rectangular footprint moving "
+            f"along exact arcs among the worlds' cylinders, {sensors}; no inertia beyond the acceleration limits, "
+            "no ROS timing. The published move_base figures come from Gazebo's physics with ROS in the loop; they "
+            "are the field's reference, not a like-for-like measurement.")
+
+
+#: the disclaimer of a study with exact sensors (the default)
+DISCLAIMER = disclaimer()
 
 
 def _fmt(value: Any, digits: int = 3) -> str:
@@ -49,7 +55,7 @@ def _laser(study) -> str:
 def write_barn_report(study, rows: List[Dict[str, Any]], summary: Dict[str, Any], folder: Path,
                       plots: bool = True) -> None:
     lines = [f"# BARN: {len(study.worlds)} worlds × {len(study.navigators)} navigator(s) × {study.runs} run(s)", "",
-             DISCLAIMER, "",
+             disclaimer(getattr(study, "lidar", "exact")), "",
              "Protocol (the-barn-challenge's run.py): start (−2, 3) facing +y, goal (−2, 13); success within 1 m of "
              "the goal with no collision within 100 s of the robot's first 0.1 m; score = 1[success] · OT / "
              "clip(AT, 2·OT, 8·OT), OT the reference path (start, path file, goal) at 2 m/s, so at most 0.5. "

@@ -218,8 +218,11 @@ def experiment_data(source: Union[str, Path]) -> Tuple[Dict[str, Any], str]:
         found = find_suite(source)
         if found is not None:
             return found(), f"suite '{source}'"
+    from .suites import BARN_SUITE
+
+    names = suite_names() + [BARN_SUITE[0]]  # barn runs navigators, not an experiment file, but is a suite to a user
     raise ExperimentError(f"no experiment file or suite named '{source}'; suites: "
-                          f"{', '.join(suite_names())}." + suggest(str(source), suite_names()))
+                          f"{', '.join(names)}." + suggest(str(source), names))
 
 
 def _beside(world: Any, folder: Path) -> Any:

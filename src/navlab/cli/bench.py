@@ -33,7 +33,7 @@ class BenchCommand(click.Command):
         return super().invoke(ctx)
 
 
-@click.command("export")
+@click.command("export", context_settings={"help_option_names": ["-h", "--help"]})
 @click.argument("folder", type=click.Path(file_okay=False))
 @click.option("--format", "fmt", type=click.Choice(["csv", "parquet"]), default="csv", show_default=True,
               help="csv, or parquet (needs the parquet extra: pip install 'navlab[parquet]').")
@@ -97,8 +97,8 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--straight-line", is_flag=True,
               help="--suite barn: score worlds without a path file against the 10 m straight line (OT 5 s).")
 @click.option("--lidar", "barn_lidar", type=click.Choice(["exact", "rplidar_a1"]), default="exact", show_default=True,
-              help="--suite barn: the Jackal's sensors. rplidar_a1: a noisy laser (RPLIDAR A1 datasheet), 2 %% "
-                   "wheel-speed noise, 1 %% slip and a compass, so the runs of one world differ by seed as Gazebo's "
+              help="--suite barn: the Jackal's sensors. rplidar_a1: a noisy laser (RPLIDAR A1 datasheet), 2 % "
+                   "wheel-speed noise, 1 % slip and a compass, so the runs of one world differ by seed as Gazebo's "
                    "do (give --trials N runs per world; the challenge ran 10).")
 def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, params, grid, trials, max_iter, max_time,
               seed, executor, jobs, scheduler, resume, overwrite, time_kind, no_plots, show, quiet, data, barn_worlds,
@@ -193,7 +193,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
                    err=True)
         sys.exit(EXIT_INTERRUPTED)
     summary = run.summary
-    click.echo(f"{len(run.rows)} trials ({run.ran} run now, {run.errors} errors) in {run.elapsed_s:.1f} s; "
+    repeats = run.breakdown.get("repeats", 0)
+    ran = f"{run.ran - repeats} run now + {repeats} noise repeats" if repeats else f"{run.ran} run now"
+    click.echo(f"{len(run.rows)} trials ({ran}, {run.errors} errors) in {run.elapsed_s:.1f} s; "
                f"times are {summary['time_label']}")
     click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
                f"{summary['warmup_s']:.1f} s in all, not counted in any trial")
@@ -248,12 +250,12 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
         click.echo(f"\ninterrupted: {stop.kept} of {stop.total} runs are kept in {stop.folder}; "
                    f"run the rest with: {_resume_command()}", err=True)
         sys.exit(EXIT_INTERRUPTED)
-    from ..bench.barn_report import DISCLAIMER, means_table
+    from ..bench.barn_report import disclaimer, means_table
 
     click.echo(f"{len(rows)} runs ({summary['ran']} run now) in {summary['elapsed_s']:.1f} s")
     for line in means_table(summary):
         click.echo(line)
-    click.echo(DISCLAIMER)
+    click.echo(disclaimer(study.lidar))
     click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl)")
     if any(r["status"] == "ERROR" for r in rows):
         sys.exit(1)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import os
 import re
 from typing import Any, Dict, Tuple
@@ -153,4 +155,9 @@ class PointOrPoseOption(click.Option):
         tokens = str(value).split()
         if len(tokens) not in (2, 3) or not all(_is_number(t) for t in tokens):
             raise click.BadParameter(f"expected X Y or X Y THETA (numbers), got {str(value)!r}", ctx=ctx, param=self)
-        return tuple(float(t) for t in tokens)
+        pose = tuple(float(t) for t in tokens)
+        if len(pose) == 3 and abs(pose[2]) > 2 * math.pi:
+            # legal (headings wrap), but far more often degrees typed where radians belong
+            click.echo(f"note: {self.opts[-1]} heading {tokens[2]} is more than 2π: headings are radians "
+                       f"({tokens[2]}° would be {math.radians(pose[2]):.4f})", err=True)
+        return pose

@@ -84,8 +84,20 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
         click.echo(json.dumps(out))
     else:
         _print_summary(world, result, planner, sampler, seed, plot)
+    _note_ignored_shape(world, result)
     if not result.success:
         sys.exit(1)
+
+
+def _note_ignored_shape(world, result) -> None:
+    """Say so when a point planner ran in a world that names a footprint: its path is for a disc of
+    ``robot_radius`` and ignores the outline and the headings (navlab sim switches to poses there)."""
+    footprint = getattr(world, "footprint", None)
+    if footprint is None or len(result.path) == 0 or result.path.ndim != 2 or result.path.shape[1] != 2:
+        return
+    click.echo(f"note: {world.name} names a robot outline and headings; this path is for a disc of radius "
+               f"{result.params.get('robot_radius', 0):g} m and ignores both: plan with --planner hybrid_astar "
+               "(or a tree with --param motion=reeds_shepp) for the outline", err=True)
 
 
 def _print_summary(world, result, planner, sampler, seed, plot) -> None:

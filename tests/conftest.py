@@ -30,3 +30,10 @@ def pytest_collection_modifyitems(config, items):
     under pytest-xdist it starts at once and the other files fill the other
     workers around it instead of leaving it to run alone at the end."""
     items.sort(key=lambda item: item.nodeid.split("::")[0] != "tests/test_documented_commands.py")
+
+
+def pytest_xdist_auto_num_workers(config):
+    """``-n auto``: one worker per core, plus one for the documented-commands
+    test, whose worker only waits on its commands' processes (they use the
+    cores); without it the other files share one worker fewer than the cores."""
+    return (os.cpu_count() or 1) + 1

@@ -156,7 +156,7 @@ class PointOrPoseOption(click.Option):
         if len(tokens) not in (2, 3) or not all(_is_number(t) for t in tokens):
             raise click.BadParameter(f"expected X Y or X Y THETA (numbers), got {str(value)!r}", ctx=ctx, param=self)
         pose = tuple(float(t) for t in tokens)
-        if len(pose) == 3 and abs(pose[2]) > 2 * math.pi:
+        if len(pose) == 3 and math.isfinite(pose[2]) and abs(pose[2]) > 2 * math.pi:
             # legal (headings wrap), but far more often degrees typed where radians belong
             click.echo(f"note: {self.opts[-1]} heading {tokens[2]} is more than 2π: headings are radians "
                        f"({tokens[2]}° would be {math.radians(pose[2]):.4f})", err=True)

@@ -9,6 +9,7 @@ from typing import Any, Dict, List
 
 from ..atomic import write_text_atomic
 
+
 def disclaimer(lidar: str = "exact") -> str:
     """What every BARN report says first (its sensors as the study ran them)."""
     sensors = ("a noise-free LiDAR at the robot's centre, no wheel slip" if lidar == "exact" else
@@ -17,10 +18,6 @@ def disclaimer(lidar: str = "exact") -> str:
             f"along exact arcs among the worlds' cylinders, {sensors}; no inertia beyond the acceleration limits, "
             "no ROS timing. The published move_base figures come from Gazebo's physics with ROS in the loop; they "
             "are the field's reference, not a like-for-like measurement.")
-
-
-#: the disclaimer of a study with exact sensors (the default)
-DISCLAIMER = disclaimer()
 
 
 def _fmt(value: Any, digits: int = 3) -> str:
@@ -46,7 +43,7 @@ def means_table(summary: Dict[str, Any]) -> List[str]:
 
 
 def _laser(study) -> str:
-    if getattr(study, "lidar", "exact") == "rplidar_a1":
+    if study.lidar == "rplidar_a1":
         return ("rplidar_a1 (a noisy laser, 2 % wheel-speed noise, 1 % slip: the runs of a world differ by "
                 "their seed, as the challenge's Gazebo runs do)")
     return "exact (every run of a world sees the same scans: runs differ only by a controller's own sampling)"
@@ -55,7 +52,7 @@ def _laser(study) -> str:
 def write_barn_report(study, rows: List[Dict[str, Any]], summary: Dict[str, Any], folder: Path,
                       plots: bool = True) -> None:
     lines = [f"# BARN: {len(study.worlds)} worlds × {len(study.navigators)} navigator(s) × {study.runs} run(s)", "",
-             disclaimer(getattr(study, "lidar", "exact")), "",
+             disclaimer(study.lidar), "",
              "Protocol (the-barn-challenge's run.py): start (−2, 3) facing +y, goal (−2, 13); success within 1 m of "
              "the goal with no collision within 100 s of the robot's first 0.1 m; score = 1[success] · OT / "
              "clip(AT, 2·OT, 8·OT), OT the reference path (start, path file, goal) at 2 m/s, so at most 0.5. "

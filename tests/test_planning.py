@@ -8,6 +8,7 @@ import shapely
 
 import navlab
 from navlab.grid import OccupancyGrid, save_map
+from navlab.registry import UnknownNameError
 from navlab.result import Status
 from navlab.world import Bounds, Circle, World, WorldFormatError
 from navlab.world.sources import MissingQueryError, load_source, source_kind
@@ -157,6 +158,18 @@ def test_allow_unknown_lets_the_query_use_unknown_cells():
 def test_unknown_planner_or_parameter_lists_the_valid_names(planner, params, text):
     with pytest.raises(ValueError, match=text.replace("(", r"\(").replace(")", r"\)")):
         navlab.plan("trap", planner=planner, **params)
+
+
+@pytest.mark.parametrize("world, params", [
+    ("parking", {"planner": "hybrid_astar", "turning_radus": 1.0}),
+    ("trap", {"planner": "astar", "costmap": True, "inflaton_radius": 0.5}),
+    ("trap", {"planner": "astar", "heuristc": "octile"}),
+    ("trap", {"planner": "rrt_star", "max_itr": 10}),
+])
+def test_an_unknown_setting_is_an_unknown_name_for_every_kind_of_query(world, params):
+    # UnknownNameError, as for an unknown planner or sampler (a ValueError too)
+    with pytest.raises(UnknownNameError, match="unknown parameter .* Did you mean"):
+        navlab.plan(world, **params)
 
 
 def test_a_sampler_with_a_grid_planner_is_refused():

@@ -20,7 +20,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from .registry import suggest
+from .registry import UnknownNameError, suggest
 from .result import Result, Status
 from .sampling.curves import LETTERS, CurvePath, check_turning_radius
 
@@ -127,7 +127,7 @@ def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str
     settings = dict(params)
     unknown = sorted(set(settings) - set(valid))
     if unknown:
-        raise ValueError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
+        raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
                          f"valid: {', '.join(valid)}." + suggest(unknown[0], list(valid)))
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),

@@ -63,7 +63,7 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
             to_sampler[key] = value
         else:
             valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
-            raise ValueError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
+            raise UnknownNameError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
                              f"valid: {', '.join(valid)}." + suggest(key, valid))
     return to_planner, to_sampler
 
@@ -75,7 +75,7 @@ def split_grid_params(planner: str, params: dict) -> dict:
 
     for key in params:
         if key not in GRID_PARAMS:
-            raise ValueError(f"unknown parameter '{key}' for grid planner '{planner}'; "
+            raise UnknownNameError(f"unknown parameter '{key}' for grid planner '{planner}'; "
                              f"valid: {', '.join(GRID_PARAMS)}." + suggest(key, list(GRID_PARAMS)))
     return check_grid_settings(params)
 
@@ -169,7 +169,7 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
         raise ValueError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
     unknown = sorted(set(params) - set(COSTMAP_PARAMS))
     if unknown:
-        raise ValueError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
+        raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
                          + suggest(unknown[0], list(COSTMAP_PARAMS)))
     t0 = time.perf_counter()
     settings = {"inflation_radius": params.get("inflation_radius", 0.55),

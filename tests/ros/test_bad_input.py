@@ -87,6 +87,9 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "x:=6", "-p", "y:=3.2"], "cannot start there"),
     (["ros", "astar_pathplanner", "--ros-args", "-p", "algorithm:=astra"], "Did you mean 'astar'"),
     (["ros", "pathplanner", "--ros-args", "-p", "algorithm:=rrt_star", "-p", "max_itr:=5"], "Did you mean 'max_iter'"),
+    (["ros", "pathplanner", "--ros-args", "-p", "algorithm:=rrt_star", "-p", "inflaton_radius:=0.3"],
+     "The node's own parameters: algorithm, sampler, seed, inflation_radius, allow_unknown, frame_id, publish_tree."
+     " Did you mean 'inflation_radius'?"),
     (["ros", "pathplanner", "--ros-args", "-p", "algorithm:=rrt_star", "-p", "sampler:=integraton"],
      "Did you mean 'integration'"),
     (["ros", "pathplanner", "--ros-args", "-p", "algorithm:=rrt_star", "-p", "sampler:=integration",

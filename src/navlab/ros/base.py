@@ -5,7 +5,7 @@ that turns bad settings into one error line."""
 from __future__ import annotations
 
 import math
-
+import re
 import signal
 import sys
 import time
@@ -18,6 +18,7 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 
+from ..registry import UnknownNameError, suggest
 from .convert import stamp_seconds
 
 #: /map is latched: late subscribers get the last map (as nav2's map_server).
@@ -159,6 +160,17 @@ def _executor():
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
+def _own_parameters_hint(factory: Callable[[], Node], exc: Exception) -> str:
+    """For an unknown setting handed on to a planner or controller, the node's
+    own parameters too: the planner's list of valid names leaves them out, and
+    a misspelt node parameter (``inflaton_radius``) lands there."""
+    match = re.match(r"unknown parameter '([^']*)'", str(exc))
+    own = [p.name for p in getattr(factory, "PARAMETERS", ())]
+    if not isinstance(exc, UnknownNameError) or match is None or not own:
+        return ""
+    return f" The node's own parameters: {', '.join(own)}.{suggest(match.group(1), own)}"
+
+
 def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> int:
     """Initialise ROS, build the node and spin until Ctrl-C or shutdown.
 
@@ -174,7 +186,7 @@ def run_node(factory: Callable[[], Node], args: Optional[List[str]] = None) -> i
         try:
             node = factory()
         except (ValueError, FileNotFoundError, KeyError) as exc:
-            print(f"Error: {exc}", file=sys.stderr)
+            print(f"Error: {exc}{_own_parameters_hint(factory, exc)}", file=sys.stderr)
             return 2
         except Exception:
             if rclpy.ok():

@@ -32,6 +32,9 @@ class Controller:
     needs_path = False
     needs_scan = False
     holonomic = False  #: commands a sideways velocity
+    #: the setting that is the controller's top forward speed (m/s), if it has one: the simulator refuses a
+    #: value above the robot's ``max_speed`` (the robot would cut the speed and not the turn rate)
+    speed_setting: Optional[str] = None
 
     def reset(self, goal, path=None) -> None:
         raise NotImplementedError

@@ -250,6 +250,8 @@ class DWA(CostmapController):
         See :class:`~navlab.control.local.CostmapController`.
     """
 
+    speed_setting = "max_vel_x"
+
     def __init__(self, max_vel_x: float = 0.5, min_vel_x: float = 0.1, max_vel_theta: float = 1.0,
                  min_in_place_vel_theta: float = 0.4, acc_lim_x: float = 2.5, acc_lim_theta: float = 3.2,
                  sim_time: float = 1.0, sim_granularity: float = 0.025, angular_sim_granularity: float = 0.025,

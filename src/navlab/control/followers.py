@@ -22,6 +22,7 @@ class _Follower(Controller):
     path ahead is clear again (the obstacle has passed) or a new path is."""
 
     needs_path = True
+    speed_setting = "speed"
 
     def __init__(self, stall_window: float = 8.0, stall_progress: float = 0.02, replan: bool = False,
                  replan_interval: float = 1.0, check_ahead: float = 1.0) -> None:

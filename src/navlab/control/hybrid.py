@@ -44,6 +44,7 @@ class Hybrid(Controller):
 
     needs_path = True
     needs_scan = True
+    speed_setting = "max_speed"  # its potential field's
     holonomic = True
 
     def __init__(self, carrot: float = 0.5, replan_interval: float = 2.0, max_replans: int = 5,

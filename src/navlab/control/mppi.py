@@ -206,6 +206,8 @@ class MPPI(CostmapController):
         [m] the path ahead the critics see (1.7).
     """
 
+    speed_setting = "vx_max"
+
     def __init__(self, motion_model: str = "diff", batch_size: int = 2000, time_steps: int = 56,
                  iteration_count: int = 1, model_dt: float = 0.05, vx_std: float = 0.2, vy_std: float = 0.2,
                  wz_std: float = 0.4, vx_max: float = 0.5, vx_min: float = -0.35, vy_max: float = 0.5,

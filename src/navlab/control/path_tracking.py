@@ -114,6 +114,7 @@ class RearWheelFeedback(Controller):
     """
 
     needs_path = True
+    speed_setting = "speed"
 
     def __init__(self, speed: float = 0.5, settling_distance: float = 0.5, approach_dist: float = 1.0,
                  creep_speed: float = 0.05, goal_radius: float = 0.03, cusp_radius: float = 0.05,

@@ -76,6 +76,7 @@ class PotentialField(Controller):
     """
 
     needs_scan = True
+    speed_setting = "max_speed"
     holonomic = True
 
     def __init__(self, alpha: float = 1.0, beta: float = 0.02, delta: float = 0.3, r: float = 0.01,

@@ -127,6 +127,8 @@ class RegulatedPurePursuit(CostmapController):
         The costmap's inflation (0.55 m, 3.0 1/m: Nav2's defaults).
     """
 
+    speed_setting = "desired_linear_vel"
+
     def __init__(self, desired_linear_vel: float = 0.5, lookahead_dist: float = 0.6, min_lookahead_dist: float = 0.3,
                  max_lookahead_dist: float = 0.9, lookahead_time: float = 1.5,
                  use_velocity_scaled_lookahead_dist: bool = False, rotate_to_heading_angular_vel: float = 1.8,

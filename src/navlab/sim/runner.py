@@ -33,6 +33,26 @@ class NoPathError(ValueError):
     world, not bad input: an experiment records it and goes on)."""
 
 
+def _default_setting(controller: str, setting: str) -> Any:
+    from ..control.base import CONTROLLERS
+    from ..registry import parameters_of
+
+    return parameters_of(CONTROLLERS.get(controller))[setting]
+
+
+def _check_speed_within_robot(name: str, ctrl: Any, given: Dict[str, Any], bot: Any) -> None:
+    """Refuse a controller speed the user set above the robot's ``max_speed``: the
+    robot would silently cut the speed and not the turn rate, so the controller
+    would steer for a speed it never gets (150 m/s on RPP drove at 0.22)."""
+    setting = ctrl.speed_setting
+    if setting is None or setting not in given:
+        return
+    speed = float(given[setting])
+    if speed > bot.max_speed:
+        raise ValueError(f"controller {name} {setting} {speed:g} m/s is more than the robot's max_speed "
+                         f"{bot.max_speed:g} m/s: lower it, or raise the robot's (--robot-param max_speed=...)")
+
+
 def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None, start=None, goal=None,
              planner: Optional[str] = None, lidar: Optional[str] = None, robot_params: Optional[Dict] = None,
              controller_params: Optional[Dict] = None, dt: float = 0.05, max_time: Optional[float] = None,
@@ -83,18 +103,16 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         follower = controller or POSE_FOLLOWERS[0]
         if getattr(bot, "steers", False):
             params = {**CAR_FOLLOWER[follower], **params}
-        # a follower's turn rate is worked out for its speed: asked to drive faster than the robot can, the
-        # robot's speed limit would cut the speed and not the turn rate, and the curvature would be wrong
-        default_speed = params.get("speed", make_controller(follower).speed)
-        if isinstance(default_speed, (int, float)) and default_speed > bot.max_speed:
-            if "speed" in (controller_params or {}):
-                raise ValueError(f"controller {follower} speed {default_speed:g} m/s is more than the robot's "
-                                 f"max_speed {bot.max_speed:g} m/s")
+        # a follower's turn rate is worked out for its speed: a default faster than the robot can drive is
+        # lowered to the robot's top speed (an explicit one is refused below)
+        if params.get("speed", _default_setting(follower, "speed")) > bot.max_speed:
             params["speed"] = bot.max_speed
     elif controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
         # the default follower watches the path ahead where obstacles move (crossing): blind, it drove into them
         params.setdefault("replan", True)
-    ctrl = make_controller(controller or (POSE_FOLLOWERS[0] if poses else DEFAULT_CONTROLLER[robot]), **params)
+    name = controller or (POSE_FOLLOWERS[0] if poses else DEFAULT_CONTROLLER[robot])
+    ctrl = make_controller(name, **params)
+    _check_speed_within_robot(name, ctrl, controller_params or {}, bot)
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:
         if is_grid:

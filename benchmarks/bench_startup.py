@@ -4,18 +4,25 @@
     python benchmarks/bench_startup.py --runs 21
 
 Each command runs in a new process (numba's cache warm: a first run compiles
-and is dropped), alternating between commands; the table gives the median, the
-range and the goal. Two floors run beside them: importing numpy, and a process
+and is dropped), alternating between commands; the table gives the median wall
+time, its range and the goal, and the median CPU time (user + system) of the
+process: on a shared machine the CPU time moves far less with the load than
+the wall time does. Three floors run beside them: importing numpy; a process
 that loads one cached numba function (numba's own start-up, which every
-planning command pays); the last line is navlab's share above that floor. `python -X importtime -c "import navlab.cli"` shows where
-an import's time goes; tests/test_lazy_imports.py keeps the heavy modules out
-of `navlab --help` (a test on the import graph, not on time).
+planning command pays, including numba's BLAS check importing scipy.linalg);
+and the same with SciPy's BLAS module preloaded the way navlab.plan does it
+(navlab.numba_start). The last lines are navlab's share above the preloaded
+floor. `python -X importtime -m navlab plan clutter` shows where an import's
+time goes; tests/test_lazy_imports.py keeps the heavy modules out of
+`navlab --help` and the unneeded ones out of `navlab plan clutter` (tests on
+the import graph, not on time).
 """
 
 from __future__ import annotations
 
 import argparse
 import os
+import resource
 import statistics
 import subprocess
 import sys
@@ -29,6 +36,10 @@ from conditions import load_line, spread
 # code generator's registries, numba's BLAS check importing scipy.linalg), which
 # every navlab command that plans pays too.
 NUMBA_FLOOR = """
+import sys
+if sys.argv[1:] == ["preload"]:
+    from navlab.numba_start import preload_cython_blas
+    preload_cython_blas()
 import numba
 @numba.njit(cache=True)
 def one(x):
@@ -39,14 +50,19 @@ COMMANDS = [("navlab --help", ["-m", "navlab", "--help"], 0.3),
             ("navlab plan clutter", ["-m", "navlab", "plan", "clutter"], 0.8),
             ("navlab list planners", ["-m", "navlab", "list", "planners"], None),
             ("floor: import numpy", ["-c", "import numpy"], None),
-            ("floor: one numba kernel", ["numba_floor.py"], None)]
+            ("floor: one numba kernel", ["numba_floor.py"], None),
+            ("floor: same, BLAS preloaded", ["numba_floor.py", "preload"], None)]
 
 
-def run(args, folder) -> float:
+def run(args, folder) -> tuple[float, float]:
+    """Wall seconds and CPU seconds (user + system) of one fresh process."""
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     subprocess.run([sys.executable, *args], cwd=folder, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL, check=False)
-    return time.perf_counter() - t0
+    wall = time.perf_counter() - t0
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)  # one child at a time: the difference is its own
+    return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
 def main() -> None:
@@ -55,6 +71,7 @@ def main() -> None:
     args = ap.parse_args()
     print(load_line("at start"))
     times = {name: [] for name, _, _ in COMMANDS}
+    cpu = {name: [] for name, _, _ in COMMANDS}
     with tempfile.TemporaryDirectory() as folder:
         with open(os.path.join(folder, "numba_floor.py"), "w", encoding="utf-8") as f:
             f.write(NUMBA_FLOOR)
@@ -62,16 +79,20 @@ def main() -> None:
             run(argv, folder)  # compile / fill the numba cache
         for _ in range(args.runs):
             for name, argv, _ in COMMANDS:
-                times[name].append(run(argv, folder))
-    print(f"\n{'command':<24} {'median':>8} {'range':>14} {'goal':>6}  ({args.runs} fresh processes each, "
-          f"{os.cpu_count()} cores)")
+                wall, seconds = run(argv, folder)
+                times[name].append(wall)
+                cpu[name].append(seconds)
+    print(f"\n{'command':<28} {'median':>8} {'range':>14} {'goal':>6}  {'CPU':>7} {'range':>14}  "
+          f"({args.runs} fresh processes each, {os.cpu_count()} cores)")
     for name, _, goal in COMMANDS:
         median = statistics.median(times[name])
         verdict = "" if goal is None else ("  met" if median < goal else "  NOT met")
-        print(f"{name:<24} {median:>7.3f}s {spread(times[name], 2, ' s'):>14} "
-              f"{'' if goal is None else f'{goal:.1f}s':>6}{verdict}")
-    floor = statistics.median(times["floor: one numba kernel"])
-    print(f"navlab plan clutter above the numba floor: {statistics.median(times['navlab plan clutter']) - floor:.3f} s")
+        print(f"{name:<28} {median:>7.3f}s {spread(times[name], 2, ' s'):>14} "
+              f"{'' if goal is None else f'{goal:.1f}s':>6}  {statistics.median(cpu[name]):>6.3f}s "
+              f"{spread(cpu[name], 2, ' s'):>14}{verdict}")
+    for what, table in (("wall", times), ("CPU", cpu)):
+        share = statistics.median(table["navlab plan clutter"]) - statistics.median(table["floor: same, BLAS preloaded"])
+        print(f"navlab plan clutter above the preloaded numba floor ({what}): {share:.3f} s")
     print(load_line("at end"))
 
 

@@ -133,8 +133,10 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         error but ``INVALID_START`` / ``INVALID_GOAL`` with the reason.
     """
     from .endpoints import endpoint_problem
+    from .numba_start import preload_cython_blas
     from .world.sources import load_source
 
+    preload_cython_blas()  # before the first kernel loads: numba's BLAS check then skips scipy.linalg
     if not isinstance(planner, str):
         raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     check_seed(seed)

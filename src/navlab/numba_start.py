@@ -1,0 +1,83 @@
+"""Cut numba's first cached-kernel load: give it SciPy's BLAS module without the whole of ``scipy.linalg``.
+
+When a process loads its first compiled function (from numba's cache or not),
+numba sets up its target and imports its array implementations
+(``numba.np.arraymath``), which check at import that a BLAS is available:
+``numba.np.linalg.ensure_blas`` runs ``import scipy.linalg.cython_blas``.
+Importing that submodule first imports its package, ``scipy.linalg``, and
+with it ``scipy._lib._array_api``, the array-API compatibility layer and
+``numpy.f2py``: about a quarter of a second of CPU in a process that only
+wanted one extension module's function pointers.
+
+:func:`preload_cython_blas` loads that one extension module from its file and
+registers it under its full name in ``sys.modules``, where numba's import
+finds it; numba's BLAS check still runs (``_HAVE_BLAS`` stays True) and
+``np.dot`` / ``np.linalg`` in compiled code still reach SciPy's BLAS and
+LAPACK. A later ``import scipy.linalg`` works as usual (the package's own
+``__init__`` does not import ``cython_blas``); only the attribute
+``scipy.linalg.cython_blas`` stays unset, as for any module imported before
+its parent: ``from scipy.linalg import cython_blas`` and
+``import scipy.linalg.cython_blas as m`` still return it.
+
+References
+----------
+numba 0.68, ``numba/np/arraymath.py`` (``_HAVE_BLAS = _check_blas()``) and
+``numba/np/linalg.py`` (``ensure_blas``); Python's import system,
+https://docs.python.org/3/reference/import.html#the-module-cache (a module
+found in ``sys.modules`` is returned as is, its parents are not imported).
+"""
+
+from __future__ import annotations
+
+import importlib.machinery
+import importlib.util
+import os
+import sys
+
+BLAS_MODULE = "scipy.linalg.cython_blas"
+
+
+def preload_cython_blas() -> bool:
+    """Load ``scipy.linalg.cython_blas`` on its own, before numba's first kernel asks for it.
+
+    Returns
+    -------
+    bool
+        True when the module is in ``sys.modules`` afterwards (loaded now or
+        before). False, silently, when there is nothing to gain or nothing to
+        load: ``scipy.linalg`` already imported (the normal import is then
+        cheap), numba's array implementations already loaded, no SciPy, or
+        no such file; numba then imports as it always does.
+    """
+    if BLAS_MODULE in sys.modules:
+        return True
+    if "scipy.linalg" in sys.modules or "numba.np.arraymath" in sys.modules:
+        return False  # nothing to save: let the ordinary import run
+    spec = _extension_spec()
+    if spec is None:
+        return False
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[BLAS_MODULE] = module
+    try:
+        spec.loader.exec_module(module)
+    except Exception:  # a SciPy this does not fit: undo, and let numba import it its way
+        sys.modules.pop(BLAS_MODULE, None)
+        return False
+    return True
+
+
+def _extension_spec():
+    """The spec of cython_blas's extension file, found without importing ``scipy``
+    (``find_spec`` of a top-level package reads no code) or ``scipy.linalg``."""
+    try:
+        scipy_spec = importlib.util.find_spec("scipy")
+    except (ImportError, ValueError):
+        return None
+    if scipy_spec is None or not scipy_spec.submodule_search_locations:
+        return None
+    folder = os.path.join(list(scipy_spec.submodule_search_locations)[0], "linalg")
+    for suffix in importlib.machinery.EXTENSION_SUFFIXES:  # this interpreter's ABI tags, in its order
+        path = os.path.join(folder, "cython_blas" + suffix)
+        if os.path.isfile(path):
+            return importlib.util.spec_from_file_location(BLAS_MODULE, path)
+    return None

@@ -129,6 +129,20 @@ def _prefetch(typingctx, arr, idx):
     return sig, codegen
 
 
+@intrinsic
+def _cttz(typingctx, x):
+    """The index of the lowest set bit of ``x`` (LLVM's ``llvm.cttz``; x must not be 0)."""
+    sig = x(x)
+
+    def codegen(context, builder, signature, args):
+        ty = context.get_value_type(signature.args[0])
+        fn = cgutils.get_or_insert_function(builder.module, ir.FunctionType(ty, [ty, ir.IntType(1)]),
+                                            f"llvm.cttz.i{ty.width}")
+        return builder.call(fn, [args[0], ir.IntType(1)(1)])
+
+    return sig, codegen
+
+
 # -- line of sight -------------------------------------------------------------
 @njit(cache=True)
 def los_supercover(free, S, x0, y0, x1, y1):
@@ -233,6 +247,52 @@ def clear_touched(gs, S, lo, hi, extent):
     extent[1] = -1
 
 
+# -- legal moves ---------------------------------------------------------------
+#: the eight moves, orthogonal first (tuples: constants in the compiled code);
+#: bit k of a cell's legal-move mask (:func:`legal_moves`) is move k
+MOVES_X = (1, -1, 0, 0, 1, -1, 1, -1)
+MOVES_Y = (0, 0, 1, -1, 1, 1, -1, -1)
+# The same as arrays, for a move index known only at run time (numba freezes
+# global arrays into the compiled code as constants).
+_DX = np.array(MOVES_X, dtype=np.int64)
+_DY = np.array(MOVES_Y, dtype=np.int64)
+_STEP = np.array([1.0] * 4 + [SQRT2] * 4)
+
+
+@njit(cache=True)
+def legal_moves(free, S):
+    """Each padded cell's legal 8-connected moves as a bit mask (bit k: move
+    ``(MOVES_X[k], MOVES_Y[k])`` stays on free cells and, diagonally, cuts no
+    blocked corner; 0 for blocked and border cells; the 4-connected moves are
+    bits 0-3).
+
+    Built once per grid (the grid is immutable; ``planner.PaddedGrid`` keeps
+    it), so an expansion reads one byte and visits only its legal moves
+    instead of testing up to eight grid bytes with a branch each (the
+    branches follow the random map and mispredict): A* and Dijkstra 10-15%
+    faster per expansion on random4096 and maze1001 (in-process A/B, CPU
+    medians of 5-9 interleaved runs at load 6). Branch-free and
+    indexed through ``np.uint64``, so LLVM vectorises it: 3 ms on a 4096 x 4096
+    grid plus the mask's fresh pages (~12 ms), paid by the grid's first query.
+    """
+    n = free.shape[0]
+    out = np.empty(n, dtype=np.uint8)
+    out[:S + 1] = 0
+    out[n - S - 1:] = 0
+    s = np.uint64(S)
+    one = np.uint64(1)
+    for u in range(np.uint64(S + 1), np.uint64(n - S - 1)):
+        e = np.int32(free[u + one])
+        w = np.int32(free[u - one])
+        no = np.int32(free[u + s])
+        so = np.int32(free[u - s])
+        m = (e | (w << 1) | (no << 2) | (so << 3)
+             | ((e & no & np.int32(free[u + one + s])) << 4) | ((w & no & np.int32(free[u - one + s])) << 5)
+             | ((e & so & np.int32(free[u + one - s])) << 6) | ((w & so & np.int32(free[u - one - s])) << 7))
+        out[u] = np.uint8(m * np.int32(free[u]))
+    return out
+
+
 # -- A* family -----------------------------------------------------------------
 # A*'s open list is a circular bucket queue (Dial 1969) whose buckets hold
 # keys within one bucket width of each other, with the exact minimum found by
@@ -253,10 +313,6 @@ def clear_touched(gs, S, lo, hi, extent):
 N_BUCKETS = 2048
 
 
-#: the eight moves, orthogonal first (tuples: constants in the compiled code)
-MOVES_X = (1, -1, 0, 0, 1, -1, 1, -1)
-MOVES_Y = (0, 0, 1, -1, 1, 1, -1, -1)
-
 
 def make_astar(conn: int, hcode: int, any_angle: bool):
     """A* over padded flat indices, compiled for one connectivity, heuristic
@@ -265,8 +321,9 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     loop (about 8% of A*'s time when they were arguments). Numba caches each
     variant on disk like any other kernel.
 
-    The returned kernel ``astar(free, S, start, goal, weight, gs, parent, lo,
-    hi, extent, key, cell, nxt, head, stack)`` keeps all per-cell state in
+    The returned kernel ``astar(free, moves, S, start, goal, weight, gs,
+    parent, lo, hi, extent, key, cell, nxt, head, stack)`` (``moves``: the
+    grid's :func:`legal_moves`) keeps all per-cell state in
     ``gs``, first clearing what the previous query wrote (:func:`clear_touched`);
     ``parent`` is written only with ``any_angle`` (A*'s paths are read back
     from ``gs`` by :func:`trace_back`).
@@ -278,10 +335,10 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     (``N_BUCKETS`` int32) its buckets. Returns (status, expanded) with status
     1 found, 0 no path, OVERFLOW when the pool or the stack ran out of room.
     """
-    n_moves = 8 if conn == 8 else 4
+    legal = 255 if conn == 8 else 15  # the mask bits of the allowed moves
 
     @njit(cache=True)
-    def astar(free, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack):
+    def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack):
         clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
         gx = goal % S
         gy = goal // S
@@ -342,7 +399,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 w = stack[np.uint64(top - 1)]
                 for row in (w - S, w, w + S):
                     _prefetch(gs, row)
-                    _prefetch(free, row)
+                _prefetch(moves, w)
             gu = gs[np.uint64(u)]
             if gu < 0.0:  # closed already: a node superseded by a better push, or a tie pushed twice
                 continue
@@ -363,39 +420,17 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 status = 1
                 break
             pu = parent[u] if any_angle else u
-            # Orthogonal neighbours first; a diagonal needs both of its sides free.
-            east = free[np.uint64(u + 1)] != 0
-            west = free[np.uint64(u - 1)] != 0
-            north = free[np.uint64(u + S)] != 0
-            south = free[np.uint64(u - S)] != 0
-            for k in range(n_moves):
-                if k == 0:
-                    ok = east
-                elif k == 1:
-                    ok = west
-                elif k == 2:
-                    ok = north
-                elif k == 3:
-                    ok = south
-                elif k == 4:
-                    ok = east and north
-                elif k == 5:
-                    ok = west and north
-                elif k == 6:
-                    ok = east and south
-                else:
-                    ok = west and south
-                if not ok:
-                    continue
-                dx = MOVES_X[k]
-                dy = MOVES_Y[k]
+            m = np.int64(moves[np.uint64(u)]) & legal
+            while m != 0:  # the legal moves, lowest bit first (orthogonal before diagonal)
+                k = _cttz(m)
+                m &= m - 1
+                dx = _DX[np.uint64(k)]
+                dy = _DY[np.uint64(k)]
                 v = u + dx + dy * S
-                if k >= 4 and free[np.uint64(v)] == 0:
-                    continue
-                gv = gs[np.uint64(v)]
-                if gv < 0.0:
-                    continue
-                ng = gu + (SQRT2 if k >= 4 else 1.0)
+                gv = gs[np.uint64(v)]  # a closed cell's -(g + 1) < 0 < ng: never improved below
+                if any_angle and gv < 0.0:
+                    continue  # (and Theta* spares its line of sight)
+                ng = gu + _STEP[np.uint64(k)]
                 par = u
                 if any_angle and pu != u:
                     pux = pu % S

@@ -57,7 +57,8 @@ class PaddedGrid:
 
     Built from ``blocked`` (and ``unknown`` cells, also closed unless None)
     straight into the padded array: no whole-grid temporaries, which on a
-    first query cost as much as the search's own state (fresh pages).
+    first query cost as much as the search's own state (fresh pages). With
+    it, each cell's legal moves (``kernels.legal_moves``).
     """
 
     def __init__(self, blocked: np.ndarray, unknown: Optional[np.ndarray] = None) -> None:
@@ -70,6 +71,8 @@ class PaddedGrid:
             inner[unknown] = False
         self.free = padded.ravel()
         self.free.flags.writeable = False
+        self.moves = K.legal_moves(self.free, self.stride)  # one byte per cell: the legal moves A* reads
+        self.moves.flags.writeable = False
 
     def index(self, x: int, y: int) -> int:
         return (y + 1) * self.stride + (x + 1)
@@ -88,6 +91,7 @@ class GridSearcher:
     def __init__(self, grid: PaddedGrid) -> None:
         self.stride = grid.stride
         self.free = grid.free
+        self.moves = grid.moves
         n = self.free.size
         rows = n // self.stride
         self.g = np.zeros(n)  # zero pages are mapped when first written: a search pays for the cells it reaches
@@ -123,7 +127,7 @@ class GridSearcher:
                                          self.extent, self.heap, self.stack, self.dirs)
             else:
                 kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
-                status, expanded = kernel(self.free, self.stride, a, b, weight, self.g, self.parent, self.lo,
+                status, expanded = kernel(self.free, self.moves, self.stride, a, b, weight, self.g, self.parent, self.lo,
                                           self.hi, self.extent, self.key, self.cell, self.next,
                                           self.head, self.stack)
             if status != K.OVERFLOW:

@@ -1,0 +1,63 @@
+"""The per-cell legal-move masks A* (and JPS) read instead of the grid bytes.
+
+Checked cell by cell against the rule written out in plain Python: move k from
+(x, y) is legal when both cells are free and, diagonally, both cells beside
+the move are free (no corner cutting); nothing leaves the map.
+"""
+
+import numpy as np
+import pytest
+
+from navlab.grid import OccupancyGrid, plan
+from navlab.grid import kernels as K
+from navlab.grid.planner import PaddedGrid, pool_for
+
+
+def mask_by_rule(blocked):
+    h, w = blocked.shape
+
+    def free(x, y):
+        return 0 <= x < w and 0 <= y < h and not blocked[y, x]
+
+    out = np.zeros((h, w), dtype=np.uint8)
+    for y in range(h):
+        for x in range(w):
+            if not free(x, y):
+                continue
+            for k, (dx, dy) in enumerate(zip(K.MOVES_X, K.MOVES_Y)):
+                if free(x + dx, y + dy) and (dx == 0 or dy == 0 or (free(x + dx, y) and free(x, y + dy))):
+                    out[y, x] |= 1 << k
+    return out
+
+
+@pytest.mark.parametrize("shape, density, seed", [((1, 1), 0.0, 0), ((1, 7), 0.2, 1), ((9, 1), 0.3, 2),
+                                                  ((23, 31), 0.3, 3), ((40, 17), 0.6, 4), ((12, 12), 0.0, 5)])
+def test_masks_equal_the_rule(shape, density, seed):
+    blocked = np.random.default_rng(seed).random(shape) < density
+    padded = PaddedGrid(blocked)
+    got = padded.moves.reshape(shape[0] + 2, shape[1] + 2)
+    assert np.array_equal(got[1:-1, 1:-1], mask_by_rule(blocked))
+    assert not got[[0, -1], :].any() and not got[:, [0, -1]].any()  # the border is never entered
+    assert not padded.moves.flags.writeable
+
+
+def test_unknown_cells_have_no_moves_unless_allowed():
+    blocked = np.zeros((5, 5), bool)
+    unknown = np.zeros((5, 5), bool)
+    unknown[2, 1:4] = True
+    grid = OccupancyGrid(blocked, unknown=unknown)
+    closed = pool_for(grid, False).grid.moves.reshape(7, 7)[1:-1, 1:-1]
+    opened = pool_for(grid, True).grid.moves.reshape(7, 7)[1:-1, 1:-1]
+    assert np.array_equal(closed, mask_by_rule(unknown)) and np.array_equal(opened, mask_by_rule(blocked))
+    assert plan(grid, (2, 0), (2, 4)).cost > plan(grid, (2, 0), (2, 4), allow_unknown=True).cost == 4.0
+
+
+def test_a_changed_grid_gets_its_own_masks():
+    """The masks hang on the immutable grid: a grid with one more wall plans around it."""
+    grid = OccupancyGrid(np.zeros((6, 6), bool))
+    assert plan(grid, (0, 0), (5, 0)).cost == 5.0
+    wall = grid.blocked.copy()
+    wall[0:5, 3] = True
+    walled = grid.with_blocked(wall)
+    assert plan(walled, (0, 0), (5, 0)).cost > 5.0
+    assert plan(grid, (0, 0), (5, 0)).cost == 5.0

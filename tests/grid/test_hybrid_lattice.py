@@ -40,9 +40,10 @@ def test_the_lattice_cells_are_those_traced_at_every_bin(name, bins):
                                       radius, lattice.ds)
                 assert (lattice.dx[b, j], lattice.dy[b, j]) == (poses[-1, 0], poses[-1, 1])
                 cells = _cells_touched(verts, disc, reach, poses, diag + 0.5 * lattice.delta, res)
-                k = b * nprim + j
-                got = lattice.swept[lattice.swept_start[k]:lattice.swept_start[k + 1]]
+                got = lattice.swept(b, j)
                 assert cell_set(got) == cell_set(cells), (b, j)
+                distance = got[:, 0] ** 2 + got[:, 1] ** 2
+                assert (np.diff(distance) <= 0).all(), "outermost first"
 
 
 @pytest.mark.parametrize("name", ["car", "skew triangle", "disc"])
@@ -86,16 +87,39 @@ def test_the_search_swept_check_answers_as_reading_every_cell():
     rng = np.random.default_rng(8)
     vertices, disc, radius, res = OUTLINES["small car"]
     lattice = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 16, True, 0.2)
-    groups = len(lattice.swept_start) - 1
+    groups = [lattice.swept(b, j) for b in range(16) for j in range(len(lattice.prim_kind))]
     for density in (0.002, 0.01, 0.05):
         blocked = rng.random((40, 50)) < density
         near2 = _nearest_blocked2(blocked)
         for cy in range(0, 40, 3):
             for cx in range(0, 50, 3):
-                for k in range(groups):
-                    lo, hi = lattice.swept_start[k], lattice.swept_start[k + 1]
-                    assert _swept_free(blocked, near2, cx, cy, lattice.swept, lo, hi) == \
-                        free_cells(blocked, cx, cy, lattice.swept, lo, hi)
+                for cells in groups:
+                    assert _swept_free(blocked, near2, cx, cy, cells, 0, len(cells)) == \
+                        free_cells(blocked, cx, cy, cells, 0, len(cells))
+
+
+def test_the_swept_cells_a_search_builds_are_those_asked_for_later():
+    """The search builds swept cells as it needs them into the cached lattice's table; the groups it
+    built, and the ones asked for afterwards in another order, are those of a lattice built apart."""
+    from navlab.grid.hybrid_astar import plan_hybrid
+    from navlab.grid.occupancy import OccupancyGrid
+    from navlab.sampling.footprint_lattice import lattice_for
+
+    vertices, disc, radius, res = OUTLINES["small car"]
+    blocked = np.zeros((60, 80), bool)
+    blocked[:40, 40:42] = True
+    lattice_for.cache_clear()
+    result = plan_hybrid(OccupancyGrid(blocked, resolution=res), (0.5, 0.5, 0.3), (3.5, 0.5, -1.0), radius,
+                         footprint=vertices)
+    assert result.success
+    nprim = 6
+    lattice = lattice_for(tuple(map(tuple, vertices)), disc, radius, res, 72, True, 0.3)
+    built = lattice._swept_table[2] >= 0
+    assert 0 < built.sum() < 72 * nprim  # the search asked for some groups, not all
+    fresh = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 72, True, 0.3)
+    for k in reversed(range(72 * nprim)):
+        b, j = divmod(k, nprim)
+        assert np.array_equal(lattice.swept(b, j), fresh.swept(b, j)), (b, j)
 
 
 def test_the_nearest_blocked_distances_count_the_map_edge_as_blocked():

@@ -31,7 +31,8 @@ shape; navlab follows it:
 
 **Collision checking is certified, not sampled.** For every start heading bin
 and primitive, the cells any point of the footprint can cover while driving
-the primitive are precomputed (:func:`swept_cells`): the footprint is traced at
+the primitive are listed, once, the first time the search drives it
+(:func:`~navlab.sampling.footprint_lattice.swept_group`): the footprint is traced at
 poses no more than ``δ`` apart (no footprint point moves more than δ between
 two), each copy grown by δ/2 (so the union covers the motion between samples)
 and by one cell diagonal (the node's pose may lie anywhere in its cell, and a
@@ -194,11 +195,14 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     gcx, gcy = int(lgx // res), int(lgy // res)
     hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
-    found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = search(
-        blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
-        motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-        lattice.swept, lattice.swept_start, _nearest_blocked2(blocked, cells_clear), lattice.pose_cells,
-        lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions), bool(analytic_expansion))
+    near2 = _nearest_blocked2(blocked, cells_clear)
+    with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
+        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1] = search(
+            blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
+            motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
+            *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, lattice.pose_cells,
+            lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions),
+            bool(analytic_expansion))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
         why = "the search space is exhausted" if expansions < max_expansions else \

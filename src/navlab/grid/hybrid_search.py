@@ -37,7 +37,7 @@ from numba import njit
 
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
-from ..sampling.footprint_lattice import curve_free
+from ..sampling.footprint_lattice import curve_free, swept_group
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
@@ -253,10 +253,15 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
-           prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_start, near2, pose_cells, pose_start, ds,
-           hfield, penalties, analytic_max, max_expansions, use_analytic):
+           prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
+           swept_margin, near2, pose_cells, pose_start, ds, hfield, penalties, analytic_max, max_expansions,
+           use_analytic):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
-    analytic word (kinds, lengths [m]), expansions, heuristics solved)."""
+    analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
+
+    The primitives' swept cells (``swept``, ``swept_used``, ``swept_lo``, ``swept_hi``: the lattice's
+    table, :func:`~navlab.sampling.footprint_lattice.swept_group`) are built the first time a child
+    needs them, from the outline (``vertices``, ``disc``, ``reach``) and ``swept_margin``."""
     h, w = blocked.shape
     nprim = prim_kind.shape[0]
     cap = 1024
@@ -341,12 +346,12 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             if _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
                          pose_cells, pose_start, seg, best_kinds, best_lens, akinds, alens):
                 return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
-                    alens, expansions, solved
+                    alens, expansions, solved, swept, swept_used
         elif not use_analytic:
             if int(x // res) == int(gx // res) and int(y // res) == int(gy // res) and \
                     (b - int(round((gtheta - theta0) / step))) % bins == 0:
                 return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
-                    alens, expansions, solved
+                    alens, expansions, solved, swept, swept_used
         if expansions >= max_expansions:
             break
         cx, cy = int(x // res), int(y // res)
@@ -370,8 +375,11 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             if u >= 0 and (closed[u] or ng[u] <= g2):
                 continue
             # the collision check last: it is the dearest test, and it decides nothing a cheaper one rejected
-            if not _swept_free(blocked, near2, cx, cy, swept, swept_start[b * nprim + j],
-                               swept_start[b * nprim + j + 1]):
+            k = b * nprim + j
+            if swept_lo[k] < 0:
+                swept, swept_used = swept_group(swept, swept_used, swept_lo, swept_hi, b, j, vertices, disc, reach,
+                                                theta0, step, bins, prim_kind, prim_len, radius, ds, swept_margin, res)
+            if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]):
                 continue
             if u < 0:
                 if count == cap:
@@ -403,4 +411,4 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             hsize += 1
             nentries += 1
     return False, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \
-        expansions, solved
+        expansions, solved, swept, swept_used

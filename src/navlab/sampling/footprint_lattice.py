@@ -16,8 +16,10 @@ independent re-check with shapely.
 
 from __future__ import annotations
 
+import contextlib
 import functools
 import math
+import threading
 from typing import Optional, Tuple
 
 import numpy as np
@@ -79,12 +81,21 @@ def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.nd
     origin, with a centre within ``margin`` of the outline at any of ``poses``.
 
     Each pose reads only the cells of its own box of half-width ``reach + margin``
-    (a cell outside it fails the disc test below for that pose anyway)."""
+    (a cell outside it fails the disc test below for that pose anyway), and a centre
+    outside the outline's bounding box grown by the margin is more than the margin from
+    the outline, so it is passed over without the edge loop (grown by a further 1e-9 of
+    ``far``, so rounding at the boundary leaves the answer to the edge loop, as before)."""
     far = reach + margin
     span = int(math.ceil((far + np.abs(poses[:, :2]).max()) / res)) + 1
     size = 2 * span + 1
     hit = np.zeros((size, size), dtype=np.bool_)
     local = np.empty(2)
+    slack = margin + 1e-9 * far
+    if vertices.shape[0]:
+        box_lo_x, box_hi_x = vertices[:, 0].min() - slack, vertices[:, 0].max() + slack
+        box_lo_y, box_hi_y = vertices[:, 1].min() - slack, vertices[:, 1].max() + slack
+    else:
+        box_lo_x, box_lo_y, box_hi_x, box_hi_y = -disc - slack, -disc - slack, disc + slack, disc + slack
     for p in range(poses.shape[0]):
         c, s = math.cos(poses[p, 2]), math.sin(poses[p, 2])
         lo_x = max(0, int(math.floor((poses[p, 0] - far) / res)) + span - 1)
@@ -98,7 +109,8 @@ def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.nd
                 # the cell centre in the body frame of this pose
                 wx, wy = (ix - span) * res - poses[p, 0], (iy - span) * res - poses[p, 1]
                 local[0], local[1] = c * wx + s * wy, -s * wx + c * wy
-                if local[0] * local[0] + local[1] * local[1] > far ** 2:
+                if local[0] * local[0] + local[1] * local[1] > far ** 2 or not \
+                        (box_lo_x <= local[0] <= box_hi_x and box_lo_y <= local[1] <= box_hi_y):
                     continue
                 if _near_outline(local[0], local[1], vertices, disc, margin):
                     hit[iy, ix] = True
@@ -110,22 +122,14 @@ def _cells_touched(vertices: np.ndarray, disc: float, reach: float, poses: np.nd
 
 
 @njit(cache=True)
-def _swept_table(vertices, disc, reach, theta0, step, bins, prim_kind, prim_len, radius, ds, margin, res):
-    """Per (bin, primitive), in that order, the primitive's end (dx, dy, Δbin) and the cells
-    :func:`_cells_touched` gives along it, packed (:func:`_packed`).
-
-    A quarter turn maps cells onto cells, so when ``bins`` is a multiple of 4
-    only the first quarter of the bins is traced: bin ``b + q·bins/4`` is bin
-    ``b`` turned q quarter turns, its cells (dx, dy) → (−dy, dx) q times (the
-    outline, the primitive and the margin turn with it). The ends are traced for
-    every bin: the search adds them to poses, so they are kept as exact as before.
-    Each primitive's cells are listed outermost first (:func:`_outermost_first`)."""
+def _ends_table(theta0, step, bins, prim_kind, prim_len, radius, ds):
+    """Per (bin, primitive) the primitive's end relative to its start (dx, dy [m]) and per
+    primitive the bins it turns, traced as :func:`trace_word` traces it from every bin's heading
+    (the search adds them to poses, so they are as exact as a trace)."""
     nprim = prim_kind.shape[0]
     dx, dy = np.empty((bins, nprim)), np.empty((bins, nprim))
     dbin = np.empty(nprim, dtype=np.int64)
     kinds, lengths = np.empty(1, dtype=np.int64), np.empty(1)
-    traced = bins // 4 if bins % 4 == 0 else bins
-    groups = []
     for b in range(bins):
         theta = theta0 + b * step
         for j in range(nprim):
@@ -133,12 +137,54 @@ def _swept_table(vertices, disc, reach, theta0, step, bins, prim_kind, prim_len,
             poses, _ = trace_word(0.0, 0.0, theta, kinds, lengths, radius, ds)
             dx[b, j], dy[b, j] = poses[-1, 0], poses[-1, 1]
             dbin[j] = round((poses[-1, 2] - theta) / step)
-            if b < traced:
-                groups.append(_outermost_first(_cells_touched(vertices, disc, reach, poses, margin, res)))
-            else:
-                groups.append(_quarter_turned(groups[(b - traced) * nprim + j]))
-    flat, starts = _packed(groups)
-    return dx, dy, dbin, flat, starts
+    return dx, dy, dbin
+
+
+@njit(cache=True)
+def swept_group(flat, used, lo, hi, b, j, vertices, disc, reach, theta0, step, bins, prim_kind, prim_len, radius,
+                ds, margin, res):
+    """Make sure the cells primitive ``j`` sweeps from bin ``b`` are listed: ``flat[lo[k]:hi[k]]``,
+    k = b·nprim + j, the cells :func:`_cells_touched` gives along the traced primitive, outermost
+    first (:func:`_outermost_first`). Groups are built the first time a search asks (a query
+    touches a few of the bins), appended to ``flat`` (``used`` rows filled; grown when full).
+    Returns ``(flat, used)``.
+
+    A quarter turn maps cells onto cells, so when ``bins`` is a multiple of 4
+    only the first quarter of the bins is traced: bin ``b + q·bins/4`` is bin
+    ``b`` turned q quarter turns, its cells (dx, dy) → (−dy, dx) q times (the
+    outline, the primitive and the margin turn with it)."""
+    nprim = prim_kind.shape[0]
+    k = b * nprim + j
+    if lo[k] >= 0:
+        return flat, used
+    traced = bins // 4 if bins % 4 == 0 else bins
+    base, turns = b % traced, b // traced
+    kb = base * nprim + j
+    if lo[kb] < 0:
+        kinds, lengths = np.empty(1, dtype=np.int64), np.empty(1)
+        kinds[0], lengths[0] = prim_kind[j], prim_len[j]
+        poses, _ = trace_word(0.0, 0.0, theta0 + base * step, kinds, lengths, radius, ds)
+        flat, used = _appended(flat, used, lo, hi, kb, _outermost_first(
+            _cells_touched(vertices, disc, reach, poses, margin, res)))
+    if turns > 0:
+        cells = flat[lo[kb]:hi[kb]].copy()
+        for _ in range(turns):
+            cells = _quarter_turned(cells)
+        flat, used = _appended(flat, used, lo, hi, k, cells)
+    return flat, used
+
+
+@njit(cache=True)
+def _appended(flat, used, lo, hi, k, cells):
+    """``cells`` appended to ``flat`` as group k; (flat, used) after it."""
+    n = cells.shape[0]
+    if used + n > flat.shape[0]:
+        grown = np.empty((max(2 * flat.shape[0], used + n), 2), dtype=np.int64)
+        grown[:used] = flat[:used]
+        flat = grown
+    flat[used:used + n] = cells
+    lo[k], hi[k] = used, used + n
+    return flat, used + n
 
 
 @njit(cache=True)
@@ -188,17 +234,20 @@ def _packed(groups):
 
 
 class Lattice:
-    """The motion primitives and their precomputed swept cells for one robot
-    outline, turning radius, resolution, heading count and first heading.
+    """The motion primitives and their swept cells for one robot outline,
+    turning radius, resolution, heading count and first heading.
 
     Built from hashable settings only, so it is cached by content (:func:`lattice_for`).
+    The primitives' ends and the per-bin pose cells are computed at once; the swept
+    cells of a (bin, primitive) the first time a search needs them (:func:`swept_group`):
+    a query expands a few of the bins, and a new start heading is a new lattice.
     """
 
     def __init__(self, vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float,
                  resolution: float, bins: int, reverse: bool, theta0: float) -> None:
         verts = np.array(vertices, dtype=float).reshape(-1, 2)
         res, r = resolution, turning_radius
-        self.bins, self.resolution, self.turning_radius, self.theta0 = bins, res, r, theta0
+        self.bins, self.resolution, self.turning_radius, self.theta0, self.disc = bins, res, r, theta0, disc
         self.step = 2.0 * math.pi / bins
         chord = 2.0 * r * math.sin(self.step / 2.0)
         self.k = max(1, math.ceil(math.sqrt(2.0) * res / chord - 1e-12))  # bins turned per arc primitive
@@ -213,9 +262,14 @@ class Lattice:
         prims = [(kind, d * self.length) for d in directions for kind in (2, 1, 3)]  # straight, left, right
         self.prim_kind = np.array([p[0] for p in prims], dtype=np.int64)
         self.prim_len = np.array([p[1] for p in prims])
-        self.dx, self.dy, self.dbin, self.swept, self.swept_start = _swept_table(
-            verts, disc, reach, theta0, self.step, bins, self.prim_kind, self.prim_len, r, self.ds,
-            diag + 0.5 * self.delta, res)
+        self.dx, self.dy, self.dbin = _ends_table(theta0, self.step, bins, self.prim_kind, self.prim_len, r, self.ds)
+        # the primitives' swept cells, built as searches ask for them (:func:`swept_group`)
+        self.vertices = verts
+        self.swept_margin = diag + 0.5 * self.delta
+        groups = bins * len(prims)
+        self._swept_table = (np.empty((1024, 2), dtype=np.int64), 0, np.full(groups, -1, dtype=np.int64),
+                             np.full(groups, -1, dtype=np.int64))
+        self._swept_lock = threading.Lock()
         # per-bin outlines for any heading within the bin (analytic and smoothed segments)
         margin = diag + 0.5 * self.delta + reach * math.sin(self.step / 2.0)
         self.pose_cells, self.pose_start = _pose_table(verts, disc, reach, theta0, self.step, bins, margin, res)
@@ -232,6 +286,31 @@ class Lattice:
         # (+1 µm: the cells are those with centres within margin, boundary included)
         self.clear_disc = np.array([c0[0], c0[1],
                                     reach0 + margin + diag + float(np.hypot(*c0)) * self.step / 2.0 + 1e-6])
+
+    def swept_args(self):
+        """The arguments :func:`swept_group` takes after the table, ``b`` and ``j``."""
+        return (self.vertices, self.disc, self.circumscribed, self.theta0, self.step, self.bins, self.prim_kind,
+                self.prim_len, self.turning_radius, self.ds, self.swept_margin, self.resolution)
+
+    @contextlib.contextmanager
+    def swept_cells(self):
+        """``with lattice.swept_cells() as table:`` the swept-cell table ``[flat, used, lo, hi]``
+        (:func:`swept_group`) to read and extend; kept when the block ends without an error.
+
+        The lattice is cached and shared, so one user at a time appends to it (the lock), and
+        the index arrays are copies until the block ends, so an error leaves the table as it was."""
+        with self._swept_lock:
+            flat, used, lo, hi = self._swept_table
+            table = [flat, used, lo.copy(), hi.copy()]
+            yield table
+            self._swept_table = tuple(table)
+
+    def swept(self, b: int, j: int) -> np.ndarray:
+        """(K, 2) the cell offsets primitive ``j`` sweeps from heading bin ``b``, outermost first."""
+        with self.swept_cells() as table:
+            table[0], table[1] = swept_group(*table, b, j, *self.swept_args())
+            k = b * len(self.prim_kind) + j
+            return table[0][table[2][k]:table[3][k]].copy()
 
 
 #: the finest spacing of checked poses, as a fraction of a cell: below it a curve

@@ -1,12 +1,20 @@
 """`navlab --help` and `import navlab` load none of the heavy modules (numba, scipy,
-matplotlib, the bench): a test on the import graph, not on time
+matplotlib, the bench), and `navlab plan clutter` none that a tree planner on a
+built-in scene does not use: tests on the import graph, not on time
 (benchmarks/bench_startup.py measures the time)."""
 
 import json
 import subprocess
 import sys
 
-HEAVY = ("numba", "scipy", "matplotlib", "shapely", "navlab.bench", "navlab.sampling", "navlab.grid", "rclpy")
+HEAVY = ("numba", "scipy", "matplotlib", "shapely", "navlab.bench", "navlab.sampling", "navlab.grid", "rclpy", "yaml")
+#: what `navlab plan clutter` (rrt_star on a built-in scene) never calls: the grid search and its kernels, the
+#: map readers, the pose planners, plotting, the bench, ROS, OMPL, and the scipy.linalg package that numba's
+#: BLAS check would import (navlab.numba_start hands numba the one extension module it needs)
+NOT_FOR_A_TREE_QUERY = ("scipy.linalg", "scipy.spatial", "scipy.ndimage", "matplotlib", "navlab.bench", "navlab.viz",
+                        "navlab.grid.planner", "navlab.grid.kernels", "navlab.grid.mapio", "navlab.grid.rasterize",
+                        "navlab.grid.hybrid_astar", "navlab.sampling.reeds_shepp", "navlab.sampling.dubins",
+                        "navlab.sim", "navlab.ros", "rclpy", "ompl", "PIL")
 
 
 def loaded_after(code):
@@ -15,8 +23,8 @@ def loaded_after(code):
     return set(json.loads(out.stdout.strip().splitlines()[-1]))
 
 
-def heavy(modules):
-    return sorted(m for m in modules if any(m == h or m.startswith(h + ".") for h in HEAVY))
+def heavy(modules, names=HEAVY):
+    return sorted(m for m in modules if any(m == h or m.startswith(h + ".") for h in names))
 
 
 def test_import_navlab_is_light():
@@ -51,3 +59,57 @@ def test_every_verb_is_reachable_and_documented_lazily():
     for name in VERBS:
         command = main.get_command(None, name)
         assert command is not None and command.name == name
+
+
+def test_plan_clutter_loads_only_what_a_tree_query_uses():
+    code = ("from navlab.cli import main\n"
+            "try:\n    main(['plan', 'clutter', '--max-iter', '50'])\nexcept SystemExit:\n    pass")
+    modules = loaded_after(code)
+    assert "navlab.sampling.tree_kernel" in modules and "scipy.linalg.cython_blas" in modules  # it did plan
+    assert heavy(modules - {"scipy.linalg.cython_blas"}, NOT_FOR_A_TREE_QUERY) == []  # loaded alone, not its package
+
+
+def test_a_grid_planner_still_finds_the_grid_search():
+    # the other side of answering tree planners' names without the grid package
+    from navlab.planning import is_grid_planner, planner_names
+    from navlab.queries import is_grid_planner as is_grid_planner_in_queries
+    from navlab.registry import UnknownNameError
+
+    for name in planner_names():
+        if name != "hybrid_astar":  # a pose planner, routed before either is asked
+            assert is_grid_planner(name) == is_grid_planner_in_queries(name), name
+    assert is_grid_planner("astar") and not is_grid_planner("rrt_star")
+    try:
+        is_grid_planner("rrt_starr")
+    except UnknownNameError as exc:
+        assert "astar" in str(exc) and "rrt_star" in str(exc)  # both lists, and the hint
+    else:
+        raise AssertionError("an unknown planner must raise")
+
+
+def test_tree_and_grid_planners_share_no_name():
+    # navlab.planning.is_grid_planner answers a tree planner's name without asking the grid registry
+    from navlab.grid import GRID_ALGORITHMS
+    from navlab.sampling import PLANNERS
+
+    assert set(PLANNERS.names()) & set(GRID_ALGORITHMS.names()) == set()
+    assert PLANNERS.names() and GRID_ALGORITHMS.names()
+
+
+def test_the_grid_package_loads_its_parts_on_first_use():
+    code = "import navlab.grid.occupancy"
+    modules = loaded_after(code)
+    assert heavy(modules, ("numba", "navlab.grid.planner", "navlab.grid.kernels", "navlab.grid.mapio")) == []
+    import importlib
+
+    import navlab.grid as grid
+
+    assert sorted(grid.__all__) == sorted(grid._LAZY) and set(grid.__all__) <= set(dir(grid))
+    for name in grid.__all__:  # the lazy names are the real ones
+        assert getattr(grid, name) is getattr(importlib.import_module(f"navlab.grid.{grid._LAZY[name]}"), name), name
+    try:
+        grid.no_such_name
+    except AttributeError as exc:
+        assert "no_such_name" in str(exc)
+    else:
+        raise AssertionError("an unknown attribute must raise AttributeError")

@@ -9,6 +9,43 @@ import importlib
 
 __version__ = "0.1.0"
 
+
+def lazy_attributes(package: str, table: dict):
+    """A package's ``__getattr__`` and ``__dir__`` that import each public name on first use (PEP 562).
+
+    Parameters
+    ----------
+    package : str
+        The package's ``__name__``.
+    table : dict
+        Public name -> the submodule (relative to ``package``) that defines it.
+
+    Returns
+    -------
+    (callable, callable)
+        ``__getattr__`` (imports the submodule, caches the value as a plain
+        attribute, ``AttributeError`` for any other name) and ``__dir__``.
+
+    References
+    ----------
+    PEP 562, "Module __getattr__ and __dir__", https://peps.python.org/pep-0562/
+    """
+    namespace = importlib.import_module(package).__dict__
+
+    def __getattr__(name):
+        module = table.get(name)
+        if module is None:
+            raise AttributeError(f"module {package!r} has no attribute {name!r}")
+        value = getattr(importlib.import_module(f".{module}", package), name)
+        namespace[name] = value  # once loaded, a plain attribute
+        return value
+
+    def __dir__():
+        return sorted(set(namespace) | set(table))
+
+    return __getattr__, __dir__
+
+
 #: public name -> the module (relative to navlab) that defines it
 _LAZY = {
     "plan": "planning", "planner_names": "planning", "Result": "result", "Status": "result", "Tree": "result",
@@ -17,16 +54,4 @@ _LAZY = {
 }
 
 __all__ = sorted(_LAZY) + ["__version__"]
-
-
-def __getattr__(name):
-    module = _LAZY.get(name)
-    if module is None:
-        raise AttributeError(f"module 'navlab' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{module}", __name__), name)
-    globals()[name] = value  # once loaded, a plain attribute
-    return value
-
-
-def __dir__():
-    return sorted(set(globals()) | set(_LAZY))
+__getattr__, __dir__ = lazy_attributes(__name__, _LAZY)

@@ -117,14 +117,14 @@ def _warm_ompl() -> None:
 
 @functools.lru_cache(maxsize=None)
 def _warm(planner: str, sampler: str, on_map: bool) -> None:
-    from .grid.planner import GRID_ALGORITHMS
+    from .sampling.planners import PLANNERS
 
     if planner.startswith(OMPL_PREFIX):
         _warm_ompl()
-    elif planner in GRID_ALGORITHMS:
-        _warm_grid(planner)
-    else:
+    elif planner in PLANNERS:  # asked first: a tree planner's warm-up then never loads the grid search
         _warm_tree(planner, sampler, on_map)
+    else:
+        _warm_grid(planner)
 
 
 def warm_up(planner: str = "rrt_star", sampler: str = "uniform", *, on_map: bool = False) -> float:

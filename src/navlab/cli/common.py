@@ -9,7 +9,6 @@ import re
 from typing import Any, Dict, Tuple
 
 import click
-import yaml
 
 #: exit status for bad input (a malformed file, an unknown name, a value out of range)
 EXIT_USAGE = 2
@@ -86,6 +85,8 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
     planner's or sampler's own checks reject what is out of range, with a
     message naming the parameter.
     """
+    import yaml  # only when a --param is given
+
     out: Dict[str, Any] = {}
     for item in items:
         key, sep, value = item.partition("=")

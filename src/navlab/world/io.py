@@ -28,12 +28,9 @@ import re
 from pathlib import Path
 from typing import Any, Callable, Dict, Tuple, Union
 
-import yaml
-
 from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
-from ..yamlio import read_yaml
 from .footprint import Footprint, FootprintError
 from .errors import WorldFormatError  # noqa: F401  (defined apart so the SDF reader can raise it too)
 from .motion import MotionFormatError, with_motion
@@ -261,6 +258,8 @@ def read_yaml_document(path: Union[str, os.PathLike]) -> Any:
         is too large (in bytes or once its aliases are expanded), is not UTF-8,
         is not YAML or repeats a key; the message names the file.
     """
+    from ..yamlio import read_yaml  # PyYAML only when a file is read: a built-in scene needs none
+
     return read_yaml(path, WorldFormatError, MAX_FILE_BYTES, what="world file")
 
 
@@ -281,6 +280,8 @@ def read_world_file(path: Union[str, os.PathLike]) -> World:
 
 def save_world(world: World, path: Union[str, os.PathLike]) -> None:
     """Write a world as a YAML world file that :func:`load_world` reads back (atomically)."""
+    import yaml
+
     write_text_atomic(path, yaml.safe_dump(world.to_dict(), sort_keys=False))
 
 

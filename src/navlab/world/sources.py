@@ -123,8 +123,6 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
     WorldFormatError, navlab.grid.MapFormatError, ValueError
         Malformed files or values; the message names the file and the field.
     """
-    from ..grid.mapio import load_movingai_map, load_ros_map
-
     start, goal = _point_or_none(start, "start"), _point_or_none(goal, "goal")
     changes: dict = {}
     if robot_radius is not None:
@@ -143,6 +141,8 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
         if kind == "occupancy":
             grid, label = source, f"grid '{source.name}'"
         else:
+            from ..grid.mapio import load_movingai_map, load_ros_map
+
             grid = load_movingai_map(source) if kind == "movingai_map" else load_ros_map(source)
             label = os.fspath(source)
         for field, value in (("start", start), ("goal", goal)):

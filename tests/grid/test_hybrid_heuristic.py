@@ -134,6 +134,17 @@ def test_the_compiled_smoother_makes_the_same_path_as_the_public_solvers(motion,
     assert fast.stats["segments"] == slow.stats["segments"] and np.array_equal(fast.path, slow.path)
 
 
+def test_the_smoothers_compiled_wrap_is_curves_wrap_bit_for_bit():
+    from navlab.grid.hybrid_astar import _wrap_compiled
+    from navlab.sampling.curves import _wrap
+
+    rng = np.random.default_rng(4)
+    angles = np.concatenate([rng.uniform(-50.0, 50.0, 20000), np.arange(-8, 9) * math.pi,
+                             np.arange(-8, 9) * math.pi + 1e-15, [0.0, -0.0, 1e-300, 3.0 * math.pi / 2]])
+    for a in angles.tolist():
+        assert _wrap_compiled(a) == _wrap(a), a
+
+
 def test_the_same_query_gives_the_same_path_bit_for_bit():
     blocked = np.zeros((160, 160), bool)
     blocked[40:120, 70:74] = True

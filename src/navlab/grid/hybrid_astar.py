@@ -59,7 +59,7 @@ from shapely.geometry import Point, Polygon
 from ..limits import check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
-from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap, advance, check_pose,
+from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, advance, check_pose,
                               check_turning_radius, trace_word)
 from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, lattice_for, pose_free,
                                           robot_outline)
@@ -280,28 +280,56 @@ def _cell_mask(shape, x, y) -> np.ndarray:
 def _shortcut(segments, start, r, motion, blocked, lattice, common):
     """Greedy smoothing: from each waypoint, jump to the farthest later waypoint
     whose exact Dubins/Reeds–Shepp path is shorter and collision-free."""
-    # waypoints: the pose after each segment
-    poses = [start]
-    for kind, s in segments:  # as CurvePath(...).end computes it, without a path object per segment
-        x, y, theta = advance(*poses[-1], kind, s, r)
-        poses.append((x, y, _wrap(theta)))
-    # cumulative length along the original path
-    acc = np.concatenate([[0.0], np.cumsum([abs(s) for _, s in segments])])
-    waypoints = np.array(poses, dtype=float)
+    kinds = np.array([k for k, _ in segments], dtype=np.int64)
+    lengths = np.array([s for _, s in segments], dtype=float)
+    out_kinds, out_lengths = _shortcut_kernel(kinds, lengths, *start, r, motion == "reeds_shepp", blocked, common[0],
+                                              lattice.ds, *common[1:])
+    return list(zip(out_kinds.tolist(), out_lengths.tolist()))
+
+
+@njit(cache=True)
+def _wrap_compiled(angle: float) -> float:
+    """:func:`navlab.sampling.curves._wrap` for compiled code (numba has no ``math.fmod``;
+    ``np.fmod`` is the same C ``fmod``, so the same value bit for bit: tested)."""
+    a = np.fmod(angle + math.pi, 2.0 * math.pi)
+    if a <= 0.0:
+        a += 2.0 * math.pi
+    return a - math.pi
+
+
+@njit(cache=True)
+def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, blocked, res, ds, theta0, step, bins,
+                     pose_cells, pose_start):
+    """:func:`_shortcut` in one compiled call: the waypoints (the pose after each segment, as
+    :meth:`CurvePath.end` computes it), then from each the farthest shortcut
+    (:func:`_farthest_shortcut`). Returns the smoothed segments' kinds and lengths [m]."""
+    n = seg_kinds.shape[0]
+    waypoints = np.empty((n + 1, 3))
+    waypoints[0, 0], waypoints[0, 1], waypoints[0, 2] = x, y, theta
+    acc = np.zeros(n + 1)  # cumulative length along the original path
+    for i in range(n):
+        px, py, pt = advance(waypoints[i, 0], waypoints[i, 1], waypoints[i, 2], seg_kinds[i], seg_lengths[i], radius)
+        waypoints[i + 1, 0], waypoints[i + 1, 1], waypoints[i + 1, 2] = px, py, _wrap_compiled(pt)
+        acc[i + 1] = acc[i] + abs(seg_lengths[i])
     kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     lengths = np.zeros(MAX_SEGMENTS)
-    out = []
-    i, n = 0, len(poses) - 1
+    out_kinds = np.empty(n * MAX_SEGMENTS, dtype=np.int64)  # a shortcut replaces at least two segments
+    out_lengths = np.empty(n * MAX_SEGMENTS)
+    used_out = 0
+    i = 0
     while i < n:
-        j, used = _farthest_shortcut(waypoints, acc, i, r, motion == "reeds_shepp", blocked, common[0], lattice.ds,
-                                     *common[1:], kinds, lengths)
+        j, used = _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins,
+                                     pose_cells, pose_start, kinds, lengths)
         if j > 0:
-            out.extend(zip(kinds[:used].tolist(), lengths[:used].tolist()))
+            out_kinds[used_out:used_out + used] = kinds[:used]
+            out_lengths[used_out:used_out + used] = lengths[:used]
+            used_out += used
             i = j
         else:
-            out.append(segments[i])
+            out_kinds[used_out], out_lengths[used_out] = seg_kinds[i], seg_lengths[i]
+            used_out += 1
             i += 1
-    return out
+    return out_kinds[:used_out], out_lengths[:used_out]
 
 
 @njit(cache=True)

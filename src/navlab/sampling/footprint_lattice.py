@@ -45,12 +45,19 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
     vertices = np.asarray(footprint, dtype=float)
     if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3 or not np.isfinite(vertices).all():
         raise ValueError("footprint must be 3 or more finite (x, y) vertices in body coordinates")
+    _check_polygon(tuple(map(tuple, vertices.tolist())))
+    return vertices, 0.0
+
+
+@functools.lru_cache(maxsize=64)
+def _check_polygon(vertices: Tuple[Tuple[float, float], ...]) -> None:
+    """Raise unless the outline is a simple polygon covering the origin; cached, as a robot
+    plans with one outline many times and shapely's validity test is a good part of a small query."""
     poly = Polygon(vertices)
     if not poly.is_valid or poly.area <= 0:
         raise ValueError("footprint must be a simple polygon (its edges must not cross)")
     if not poly.covers(Point(0.0, 0.0)):
         raise ValueError("footprint must contain the robot's origin (0, 0)")
-    return vertices, 0.0
 
 
 @njit(cache=True)
@@ -477,13 +484,14 @@ def first_overlap(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: f
         xs = poses[:, :1] + c * vertices[:, 0] - s * vertices[:, 1]
         ys = poses[:, 1:2] + s * vertices[:, 0] + c * vertices[:, 1]
         shapes = shapely.polygons(np.stack([xs, ys], axis=-1))
+        x0, y0, x1, y1 = xs.min(), ys.min(), xs.max(), ys.max()  # the polygons' bounds: their vertices'
     else:
         shapes = shapely.buffer(shapely.points(poses[:, :2]), disc, quad_segs=16) if disc > 0 \
             else shapely.points(poses[:, :2])
+        x0, y0, x1, y1 = shapely.total_bounds(shapes)
     # the map's edge as a ring of blocked cells around it
     padded = np.ones((h + 2, w + 2), dtype=bool)
     padded[1:-1, 1:-1] = blocked
-    x0, y0, x1, y1 = shapely.total_bounds(shapes)
     lo_x, lo_y = max(0, int((x0 - grow) // res) + 1 - 1), max(0, int((y0 - grow) // res) + 1 - 1)
     hi_x, hi_y = min(w + 1, int((x1 + grow) // res) + 2), min(h + 1, int((y1 + grow) // res) + 2)
     ys_, xs_ = np.nonzero(padded[lo_y:hi_y + 1, lo_x:hi_x + 1])

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import atexit
+import gc
 import sys
 import time
 
@@ -12,6 +14,34 @@ STARTED = time.perf_counter()
 import click  # noqa: E402 - after the clock starts
 
 from .common import EXIT_INTERRUPTED, debug_enabled, describe_error
+
+
+def _quick_exit() -> None:
+    """Skip the garbage collection of everything numba built, when this process exits.
+
+    A process that loaded one compiled function holds about 110 000 objects the
+    garbage collector tracks (numba's typing and lowering registries; 19 000
+    after ``import numpy``), and the collections Python runs while it shuts
+    down walk them again and again: 0.4-0.5 s after ``navlab plan clutter``'s
+    work is done, 0.05-0.1 s with them frozen (this machine, load 5-7).
+    ``gc.freeze()`` moves every object to the permanent generation, which
+    collections skip. It is registered with ``atexit`` when a command starts
+    (once: a second call moves it, never doubles it), so it runs after the
+    command's work and before Python's final collections; only the memory of
+    objects in reference cycles is then left to the operating system, which
+    takes it back anyway. Objects freed by reference counting (files included)
+    are closed as before, and other ``atexit`` handlers still run. In a process
+    that calls :func:`main` many times (tests) it runs once, at that
+    process's exit.
+
+    References
+    ----------
+    Python documentation, ``gc.freeze``:
+    https://docs.python.org/3/library/gc.html#gc.freeze, and "Python shutdown",
+    ``Py_FinalizeEx`` (atexit handlers, then the final collections).
+    """
+    atexit.unregister(gc.freeze)
+    atexit.register(gc.freeze)
 
 
 class NavlabGroup(click.Group):
@@ -31,6 +61,7 @@ class NavlabGroup(click.Group):
         'navlab plan --help')``, exit 2."""
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode, **extra)
+        _quick_exit()
         try:
             code = super().main(args, prog_name, complete_var, False, **extra)
         except click.exceptions.UsageError as exc:

@@ -55,17 +55,40 @@ def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.nd
     in turn, hold the whole frontier. Every cell ends at the minimum over its
     neighbours of (their distance + step), as with a heap, so the values are
     the same bit for bit.
+
+    The cells are numbered row by row in a copy of the map ringed by impassable
+    cells, one state byte each (bit 1 passable, bit 2 settled), so a neighbour
+    is a fixed offset away and needs no bounds test.
     """
     h, w = passable.shape
-    dist = np.full((h, w), np.inf)
-    done = np.zeros((h, w), dtype=np.bool_)
-    dist[gy, gx] = 0.0
+    stride = w + 2
+    state = np.zeros((h + 2) * stride, dtype=np.uint8)
+    for y in range(h):
+        for x in range(w):
+            if passable[y, x]:
+                state[(y + 1) * stride + x + 1] = 1
+    dist = np.full((h + 2) * stride, np.inf)
+    # the eight neighbours in the order (dy, dx) = (−1, −1), (−1, 0), ... (1, 1)
+    offsets = np.empty(8, dtype=np.int64)
+    side_x = np.zeros(8, dtype=np.int64)  # a diagonal step's two orthogonal neighbours (0: not diagonal)
+    side_y = np.zeros(8, dtype=np.int64)
+    n = 0
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            if dx == 0 and dy == 0:
+                continue
+            offsets[n] = dy * stride + dx
+            if dx != 0 and dy != 0:
+                side_x[n], side_y[n] = dx, dy * stride
+            n += 1
+    goal = (gy + 1) * stride + gx + 1
+    dist[goal] = 0.0
     width = res * (1.0 - 1e-6)  # below one step even after rounding
     diag = math.sqrt(2.0) * res
     cap = 1024
     cells = np.empty((3, cap), dtype=np.int64)
     size = np.zeros(3, dtype=np.int64)
-    cells[0, 0] = gy * w + gx
+    cells[0, 0] = goal
     size[0] = 1
     pending = 1
     bucket = 0
@@ -76,32 +99,33 @@ def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.nd
             v = cells[slot, i]
             i += 1
             pending -= 1
-            y, x = v // w, v % w
-            if done[y, x]:  # entered again after an improvement: settled already
+            if state[v] & 2:  # entered again after an improvement: settled already
                 continue
-            done[y, x] = True
-            d = dist[y, x]
-            for dy in (-1, 0, 1):
-                for dx in (-1, 0, 1):
-                    nx, ny = x + dx, y + dy
-                    if nx < 0 or ny < 0 or nx >= w or ny >= h or done[ny, nx] or not passable[ny, nx]:
+            state[v] |= 2
+            d = dist[v]
+            for k in range(8):
+                u = v + offsets[k]
+                if state[u] != 1:  # impassable (or off the map) or settled
+                    continue
+                if side_x[k] != 0:
+                    if not (state[v + side_x[k]] & 1 and state[v + side_y[k]] & 1):
                         continue
-                    if dx != 0 and dy != 0 and not (passable[y, nx] and passable[ny, x]):
-                        continue
-                    nd = d + (diag if dx != 0 and dy != 0 else res)
-                    if nd < dist[ny, nx]:
-                        dist[ny, nx] = nd
-                        to = int(nd / width) % 3
-                        if size[to] == cap:
-                            grown = np.empty((3, 2 * cap), dtype=np.int64)
-                            grown[:, :cap] = cells
-                            cells, cap = grown, 2 * cap
-                        cells[to, size[to]] = ny * w + nx
-                        size[to] += 1
-                        pending += 1
+                    nd = d + diag
+                else:
+                    nd = d + res
+                if nd < dist[u]:
+                    dist[u] = nd
+                    to = int(nd / width) % 3
+                    if size[to] == cap:
+                        grown = np.empty((3, 2 * cap), dtype=np.int64)
+                        grown[:, :cap] = cells
+                        cells, cap = grown, 2 * cap
+                    cells[to, size[to]] = u
+                    size[to] += 1
+                    pending += 1
         size[slot] = 0
         bucket += 1
-    return dist
+    return np.ascontiguousarray(dist.reshape(h + 2, stride)[1:h + 1, 1:w + 1])
 
 
 @njit(cache=True)

@@ -216,7 +216,7 @@ def test_open_lists_grow_when_full_and_the_query_is_rerun():
         roomy = plan(OccupancyGrid(blocked), (2, 5), (57, 55), algorithm=algo)
         cramped = OccupancyGrid(blocked)
         with pool_for(cramped, False).lease() as s:
-            s.heap, s.stack = s.heap[:2], s.stack[:2]
+            s.stack = s.stack[:2]
             s._pool(3)
         r = plan(cramped, (2, 5), (57, 55), algorithm=algo)
         assert roomy.status == r.status == Status.EXACT and np.array_equal(r.cells, roomy.cells)

@@ -39,68 +39,6 @@ def heuristic(code, ax, ay, bx, by):
     return 0.0
 
 
-# -- JPS's open list: 4-ary min-heap of (f, cell) rows, plus a same-f stack ---
-# A 4-ary heap keeps a node's four children in one cache line (rows of two
-# float64). With a consistent heuristic f never decreases, so a successor whose
-# f equals the current minimum skips the heap and goes on a LIFO stack that is
-# expanded first (which also breaks ties toward larger g); A* does the same
-# with a bucket queue (below). JPS's open lists are small (jump points only).
-@njit(cache=True, inline="always")
-def _heap_push(heap, size, f, v):
-    k = size
-    while k > 0:
-        p = (k - 1) >> 2
-        if f < heap[p, 0]:
-            heap[k, 0] = heap[p, 0]
-            heap[k, 1] = heap[p, 1]
-            k = p
-        else:
-            break
-    heap[k, 0] = f
-    heap[k, 1] = v
-
-
-@njit(cache=True, inline="always")
-def _heap_pop(heap, size):
-    """Remove the top row (``size`` is the size before); returns (f, cell).
-
-    Bottom-up deletion (Floyd): walk the hole down to a leaf along the smaller
-    children, then sift the last row up from there; the last row usually
-    belongs near the bottom, so this needs fewer comparisons.
-    """
-    f0 = heap[0, 0]
-    v0 = np.int64(heap[0, 1])
-    size -= 1
-    if size > 0:
-        k = 0
-        while True:
-            first = 4 * k + 1
-            if first >= size:
-                break
-            m = first
-            fm = heap[first, 0]
-            for j in range(first + 1, min(first + 4, size)):
-                if heap[j, 0] < fm:
-                    fm = heap[j, 0]
-                    m = j
-            heap[k, 0] = fm
-            heap[k, 1] = heap[m, 1]
-            k = m
-        f = heap[size, 0]
-        c = heap[size, 1]
-        while k > 0:
-            p = (k - 1) >> 2
-            if f < heap[p, 0]:
-                heap[k, 0] = heap[p, 0]
-                heap[k, 1] = heap[p, 1]
-                k = p
-            else:
-                break
-        heap[k, 0] = f
-        heap[k, 1] = c
-    return f0, v0
-
-
 TIE = 1e-9  # f values closer than this are equal (distinct a + b√2 lengths differ by far more)
 OVERFLOW = -1
 # The kernels spell out their open-list pops and pushes inline rather than
@@ -311,6 +249,8 @@ def legal_moves(free, S):
 # and maze1001 (benchmarks/bench_grid.py --large). A better path to an open
 # cell just pushes another node; the older one is skipped when popped.
 N_BUCKETS = 2048
+#: the span of f JPS's ring covers (a jump may raise f by more: overflow list)
+JPS_SPAN = 32.0
 
 
 
@@ -528,72 +468,157 @@ def trace_back(free, S, gs, start, goal, conn):
 
 
 # -- Jump Point Search (8-connected, no corner cutting) -------------------------
-@njit(cache=True)
-def _jump_straight(free, S, v, d, goal):
-    """Jump from v in straight direction d (±1 or ±S); returns a jump point or -1."""
-    side = S if (d == 1 or d == -1) else 1
-    while True:
-        if free[np.uint64(v)] == 0:
-            return -1
-        if v == goal:
-            return v
-        # A forced neighbour: a side cell opens where it was blocked behind us.
-        if ((free[np.uint64(v + side)] != 0 and free[np.uint64(v + side - d)] == 0)
-                or (free[np.uint64(v - side)] != 0 and free[np.uint64(v - side - d)] == 0)):
-            return v
-        v += d
-
-
-@njit(cache=True)
-def _jump_diagonal(free, S, v, dx, dy, goal):
-    """Jump from v in diagonal direction (dx, dy); returns a jump point or -1."""
-    while True:
-        if free[np.uint64(v)] == 0:
-            return -1
-        if v == goal:
-            return v
-        if _jump_straight(free, S, v + dx, dx, goal) >= 0 or _jump_straight(free, S, v + dy * S, dy * S, goal) >= 0:
-            return v
-        if free[np.uint64(v + dx)] == 0 or free[np.uint64(v + dy * S)] == 0:
-            return -1
-        v += dx + dy * S
+# The jumps read the legal-move masks (:func:`legal_moves`): a straight jump
+# steps while its forward bit is set and stops where a side bit appears that
+# the previous cell lacked (a side cell opens where it was blocked behind:
+# a forced neighbour); a diagonal step's bit already says that both cells
+# beside it and the cell it enters are free.
+_SIDES_X = 0b1100  # moving along x, the cells beside are north (bit 2) and south (bit 3)
+_SIDES_Y = 0b0011  # moving along y: east (bit 0) and west (bit 1)
+#: successor moves after arriving by move k (k = 8: the start, every move):
+#: the move itself, both perpendicular moves and, after a straight move,
+#: the two diagonals ahead; after a diagonal, its two straight parts
+#: (the no-corner-cutting rules of Harabor & Grastien 2014)
+_NEXT = np.array([0b01011101, 0b10101110, 0b00110111, 0b11001011,
+                  0b00010101, 0b00100110, 0b01001001, 0b10001010, 0b11111111], dtype=np.int64)
 
 
 @njit(cache=True, inline="always")
-def _octile_between(a, b, S):
-    dx = abs(a % S - b % S)
-    dy = abs(a // S - b // S)
-    return max(dx, dy) + (SQRT2 - 1.0) * min(dx, dy)
+def _jump_straight(moves, v, d, k, sides, goal):
+    """From free cell v, entered by straight move k (offset d): the jump point
+    (or -1 at a dead end) and the steps from v to it."""
+    prev = moves[np.uint64(v - d)]
+    n = 0
+    while True:
+        cur = moves[np.uint64(v)]
+        if v == goal or (cur & ~prev & sides) != 0:
+            return v, n
+        if (cur >> k) & 1 == 0:
+            return -1, n
+        prev = cur
+        v += d
+        n += 1
+
+
+@njit(cache=True, inline="always")
+def _jump_diagonal(moves, S, v, dx, dy, k, goal):
+    """From free cell v, entered by diagonal move k = (dx, dy): the jump point
+    (a cell whose straight parts reach one) or -1, and the steps to it."""
+    kx = 0 if dx > 0 else 1
+    ky = 2 if dy > 0 else 3
+    n = 0
+    while True:
+        m = moves[np.uint64(v)]
+        if v == goal:
+            return v, n
+        if (m >> kx) & 1 and _jump_straight(moves, v + dx, dx, kx, _SIDES_X, goal)[0] >= 0:
+            return v, n
+        if (m >> ky) & 1 and _jump_straight(moves, v + dy * S, dy * S, ky, _SIDES_Y, goal)[0] >= 0:
+            return v, n
+        if (m >> k) & 1 == 0:
+            return -1, n
+        v += dx + dy * S
+        n += 1
 
 
 @njit(cache=True)
-def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
+def jps(free, moves, S, start, goal, gs, parent, arrive, lo, hi, extent, key, cell, nxt, head, stack):
     """Jump Point Search for 8-connected grids without corner cutting.
 
     Same per-cell state (``gs``, recorded rows) and return values as the A*
-    kernel (:func:`make_astar`); parents link jump points. Indexed through
-    ``np.uint64`` like A* (no negative-index wrapping: 18% of JPS's time on
-    random4096, 27% on maze1001, in-process A/B).
+    kernel (:func:`make_astar`); ``parent`` links jump points and ``arrive``
+    holds the move that reached each (which successors to try). The open list
+    is A*'s circular bucket queue and same-f stack over ``key``, ``cell``,
+    ``nxt`` and ``head``, except that a jump can raise f by more than the
+    ring spans: such keys wait in an overflow list, moved into the ring when
+    the ring's minimum reaches theirs (:data:`JPS_SPAN`). Indexed through
+    ``np.uint64`` like A*.
     """
     clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
+    gx = goal % S
+    gy = goal // S
+    wrap = N_BUCKETS - 1
+    inv_width = N_BUCKETS / JPS_SPAN
+    for b in range(N_BUCKETS):
+        head[np.uint64(b)] = -1
+    free_node = -1
+    bump = 0
+    ring = 0  # nodes in the ring
+    over = -1  # the overflow list and its smallest bucket number
+    over_min = np.int64(1) << 62
+    cap_pool = key.shape[0]
+    cap_stack = stack.shape[0]
     gs[np.uint64(start)] = 1.0
     parent[np.uint64(start)] = start
+    arrive[np.uint64(start)] = 8
     rmin = rmax = start // S
     _record(lo, hi, start % S, start // S)
-    heap[0, 0] = _octile_between(start, goal, S)
-    heap[0, 1] = start
-    size = 1
-    top = 0
-    fcur = -np.inf
+    fcur = 1.0 + heuristic(H_OCTILE, start % S, start // S, gx, gy)  # keys are (g + 1) + h, as A*'s
+    cur = np.int64(fcur * inv_width)  # the ring's lowest bucket number (not wrapped)
+    stack[np.uint64(0)] = start
+    top = 1
     expanded = 0
     status = 0
-    while size > 0 or top > 0:
+    while ring > 0 or over >= 0 or top > 0:
+        if top == 0:
+            if ring == 0:
+                cur = over_min
+            while True:
+                if cur >= over_min:  # overflow keys now within the ring's span move in
+                    n = over
+                    over = -1
+                    over_min = np.int64(1) << 62
+                    while n >= 0:
+                        after = nxt[np.uint64(n)]
+                        a = np.int64(key[np.uint64(n)] * inv_width)
+                        if a < cur + N_BUCKETS:
+                            nxt[np.uint64(n)] = head[np.uint64(a & wrap)]
+                            head[np.uint64(a & wrap)] = n
+                            ring += 1
+                        else:
+                            nxt[np.uint64(n)] = over
+                            over = n
+                            over_min = min(over_min, a)
+                        n = after
+                if head[np.uint64(cur & wrap)] >= 0:
+                    break
+                cur += 1
+            cb = cur & wrap
+            n = head[np.uint64(cb)]
+            fcur = key[np.uint64(n)]
+            n = nxt[np.uint64(n)]
+            while n >= 0:
+                fcur = min(fcur, key[np.uint64(n)])
+                n = nxt[np.uint64(n)]
+            n = head[np.uint64(cb)]
+            head[np.uint64(cb)] = -1
+            while n >= 0:
+                after = nxt[np.uint64(n)]
+                if key[np.uint64(n)] <= fcur + TIE:
+                    if top == cap_stack:
+                        status = OVERFLOW
+                        break
+                    stack[np.uint64(top)] = cell[np.uint64(n)]
+                    top += 1
+                    nxt[np.uint64(n)] = free_node
+                    free_node = n
+                    ring -= 1
+                else:
+                    nxt[np.uint64(n)] = head[np.uint64(cb)]
+                    head[np.uint64(cb)] = n
+                n = after
+            if status == OVERFLOW:
+                break
+        top -= 1
+        u = stack[np.uint64(top)]
         if top > 0:
-            top -= 1
-            u = stack[np.uint64(top)]
-        else:
-            fcur, u = _heap_pop(heap, size)
-            size -= 1
+            # As A* does: start loading what the next cell's jumps read first (its moves and those of
+            # the rows beside, the state around it, its arrival move); JPS waits on memory even more.
+            w = stack[np.uint64(top - 1)]
+            for row in (w - S, w, w + S):
+                _prefetch(gs, row)
+                _prefetch(moves, row)
+            _prefetch(arrive, w)
         gu = gs[np.uint64(u)]
         if gu < 0.0:
             continue
@@ -602,85 +627,61 @@ def jps(free, S, start, goal, gs, parent, lo, hi, extent, heap, stack, dirs):
         if u == goal:
             status = 1
             break
-        # Successor directions (dx, dy) pruned by the direction of arrival.
-        n = 0
-        p = parent[np.uint64(u)]
-        if p == u:
-            for ddx in (-1, 0, 1):
-                for ddy in (-1, 0, 1):
-                    if ddx == 0 and ddy == 0:
-                        continue
-                    if ddx != 0 and ddy != 0 and (free[np.uint64(u + ddx)] == 0 or free[np.uint64(u + ddy * S)] == 0):
-                        continue
-                    dirs[n, 0] = ddx
-                    dirs[n, 1] = ddy
-                    n += 1
-        else:
-            ddx = np.sign(u % S - p % S)
-            ddy = np.sign(u // S - p // S)
-            if ddx != 0 and ddy != 0:
-                dirs[0, 0], dirs[0, 1] = 0, ddy
-                dirs[1, 0], dirs[1, 1] = ddx, 0
-                n = 2
-                if free[np.uint64(u + ddx)] != 0 and free[np.uint64(u + ddy * S)] != 0:
-                    dirs[2, 0], dirs[2, 1] = ddx, ddy
-                    n = 3
-            elif ddx != 0:
-                dirs[0, 0], dirs[0, 1] = ddx, 0
-                dirs[1, 0], dirs[1, 1] = 0, 1
-                dirs[2, 0], dirs[2, 1] = 0, -1
-                n = 3
-                if free[np.uint64(u + ddx)] != 0:
-                    for s in (1, -1):
-                        if free[np.uint64(u + s * S)] != 0:
-                            dirs[n, 0], dirs[n, 1] = ddx, s
-                            n += 1
+        ux = u % S
+        uy = u // S
+        m = moves[np.uint64(u)] & _NEXT[np.uint64(arrive[np.uint64(u)])]
+        while m != 0:
+            k = _cttz(m)
+            m &= m - 1
+            dx = _DX[np.uint64(k)]
+            dy = _DY[np.uint64(k)]
+            if k >= 4:
+                jp, n = _jump_diagonal(moves, S, u + dx + dy * S, dx, dy, k, goal)
+            elif k < 2:
+                jp, n = _jump_straight(moves, u + dx, dx, k, _SIDES_X, goal)
             else:
-                dirs[0, 0], dirs[0, 1] = 0, ddy
-                dirs[1, 0], dirs[1, 1] = 1, 0
-                dirs[2, 0], dirs[2, 1] = -1, 0
-                n = 3
-                if free[np.uint64(u + ddy * S)] != 0:
-                    for s in (1, -1):
-                        if free[np.uint64(u + s)] != 0:
-                            dirs[n, 0], dirs[n, 1] = s, ddy
-                            n += 1
-        for k in range(n):
-            ddx = dirs[k, 0]
-            ddy = dirs[k, 1]
-            v = u + ddx + ddy * S
-            if ddx != 0 and ddy != 0:
-                jp = _jump_diagonal(free, S, v, ddx, ddy, goal)
-            elif ddx != 0:
-                jp = _jump_straight(free, S, v, ddx, goal)
-            else:
-                jp = _jump_straight(free, S, v, ddy * S, goal)
+                jp, n = _jump_straight(moves, u + dy * S, dy * S, k, _SIDES_Y, goal)
             if jp < 0:
                 continue
             gj = gs[np.uint64(jp)]
-            if gj < 0.0:
-                continue
-            ng = gu + _octile_between(u, jp, S)
-            if gj == 0.0 or ng < gj:
+            ng = gu + (n + 1) * _STEP[np.uint64(k)]  # a jump is n + 1 equal steps
+            if gj == 0.0 or ng < gj:  # (never for a closed jump point: its -(g + 1) < 0)
                 gs[np.uint64(jp)] = ng
                 parent[np.uint64(jp)] = u
-                jy = jp // S
-                _record(lo, hi, jp % S, jy)
+                arrive[np.uint64(jp)] = k
+                jx = ux + (n + 1) * dx
+                jy = uy + (n + 1) * dy
+                _record(lo, hi, jx, jy)
                 rmin = min(rmin, jy)
                 rmax = max(rmax, jy)
-                f = ng + _octile_between(jp, goal, S)
+                f = ng + heuristic(H_OCTILE, jx, jy, gx, gy)
                 if f <= fcur + TIE:
-                    if top == stack.shape[0]:
+                    if top == cap_stack:
                         status = OVERFLOW
                         break
                     stack[np.uint64(top)] = jp
                     top += 1
+                    continue
+                if free_node >= 0:
+                    nd = free_node
+                    free_node = nxt[np.uint64(nd)]
+                elif bump < cap_pool:
+                    nd = bump
+                    bump += 1
                 else:
-                    if size == heap.shape[0]:
-                        status = OVERFLOW
-                        break
-                    _heap_push(heap, size, f, jp)
-                    size += 1
+                    status = OVERFLOW
+                    break
+                key[np.uint64(nd)] = f
+                cell[np.uint64(nd)] = jp
+                a = np.int64(f * inv_width)
+                if a < cur + N_BUCKETS:
+                    nxt[np.uint64(nd)] = head[np.uint64(a & wrap)]
+                    head[np.uint64(a & wrap)] = nd
+                    ring += 1
+                else:
+                    nxt[np.uint64(nd)] = over
+                    over = nd
+                    over_min = min(over_min, a)
         if status == OVERFLOW:
             break
     extent[0] = min(extent[0], rmin)

@@ -85,7 +85,7 @@ class GridSearcher:
     on the same grid never share it; a searcher is reused by later queries,
     so only the first query on a grid (per concurrent thread) pays for its
     arrays. ``g`` holds all of A*'s per-cell state (``kernels.clear_touched``);
-    JPS and Theta* add ``parent``, allocated when one of them first runs.
+    JPS and Theta* add ``parent`` (JPS also ``arrive``), allocated when one of them first runs.
     """
 
     def __init__(self, grid: PaddedGrid) -> None:
@@ -96,15 +96,14 @@ class GridSearcher:
         rows = n // self.stride
         self.g = np.zeros(n)  # zero pages are mapped when first written: a search pays for the cells it reaches
         self.parent = np.empty(0, dtype=np.int32)
+        self.arrive = np.empty(0, dtype=np.uint8)
         self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
         self.hi = np.full(rows, -1, dtype=np.int64)
         self.extent = np.array([rows, -1], dtype=np.int64)  # and the rows they spanned
-        # Open lists (A*'s bucket-queue pool, JPS's heap) and the same-f stack;
+        # The open list (a bucket queue's node pool) and the same-f stack;
         # grown (and the query rerun) if one fills up.
         room = min(n + 16, 1 << 16)
-        self.heap = np.empty((room, 2))
         self.stack = np.empty(room, dtype=np.int64)
-        self.dirs = np.zeros((8, 2), dtype=np.int64)
         self._pool(room)
 
     def _pool(self, room: int) -> None:
@@ -121,10 +120,13 @@ class GridSearcher:
         lists until they suffice: (status, expanded) as the kernels return."""
         if algorithm in ("jps", "theta_star") and self.parent.size == 0:
             self.parent = np.empty(self.free.size, dtype=np.int32)
+        if algorithm == "jps" and self.arrive.size == 0:
+            self.arrive = np.empty(self.free.size, dtype=np.uint8)
         while True:
             if algorithm == "jps":
-                status, expanded = K.jps(self.free, self.stride, a, b, self.g, self.parent, self.lo, self.hi,
-                                         self.extent, self.heap, self.stack, self.dirs)
+                status, expanded = K.jps(self.free, self.moves, self.stride, a, b, self.g, self.parent, self.arrive,
+                                         self.lo, self.hi, self.extent, self.key, self.cell, self.next, self.head,
+                                         self.stack)
             else:
                 kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
                 status, expanded = kernel(self.free, self.moves, self.stride, a, b, weight, self.g, self.parent, self.lo,
@@ -144,7 +146,6 @@ class GridSearcher:
         return cells
 
     def grow(self) -> None:
-        self.heap = np.empty((self.heap.shape[0] * 4, 2))
         self.stack = np.empty(self.stack.shape[0] * 4, dtype=np.int64)
         self._pool(self.key.size * 4)
 

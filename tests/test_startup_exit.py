@@ -54,3 +54,37 @@ for _ in range(3):
 """
     out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, check=True)
     assert out.stderr.splitlines().count("FREEZE") == 1
+
+
+def test_the_plan_verb_pauses_the_collector_only_for_its_query(monkeypatch):
+    import gc
+
+    from click.testing import CliRunner
+
+    import navlab.planning
+    from navlab.cli import main
+
+    seen = []
+    real_plan = navlab.planning.plan
+
+    def spy(*args, **kwargs):
+        seen.append(gc.isenabled())
+        return real_plan(*args, **kwargs)
+
+    monkeypatch.setattr(navlab.planning, "plan", spy)
+    assert gc.isenabled()
+    try:
+        out = CliRunner().invoke(main, ["plan", "clutter", "--max-iter", "100"])
+        assert out.exit_code == 0, out.output
+        assert seen == [False] and gc.isenabled()  # paused during the query, on again after
+        gc.disable()
+        out = CliRunner().invoke(main, ["plan", "no_such_scene"])  # an error inside the block
+        assert out.exit_code == 2 and not gc.isenabled()  # a collector that was off stays off
+        gc.enable()
+        out = CliRunner().invoke(main, ["plan", "no_such_scene"])
+        assert out.exit_code == 2 and gc.isenabled()  # and on, after an error
+    finally:
+        gc.enable()
+        import atexit
+
+        atexit.unregister(gc.freeze)  # main registered it: this test process exits as usual

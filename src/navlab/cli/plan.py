@@ -49,30 +49,36 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     (APPROXIMATE, FAILED, INVALID_START, INVALID_GOAL: the first line says
     why); 2 for bad input (one line, Error: ...).
     """
-    from ..planning import is_grid_planner, plan
-    from ..pose_queries import POSE_PLANNERS
-    from ..world.sources import MissingQueryError, load_source
+    from ..numba_start import collections_paused
 
-    settings = parse_params(params)
-    for flag, value in (("max_iter", max_iter), ("max_time", max_time)):
-        if value is not None:
-            if flag in settings and settings[flag] != value:
-                raise click.UsageError(f"--{flag.replace('_', '-')} {value:g} and --param {flag}={settings[flag]} "
-                                       f"disagree: give one")
-            settings[flag] = value
-    grid = planner in POSE_PLANNERS or is_grid_planner(planner)
-    if sampler is None:
-        sampler = None if grid else "uniform"
-    if plot and not grid:
-        settings.setdefault("keep_tree", True)
-    try:
-        world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
-                            allow_unknown=settings.get("allow_unknown"))
-    except MissingQueryError as exc:
-        # one line through the CLI's error handler (exit 2), naming the flag
-        raise ValueError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
-                         f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
-    result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
+    # One query in a process of its own: what loads on the way (numba, its registries, the kernels) lives until
+    # the exit, and the query's own objects are freed by reference counting, so collections would only walk
+    # the ~110 000 long-lived objects again and again (~0.1 s of CPU); reference cycles wait for the exit.
+    with collections_paused():
+        from ..planning import is_grid_planner, plan
+        from ..pose_queries import POSE_PLANNERS
+        from ..world.sources import MissingQueryError, load_source
+
+        settings = parse_params(params)
+        for flag, value in (("max_iter", max_iter), ("max_time", max_time)):
+            if value is not None:
+                if flag in settings and settings[flag] != value:
+                    raise click.UsageError(f"--{flag.replace('_', '-')} {value:g} and --param {flag}="
+                                           f"{settings[flag]} disagree: give one")
+                settings[flag] = value
+        grid = planner in POSE_PLANNERS or is_grid_planner(planner)
+        if sampler is None:
+            sampler = None if grid else "uniform"
+        if plot and not grid:
+            settings.setdefault("keep_tree", True)
+        try:
+            world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
+                                allow_unknown=settings.get("allow_unknown"))
+        except MissingQueryError as exc:
+            # one line through the CLI's error handler (exit 2), naming the flag
+            raise ValueError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
+                             f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
+        result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
     if plot:
         from ..viz import plot_plan
 

@@ -192,22 +192,37 @@ def _shortest_into(x: float, y: float, phi: float, seg: np.ndarray, best_kinds: 
                 if not _family(k, -bx if flip else bx, -by if reflect else by, -phi if negate else phi,
                                -sp if negate else sp, cp, seg):
                     continue
-                length = 0.0
-                for i in range(n):
-                    length += abs(seg[i])
+                length = _word_length(seg, n)
                 if length >= best:
                     continue
                 best = length
-                best_kinds[:] = NOP
-                best_lengths[:] = 0.0
-                for i in range(n):
-                    j = n - 1 - i if backwards else i
-                    kind = _KINDS[k, i]
-                    if reflect and kind != STRAIGHT:
-                        kind = RIGHT if kind == LEFT else LEFT
-                    best_kinds[j] = kind
-                    best_lengths[j] = -seg[i] if flip else seg[i]
+                _write_word(k, n, backwards, flip, reflect, seg, best_kinds, best_lengths)
     return best
+
+
+@njit(cache=True, inline="always")
+def _word_length(seg: np.ndarray, n: int) -> float:
+    """The length of a family's first ``n`` segments, summed left to right (the order fixes the rounding)."""
+    length = 0.0
+    for i in range(n):
+        length += abs(seg[i])
+    return length
+
+
+@njit(cache=True, inline="always")
+def _write_word(k: int, n: int, backwards: int, flip: bool, reflect: bool, seg: np.ndarray, kinds: np.ndarray,
+                lengths: np.ndarray) -> None:
+    """Family ``k``'s ``n`` segments ``seg`` as a word of the original pose: read backwards, timeflipped
+    (reversed lengths), reflected (left and right swapped) as the frame it was solved in says."""
+    kinds[:] = NOP
+    lengths[:] = 0.0
+    for i in range(n):
+        j = n - 1 - i if backwards else i
+        kind = _KINDS[k, i]
+        if reflect and kind != STRAIGHT:
+            kind = RIGHT if kind == LEFT else LEFT
+        kinds[j] = kind
+        lengths[j] = -seg[i] if flip else seg[i]
 
 
 @njit(cache=True)

@@ -34,7 +34,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .reeds_shepp import HALF_PI, PI, ZERO, _local, _mod_pi, _tau_omega
+from .curves import MAX_SEGMENTS, NOP
+from .reeds_shepp import (_BACKWARDS, _KINDS, HALF_PI, PI, ZERO, _family, _local, _mod_pi, _shortest_into,
+                          _tau_omega, _word_length, _write_word)
 
 #: a lower bound is lowered by this relative and absolute margin before it may drop a word: it is
 #: computed from cheap stand-ins (a squared norm instead of ``hypot``, no ``atan2``) whose rounding
@@ -160,59 +162,81 @@ def _word(k, x, y, phi, sp, cp, turn, best):
 
 
 @njit(cache=True, inline="always")
-def _csc(x, y, phi, sp, cp, turn, best):
-    """8.1 and 8.2 at (x, y, φ) where cheap lower bounds (a squared norm for ``hypot``, no atan2) do not
-    rule them out; returns the shorter of ``best`` and their lengths."""
-    xi, eta = x - sp, y - 1.0 + cp
-    # 8.1: t = atan2(eta, xi) >= 0 fails below the x axis; t, v in [0, π] turn by φ (mod 2π)
-    if eta >= 0.0 or (xi > 0.0 and -eta <= 1e-12 * xi):
-        if _below(math.sqrt((xi * xi + eta * eta) * (1.0 - _NORM)) + _mod_2pi(phi)) < best:
-            best = _word(0, x, y, phi, sp, cp, turn, best)
-    xi, eta = x + sp, y - 1.0 - cp
+def _prebound(k, x, y, phi, sp, cp, turn):
+    """A lower bound on family ``k``'s length at (x, y, φ) from cheap stand-ins (a squared norm for
+    ``hypot``, no atan2), lowered by the margin; inf where as cheap a test shows it has no solution.
+    ``lo2``/``hi2`` bracket the squared ``hypot`` the closed forms compute."""
+    if k == 0 or k == 2 or k == 5:
+        xi, eta = x - sp, y - 1.0 + cp
+    else:
+        xi, eta = x + sp, y - 1.0 - cp
     rho2 = xi * xi + eta * eta
-    # 8.2: its straight segment is computed from rho2 exactly so; t, v in [0, π] and t − v = φ (mod 2π)
-    if rho2 >= 4.0 and _below(math.sqrt(rho2 - 4.0) + turn) < best:
-        best = _word(1, x, y, phi, sp, cp, turn, best)
+    lo2, hi2 = rho2 * (1.0 - _NORM), rho2 * (1.0 + _NORM)
+    if k == 0:
+        # 8.1: t = atan2(eta, xi) >= 0 fails below the x axis; t, v in [0, π] turn by φ (mod 2π)
+        if eta >= 0.0 or (xi > 0.0 and -eta <= 1e-12 * xi):
+            return _below(math.sqrt(lo2) + _mod_2pi(phi))
+    elif k == 1:
+        # 8.2: its straight segment is computed from rho2 exactly so; t, v in [0, π] and t − v = φ (mod 2π)
+        if rho2 >= 4.0:
+            return _below(math.sqrt(rho2 - 4.0) + turn)
+    elif k == 2:
+        # 8.3 needs ρ <= 4; |u| = 2 asin(ρ/4) >= ρ/2 =: a; t >= 0 and t + |u| + v = φ (mod 2π), so the
+        # length is at least |u| + |φ − |u|| (wrapped), which never decreases as |u| grows: at least its value at a
+        if lo2 <= 16.0:
+            a = 0.5 * math.sqrt(lo2)
+            return _below(a + abs(_mod_pi(phi - a)))
+    elif k == 5:
+        # 8.9 needs u = 2 − sqrt(ρ² − 4) <= 0; t >= 0 >= v and t + v = φ − π/2 (mod 2π)
+        if hi2 >= 7.9:
+            return _below(HALF_PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 2.0, 0.0) + abs(_mod_pi(phi - HALF_PI)))
+    elif k == 6:
+        # 8.10 needs u = 2 − ρ <= 0; t >= 0 >= v and t − v = φ − π/2 (mod 2π), in [0, 2π]
+        if hi2 >= 3.9:
+            return _below(HALF_PI + max(math.sqrt(lo2) - 2.0, 0.0) + _mod_2pi(phi - HALF_PI))
+    elif k == 3:
+        # CCCC: u = acos(z) >= sqrt(2 (1 − z)) (as cos θ >= 1 − θ²/2), two arcs of |u|, and the word turns
+        # by φ. 8.7 needs ρ <= 2; z = (2 + ρ)/4
+        if lo2 <= 4.0:
+            return _below(max(2.0 * math.sqrt(max(0.5 * (2.0 - math.sqrt(hi2)), 0.0)), turn))
+    elif k == 4:
+        # 8.8 needs 0 <= z = (20 − ρ²)/16 <= 1; t, v >= 0 and t − v = φ (mod 2π)
+        if hi2 >= 4.0 and lo2 <= 20.0:
+            return _below(2.0 * math.sqrt(max(lo2 - 4.0, 0.0) / 8.0) + turn)
+    else:
+        # 8.11 needs u = 4 − sqrt(ρ² − 4) <= 0; t, v >= 0 and t − v = φ (mod 2π)
+        if hi2 >= 19.9:
+            return _below(PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 4.0, 0.0) + turn)
+    return math.inf
+
+
+@njit(cache=True, inline="always")
+def _try(k, x, y, phi, sp, cp, turn, best):
+    """The shorter of ``best`` and family ``k``'s length, solved only where :func:`_prebound` allows."""
+    if _prebound(k, x, y, phi, sp, cp, turn) < best:
+        best = _word(k, x, y, phi, sp, cp, turn, best)
     return best
 
 
 @njit(cache=True, inline="always")
+def _csc(x, y, phi, sp, cp, turn, best):
+    """8.1 and 8.2 at (x, y, φ); returns the shorter of ``best`` and their lengths."""
+    best = _try(0, x, y, phi, sp, cp, turn, best)
+    return _try(1, x, y, phi, sp, cp, turn, best)
+
+
+@njit(cache=True, inline="always")
 def _others(x, y, phi, sp, cp, turn, backwards, best):
-    """The other families at (x, y, φ) (only 8.3, 8.9, 8.10 when ``backwards``), each where cheap lower
-    bounds do not rule it out; returns the shorter of ``best`` and their lengths. ``lo2``/``hi2``
-    bracket the squared ``hypot`` the closed forms compute."""
-    xi, eta = x - sp, y - 1.0 + cp
-    rho2 = xi * xi + eta * eta
-    lo2, hi2 = rho2 * (1.0 - _NORM), rho2 * (1.0 + _NORM)
-    # 8.3 needs ρ <= 4; |u| = 2 asin(ρ/4) >= ρ/2 =: a; t >= 0 and t + |u| + v = φ (mod 2π), so the length
-    # is at least |u| + |φ − |u|| (wrapped), which never decreases as |u| grows: at least its value at a
-    if lo2 <= 16.0:
-        a = 0.5 * math.sqrt(lo2)
-        if _below(a + abs(_mod_pi(phi - a))) < best:
-            best = _word(2, x, y, phi, sp, cp, turn, best)
-    # 8.9 needs u = 2 − sqrt(ρ² − 4) <= 0; t >= 0 >= v and t + v = φ − π/2 (mod 2π)
-    if hi2 >= 7.9 and _below(HALF_PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 2.0, 0.0)
-                             + abs(_mod_pi(phi - HALF_PI))) < best:
-        best = _word(5, x, y, phi, sp, cp, turn, best)
-    xi, eta = x + sp, y - 1.0 - cp
-    rho2 = xi * xi + eta * eta
-    lo2, hi2 = rho2 * (1.0 - _NORM), rho2 * (1.0 + _NORM)
-    # 8.10 needs u = 2 − ρ <= 0; t >= 0 >= v and t − v = φ − π/2 (mod 2π), in [0, 2π]
-    if hi2 >= 3.9 and _below(HALF_PI + max(math.sqrt(lo2) - 2.0, 0.0) + _mod_2pi(phi - HALF_PI)) < best:
-        best = _word(6, x, y, phi, sp, cp, turn, best)
+    """The other families at (x, y, φ) (only 8.3, 8.9, 8.10 when ``backwards``); returns the shorter of
+    ``best`` and their lengths."""
+    best = _try(2, x, y, phi, sp, cp, turn, best)
+    best = _try(5, x, y, phi, sp, cp, turn, best)
+    best = _try(6, x, y, phi, sp, cp, turn, best)
     if backwards:
         return best
-    # CCCC: u = acos(z) >= sqrt(2 (1 − z)) (as cos θ >= 1 − θ²/2), two arcs of |u|, and the word turns by φ
-    # 8.7 needs ρ <= 2; z = (2 + ρ)/4
-    if lo2 <= 4.0 and _below(max(2.0 * math.sqrt(max(0.5 * (2.0 - math.sqrt(hi2)), 0.0)), turn)) < best:
-        best = _word(3, x, y, phi, sp, cp, turn, best)
-    # 8.8 needs 0 <= z = (20 − ρ²)/16 <= 1; t, v >= 0 and t − v = φ (mod 2π)
-    if hi2 >= 4.0 and lo2 <= 20.0 and _below(2.0 * math.sqrt(max(lo2 - 4.0, 0.0) / 8.0) + turn) < best:
-        best = _word(4, x, y, phi, sp, cp, turn, best)
-    # 8.11 needs u = 4 − sqrt(ρ² − 4) <= 0; t, v >= 0 and t − v = φ (mod 2π)
-    if hi2 >= 19.9 and _below(PI + max(math.sqrt(max(lo2 - 4.0, 0.0)) - 4.0, 0.0) + turn) < best:
-        best = _word(7, x, y, phi, sp, cp, turn, best)
-    return best
+    best = _try(3, x, y, phi, sp, cp, turn, best)
+    best = _try(4, x, y, phi, sp, cp, turn, best)
+    return _try(7, x, y, phi, sp, cp, turn, best)
 
 
 @njit(cache=True)
@@ -241,6 +265,51 @@ def length_below(x: float, y: float, phi: float, cutoff: float) -> float:
         fx, fy, fphi, fsp = _frame(f, x, y, phi, sp, cp, xb, yb)
         best = _others(fx, fy, fphi, fsp, cp, turn, f >= 4, best)
     return best if best < cutoff else math.inf
+
+
+@njit(cache=True)
+def word_below(x: float, y: float, phi: float, cutoff: float, seg: np.ndarray, kinds: np.ndarray,
+               lengths: np.ndarray) -> float:
+    """:func:`navlab.sampling.reeds_shepp._shortest_into` (the shortest word into ``kinds``, ``lengths``;
+    its length) when that length is below ``cutoff``, else inf with the arrays untouched. The same word,
+    bit for bit, also among ties: the words are tried in the full solver's order and a word replaces the
+    best only when strictly shorter, but one that cannot beat the best found (at first the cutoff) is
+    dropped by cheap bounds (:func:`_try`) before its segments are solved. A steering step
+    that knows the length (from :func:`length_below`) passes it, widened, as the cutoff."""
+    cp, sp = math.cos(phi), math.sin(phi)
+    xb, yb = x * cp + y * sp, x * sp - y * cp  # as _shortest_into computes them
+    turn = abs(_mod_pi(phi))
+    best, found = cutoff, False
+    for k in range(_KINDS.shape[0]):
+        n = 0
+        while n < MAX_SEGMENTS and _KINDS[k, n] != NOP:
+            n += 1
+        for backwards in range(2 if _BACKWARDS[k] else 1):
+            for sym in range(4):
+                fx, fy, fphi, fsp = _frame(sym + 4 * backwards, x, y, phi, sp, cp, xb, yb)
+                if _try(k, fx, fy, fphi, fsp, cp, turn, best) >= best:
+                    continue
+                seg[:] = 0.0
+                if not _family(k, fx, fy, fphi, fsp, cp, seg):
+                    continue
+                length = _word_length(seg, n)
+                if length >= best:
+                    continue
+                best, found = length, True
+                _write_word(k, n, backwards, sym == 1 or sym == 3, sym >= 2, seg, kinds, lengths)
+    return best if found else math.inf
+
+
+@njit(cache=True)
+def word(x: float, y: float, phi: float, known: float, seg: np.ndarray, kinds: np.ndarray,
+         lengths: np.ndarray) -> float:
+    """:func:`navlab.sampling.reeds_shepp._shortest_into`, bit for bit, given ``known`` >= its length
+    (e.g. :func:`length_below`'s, or inf): :func:`word_below` with ``known`` widened by 1e-9, and the
+    full solver should rounding ever have put the length above that."""
+    total = word_below(x, y, phi, known * (1.0 + 1e-9) + 1e-12, seg, kinds, lengths)
+    if total == math.inf:
+        total = _shortest_into(x, y, phi, seg, kinds, lengths)
+    return total
 
 
 @njit(cache=True)

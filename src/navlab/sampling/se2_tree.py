@@ -46,14 +46,14 @@ S_SIZE, S_EDGE_CHECKS, S_REWIRES, S_GOALS, S_FIRST_ITER, S_BEST = 0, 1, 2, 3, 4,
 
 
 @njit(cache=True)
-def steer(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths):
+def steer(x0, y0, t0, x1, y1, t1, radius, reverse, seg, kinds, lengths, known=math.inf):
     """The shortest curve from pose 0 to pose 1: fills ``kinds`` (NOP-padded)
-    and signed ``lengths`` [m]; returns its length [m]."""
+    and signed ``lengths`` [m]; returns its length [m]. ``known`` [m], when given, is
+    :func:`steer_length`'s answer: a Reeds–Shepp word that cannot be as short is then
+    dropped by cheap bounds before it is solved (the same word, bit for bit)."""
     if reverse:
-        c, s = math.cos(t0), math.sin(t0)
-        dx, dy = x1 - x0, y1 - y0
-        total = reeds_shepp._shortest_into((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius, t1 - t0,
-                                           seg, kinds, lengths)
+        local = reeds_shepp._local(x0, y0, t0, x1, y1, t1, radius)
+        total = reeds_shepp_length.word(local[0], local[1], local[2], known / radius, seg, kinds, lengths)
         for i in range(MAX_SEGMENTS):
             lengths[i] *= radius
         return total * radius
@@ -150,17 +150,28 @@ SCAN_NODES = 256
 
 
 @njit(cache=True)
-def _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths):
-    """The node of least steering length to (qx, qy, qt) among the ``n`` in the tree; ties: the lowest index."""
+def _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths, bound):
+    """The node of least steering length to (qx, qy, qt) among the ``n`` in the tree; ties: the lowest index.
+    ``bound`` is scratch for ``n`` lower bounds."""
     if n <= SCAN_NODES:
-        best, best_d = -1, math.inf
+        # candidates by increasing lower bound (each picked by a scan: a query steers to a few of them
+        # before the next bound is above the best length, cheaper than sorting all): the first ones set
+        # a small cutoff, which drops most of the rest inside the length solver or before it
         for k in range(n):
-            if lower_bound(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius) < best_d:
-                d = steer_length(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius, reverse, seg, kinds,
-                                 lengths, best_d)
-                if d < best_d:
-                    best, best_d = k, d
-        return best, best_d
+            bound[k] = lower_bound(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius)
+        best, best_d = -1, math.inf
+        while True:
+            k, e = -1, math.inf
+            for j in range(n):
+                if bound[j] < e:
+                    k, e = j, bound[j]
+            if k < 0 or e > best_d or (e == best_d and k > best):
+                return best, best_d
+            bound[k] = math.inf  # visited
+            d = steer_length(pose[k, 0], pose[k, 1], pose[k, 2], qx, qy, qt, radius, reverse, seg, kinds, lengths,
+                             best_d)
+            if d < best_d or (d == best_d and k < best):
+                best, best_d = k, d
     ci = _cell(qx, gridp[0], gridp[2], dims[0])
     cj = _cell(qy, gridp[1], gridp[2], dims[1])
     best, best_d = -1, math.inf
@@ -314,8 +325,8 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
         it = it0 + s
         n = istate[S_SIZE]
         qx, qy, qt = samples[s, 0], samples[s, 1], samples[s, 2]
-        a, d = _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths)
-        steer(pose[a, 0], pose[a, 1], pose[a, 2], qx, qy, qt, radius, reverse, seg, kinds, lengths)
+        a, d = _nearest(qx, qy, qt, pose, n, head, nxt, gridp, dims, radius, reverse, seg, kinds, lengths, near_d)
+        steer(pose[a, 0], pose[a, 1], pose[a, 2], qx, qy, qt, radius, reverse, seg, kinds, lengths, d)
         if d > eta:
             x, y, t = truncate(pose[a, 0], pose[a, 1], pose[a, 2], kinds, lengths, radius, eta)
             d = eta
@@ -348,9 +359,13 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
                 if near_d[j] >= c_new:
                     break
                 q = near[j]
-                dq = steer(pose[q, 0], pose[q, 1], pose[q, 2], x, y, t, radius, reverse, seg, kinds, lengths)
+                # the length alone first (inf when it cannot pass: the cutoff allows for rounding),
+                # the curve only for an edge that would improve
+                dq = steer_length(pose[q, 0], pose[q, 1], pose[q, 2], x, y, t, radius, reverse, seg, kinds,
+                                  lengths, min(rn, c_new - cost[q] + 1e-12 * c_new))
                 if dq > rn or cost[q] + dq >= c_new:
                     continue
+                steer(pose[q, 0], pose[q, 1], pose[q, 2], x, y, t, radius, reverse, seg, kinds, lengths, dq)
                 if _edge_free(pose, q, x, y, t, kinds, lengths, radius, lat_blocked, lat_res, lat_ds, lat_theta0,
                               lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc, istate):
                     p, c_new = q, cost[q] + dq
@@ -366,9 +381,11 @@ def grow(samples, it0, pose, parent, cost, child, sibling, edge_kinds, edge_len,
                 q = near[i]
                 if q == p or c_new + lower_bound(x, y, t, pose[q, 0], pose[q, 1], pose[q, 2], radius) >= cost[q] - eps:
                     continue  # not even the lower bound would improve it
-                dq = steer(x, y, t, pose[q, 0], pose[q, 1], pose[q, 2], radius, reverse, seg, kinds, lengths)
+                dq = steer_length(x, y, t, pose[q, 0], pose[q, 1], pose[q, 2], radius, reverse, seg, kinds, lengths,
+                                  min(rn, cost[q] - eps - c_new + 1e-12 * cost[q]))
                 if dq > rn or c_new + dq >= cost[q] - eps:
                     continue
+                steer(x, y, t, pose[q, 0], pose[q, 1], pose[q, 2], radius, reverse, seg, kinds, lengths, dq)
                 if not _edge_free(pose, k, pose[q, 0], pose[q, 1], pose[q, 2], kinds, lengths, radius, lat_blocked,
                                   lat_res, lat_ds, lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear,
                                   lat_disc, istate):

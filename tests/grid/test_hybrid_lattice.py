@@ -138,13 +138,17 @@ def test_the_nearest_blocked_distances_count_the_map_edge_as_blocked():
         assert np.array_equal(_nearest_blocked2(blocked), expected)
 
 
-def test_the_shapely_recheck_finds_an_overlap_exactly_when_one_exists():
-    """first_overlap builds only the cells a footprint can reach; against every blocked cell and the ring
-    of cells around the map, by shapely: None exactly when nothing overlaps, else a cell the first
-    overlapping pose does overlap."""
+@pytest.mark.parametrize("few_cells", [0, 10**9])
+def test_the_shapely_recheck_finds_an_overlap_exactly_when_one_exists(few_cells, monkeypatch):
+    """first_overlap builds only the cells a footprint can reach (or, below FEW_CELLS candidates, all of
+    them: both ways tested); against every blocked cell and the ring of cells around the map, by shapely:
+    None exactly when nothing overlaps, else a cell the first overlapping pose does overlap."""
     import shapely
 
+    from navlab.sampling import footprint_lattice
     from navlab.sampling.footprint_lattice import first_overlap
+
+    monkeypatch.setattr(footprint_lattice, "FEW_CELLS", few_cells)
 
     rng = np.random.default_rng(12)
     for _ in range(150):

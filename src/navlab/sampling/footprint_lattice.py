@@ -465,6 +465,12 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     return True
 
 
+#: up to this many blocked cells in a path's window, :func:`first_overlap` gives them all to shapely (the
+#: distance transform that drops the unreachable ones costs more than their boxes: 0.24 ms against
+#: 0.05 ms for 30 boxes on PythonRobotics' map)
+FEW_CELLS = 256
+
+
 def first_overlap(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: float, poses: np.ndarray,
                   grow: float) -> Optional[Tuple[int, int]]:
     """The first cell (x, y) a footprint at any of ``poses`` (grid frame) overlaps,
@@ -501,19 +507,22 @@ def first_overlap(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: f
     # only cells a footprint can reach: its outline lies within `reach` of its pose, so a grown cell
     # it touches has its centre within reach + grow + half a cell diagonal of the pose, and so within
     # reach + grow + a cell diagonal of the pose's cell centre (+1 µm); the others are dropped before
-    # shapely builds them. One distance transform from the poses' cells tells which those are.
-    from scipy.ndimage import distance_transform_edt
+    # shapely builds them. One distance transform from the poses' cells tells which those are; with few
+    # cells it costs more than the boxes it saves, and dropping none changes no answer (a dropped cell
+    # touches no footprint, and the kept ones keep their order).
+    if len(xs_) > FEW_CELLS:
+        from scipy.ndimage import distance_transform_edt
 
-    reach = max(disc, float(np.hypot(*vertices.T).max()) if len(vertices) else 0.0)
-    limit = reach + grow + res * math.sqrt(2.0) + 1e-6
-    window = np.ones((hi_y + 1 - lo_y, hi_x + 1 - lo_x), dtype=bool)
-    px = np.clip(np.floor(poses[:, 0] / res).astype(np.int64) + 1 - lo_x, 0, window.shape[1] - 1)
-    py = np.clip(np.floor(poses[:, 1] / res).astype(np.int64) + 1 - lo_y, 0, window.shape[0] - 1)
-    window[py, px] = False
-    keep = distance_transform_edt(window)[ys_, xs_] * res <= limit
-    if not keep.any():
-        return None
-    cx, cy = cx[keep], cy[keep]
+        reach = max(disc, float(np.hypot(*vertices.T).max()) if len(vertices) else 0.0)
+        limit = reach + grow + res * math.sqrt(2.0) + 1e-6
+        window = np.ones((hi_y + 1 - lo_y, hi_x + 1 - lo_x), dtype=bool)
+        px = np.clip(np.floor(poses[:, 0] / res).astype(np.int64) + 1 - lo_x, 0, window.shape[1] - 1)
+        py = np.clip(np.floor(poses[:, 1] / res).astype(np.int64) + 1 - lo_y, 0, window.shape[0] - 1)
+        window[py, px] = False
+        keep = distance_transform_edt(window)[ys_, xs_] * res <= limit
+        if not keep.any():
+            return None
+        cx, cy = cx[keep], cy[keep]
     boxes = shapely.box(cx * res - grow, cy * res - grow, (cx + 1) * res + grow, (cy + 1) * res + grow)
     tree = shapely.STRtree(boxes)
     pairs = tree.query(shapes, predicate="intersects")

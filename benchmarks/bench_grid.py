@@ -119,9 +119,8 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     fresh grid (kernels already loaded) is timed apart from repeated ones;
     medians of wall and of CPU time (``cpu`` ratios). Bytes per expanded
     cell: the search state the query touched over the cells it expanded,
-    counted two ways: cells written (their 8-byte state, 5 more for JPS's
-    parent and arrival move, the padded grid's byte and the legal-move
-    byte) and whole 4 KB pages of the state
+    counted two ways: cells written (their 8-byte state, the padded grid's
+    byte and the legal-move byte) and whole 4 KB pages of the state
     array written (what a first query pays to map). With ``with_scipy``,
     navlab's Dijkstra against scipy's on the explicit graph (built apart,
     untimed; scipy has no goal, so it settles every reachable cell)."""
@@ -152,7 +151,7 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
             reps = [w for w, _ in runs]
             rep, rep_cpu = statistics.median(reps), statistics.median(c for _, c in runs)
             ref, ref_cpu = statistics.median(w for w, _ in pya), statistics.median(c for _, c in pya)
-            cells_b, pages_b = touched_bytes(fresh, label == "jps")
+            cells_b, pages_b = touched_bytes(fresh)
             expanded = max(r.stats["expanded"], 1)
             print(f"{name:<16} {label:<10} {first:>8.3f} {rep:>9.3f} {spread(reps, 3, ' s'):>12} {ref:>12.3f} "
                   f"{first / ref:>9.2f} {rep / ref:>8.2f} {first_cpu / ref_cpu:>9.2f} {rep_cpu / ref_cpu:>9.2f} "
@@ -162,8 +161,7 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
     print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
     print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (8 B of")
-    print("state each, +5 for JPS's parent and arrival move, +1 grid byte, +1 legal-move byte), and the 4 KB")
-    print("pages of the state array it wrote.")
+    print("state each, +1 grid byte, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
     print(load_line("at end"))
 
 
@@ -255,14 +253,14 @@ def bidirectional_bound(name: str, grid) -> None:
           f"bidirectional at least {min(gf.size, int(cover.min()))}  MM {mm}")
 
 
-def touched_bytes(grid, parents: bool):
+def touched_bytes(grid):
     """(bytes of the cells, bytes of the 4 KB pages) of search state the
     grid's last query wrote, read from its idle searcher."""
     from navlab.grid.planner import pool_for
 
     (searcher,) = pool_for(grid, False)._idle
     written = searcher.g != 0
-    per_cell = 8 + (5 if parents else 0) + 1 + 1
+    per_cell = 8 + 1 + 1
     page = 4096 // searcher.g.itemsize
     pages = np.count_nonzero(np.add.reduceat(written, np.arange(0, written.size, page)))
     return int(np.count_nonzero(written)) * per_cell, pages * 4096

@@ -85,7 +85,7 @@ class GridSearcher:
     on the same grid never share it; a searcher is reused by later queries,
     so only the first query on a grid (per concurrent thread) pays for its
     arrays. ``g`` holds all of A*'s per-cell state (``kernels.clear_touched``);
-    JPS and Theta* add ``parent`` (JPS also ``arrive``), allocated when one of them first runs.
+    Theta* adds ``parent``, allocated when it first runs.
     """
 
     def __init__(self, grid: PaddedGrid) -> None:
@@ -96,7 +96,6 @@ class GridSearcher:
         rows = n // self.stride
         self.g = np.zeros(n)  # zero pages are mapped when first written: a search pays for the cells it reaches
         self.parent = np.empty(0, dtype=np.int32)
-        self.arrive = np.empty(0, dtype=np.uint8)
         self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
         self.hi = np.full(rows, -1, dtype=np.int64)
         self.extent = np.array([rows, -1], dtype=np.int64)  # and the rows they spanned
@@ -108,7 +107,7 @@ class GridSearcher:
 
     def _pool(self, room: int) -> None:
         self.key = np.empty(room)
-        self.cell = np.empty(room, dtype=np.int32)
+        self.cell = np.empty(room, dtype=np.int64)  # JPS's entries carry a move: cell * 16 + move
         self.next = np.empty(room, dtype=np.int32)
         self.head = np.empty(K.N_BUCKETS, dtype=np.int32)
 
@@ -118,15 +117,12 @@ class GridSearcher:
     def search(self, algorithm: str, a: int, b: int, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
         """One query from flat index ``a`` to ``b``, rerun with larger open
         lists until they suffice: (status, expanded) as the kernels return."""
-        if algorithm in ("jps", "theta_star") and self.parent.size == 0:
+        if algorithm == "theta_star" and self.parent.size == 0:
             self.parent = np.empty(self.free.size, dtype=np.int32)
-        if algorithm == "jps" and self.arrive.size == 0:
-            self.arrive = np.empty(self.free.size, dtype=np.uint8)
         while True:
             if algorithm == "jps":
-                status, expanded = K.jps(self.free, self.moves, self.stride, a, b, self.g, self.parent, self.arrive,
-                                         self.lo, self.hi, self.extent, self.key, self.cell, self.next, self.head,
-                                         self.stack)
+                status, expanded = K.jps(self.free, self.moves, self.stride, a, b, self.g, self.lo, self.hi,
+                                         self.extent, self.key, self.cell, self.next, self.head, self.stack)
             else:
                 kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
                 status, expanded = kernel(self.free, self.moves, self.stride, a, b, weight, self.g, self.parent, self.lo,
@@ -138,9 +134,12 @@ class GridSearcher:
 
     def cells(self, algorithm: str, connectivity: int, a: int, b: int) -> np.ndarray:
         """The path the last search (from ``a``, which reached ``b``) found, as cells (x, y)."""
-        if algorithm in ("jps", "theta_star"):
-            return K.trace_path(self.parent, b, self.stride, algorithm == "jps")
-        cells = K.trace_back(self.free, self.stride, self.g, a, b, connectivity)
+        if algorithm == "theta_star":
+            return K.trace_path(self.parent, b, self.stride)
+        if algorithm == "jps":
+            cells = K.trace_jumps(self.moves, self.stride, self.g, a, b)
+        else:
+            cells = K.trace_back(self.free, self.stride, self.g, a, b, connectivity)
         if len(cells) == 0:  # impossible after a successful search (kernels.trace_back); never report it as found
             raise RuntimeError(f"grid search state broken: no predecessor chain from {b} back to {a}")
         return cells

@@ -2,6 +2,7 @@
 
     python benchmarks/bench_startup.py            # 9 runs of each command
     python benchmarks/bench_startup.py --runs 21
+    python benchmarks/bench_startup.py --phases   # where plan clutter's time goes, step by step
 
 Each command runs in a new process (numba's cache warm: a first run compiles
 and is dropped), alternating between commands; the table gives the median wall
@@ -12,7 +13,8 @@ that loads one cached numba function (numba's own start-up, which every
 planning command pays, including numba's BLAS check importing scipy.linalg,
 and the garbage collections over numba's objects when the process exits);
 and the same done navlab's way: SciPy's BLAS module preloaded
-(navlab.numba_start) and the objects frozen at exit (navlab.cli). The last
+(navlab.numba_start), the collector paused (navlab.cli.plan) and the objects
+frozen at exit (navlab.cli). The last
 lines are navlab's share above that floor. `python -X importtime -m navlab plan clutter` shows where an import's
 time goes; tests/test_lazy_imports.py keeps the heavy modules out of
 `navlab --help` and the unneeded ones out of `navlab plan clutter` (tests on
@@ -38,10 +40,11 @@ from conditions import load_line, spread
 # every navlab command that plans pays too.
 NUMBA_FLOOR = """
 import sys
-if "navlab" in sys.argv[1:]:  # what navlab does: numba's BLAS check without scipy.linalg, no collection at exit
+if "navlab" in sys.argv[1:]:  # what navlab plan does: numba's BLAS check without scipy.linalg, no collections
     import atexit, gc
     from navlab.numba_start import preload_cython_blas
     preload_cython_blas()
+    gc.disable()
     atexit.register(gc.freeze)
 import numba
 import numpy as np
@@ -49,6 +52,35 @@ import numpy as np
 def one(x):
     return x[0] + 1.0
 one(np.zeros(1))  # an array, like every navlab kernel's arguments (numba's typeof then imports numpy.ma)
+"""
+# `--phases`: the steps of `navlab plan clutter` one by one, in the command's order and done its way (BLAS
+# preloaded, collector paused, frozen at exit), each timed in wall and CPU milliseconds; the exit is timed from
+# the last line written to the process's end.
+PHASES = """
+import time
+marks = [("", time.perf_counter(), time.process_time())]
+def mark(name):
+    marks.append((name, time.perf_counter(), time.process_time()))
+import numpy as np; mark("import numpy")
+import click, navlab.cli, navlab.cli.plan; mark("click, navlab.cli, the plan verb")
+import atexit, gc
+gc.disable(); atexit.register(gc.freeze)
+from navlab.numba_start import preload_cython_blas
+preload_cython_blas(); mark("scipy (numba imports it) + cython_blas")
+import numba; mark("import numba")
+import navlab.planning, navlab.world.sources; mark("navlab's modules (their numba dispatchers)")
+from navlab.world.sources import load_source
+world = load_source("clutter"); mark("load_source clutter")
+from navlab.endpoints import endpoint_problem
+checker = world.checker()
+endpoint_problem(world, world.start, "start", checker); mark("first kernel (numba's registries) + endpoints")
+from navlab.warmup import warm_up
+warm_up("rrt_star", "uniform"); mark("warm-up (loads the tree kernels)")
+from navlab.queries import tree_query
+tree_query(world, "rrt_star", "uniform", 0, {}); mark("the query")
+for (_, w0, c0), (name, w1, c1) in zip(marks, marks[1:]):
+    print(f"{name}\t{(w1 - w0) * 1000:.1f}\t{(c1 - c0) * 1000:.1f}")
+print(f"END\t{time.time():.6f}", flush=True)
 """
 COMMANDS = [("navlab --help", ["-m", "navlab", "--help"], 0.3),
             ("navlab plan clutter", ["-m", "navlab", "plan", "clutter"], 0.8),
@@ -69,11 +101,48 @@ def run(args, folder) -> tuple[float, float]:
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
+def phases(runs: int) -> None:
+    """Where `navlab plan clutter`'s time goes: median wall and CPU ms of each step over fresh processes."""
+    rows: dict = {}
+    totals, exits, starts = [], [], []
+    for _ in range(runs):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        t0 = time.perf_counter()
+        out = subprocess.run([sys.executable, "-c", PHASES], capture_output=True, text=True, check=True).stdout
+        ended, wall = time.time(), time.perf_counter() - t0
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        totals.append((wall * 1000, ((after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)) * 1000))
+        inside = 0.0
+        for line in out.strip().splitlines():
+            name, *values = line.split("\t")
+            if name == "END":  # the child's last line: what follows is its exit
+                exits.append((ended - float(values[0])) * 1000)
+            else:
+                rows.setdefault(name, ([], []))
+                rows[name][0].append(float(values[0]))
+                rows[name][1].append(float(values[1]))
+                inside += float(values[0])
+        starts.append(wall * 1000 - inside - exits[-1])  # the rest: spawning, python's start, site
+    print(f"\n{'step of navlab plan clutter':<48} {'wall ms':>8} {'CPU ms':>8}  (medians of {runs} fresh processes)")
+    print(f"{'python start (site, .pth files; wall only)':<48} {statistics.median(starts):>8.0f} {'':>8}")
+    for name, (wall, cpu) in rows.items():
+        print(f"{name:<48} {statistics.median(wall):>8.0f} {statistics.median(cpu):>8.0f}")
+    print(f"{'exit (objects frozen; wall only)':<48} {statistics.median(exits):>8.0f}")
+    print(f"{'whole process':<48} {statistics.median([w for w, _ in totals]):>8.0f} "
+          f"{statistics.median([c for _, c in totals]):>8.0f}")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", type=int, default=9)
+    ap.add_argument("--phases", action="store_true",
+                    help="time the steps of navlab plan clutter instead of the commands")
     args = ap.parse_args()
     print(load_line("at start"))
+    if args.phases:
+        phases(args.runs)
+        print(load_line("at end"))
+        return
     times = {name: [] for name, _, _ in COMMANDS}
     cpu = {name: [] for name, _, _ in COMMANDS}
     with tempfile.TemporaryDirectory() as folder:

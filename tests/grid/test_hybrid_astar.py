@@ -126,10 +126,39 @@ def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
     ({"footprint": [[0, 0], [1, float("nan")], [1, 1]]}, "finite"), ({"heading_bins": 3}, "heading_bins"),
     ({"reverse_penalty": 0.5}, "reverse_penalty"),
     ({"analytic_expansion": "fals"}, "analytic_expansion must be true or false"),  # bool("fals") would be True
-    ({"smooth": "maybe"}, "smooth must be true or false")])
+    ({"smooth": "maybe"}, "smooth must be true or false"),
+    ({"analytic_expansion_ratio": 0.0}, "analytic_expansion_ratio"),
+    ({"analytic_expansion_ratio": -3.5}, "analytic_expansion_ratio"),
+    ({"analytic_expansion_ratio": "3.5"}, "analytic_expansion_ratio")])
 def test_bad_input_is_named(kwargs, field):
     args = {"grid": aisle(), "start": (1.2, 1.55, 0.0), "goal": (4.05, 4.6, 1.5), "turning_radius": 0.5,
             "footprint": ROBOT}
     args.update(kwargs)
     with pytest.raises(ValueError, match=field):
         plan_hybrid(**args)
+
+
+def test_smacs_analytic_schedule_tries_at_the_first_expansion_and_ends_no_sooner():
+    """With analytic_expansion_ratio the analytic expansion is tried on Smac's schedule, the first
+    expansion included; the nodes are expanded in the same order as without it (the attempts decide only
+    when the search ends), so it ends at the same expansion or later, and later on a map where the
+    analytic path is blocked for a while."""
+    free = OccupancyGrid(np.zeros((200, 200), bool), resolution=RES)
+    start, goal = (2.0, 5.0, 0.0), (8.0, 6.0, 1.0)
+    at_once = plan_hybrid(free, start, goal, 1.0, robot_radius=0.2, analytic_expansion_max_length=20.0,
+                          analytic_expansion_ratio=3.5)
+    assert at_once.stats["expansions"] == 1
+    assert at_once.cost == pytest.approx(reeds_shepp.distance(start, goal, 1.0), rel=1e-9)
+    blocked = np.zeros((200, 200), bool)
+    blocked[40:200, 100:104] = True  # a wall between start and goal, open at the bottom
+    walled = OccupancyGrid(blocked, resolution=RES)
+    start, goal = (2.0, 7.0, 0.0), (8.0, 7.0, 0.0)
+    later = 0
+    for ratio in (1.0, 3.5, 10.0):
+        every = plan_hybrid(walled, start, goal, 1.0, robot_radius=0.2, analytic_expansion_max_length=20.0)
+        scheduled = plan_hybrid(walled, start, goal, 1.0, robot_radius=0.2, analytic_expansion_max_length=20.0,
+                                analytic_expansion_ratio=ratio)
+        assert every.success and scheduled.success
+        assert scheduled.stats["expansions"] >= every.stats["expansions"]
+        later += scheduled.stats["expansions"] > every.stats["expansions"]
+    assert later >= 1

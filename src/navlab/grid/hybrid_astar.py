@@ -86,6 +86,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                 non_straight_penalty: float = DEFAULTS["non_straight_penalty"],
                 analytic_expansion: bool = True,
                 analytic_expansion_max_length: float = DEFAULTS["analytic_expansion_max_length"],
+                analytic_expansion_ratio: Optional[float] = None,
                 max_expansions: int = DEFAULTS["max_expansions"], smooth: bool = True,
                 waypoint_spacing: Optional[float] = None) -> Result:
     """Plan a car-like robot's path between poses on an occupancy grid (Hybrid A*).
@@ -110,6 +111,13 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         Try the exact Dubins/Reeds–Shepp path to the goal from nodes within
         ``analytic_expansion_max_length`` of it [m]. Without it the search ends
         in the goal's cell and heading bin (the path then ends there, not at the goal).
+    analytic_expansion_ratio : float, optional
+        Try the analytic expansion only on Nav2 Smac's schedule: every
+        max(⌊h / ratio⌋, ⌈ratio⌉)-th expansion within ``analytic_expansion_max_length``,
+        h the least heuristic seen so far [cells] (Smac's default ratio is 3.5).
+        None (the default) tries it at every such expansion. With a long
+        ``analytic_expansion_max_length`` the search can end far from the goal,
+        in far fewer expansions; the path may differ (longer or shorter).
     max_expansions : int
         Give up (``FAILED``) after this many expansions.
     smooth : bool
@@ -142,6 +150,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
             raise ValueError(f"{name} must be true or false, got {value!r}")
     analytic_max = check_length("analytic_expansion_max_length", analytic_expansion_max_length)
+    if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
+                                                                   analytic_expansion_ratio) > 0:
+        raise ValueError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
     if isinstance(max_expansions, bool) or not isinstance(max_expansions, (int, np.integer)) or max_expansions < 1:
         raise ValueError(f"max_expansions must be a positive whole number, got {max_expansions!r}")
     vertices, disc = robot_outline(footprint, robot_radius)
@@ -152,7 +163,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                               "change_penalty": float(change_penalty),
                               "non_straight_penalty": float(non_straight_penalty),
                               "analytic_expansion": bool(analytic_expansion),
-                              "analytic_expansion_max_length": analytic_max, "max_expansions": int(max_expansions),
+                              "analytic_expansion_max_length": analytic_max,
+                              "analytic_expansion_ratio": None if analytic_expansion_ratio is None
+                              else float(analytic_expansion_ratio), "max_expansions": int(max_expansions),
                               "smooth": bool(smooth), "resolution": res}
     # the search runs in the grid's own frame: metres from the corner of cell (0, 0), along its axes
     yaw = grid.origin[2]
@@ -202,7 +215,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
             motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
             *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, lattice.pose_cells,
             lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions),
-            bool(analytic_expansion))
+            bool(analytic_expansion), 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
         why = "the search space is exhausted" if expansions < max_expansions else \

@@ -279,9 +279,13 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
            swept_margin, near2, pose_cells, pose_start, ds, hfield, penalties, analytic_max, max_expansions,
-           use_analytic):
+           use_analytic, analytic_ratio):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
+
+    ``analytic_ratio`` > 0 tries the analytic expansion on Nav2 Smac's schedule (its
+    ``analytic_expansion_ratio``): every max(⌊h / ratio⌋, ⌈ratio⌉)-th expansion, h the least heuristic
+    seen so far [cells]; 0 tries it at every expansion within ``analytic_max`` of the goal.
 
     The primitives' swept cells (``swept``, ``swept_used``, ``swept_lo``, ``swept_hi``: the lattice's
     table, :func:`~navlab.sampling.footprint_lattice.swept_group`) are built the first time a child
@@ -329,6 +333,8 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     nentries, hsize = 1, 1
     expansions = 0
     solved = 0
+    closest = math.inf  # the schedule's least heuristic so far [cells] and expansions to go
+    countdown = 0
     while hsize > 0:
         key, v, e = _pop(hkey, hnode, hentry, hsize)
         hsize -= 1
@@ -367,7 +373,16 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         theta = theta0 + b * step
         # analytic expansion near the goal: the exact obstacle-free path, if it is free
         if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
-            if _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
+            attempt = True
+            if analytic_ratio > 0.0:  # Smac's AnalyticExpansion::tryAnalyticExpansion
+                closest = min(closest, (key - ng[v]) / res)
+                desired = max(int(closest / analytic_ratio), int(math.ceil(analytic_ratio)))
+                countdown = min(countdown, desired)
+                attempt = countdown <= 0
+                if attempt:
+                    countdown = desired
+                countdown -= 1
+            if attempt and _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
                          pose_cells, pose_start, seg, best_kinds, best_lens, akinds, alens):
                 return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
                     alens, expansions, solved, swept, swept_used

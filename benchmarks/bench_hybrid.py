@@ -3,6 +3,7 @@
     python benchmarks/bench_hybrid.py [--pythonrobotics PATH] [--repeat 3] [--resolution 1.0]
     python benchmarks/bench_hybrid.py --quick     # PythonRobotics' demo query once, no reference map
     python benchmarks/bench_hybrid.py --reference-only   # navlab alone on the 384 x 384 map, no checkout needed
+    python benchmarks/bench_hybrid.py --analytic-max 12 --analytic-ratio 3.5   # Smac's analytic schedule
 
 PythonRobotics (github.com/AtsushiSakai/PythonRobotics) is imported from a
 checkout: ``--pythonrobotics``, else $PYTHONROBOTICS, else ./PythonRobotics
@@ -103,11 +104,11 @@ def points_grid(ox, oy, res: float) -> OccupancyGrid:
     return OccupancyGrid(blocked, resolution=res, origin=(x0 - res / 2, y0 - res / 2, 0.0))
 
 
-def run_navlab(grid, start, goal, radius, footprint):
+def run_navlab(grid, start, goal, radius, footprint, options):
     """One navlab query from a cleared lattice cache: (wall time [s], Result)."""
     lattice_for.cache_clear()
     t0 = time.perf_counter()
-    result = plan_hybrid(grid, start, goal, radius, motion="reeds_shepp", footprint=footprint)
+    result = plan_hybrid(grid, start, goal, radius, motion="reeds_shepp", footprint=footprint, **options)
     return time.perf_counter() - t0, result
 
 
@@ -123,7 +124,7 @@ def run_pythonrobotics(module, ox, oy, start, goal):
     return elapsed, float(np.hypot(np.diff(path.x_list), np.diff(path.y_list)).sum())
 
 
-def compare(module, car, res: float, repeat: int, quick: bool) -> None:
+def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
     """The side-by-side table on PythonRobotics' demo map."""
     ox, oy, start, goal = demo_problem(module)
     grid = points_grid(ox, oy, res)
@@ -134,14 +135,15 @@ def compare(module, car, res: float, repeat: int, quick: bool) -> None:
         queries += [(name, _radians(s), _radians(g)) for name, s, g in EXTRA_QUERIES]
     print(f"map: PythonRobotics demo, {len(ox)} obstacle points; navlab grid {grid.width} x {grid.height} cells "
           f"at {res:g} m; car {car.LB + car.LF:g} x {car.W:g} m, turning radius {radius:.3f} m, reeds_shepp")
-    warm, _ = run_navlab(grid, start, goal, radius, footprint)
+    print(f"navlab options: {_described(options)}")
+    warm, _ = run_navlab(grid, start, goal, radius, footprint, options)
     print(f"navlab first call (loads compiled kernels): {warm:.3f} s, not counted below")
     print(f"{'query':<20} {'navlab ms':>9} {'range':>16} {'PyRob s':>8} {'range':>14} {'PyRob/nav':>9} "
           f"{'nav m':>7} {'PyRob m':>8} {'nav<=PyRob':>10} {'expansions':>10}")
     for name, s, g in queries:
         nav_times, pr_times = [], []
         for _ in range(repeat):
-            elapsed, result = run_navlab(grid, s, g, radius, footprint)
+            elapsed, result = run_navlab(grid, s, g, radius, footprint, options)
             nav_times.append(elapsed)
             elapsed, pr_length = run_pythonrobotics(module, ox, oy, s, g)
             pr_times.append(elapsed)
@@ -178,7 +180,11 @@ def _radians(pose):
     return pose[0], pose[1], math.radians(pose[2])
 
 
-def reference_map(runs: int = 5) -> None:
+def _described(options) -> str:
+    return ", ".join(f"{k}={v}" for k, v in options.items()) or "defaults"
+
+
+def reference_map(options, runs: int = 5) -> None:
     """navlab alone on a 384 x 384 map at 0.05 m (Nav2 Smac's README quotes 2-20 ms for such maps, 72 bins).
 
     Each run is timed twice, motions interleaved: from a cleared footprint
@@ -194,10 +200,11 @@ def reference_map(runs: int = 5) -> None:
     footprint = [[-0.25, -0.2], [0.25, -0.2], [0.25, 0.2], [-0.25, 0.2]]
     start, goal = (2.0, 2.0, 0.0), (16.0, 8.0, math.pi / 2)
     print(f"reference: {n} x {n} cells ({n * n} cells) at {res:g} m, three walls, robot 0.5 x 0.4 m, turning "
-          f"radius 0.4 m, 72 bins, start to goal {math.hypot(goal[0] - start[0], goal[1] - start[1]):.1f} m")
+          f"radius 0.4 m, 72 bins, start to goal {math.hypot(goal[0] - start[0], goal[1] - start[1]):.1f} m; "
+          f"options: {_described(options)}")
     motions = ("reeds_shepp", "dubins")
     for motion in motions:  # loads the compiled kernels
-        plan_hybrid(grid, start, goal, 0.4, motion=motion, footprint=footprint)
+        plan_hybrid(grid, start, goal, 0.4, motion=motion, footprint=footprint, **options)
     cold = {m: [] for m in motions}
     warm = {m: [] for m in motions}
     results = {}
@@ -206,7 +213,7 @@ def reference_map(runs: int = 5) -> None:
             lattice_for.cache_clear()
             for times in (cold[motion], warm[motion]):
                 t0 = time.perf_counter()
-                results[motion] = plan_hybrid(grid, start, goal, 0.4, motion=motion, footprint=footprint)
+                results[motion] = plan_hybrid(grid, start, goal, 0.4, motion=motion, footprint=footprint, **options)
                 times.append(time.perf_counter() - t0)
     print(f"{'motion':<12} {'median ms':>9} {'range':>16} {'cached ms':>9} {'range':>16} {'length m':>9} "
           f"{'expansions':>10} {'solves':>7}")
@@ -230,21 +237,30 @@ def main() -> None:
     ap.add_argument("--quick", action="store_true", help="PythonRobotics' demo query once, no reference map")
     ap.add_argument("--reference-only", action="store_true",
                     help="only navlab on the 384 x 384 reference map (no PythonRobotics checkout needed)")
+    ap.add_argument("--analytic-max", type=float, metavar="M",
+                    help="navlab's analytic_expansion_max_length [m] (default: the planner's, 3 m)")
+    ap.add_argument("--analytic-ratio", type=float, metavar="R",
+                    help="navlab's analytic_expansion_ratio (Smac's schedule; default: try at every expansion)")
     args = ap.parse_args()
     if args.repeat < 1:
         ap.error("--repeat must be at least 1")
+    options = {}
+    if args.analytic_max is not None:
+        options["analytic_expansion_max_length"] = args.analytic_max
+    if args.analytic_ratio is not None:
+        options["analytic_expansion_ratio"] = args.analytic_ratio
     if args.reference_only:
         print(load_line("at start"))
-        reference_map()
+        reference_map(options)
         print(load_line("at end"))
         return
     module, car = load_pythonrobotics(args.pythonrobotics.resolve())
     print(load_line("at start"))
     print(f"PythonRobotics: {args.pythonrobotics.resolve()}")
-    compare(module, car, args.resolution, 1 if args.quick else args.repeat, args.quick)
+    compare(module, car, args.resolution, 1 if args.quick else args.repeat, args.quick, options)
     if not args.quick:
         print()
-        reference_map()
+        reference_map(options)
     print(load_line("at end"))
 
 

@@ -276,6 +276,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     1 found, 0 no path, OVERFLOW when the pool or the stack ran out of room.
     """
     legal = 255 if conn == 8 else 15  # the mask bits of the allowed moves
+    slots = 8 if conn == 8 else 4
 
     @njit(cache=True)
     def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack):
@@ -361,9 +362,18 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 break
             pu = parent[u] if any_angle else u
             m = np.int64(moves[np.uint64(u)]) & legal
-            while m != 0:  # the legal moves, lowest bit first (orthogonal before diagonal)
-                k = _cttz(m)
-                m &= m - 1
+            for j in range(slots):  # the legal moves, lowest bit first (orthogonal before diagonal)
+                if conn == 8:
+                    if m == 0:
+                        break
+                    k = _cttz(m)
+                    m &= m - 1
+                else:
+                    # Four bits: tested one by one in a loop LLVM unrolls (constant moves); the bit scan
+                    # made 4-connected A* 10-25% slower than the old unrolled tests (in-process A/B).
+                    k = j
+                    if (m >> k) & 1 == 0:
+                        continue
                 dx = _DX[np.uint64(k)]
                 dy = _DY[np.uint64(k)]
                 v = u + dx + dy * S

@@ -67,6 +67,20 @@ def test_an_open_floor_costs_the_exact_curve_distance():
         assert r.cost == pytest.approx(solver.distance((4.0, 6.0, 0.0), (6.0, 6.5, 2.5), 1.0), rel=1e-9)
 
 
+def test_every_setting_of_plan_hybrid_passes_through_navlab_plan():
+    import inspect
+
+    from navlab.grid.hybrid_astar import plan_hybrid
+    from navlab.pose_queries import HYBRID_PARAMS
+
+    # the map, the poses and the robot radius come from the world; every other setting is the user's
+    own = set(inspect.signature(plan_hybrid).parameters) - {"grid", "start", "goal", "robot_radius"}
+    assert own <= set(HYBRID_PARAMS), own - set(HYBRID_PARAMS)
+    # Smac's analytic-expansion schedule on a scene: a certified path (its own tests check the schedule)
+    r = navlab.plan("narrow_aisle", planner="hybrid_astar", analytic_expansion_ratio=3.5)
+    assert r.success
+
+
 def test_a_start_pose_whose_footprint_touches_an_obstacle_names_it():
     r = navlab.plan("trap_car", planner="hybrid_astar", start=(7.2, 6.0, 0.0))
     assert r.status is Status.INVALID_START and "obstacle 2 (rectangle)" in r.reason

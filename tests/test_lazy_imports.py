@@ -47,6 +47,13 @@ def test_the_lazy_names_are_the_real_ones():
     from navlab.world import load_world
 
     assert navlab.plan is plan and navlab.load_world is load_world and "plan" in dir(navlab)
+    import navlab.grid  # noqa: F401  (a loaded subpackage is listed, as dir() would)
+
+    public = set(dir(navlab)) - {name for name in dir(navlab) if name.startswith("__")}
+    extra = public - set(navlab._LAZY)
+    assert set(navlab._LAZY) <= public and "grid" in extra
+    # besides the public names only loaded submodules: no helpers (importlib, lazy_attributes)
+    assert all(getattr(navlab, name).__name__ == f"navlab.{name}" for name in extra), extra
     with pytest.raises(AttributeError, match="no_such_name"):
         navlab.no_such_name
 

@@ -24,7 +24,8 @@ def lazy_attributes(package: str, table: dict):
     -------
     (callable, callable)
         ``__getattr__`` (imports the submodule, caches the value as a plain
-        attribute, ``AttributeError`` for any other name) and ``__dir__``.
+        attribute, ``AttributeError`` for any other name) and ``__dir__`` (the
+        public names and the dunders).
 
     References
     ----------
@@ -40,8 +41,9 @@ def lazy_attributes(package: str, table: dict):
         namespace[name] = value  # once loaded, a plain attribute
         return value
 
-    def __dir__():
-        return sorted(set(namespace) | set(table))
+    def __dir__():  # the public names, subpackages and dunders, not the module's helpers (importlib, ...)
+        own = {n for n, v in namespace.items() if n.startswith("__") or getattr(v, "__name__", "") == f"{package}.{n}"}
+        return sorted(set(table) | set(namespace.get("__all__", ())) | own)
 
     return __getattr__, __dir__
 

@@ -38,9 +38,10 @@ solve, inv = lapack(a, b)
 import scipy.linalg
 from scipy.linalg import cython_blas
 import scipy.linalg.cython_blas as by_dotted_name
+import scipy.linalg.cython_blas  # the plain spelling reads the package's attribute
 print(json.dumps({"first": first, "again": preload_cython_blas(), "have_blas": arraymath._HAVE_BLAS,
                   "linalg_before": linalg_before, "same_module": cython_blas is by_dotted_name
-                  is sys.modules["scipy.linalg.cython_blas"],
+                  is scipy.linalg.cython_blas is sys.modules["scipy.linalg.cython_blas"],
                   "dot": dot.tolist(), "solve": solve.tolist(), "inv": inv.tolist(),
                   "scipy_solve": scipy.linalg.solve(a, b).tolist(), "scipy_det": scipy.linalg.det(a)}))
 """)

@@ -15,10 +15,10 @@ registers it under its full name in ``sys.modules``, where numba's import
 finds it; numba's BLAS check still runs (``_HAVE_BLAS`` stays True) and
 ``np.dot`` / ``np.linalg`` in compiled code still reach SciPy's BLAS and
 LAPACK. A later ``import scipy.linalg`` works as usual (the package's own
-``__init__`` does not import ``cython_blas``); only the attribute
-``scipy.linalg.cython_blas`` stays unset, as for any module imported before
-its parent: ``from scipy.linalg import cython_blas`` and
-``import scipy.linalg.cython_blas as m`` still return it.
+``__init__`` does not import ``cython_blas``). A module imported before its
+package is not an attribute of it, so ``scipy.linalg.cython_blas`` would stay
+unset; :class:`_LinkToPackage`, a one-shot import hook, sets it as soon as
+``scipy.linalg`` is imported, so every spelling of the import gives the module.
 
 :func:`collections_paused` pauses Python's cyclic garbage collector for a
 block: a process that loaded one compiled function holds about 110 000
@@ -45,6 +45,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
+import importlib.abc
 import importlib.machinery
 import importlib.util
 import os
@@ -79,7 +80,36 @@ def preload_cython_blas() -> bool:
     except Exception:  # a SciPy this does not fit: undo, and let numba import it its way
         sys.modules.pop(BLAS_MODULE, None)
         return False
+    sys.meta_path.insert(0, _LinkToPackage())
     return True
+
+
+class _LinkToPackage(importlib.abc.MetaPathFinder):
+    """Set ``scipy.linalg.cython_blas`` when ``scipy.linalg`` is imported after the preload.
+
+    Python sets a submodule as an attribute of its package when it imports the
+    submodule; the preload imported it before the package existed, so the
+    package would lack it (``import scipy.linalg.cython_blas;
+    scipy.linalg.cython_blas`` raised AttributeError in a user's code). This
+    finder answers only for ``scipy.linalg``, once: it takes the ordinary spec
+    from the other finders and links the module after the package's code ran.
+    """
+
+    def find_spec(self, name, path=None, target=None):
+        if name != "scipy.linalg":
+            return None
+        sys.meta_path.remove(self)  # one-shot; and the search below must not find this finder again
+        spec = importlib.util.find_spec(name)
+        if spec is None or spec.loader is None or not hasattr(spec.loader, "exec_module"):
+            return spec
+        run_package = spec.loader.exec_module
+
+        def exec_module(package):
+            run_package(package)
+            package.cython_blas = sys.modules.get(BLAS_MODULE)
+
+        spec.loader.exec_module = exec_module  # this spec's own loader object
+        return spec
 
 
 def _extension_spec():

@@ -39,3 +39,11 @@ def test_a_speed_at_the_robots_top_speed_runs():
     result, _, _ = simulate("clutter", robot="diff", controller="pure_pursuit", controller_params={"speed": top},
                             max_time=1.0)
     assert result.status.name == "TIMEOUT"  # drove for its second, nothing refused
+
+
+@pytest.mark.parametrize("robot, world, controller", [("diff", "clutter", "pure_pursuit"),
+                                                      ("diff", "clutter", "goto_waypoint"), ("omni3", "parking", None)])
+@pytest.mark.parametrize("value", ["fast", None])
+def test_a_speed_that_is_not_a_number_is_named_not_a_type_error(robot, world, controller, value):
+    with pytest.raises(ValueError, match=r"speed must be a (finite|positive) number"):
+        simulate(world, robot=robot, controller=controller, controller_params={"speed": value}, max_time=1.0)

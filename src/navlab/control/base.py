@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
-from typing import Callable, Optional
+from typing import Any, Callable, Optional
+
+import numpy as np
 
 from ..registry import Registry
 
@@ -41,6 +44,19 @@ class Controller:
 
     def command(self, t: float, pose, points=None) -> Command:
         raise NotImplementedError
+
+
+def check_number(name: str, value: Any, low: float = 0.0, allow_low: bool = False,
+                 high: float = math.inf) -> float:
+    """``value`` as a float in (low, high] (or [low, high] with ``allow_low``), else ValueError naming it."""
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
+            or not math.isfinite(value):
+        raise ValueError(f"{name} must be a finite number, got {value!r}")
+    value = float(value)
+    if value < low or (value == low and not allow_low) or value > high:
+        bound = f"{'≥' if allow_low else '>'} {low:g}" + (f" and ≤ {high:g}" if math.isfinite(high) else "")
+        raise ValueError(f"{name} must be {bound}, got {value!r}")
+    return value
 
 
 def make_controller(name: str, **params) -> Controller:

@@ -9,7 +9,7 @@ from typing import Optional
 import numpy as np
 
 from ..robots.kinematics import _wrap
-from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 from .path_tracking import split_at_cusps
 
 
@@ -130,8 +130,7 @@ class GotoWaypoint(_Follower):
         super().__init__(stall_window, replan=replan, replan_interval=replan_interval, check_ahead=check_ahead)
         for name, value in (("speed", speed), ("heading_gain", heading_gain), ("reach_radius", reach_radius),
                             ("goal_radius", goal_radius), ("turn_threshold", turn_threshold)):
-            if not value > 0:
-                raise ValueError(f"goto_waypoint {name} must be positive, got {value!r}")
+            check_number(f"goto_waypoint {name}", value)  # a positive finite number ('fast' named, not a TypeError)
         self.speed, self.heading_gain, self.turn_threshold = speed, heading_gain, turn_threshold
         self.slow_speed, self.turn_boost = slow_speed, turn_boost
         self.reach_radius, self.goal_radius = reach_radius, goal_radius
@@ -191,8 +190,7 @@ class PurePursuit(_Follower):
         super().__init__(stall_window, replan=replan, replan_interval=replan_interval, check_ahead=check_ahead)
         for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius),
                             ("cusp_radius", cusp_radius)):
-            if not value > 0:
-                raise ValueError(f"pure_pursuit {name} must be positive, got {value!r}")
+            check_number(f"pure_pursuit {name}", value)  # a positive finite number ('fast' named, not a TypeError)
         self.lookahead, self.speed, self.goal_radius, self.cusp_radius = lookahead, speed, goal_radius, cusp_radius
         self._stretches: list = []  #: (points, sign) of each stretch between cusps, for paths with directions
         self._sign = 1.0

@@ -11,24 +11,11 @@ respect). A new global path may arrive between cycles (:meth:`set_path`).
 from __future__ import annotations
 
 import math
-from typing import Any, Dict, Optional
+from typing import Any, Dict
 
 import numpy as np
 
-from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector
-
-
-def check_number(name: str, value: Any, low: float = 0.0, allow_low: bool = False,
-                 high: float = math.inf) -> float:
-    """``value`` as a float in (low, high] (or [low, high] with ``allow_low``), else ValueError naming it."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
-            or not math.isfinite(value):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
-    value = float(value)
-    if value < low or (value == low and not allow_low) or value > high:
-        bound = f"{'≥' if allow_low else '>'} {low:g}" + (f" and ≤ {high:g}" if math.isfinite(high) else "")
-        raise ValueError(f"{name} must be {bound}, got {value!r}")
-    return value
+from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number  # noqa: F401
 
 
 def check_count(name: str, value: Any, low: int = 1, high: int = 1_000_000) -> int:

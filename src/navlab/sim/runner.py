@@ -33,6 +33,10 @@ class NoPathError(ValueError):
     world, not bad input: an experiment records it and goes on)."""
 
 
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
+
+
 def _default_setting(controller: str, setting: str) -> Any:
     from ..control.base import CONTROLLERS
     from ..registry import parameters_of
@@ -45,7 +49,7 @@ def _check_speed_within_robot(name: str, ctrl: Any, given: Dict[str, Any], bot: 
     robot would silently cut the speed and not the turn rate, so the controller
     would steer for a speed it never gets (150 m/s on RPP drove at 0.22)."""
     setting = ctrl.speed_setting
-    if setting is None or setting not in given:
+    if setting is None or setting not in given or not _is_number(given[setting]):
         return
     speed = float(given[setting])
     if speed > bot.max_speed:
@@ -105,7 +109,8 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
             params = {**CAR_FOLLOWER[follower], **params}
         # a follower's turn rate is worked out for its speed: a default faster than the robot can drive is
         # lowered to the robot's top speed (an explicit one is refused below)
-        if params.get("speed", _default_setting(follower, "speed")) > bot.max_speed:
+        speed = params.get("speed", _default_setting(follower, "speed"))
+        if _is_number(speed) and speed > bot.max_speed:  # a bad value: the controller names it below
             params["speed"] = bot.max_speed
     elif controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
         # the default follower watches the path ahead where obstacles move (crossing): blind, it drove into them

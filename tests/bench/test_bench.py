@@ -157,6 +157,14 @@ def test_report_renders_with_embedded_images(tmp_path):
     ({"params": {"expand_dist": 1.0}}, "did you mean 'expand_dis'"),
     ({"budget": {"max_iters": 10}}, "did you mean 'max_iter'"),
     ({"planners": ["ompl:RRTstr"]}, "did you mean 'RRTstar'"),
+    # a shared setting no planner takes, and a heading-aware planner's own unknown one: refused, not dropped
+    ({"planners": ["astar"], "params": {"heuristc": "octile"}}, r"none of .* \(astar\).*'heuristic'"),
+    ({"worlds": ["parking"], "planners": ["hybrid_astar"], "params": {"heading_binz": 36}},
+     r"none of .* \(hybrid_astar\).*'heading_bins'"),
+    ({"worlds": ["parking"], "planners": ["hybrid_astar"], "grid": {"heading_binz": [36, 72]}},
+     "'heading_binz' applies to none"),
+    ({"worlds": ["parking"], "planners": [{"name": "hybrid_astar", "heading_binz": 36}]},
+     "unknown parameter 'heading_binz' for planner 'hybrid_astar'"),
 ])
 def test_bad_experiments_are_refused_before_anything_runs(change, message):
     with pytest.raises(ValueError, match=f"(?i){message}"):

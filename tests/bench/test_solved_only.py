@@ -1,6 +1,8 @@
 """Verdicts only on solved trials: a side that solved nothing gets no verdict,
 and costs are compared on the queries both sides solved."""
 
+import zlib
+
 import numpy as np
 import pytest
 
@@ -13,7 +15,7 @@ COST = {"text": "integration gives shorter paths", "metric": "cost", "lower": "i
 
 def rows_of(sampler, solved, n=20, time=1.0, cost=10.0, query=None, world="trap"):
     out = []
-    rng = np.random.default_rng(hash(sampler) % 2**32)
+    rng = np.random.default_rng(zlib.crc32(sampler.encode()))  # not hash(): it changes with PYTHONHASHSEED
     for i in range(n):
         ok = i < solved
         out.append({"trial_id": f"{sampler}-{i}", "cell_id": sampler, "trial": i, "world": world,
@@ -62,9 +64,11 @@ def test_costs_on_maps_are_compared_on_the_queries_both_solved():
         if r["query"] >= 3:
             r["cost"] = 50.0
     rrt = rows_of("rrt", 18, n=18, cost=5.0, query=q)
-    for r in rrt:
+    for r, a in zip(rrt, astar):
         if r["query"] >= 3:
             r.update(success=False, status="APPROXIMATE", cost=None)
+        else:  # the same costs on the queries both solved: no difference to find, whatever the noise
+            r["cost"] = a["cost"]
     claim = {"text": "rrt is shorter", "metric": "cost", "lower": "rrt", "higher": "astar"}
     v, = judge_claims(astar + rrt, [claim])
     assert v["n"] == [9, 9] and v["verdict"] != "confirmed"

@@ -412,7 +412,11 @@ def validate(exp: Experiment) -> None:
     for world in exp.worlds:
         if world not in exp.maps:
             _check_world(world)
+    used: set = set()  # the shared settings some cell's planner takes
     for cell in exp.cells():
+        used |= set(routed_params(cell.planner.name, cell.params, {}))
+        if cell.planner.name in POSE_PLANNERS:
+            _check_pose_params(cell.planner.name, cell.planner.params)
         if cell.planner.name.startswith(OMPL_PREFIX):
             check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
             if not ompl_available():
@@ -432,8 +436,33 @@ def validate(exp: Experiment) -> None:
             planner.check_fits()  # a budget no trial could run: refused now, not as a run of ERROR rows
         except ValueError as exc:
             raise ExperimentError(f"budget: {exc}") from None
+    _check_shared_params_used(exp, used)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
+
+
+def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:
+    """A heading-aware planner's own settings are its, or the experiment is refused (with a did-you-mean)."""
+    from ..pose_queries import HYBRID_PARAMS
+
+    for key in params:
+        if key not in HYBRID_PARAMS:
+            raise ExperimentError(f"unknown parameter '{key}' for planner '{planner}'; valid: "
+                                  f"{', '.join(HYBRID_PARAMS)}." + suggest(key, list(HYBRID_PARAMS)))
+
+
+def _check_shared_params_used(exp: Experiment, used: set) -> None:
+    """Refuse a shared setting (``params``, ``grid``, ``--param``) that none of the
+    experiment's planners takes: routed to no planner, a typo (``heuristc``,
+    ``heading_binz``) would otherwise run every trial on the defaults."""
+    from ..pose_queries import HYBRID_PARAMS
+    from ..queries import GRID_PARAMS
+
+    shared = set(exp.params) | set(exp.grid)
+    for key in sorted(shared - used):
+        names = ", ".join(sorted({p.name for p in exp.planners}))
+        raise ExperimentError(f"parameter '{key}' applies to none of this experiment's planners ({names})."
+                              + suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS))))
 
 
 def _check_unique_cells(exp: Experiment) -> None:

@@ -47,3 +47,21 @@ def test_a_speed_at_the_robots_top_speed_runs():
 def test_a_speed_that_is_not_a_number_is_named_not_a_type_error(robot, world, controller, value):
     with pytest.raises(ValueError, match=r"speed must be a (finite|positive) number"):
         simulate(world, robot=robot, controller=controller, controller_params={"speed": value}, max_time=1.0)
+
+
+@pytest.mark.parametrize("controller, setting", [("rpp", "desired_linear_vel"), ("dwa", "max_vel_x"),
+                                                 ("mppi", "vx_max")])
+def test_a_default_speed_above_the_robots_is_lowered_to_it(controller, setting):
+    top = make_robot("diff").max_speed
+    assert parameters_of(CONTROLLERS.get(controller))[setting] > top  # the case in question
+    _, _, sim = simulate("clutter", robot="diff", controller=controller, max_time=0.5)
+    assert getattr(sim.controller, setting) == top
+
+
+def test_rpp_regulated_min_speed_follows_a_slower_desired_speed():
+    from navlab.control.rpp import NAV2_MIN_SPEED, RegulatedPurePursuit
+
+    assert RegulatedPurePursuit().min_speed == NAV2_MIN_SPEED  # Nav2's default where it fits
+    assert RegulatedPurePursuit(desired_linear_vel=0.2).min_speed == 0.2  # no second setting needed
+    with pytest.raises(ValueError, match="regulated_linear_scaling_min_speed must be"):
+        RegulatedPurePursuit(desired_linear_vel=0.2, regulated_linear_scaling_min_speed=0.3)

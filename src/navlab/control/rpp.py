@@ -56,6 +56,7 @@ Control 40(1), 1995.
 from __future__ import annotations
 
 import math
+from typing import Optional
 
 import numpy as np
 
@@ -85,6 +86,10 @@ def carrot_on_path(path: np.ndarray, pose, lookahead: float) -> np.ndarray:
     return path[-1].copy()
 
 
+#: [m/s] Nav2's default regulated_linear_scaling_min_speed
+NAV2_MIN_SPEED = 0.25
+
+
 @CONTROLLERS.register("rpp")
 class RegulatedPurePursuit(CostmapController):
     """Nav2's Regulated Pure Pursuit (see the module); defaults are Nav2's.
@@ -103,8 +108,11 @@ class RegulatedPurePursuit(CostmapController):
         [rad/s²], [m/s²] (3.2, 2.5).
     max_angular_vel : float
         [rad/s] cap on the turn rate while driving (2.0).
-    regulated_linear_scaling_min_radius, regulated_linear_scaling_min_speed : float
-        [m], [m/s] (0.9, 0.25).
+    regulated_linear_scaling_min_radius : float
+        [m] (0.9).
+    regulated_linear_scaling_min_speed : float, optional
+        [m/s] (Nav2's 0.25, or ``desired_linear_vel`` when that is lower: a
+        robot asked to drive slower than 0.25 m/s needs no second setting).
     use_cost_regulated_linear_velocity_scaling : bool
         (True).
     cost_scaling_dist, cost_scaling_gain : float
@@ -134,7 +142,7 @@ class RegulatedPurePursuit(CostmapController):
                  use_velocity_scaled_lookahead_dist: bool = False, rotate_to_heading_angular_vel: float = 1.8,
                  rotate_to_heading_min_angle: float = 0.785, max_angular_accel: float = 3.2,
                  max_linear_accel: float = 2.5, max_angular_vel: float = 2.0,
-                 regulated_linear_scaling_min_radius: float = 0.9, regulated_linear_scaling_min_speed: float = 0.25,
+                 regulated_linear_scaling_min_radius: float = 0.9, regulated_linear_scaling_min_speed: Optional[float] = None,
                  use_cost_regulated_linear_velocity_scaling: bool = True, cost_scaling_dist: float = 0.6,
                  cost_scaling_gain: float = 1.0, approach_velocity_scaling_dist: float = 0.6,
                  max_allowed_time_to_collision_up_to_carrot: float = 1.0, xy_goal_tolerance: float = 0.25,
@@ -168,6 +176,8 @@ class RegulatedPurePursuit(CostmapController):
         self.max_linear_accel = check_number("max_linear_accel", max_linear_accel)
         self.max_angular_vel = check_number("max_angular_vel", max_angular_vel)
         self.min_radius = check_number("regulated_linear_scaling_min_radius", regulated_linear_scaling_min_radius)
+        if regulated_linear_scaling_min_speed is None:
+            regulated_linear_scaling_min_speed = min(NAV2_MIN_SPEED, self.desired_linear_vel)
         self.min_speed = check_number("regulated_linear_scaling_min_speed", regulated_linear_scaling_min_speed,
                                       allow_low=True, high=self.desired_linear_vel)
         self.cost_regulation = use_cost_regulated_linear_velocity_scaling

@@ -37,24 +37,25 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
 
 
-def _default_setting(controller: str, setting: str) -> Any:
+def _speed_within_robot(name: str, params: Dict[str, Any], given: Dict[str, Any], bot: Any) -> Dict[str, Any]:
+    """The controller's settings with its top speed (``Controller.speed_setting``)
+    within the robot's ``max_speed``: a default above it is lowered to it, a value
+    the user set above it is refused, naming both. The robot would cut the speed
+    but not the turn rate, so the controller would steer for a speed it never
+    gets (RPP's default 0.5 m/s on the 0.22 m/s diff drive; 150 m/s drove at
+    0.22 without a word)."""
     from ..control.base import CONTROLLERS
     from ..registry import parameters_of
 
-    return parameters_of(CONTROLLERS.get(controller))[setting]
-
-
-def _check_speed_within_robot(name: str, ctrl: Any, given: Dict[str, Any], bot: Any) -> None:
-    """Refuse a controller speed the user set above the robot's ``max_speed``: the
-    robot would silently cut the speed and not the turn rate, so the controller
-    would steer for a speed it never gets (150 m/s on RPP drove at 0.22)."""
-    setting = ctrl.speed_setting
-    if setting is None or setting not in given or not _is_number(given[setting]):
-        return
-    speed = float(given[setting])
-    if speed > bot.max_speed:
+    factory = CONTROLLERS.get(name)
+    setting = factory.speed_setting
+    speed = params.get(setting, parameters_of(factory).get(setting)) if setting else None
+    if not _is_number(speed) or speed <= bot.max_speed:  # not a number: the controller names it
+        return params
+    if setting in given:
         raise ValueError(f"controller {name} {setting} {speed:g} m/s is more than the robot's max_speed "
                          f"{bot.max_speed:g} m/s: lower it, or raise the robot's (--robot-param max_speed=...)")
+    return {**params, setting: bot.max_speed}
 
 
 def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None, start=None, goal=None,
@@ -107,17 +108,11 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         follower = controller or POSE_FOLLOWERS[0]
         if getattr(bot, "steers", False):
             params = {**CAR_FOLLOWER[follower], **params}
-        # a follower's turn rate is worked out for its speed: a default faster than the robot can drive is
-        # lowered to the robot's top speed (an explicit one is refused below)
-        speed = params.get("speed", _default_setting(follower, "speed"))
-        if _is_number(speed) and speed > bot.max_speed:  # a bad value: the controller names it below
-            params["speed"] = bot.max_speed
     elif controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
         # the default follower watches the path ahead where obstacles move (crossing): blind, it drove into them
         params.setdefault("replan", True)
     name = controller or (POSE_FOLLOWERS[0] if poses else DEFAULT_CONTROLLER[robot])
-    ctrl = make_controller(name, **params)
-    _check_speed_within_robot(name, ctrl, controller_params or {}, bot)
+    ctrl = make_controller(name, **_speed_within_robot(name, params, controller_params or {}, bot))
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:
         if is_grid:

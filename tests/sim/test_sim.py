@@ -78,10 +78,11 @@ def test_cli_experiment_json_and_bad_input(tmp_path):
     rows = [json.loads(line) for line in res.output.splitlines()]
     assert len(rows) == 8 and {"target", "obstacle", "status", "final_true", "final_odom", "error_true_mm",
                                "error_odom_mm", "time_s"} <= set(rows[0])
+    # a goal the robot cannot stand on is an answer about the world, as navlab plan's INVALID_GOAL (exit 1)
     res = runner.invoke(main, ["sim", "squarefield", "--goal", "50.0", "5.0"])
-    assert res.exit_code == 2 and "goal" in res.output
+    assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "outside the bounds" in res.output
     res = runner.invoke(main, ["sim", "trap", "--goal", "7.8", "6.0"])  # inside the trap's wall
-    assert res.exit_code == 2 and "goal" in res.output
+    assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "of an obstacle" in res.output
     res = runner.invoke(main, ["sim", "squarefield", "--controller", "potential_feild"])
     assert res.exit_code == 2 and "Did you mean" in res.output
     res = runner.invoke(main, ["sim", "squarefield", "--robot-param", "wheel_radius=-0.1"])

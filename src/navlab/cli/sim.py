@@ -76,7 +76,8 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
     with the potential field as local avoider); obstacles with a `motion`
     move, and the robot can replan around them
     (--controller-param replan=true for the followers). Exit status 1 when
-    the robot does not reach the goal.
+    the robot does not reach the goal, or when no path leads there
+    (NO_PATH, INVALID_START, INVALID_GOAL: answers, as navlab plan gives them).
 
     \b
     Examples:
@@ -113,7 +114,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
                                             plan_params=parse_params(plan_params, "--plan-param"))
     except NoPathError as exc:
         # the planner's answer about this world, as `navlab plan` gives it: not bad input
-        click.echo(json.dumps({"status": "NO_PATH", "reason": str(exc)}) if as_json else f"NO_PATH ({exc})")
+        click.echo(json.dumps({"status": exc.status, "reason": str(exc)}) if as_json else f"{exc.status} ({exc})")
         sys.exit(1)
     if trajectory:
         from ..sim.trajectory import write_trajectory_csv

@@ -30,7 +30,12 @@ def _has_moving(scene_world) -> bool:
 
 class NoPathError(ValueError):
     """The global planner found no path for the robot (an answer about the
-    world, not bad input: an experiment records it and goes on)."""
+    world, not bad input: an experiment records it and goes on). ``status``
+    says which answer, as ``navlab plan``'s statuses do."""
+
+    def __init__(self, reason: str, status: str = "NO_PATH") -> None:
+        super().__init__(reason)
+        self.status = status
 
 
 def _is_number(value: Any) -> bool:
@@ -186,7 +191,8 @@ def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: 
     scene = Scene(scene_world, robot.radius)
     for label, p in (("start", start), ("goal", goal)):
         if not scene.free(p):
-            raise ValueError(f"the {label} is in collision: {scene.describe(p)}")
+            # an answer about the world, as navlab plan's INVALID_START / INVALID_GOAL
+            raise NoPathError(f"the {label} is in collision: {scene.describe(p)}", f"INVALID_{label.upper()}")
     path = _plan_path(scene_world, robot.radius, start, goal, planner, sampler, params=params or None)
     if not isinstance(path, np.ndarray):
         raise NoPathError(f"no path for the robot from {start[:2]} to {goal}: {path.status.name} {path.reason}")

@@ -310,7 +310,10 @@ class Scene:
             return self.hit(p, p) or f"{where} is free"
         if self.is_grid:
             return f"{where} overlaps a blocked cell or leaves the map (robot radius {self.radius:g} m)"
-        return f"{where} is within the robot radius {self.radius:g} m of an obstacle or outside the bounds"
+        b = self.world.bounds
+        if not b.contains(np.asarray(p[:2], float))[0]:
+            return f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]"
+        return f"{where} is within the robot radius {self.radius:g} m of an obstacle or of the bounds"
 
 
 def _as_shapely(shape):

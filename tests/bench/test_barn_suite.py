@@ -1,5 +1,6 @@
 """The BARN suite end to end: two shipped worlds through the CLI, resumable, and its bad inputs."""
 
+import csv
 import json
 import shutil
 from pathlib import Path
@@ -26,6 +27,9 @@ def test_two_worlds_end_to_end_and_resume(tmp_path):
     assert result.exit_code == 0, result.output
     rows = [json.loads(line) for line in (out / "results.jsonl").read_text().splitlines()]
     assert sorted(r["world"] for r in rows) == [0, 36]
+    with open(out / "results.csv", newline="") as f:  # the same runs as one flat table
+        table = list(csv.DictReader(f))
+    assert sorted(r["trial_id"] for r in table) == sorted(r["trial_id"] for r in rows)
     for row in rows:
         assert row["status"] in barn.STATUSES
         # the row's OT is the path file's, by hand: start, cells in metres, goal, at 2 m/s

@@ -254,7 +254,7 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
     from ..atomic import write_text_atomic
     from .executors import EXECUTORS, check_executor
     from .runner import _progress, stopped
-    from .store import ResultStore
+    from .store import ResultStore, write_error
 
     for nav in study.navigators:
         check_navigator(nav, str(study.data / f"world_{study.worlds[0]}.world") if study.worlds else None)
@@ -283,8 +283,13 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
         summary["ran"] = len(todo)
         write_text_atomic(store.folder / "summary.json", json.dumps(summary, indent=1, default=str))
         from .barn_report import write_barn_report
+        from .export import write_csv
 
         write_barn_report(study, rows, summary, store.folder, plots=plots)
+        try:  # the same runs as one flat table, as every navlab bench folder has
+            write_csv(store.results_path, store.folder / "results.csv")
+        except OSError as exc:
+            raise write_error(store.folder / "results.csv", exc) from None
     return store.folder, rows, summary
 
 

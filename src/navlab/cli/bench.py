@@ -106,8 +106,8 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     """Run a benchmark: EXPERIMENT (a YAML file) or --suite NAME, optionally
     changed by flags, or an experiment made of flags alone (--world, --planner).
 
-    Rows go to OUT/results.jsonl as trials finish; OUT/report.md and
-    OUT/report.html summarise them, and OUT/results.csv holds the same trials
+    Rows go to OUT/results.jsonl as trials finish; OUT/report.md (and, but
+    for --suite barn, OUT/report.html) summarise them, and OUT/results.csv holds the same trials
     as one flat table (navlab bench export DIR --format csv|parquet converts
     any results folder). Exit status 1 when a trial errored,
     2 for bad input (nothing runs), 130 when stopped by Ctrl-C (the finished
@@ -212,7 +212,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         click.echo(line)
     for verdict in _overall(summary):
         click.echo(verdict)
-    click.echo(f"report: {run.folder / 'report.html'} (and report.md, results.jsonl)")
+    click.echo(f"report: {run.folder / 'report.html'} (and report.md, results.jsonl, results.csv)")
     for line in breakdown_lines(run, _since_navlab_start()):
         click.echo(line)
     if run.errors:
@@ -256,7 +256,7 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
     for line in means_table(summary):
         click.echo(line)
     click.echo(disclaimer(study.lidar))
-    click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl)")
+    click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl, results.csv)")
     if any(r["status"] == "ERROR" for r in rows):
         sys.exit(1)
 

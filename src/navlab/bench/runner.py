@@ -22,7 +22,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List, Optional, Sequence
 
 from ..atomic import write_text_atomic
 from .analysis import by_world, judge_claims, summarize, timed
@@ -37,8 +37,11 @@ from .trial import execute, machine
 class Interrupted(Exception):
     """Ctrl-C during a run: the rows written so far are kept."""
 
-    def __init__(self, folder: Path, kept: int, total: int) -> None:
-        super().__init__(f"interrupted: {kept} of {total} trials kept in {folder}")
+    def __init__(self, folder: Path, kept: int, total: int, repeats_kept: int = 0, repeats: int = 0) -> None:
+        # the progress bar counted the noise repeats too: say them, so the two counts add up
+        self.counts = f"{kept} of {total} trials" + (f" and {repeats_kept} of {repeats} noise repeats" if repeats
+                                                     else "")
+        super().__init__(f"interrupted: {self.counts} kept in {folder}")
         self.folder, self.kept, self.total = folder, kept, total
 
 
@@ -115,7 +118,7 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                     bar.update(1)
             except KeyboardInterrupt:
                 bar.close()
-                raise stopped(store, specs) from None
+                raise stopped(store, specs, experiment.noise_specs()) from None
             bar.close()
         elapsed = time.perf_counter() - t0
         phases["trials"] = elapsed
@@ -135,11 +138,13 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 
-def stopped(store: ResultStore, specs: List[Dict[str, Any]]) -> Interrupted:
-    """After Ctrl-C: close the store (releasing its lock) and say how many of ``specs`` are on disk."""
+def stopped(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]] = ()) -> Interrupted:
+    """After Ctrl-C: close the store (releasing its lock) and say how many of ``specs`` (and of the
+    noise ``repeats``) are on disk."""
     store.close()
     kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
-    return Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs))
+    return Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs),
+                       len(kept & {s["trial_id"] for s in repeats}), len(repeats))
 
 
 def _progress(total: int, desc: str, enabled: bool):

@@ -185,7 +185,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
                              overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)
     except Interrupted as stop:
-        click.echo(f"\ninterrupted: {stop.kept} of {stop.total} trials are kept in {stop.folder}; "
+        click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
                    f"run the rest with: {_resume_command()}", err=True)
         sys.exit(EXIT_INTERRUPTED)
     except KeyboardInterrupt:  # before or after the trials: every finished trial is on disk

@@ -28,22 +28,12 @@ import numpy as np
 
 from .limits import check_seed
 from .pose_queries import POSE_PLANNERS, is_pose_query
-from . import queries
-from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, path_length,  # noqa: F401
+from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
                       planner_names, split_grid_params, split_params, tree_query)
 from .result import Result, Status
 from .registry import parameters_of
-from .sampling.planners import PLANNERS
 from .sampling.samplers import SAMPLERS
 
-
-def is_grid_planner(name: str) -> bool:
-    """Whether ``name`` is a grid algorithm (else a tree planner): the answer of
-    :func:`navlab.queries.is_grid_planner`, which raises for unknown names with
-    both lists, but a tree planner's name is answered from the tree registry
-    without importing the grid search (its module and 17 compiled kernels,
-    which a tree query never calls; the two registries share no name)."""
-    return name not in PLANNERS and queries.is_grid_planner(name)
 
 def _warm(planner: str, sampler: Optional[str], grid_settings: Optional[dict], on_map: bool) -> float:
     """Seconds spent warming this query's kernels (0 once they are loaded).

@@ -36,13 +36,16 @@ def planner_names() -> list[str]:
 
 def is_grid_planner(name: str) -> bool:
     """Whether ``name`` is a grid algorithm (else a tree planner); unknown names
-    raise :class:`~navlab.registry.UnknownNameError` listing both kinds."""
+    raise :class:`~navlab.registry.UnknownNameError` listing both kinds. A tree
+    planner's name is answered from the tree registry first, without importing
+    the grid search (its module and compiled kernels, which a tree query never
+    calls; the two registries share no name)."""
+    if name in PLANNERS:
+        return False
     from .grid.planner import GRID_ALGORITHMS
 
     if name in GRID_ALGORITHMS:
         return True
-    if name in PLANNERS:
-        return False
     valid = planner_names()
     raise UnknownNameError(f"unknown planner '{name}'; valid: {', '.join(valid)}." + suggest(str(name), valid))
 

@@ -215,7 +215,7 @@ def _quarter_turned(cells: np.ndarray) -> np.ndarray:
 @njit(cache=True)
 def _pose_table(vertices, disc, reach, theta0, step, bins, margin, res):
     """Per bin, the cells :func:`_cells_touched` gives for the outline at the bin's heading
-    (quarter turns as in :func:`_swept_table`), packed (:func:`_packed`)."""
+    (quarter turns as in :func:`swept_group`), packed (:func:`_packed`)."""
     traced = bins // 4 if bins % 4 == 0 else bins
     groups = []
     pose = np.zeros((1, 3))

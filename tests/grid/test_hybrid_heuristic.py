@@ -135,7 +135,7 @@ def test_the_compiled_smoother_makes_the_same_path_as_the_public_solvers(motion,
 
 
 def test_the_smoothers_compiled_wrap_is_curves_wrap_bit_for_bit():
-    from navlab.grid.hybrid_astar import _wrap_compiled
+    from navlab.sampling.curves import _wrap_compiled
     from navlab.sampling.curves import _wrap
 
     rng = np.random.default_rng(4)

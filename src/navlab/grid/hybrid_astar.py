@@ -59,7 +59,7 @@ from shapely.geometry import Point, Polygon
 from ..limits import check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
-from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, advance, check_pose,
+from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_compiled, advance, check_pose,
                               check_turning_radius, trace_word)
 from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, lattice_for, pose_free,
                                           robot_outline)
@@ -298,16 +298,6 @@ def _shortcut(segments, start, r, motion, blocked, lattice, common):
     out_kinds, out_lengths = _shortcut_kernel(kinds, lengths, *start, r, motion == "reeds_shepp", blocked, common[0],
                                               lattice.ds, *common[1:])
     return list(zip(out_kinds.tolist(), out_lengths.tolist()))
-
-
-@njit(cache=True)
-def _wrap_compiled(angle: float) -> float:
-    """:func:`navlab.sampling.curves._wrap` for compiled code (numba has no ``math.fmod``;
-    ``np.fmod`` is the same C ``fmod``, so the same value bit for bit: tested)."""
-    a = np.fmod(angle + math.pi, 2.0 * math.pi)
-    if a <= 0.0:
-        a += 2.0 * math.pi
-    return a - math.pi
 
 
 @njit(cache=True)

@@ -184,3 +184,13 @@ def _wrap(angle: float) -> float:
         a += 2.0 * math.pi
     return a - math.pi
 
+
+@njit(cache=True)
+def _wrap_compiled(angle: float) -> float:
+    """:func:`_wrap` for compiled code (numba has no ``math.fmod``;
+    ``np.fmod`` is the same C ``fmod``, so the same value bit for bit: tested)."""
+    a = np.fmod(angle + math.pi, 2.0 * math.pi)
+    if a <= 0.0:
+        a += 2.0 * math.pi
+    return a - math.pi
+

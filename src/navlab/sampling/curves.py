@@ -193,4 +193,3 @@ def _wrap_compiled(angle: float) -> float:
     if a <= 0.0:
         a += 2.0 * math.pi
     return a - math.pi
-

@@ -81,6 +81,17 @@ def test_non_finite_robot_and_controller_settings_are_named(kind, name, params, 
         make(name, **params)
 
 
+@pytest.mark.parametrize("name, params", [
+    ("rpp", {"desired_linear_vel": -1}), ("dwa", {"max_vel_x": -1}), ("mppi", {"vx_max": 0}),
+    ("pure_pursuit", {"speed": -1}), ("potential_field", {"max_speed": -1}),
+])
+def test_an_out_of_range_controller_setting_names_the_controller(name, params):
+    setting = next(iter(params))
+    with pytest.raises(ValueError, match=rf"{name}\b.*{setting}|{setting}.*{name}\b") as raised:
+        make_controller(name, **params)
+    assert str(raised.value).count(name) >= 1 and "Error" not in str(raised.value)
+
+
 def test_the_cli_names_a_nan_wheel_angle():
     done = cli("sim", "one_obstacle", "--robot", "omni3", "--robot-param", "wheel_angles_deg=[.nan, 120, 240]")
     assert done.returncode == 2 and "wheel_angles_deg must be finite" in done.stderr

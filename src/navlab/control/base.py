@@ -60,12 +60,17 @@ def check_number(name: str, value: Any, low: float = 0.0, allow_low: bool = Fals
 
 
 def make_controller(name: str, **params) -> Controller:
-    from ..registry import check_finite, check_params
+    from ..registry import UnknownNameError, check_finite, check_params
 
     factory = CONTROLLERS.get(name)
     check_params(factory, params, f"controller '{name}'")
     check_finite(params, f"controller '{name}'")
-    return factory(**params)
+    try:
+        return factory(**params)
+    except ValueError as exc:  # a setting out of range: say whose, as the checks above do
+        if isinstance(exc, UnknownNameError) or name in str(exc):
+            raise
+        raise ValueError(f"controller '{name}': {exc}") from None
 
 
 class StallDetector:

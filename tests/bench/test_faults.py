@@ -141,3 +141,13 @@ def test_pool_folders_of_killed_runs_are_removed_and_live_ones_kept(tmp_path, mo
         (folder / OWNER_FILE).write_text(owner)
     assert remove_abandoned_pool_folders() == 1
     assert sorted(p.name for p in tmp_path.iterdir()) == [f"{POOL_PREFIX}b"]
+
+
+def test_the_progress_bar_title_counts_trials_and_noise_repeats_apart():
+    """The bar counts both: its title says how many of each, and only trials count as 'done before'."""
+    from navlab.bench.runner import _bar_label
+
+    assert _bar_label("e", 1, 1, 1) == "e (1 trial + 1 noise repeat)"
+    assert _bar_label("e", 20, 5, 10) == "e: 15 of 20 trials done before (5 trials + 10 noise repeats)"
+    assert _bar_label("e", 20, 20, 0) == "e"
+    assert _bar_label("e", 20, 0, 3) == "e: 20 of 20 trials done before (0 trials + 3 noise repeats)"

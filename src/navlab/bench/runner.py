@@ -101,13 +101,15 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         specs = experiment.trial_specs()
         done = store.finished()
         todo = interleave([s for s in specs if s["trial_id"] not in done])
-        todo += interleave([s for s in experiment.noise_specs() if s["trial_id"] not in done])
+        trials_todo = len(todo)
+        repeats_todo = interleave([s for s in experiment.noise_specs() if s["trial_id"] not in done])
+        todo += repeats_todo
         trees: Dict[str, Dict[str, Any]] = {}
         t0 = time.perf_counter()
         new_rows: List[Dict[str, Any]] = []
         if todo:
-            bar = _progress(len(todo), f"{experiment.name}: {len(specs) - len(todo)} of {len(specs)} done before"
-                            if len(todo) < len(specs) else experiment.name, progress)
+            bar = _progress(len(todo), _bar_label(experiment.name, len(specs), trials_todo, len(repeats_todo)),
+                            progress)
             try:
                 for row in run_trials(todo, jobs=jobs, scheduler=scheduler):
                     tree = row.pop("tree", None)
@@ -145,6 +147,16 @@ def stopped(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[D
     kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
     return Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs),
                        len(kept & {s["trial_id"] for s in repeats}), len(repeats))
+
+
+def _bar_label(name: str, trials: int, trials_todo: int, repeats_todo: int) -> str:
+    """The progress bar's title: the bar counts trials and noise repeats alike, so say both (one trial
+    showed a bar of 2), and how many trials an earlier run already kept."""
+    label = name + (f": {trials - trials_todo} of {trials} trials done before" if trials_todo < trials else "")
+    if repeats_todo:
+        label += f" ({trials_todo} trial{'s' if trials_todo != 1 else ''} + {repeats_todo} noise repeat"
+        label += "s)" if repeats_todo != 1 else ")"
+    return label
 
 
 def _progress(total: int, desc: str, enabled: bool):

@@ -5,7 +5,7 @@ they are at the time asked."""
 from __future__ import annotations
 
 import math
-from typing import Any, List, Optional, Union
+from typing import Any, List, Optional, Tuple, Union
 
 import numpy as np
 from numba import njit
@@ -293,16 +293,21 @@ class Scene:
         r = self.radius
         if not (b.xmin <= p[0] <= b.xmax and b.ymin <= p[1] <= b.ymax):
             return f"the robot left the bounds at ({p[0]:g}, {p[1]:g})"
+        near = self._nearest_static(p)
+        if near is not None and near[1] <= r + 1e-6:
+            return f"the robot hit obstacle {near[0]} ({self._kind(near[0])}) at ({p[0]:g}, {p[1]:g})"
+        return self.describe(p)
+
+    def _nearest_static(self, p) -> Optional[Tuple[int, float]]:
+        """The nearest obstacle that does not move, and its distance from ``p`` (0 inside it); None if none."""
         import shapely
 
         point = shapely.Point(p[0], p[1])
         near = [(i, _as_shapely(o).distance(point)) for i, o in enumerate(self.world.obstacles) if o.motion is None]
-        if near:
-            i, d = min(near, key=lambda x: x[1])
-            if d <= r + 1e-6:
-                kind = type(self.world.obstacles[i]).__name__.lower()
-                return f"the robot hit obstacle {i} ({kind}) at ({p[0]:g}, {p[1]:g})"
-        return self.describe(p)
+        return min(near, key=lambda x: x[1]) if near else None
+
+    def _kind(self, i: int) -> str:
+        return type(self.world.obstacles[i]).__name__.lower()
 
     def describe(self, p) -> str:
         where = f"({p[0]:g}, {p[1]:g})"
@@ -313,7 +318,18 @@ class Scene:
         b = self.world.bounds
         if not b.contains(np.asarray(p[:2], float))[0]:
             return f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]"
-        return f"{where} is within the robot radius {self.radius:g} m of an obstacle or of the bounds"
+        near = self._nearest_static(p)
+        if near is not None and near[1] <= self.radius + 1e-6:
+            i, gap = near
+            if gap == 0.0:
+                return f"{where} is inside obstacle {i} ({self._kind(i)})"
+            return (f"{where} is within the robot radius {self.radius:g} m of obstacle {i} ({self._kind(i)}; "
+                    f"clearance {gap:.4g} m)")
+        edge = min(p[0] - b.xmin, b.xmax - p[0], p[1] - b.ymin, b.ymax - p[1])
+        if edge <= self.radius + 1e-6:
+            return (f"{where} is within the robot radius {self.radius:g} m of the bounds "
+                    f"x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]")
+        return f"{where} is within the robot radius {self.radius:g} m of an obstacle"  # a moving one, where it is then
 
 
 def _as_shapely(shape):

@@ -15,6 +15,7 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from ..angles import wrap_angle as _wrap
 from ..registry import Registry
 from ..world.footprint import Footprint
 
@@ -50,14 +51,6 @@ def integrate_pose(pose: np.ndarray, vx: float, vy: float, omega: float, dt: flo
     dx = (vx * (s1 - s0) + vy * (c1 - c0)) / omega
     dy = (vx * (c0 - c1) + vy * (s1 - s0)) / omega
     return np.array((x + dx, y + dy, _wrap(th + dth)))
-
-
-def _wrap(angle: float) -> float:
-    """Angle in (−π, π]."""
-    a = math.fmod(angle + math.pi, 2.0 * math.pi)
-    if a <= 0.0:
-        a += 2.0 * math.pi
-    return a - math.pi
 
 
 def _positive(name: str, value: float) -> None:

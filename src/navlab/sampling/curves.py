@@ -21,6 +21,7 @@ from typing import Tuple
 import numpy as np
 from numba import njit
 
+from ..angles import wrap_angle as _wrap
 from ..limits import check_coordinate, check_length
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
@@ -176,13 +177,6 @@ class CurvePath:
         step = check_length("step", step, allow_zero=False)
         kinds, lengths = self._codes()
         return trace_word(*self.start, kinds, lengths, self.turning_radius, step)
-
-
-def _wrap(angle: float) -> float:
-    a = math.fmod(angle + math.pi, 2.0 * math.pi)
-    if a <= 0.0:
-        a += 2.0 * math.pi
-    return a - math.pi
 
 
 @njit(cache=True)

@@ -93,8 +93,9 @@ def test_the_bucket_queue_field_equals_heap_dijkstra_bit_for_bit():
         assert np.array_equal(holonomic_field(passable, gx, gy, res), heap_field(passable, gx, gy, res))
 
 
-def reference_shortcut(segments, start, r, motion, blocked, lattice, common):
-    """The smoother with the public solvers, one Python call per candidate (as before it was compiled)."""
+def reference_shortcut(segments, start, r, motion, blocked, clear, lattice, common):
+    """The smoother with the public solvers, one Python call per candidate (as before it was compiled),
+    reading every pose's cells (no clearance map: ``clear`` unused)."""
     from navlab.sampling.curves import LETTERS, CurvePath
     from navlab.sampling.footprint_lattice import NO_CLEARANCE, curve_free
 

@@ -209,11 +209,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
     near2 = _nearest_blocked2(blocked, cells_clear)
+    clear = np.sqrt(near2) * res  # clearance_map's values (the same squares' roots): curve checks skip far poses
     with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
         found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1] = search(
             blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
             motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-            *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, lattice.pose_cells,
+            *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc, lattice.pose_cells,
             lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions),
             bool(analytic_expansion), 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
@@ -232,7 +233,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     segments = [(int(lattice.prim_kind[j]), float(lattice.prim_len[j])) for j in reversed(chain)]
     segments += [(int(k), float(s)) for k, s in zip(akinds, alens) if k != NOP and abs(s) > 1e-12 * r]
     if smooth:
-        segments = _shortcut(segments, (lsx, lsy, lst), r, motion, blocked, lattice, common)
+        segments = _shortcut(segments, (lsx, lsy, lst), r, motion, blocked, clear, lattice, common)
     segments = _merged(segments)
     kinds = np.array([k for k, _ in segments], dtype=np.int64)
     lengths = np.array([s for _, s in segments])
@@ -290,19 +291,19 @@ def _cell_mask(shape, x, y) -> np.ndarray:
     return mask
 
 
-def _shortcut(segments, start, r, motion, blocked, lattice, common):
+def _shortcut(segments, start, r, motion, blocked, clear, lattice, common):
     """Greedy smoothing: from each waypoint, jump to the farthest later waypoint
     whose exact Dubins/Reeds–Shepp path is shorter and collision-free."""
     kinds = np.array([k for k, _ in segments], dtype=np.int64)
     lengths = np.array([s for _, s in segments], dtype=float)
     out_kinds, out_lengths = _shortcut_kernel(kinds, lengths, *start, r, motion == "reeds_shepp", blocked, common[0],
-                                              lattice.ds, *common[1:])
+                                              lattice.ds, *common[1:], clear, lattice.clear_disc)
     return list(zip(out_kinds.tolist(), out_lengths.tolist()))
 
 
 @njit(cache=True)
 def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, blocked, res, ds, theta0, step, bins,
-                     pose_cells, pose_start):
+                     pose_cells, pose_start, clear, clear_disc):
     """:func:`_shortcut` in one compiled call: the waypoints (the pose after each segment, as
     :meth:`CurvePath.end` computes it), then from each the farthest shortcut
     (:func:`_farthest_shortcut`). Returns the smoothed segments' kinds and lengths [m]."""
@@ -322,7 +323,7 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
     i = 0
     while i < n:
         j, used = _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins,
-                                     pose_cells, pose_start, kinds, lengths)
+                                     pose_cells, pose_start, clear, clear_disc, kinds, lengths)
         if j > 0:
             out_kinds[used_out:used_out + used] = kinds[:used]
             out_lengths[used_out:used_out + used] = lengths[:used]
@@ -337,14 +338,15 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
 
 @njit(cache=True)
 def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins, pose_cells,
-                       pose_start, kinds, lengths):
+                       pose_start, clear, clear_disc, kinds, lengths):
     """The farthest waypoint j > i + 1 whose shortest path from waypoint i is
     shorter than the path between them and collision-free, and how many
     segments that path has (written to ``kinds``, ``lengths`` [m], without
     padding and without segments of no length, as :meth:`CurvePath.of_word`
     drops them); (0, 0) when there is none. The same paths and lengths as
     :func:`dubins.shortest` / :func:`reeds_shepp.shortest`, without a Python
-    call per candidate."""
+    call per candidate. The curve checks read the clearance map ``clear`` [m] with the lattice's
+    ``clear_disc`` (:func:`~navlab.sampling.footprint_lattice.curve_free`: the same answers, sooner)."""
     seg = np.zeros(MAX_SEGMENTS)
     word_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     word_lens = np.zeros(MAX_SEGMENTS)
@@ -372,6 +374,6 @@ def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, the
         if length >= acc[j] - acc[i] - 1e-9:
             continue
         if curve_free(blocked, res, x0, y0, t0, kinds[:used], lengths[:used], radius, ds, theta0, step, bins,
-                      pose_cells, pose_start, np.zeros((0, 0)), np.zeros(3)):
+                      pose_cells, pose_start, clear, clear_disc):
             return j, used
     return 0, 0

@@ -252,8 +252,10 @@ def _swept_free(blocked, near2, cx, cy, offsets, lo, hi) -> bool:
 
 @njit(cache=True)
 def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins, pose_cells,
-              pose_start, seg, best_kinds, best_lens, akinds, alens) -> bool:
-    """The exact obstacle-free path from (x, y, θ) to the goal into ``akinds``/``alens`` [m]; whether it is free."""
+              pose_start, clear, clear_disc, seg, best_kinds, best_lens, akinds, alens) -> bool:
+    """The exact obstacle-free path from (x, y, θ) to the goal into ``akinds``/``alens`` [m]; whether it is free
+    (:func:`~navlab.sampling.footprint_lattice.curve_free` with the clearance map ``clear`` and the lattice's
+    ``clear_disc``: poses far from every blocked cell pass unread, the same answer)."""
     for i in range(MAX_SEGMENTS):
         akinds[i] = NOP
         alens[i] = 0.0
@@ -272,14 +274,14 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
             akinds[i] = dubins.WORDS[word, i]
         alens[0], alens[1], alens[2] = t * radius, p * radius, q * radius
     return curve_free(blocked, res, x, y, theta, akinds, alens, radius, ds, theta0, step, bins, pose_cells,
-                      pose_start, np.zeros((0, 0)), np.zeros(3))
+                      pose_start, clear, clear_disc)
 
 
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
-           swept_margin, near2, pose_cells, pose_start, ds, hfield, penalties, analytic_max, max_expansions,
-           use_analytic, analytic_ratio):
+           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, hfield, penalties, analytic_max,
+           max_expansions, use_analytic, analytic_ratio):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
 
@@ -289,7 +291,9 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
 
     The primitives' swept cells (``swept``, ``swept_used``, ``swept_lo``, ``swept_hi``: the lattice's
     table, :func:`~navlab.sampling.footprint_lattice.swept_group`) are built the first time a child
-    needs them, from the outline (``vertices``, ``disc``, ``reach``) and ``swept_margin``."""
+    needs them, from the outline (``vertices``, ``disc``, ``reach``) and ``swept_margin``. ``clear`` [m] is
+    ``sqrt(near2)·res`` (:func:`~navlab.sampling.footprint_lattice.clearance_map`'s values) for the analytic
+    expansion's curve checks, with the lattice's ``clear_disc``."""
     h, w = blocked.shape
     nprim = prim_kind.shape[0]
     cap = 1024
@@ -383,7 +387,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                     countdown = desired
                 countdown -= 1
             if attempt and _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
-                         pose_cells, pose_start, seg, best_kinds, best_lens, akinds, alens):
+                         pose_cells, pose_start, clear, clear_disc, seg, best_kinds, best_lens, akinds, alens):
                 return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
                     alens, expansions, solved, swept, swept_used
         elif not use_analytic:

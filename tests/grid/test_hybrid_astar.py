@@ -162,3 +162,29 @@ def test_smacs_analytic_schedule_tries_at_the_first_expansion_and_ends_no_sooner
         assert scheduled.stats["expansions"] >= every.stats["expansions"]
         later += scheduled.stats["expansions"] > every.stats["expansions"]
     assert later >= 1
+
+
+def test_the_map_tables_are_cached_by_content_not_by_the_array():
+    """The distance tables are cached by the blocked cells' content: a map of the same size and
+    resolution with cells the first path crossed blocked gets the answer a cold cache gives, and its
+    path stays clear of the new cells (shapely)."""
+    from navlab.grid import hybrid_astar
+
+    blocked = np.ones((120, 120), bool)
+    blocked[20:42, 10:92] = False
+    blocked[20:110, 70:92] = False
+    grid = OccupancyGrid(blocked, resolution=RES)
+    query = ((1.2, 1.55, 0.0), (4.05, 4.6, math.pi / 2), 0.5)
+    before = plan_hybrid(grid, *query, footprint=ROBOT)
+    assert before.success
+    # a block at the aisle's side under the first path's footprint: the second must go round it
+    blocked[20:26, 60:64] = True
+    grid = OccupancyGrid(blocked, resolution=RES)
+    with pytest.raises(AssertionError):
+        assert_clear(grid, retrace(before, query[0])[1], ROBOT)
+    warm = plan_hybrid(grid, *query, footprint=ROBOT)
+    hybrid_astar._map_tables.cache_clear()
+    cold = plan_hybrid(grid, *query, footprint=ROBOT)
+    assert warm.success and np.array_equal(warm.path, cold.path) and warm.cost == cold.cost
+    assert warm.stats["expansions"] == cold.stats["expansions"] and warm.cost > before.cost
+    assert_clear(grid, retrace(warm, query[0])[1], ROBOT)

@@ -95,6 +95,11 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
         sys.exit(1)
 
 
+#: the command may end the process at once after this verb (navlab.cli._exit_now): it writes with click.echo
+#: only and closes what it opens
+plan_cmd.exits_quickly = True
+
+
 def _note_ignored_shape(world, result) -> None:
     """Say so when a point planner ran in a world that names a footprint: its path is for a disc of
     ``robot_radius`` and ignores the outline and the headings (navlab sim switches to poses there)."""

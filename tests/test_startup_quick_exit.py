@@ -1,0 +1,107 @@
+"""The navlab command ends the process at once after `navlab plan` (navlab.cli._exit_now): the
+output, the files and the exit status stay whole, atexit handlers still run, and only the
+interpreter's teardown is skipped. Each case is a fresh process run the way a user runs it
+(python -m navlab); the truth is navlab.plan called in this process, the PNG format's own
+structure, and an object whose __del__ runs only in an ordinary teardown."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+import navlab
+
+PLAN = ["plan", "clutter", "--max-iter", "300", "--json"]
+
+
+def navlab_command(args, **kwargs):
+    return subprocess.run([sys.executable, "-m", "navlab", *args], timeout=300, **kwargs)
+
+
+@pytest.fixture(scope="module")
+def truth():
+    return navlab.plan("clutter", max_iter=300)
+
+
+def check_json(text, truth):
+    got = json.loads(text)  # one whole JSON document: nothing cut off at the exit
+    assert got["status"] == truth.status.name == "EXACT"
+    assert got["cost"] == pytest.approx(truth.cost, rel=1e-12)
+    np.testing.assert_allclose(got["path"], truth.path, rtol=1e-12)
+
+
+def test_plan_output_is_whole_through_a_pipe(truth):
+    out = navlab_command(PLAN, capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    check_json(out.stdout, truth)
+
+
+def test_plan_output_is_whole_in_a_file_and_so_is_the_plot(tmp_path, truth):
+    png = tmp_path / "plan.png"
+    with open(tmp_path / "out.json", "w") as stdout:
+        code = navlab_command([*PLAN, "--plot", str(png)], stdout=stdout, stderr=subprocess.PIPE).returncode
+    assert code == 0
+    check_json((tmp_path / "out.json").read_text(), truth)
+    data = png.read_bytes()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[-12:] == b"\x00\x00\x00\x00IEND\xaeB`\x82"  # PNG's signature and last chunk
+
+
+def test_exit_statuses_and_messages_survive():
+    failed = navlab_command(["plan", "clutter", "--max-iter", "1"], capture_output=True, text=True)
+    assert failed.returncode == 1  # answered without reaching the goal
+    assert failed.stdout.startswith("clutter: rrt_star + uniform, seed 0: FAILED")
+    bad = navlab_command(["plan", "clutter", "--seed", "-1"], capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stdout == ""
+    assert bad.stderr.startswith("Error: ") and bad.stderr.count("\n") == 1
+
+
+TEARDOWN = """
+import atexit, os, sys
+
+class Witness:
+    def __del__(self, write=os.write):  # its own reference to os.write: teardown may have cleared the globals
+        write(2, b"TEARDOWN\\n")
+
+sys.modules["navlab_test_witness"] = Witness()  # dropped when an ordinary exit empties sys.modules
+atexit.register(lambda: sys.stderr.write("ATEXIT\\n"))
+sys.argv = ["navlab", *ARGS]
+from navlab.cli import main
+main()  # bare, as the console script calls it
+"""
+
+
+@pytest.mark.parametrize("args, quick", [(["plan", "clutter", "--max-iter", "50"], True),
+                                         (["list", "scenes"], False)])
+def test_only_a_verb_that_says_so_skips_the_teardown_and_atexit_still_runs(args, quick):
+    out = subprocess.run([sys.executable, "-c", TEARDOWN.replace("ARGS", repr(args))], capture_output=True,
+                         text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    lines = out.stderr.splitlines()
+    assert "ATEXIT" in lines
+    assert ("TEARDOWN" in lines) is not quick
+
+
+EXIT_NOW = """
+import sys, threading, time
+from navlab.cli import _exit_now
+
+def late():
+    time.sleep(0.2)
+    print("JOINED", flush=True)
+
+CASE
+print("RETURNED", flush=True)
+"""
+
+
+@pytest.mark.parametrize("case, printed, code", [
+    ("threading.Thread(target=late).start(); _exit_now(3)", ["RETURNED", "JOINED"], 0),  # a live thread: joined
+    ("_exit_now('a message')", ["RETURNED"], 0),  # not a number: Python prints it
+    ("print('WRITTEN', end='')\n_exit_now(3)", ["WRITTEN"], 3),  # buffered output flushed, then gone at once
+])
+def test_exit_now_leaves_the_cases_it_cannot_take_to_the_ordinary_exit(case, printed, code):
+    out = subprocess.run([sys.executable, "-c", EXIT_NOW.replace("CASE", case)], capture_output=True, text=True,
+                         timeout=60)
+    assert out.stdout.split() == printed and out.returncode == code

@@ -180,3 +180,40 @@ def test_the_shapely_recheck_finds_an_overlap_exactly_when_one_exists(few_cells,
             x, y = hit
             box = shapely.box(x * res - grow, y * res - grow, (x + 1) * res + grow, (y + 1) * res + grow)
             assert ringed[y + 1, x + 1] and shapely.intersects(shapes[overlapping[0]], box)
+
+
+def test_the_near_pose_check_answers_as_reading_every_cell():
+    """With a clearance map a pose's check stops at the first cell nearer than the nearest blocked or
+    off-map cell; its answers must be pose_free's (every cell read) on random maps, at poses all over
+    the map and just off it, every heading, every outline; and curve_free's with and without the map."""
+    from navlab.sampling import reeds_shepp
+    from navlab.sampling.footprint_lattice import NO_CLEARANCE, _pose_free_near, clearance_map, curve_free, pose_free
+
+    rng = np.random.default_rng(9)
+    for name in sorted(OUTLINES):
+        vertices, disc, radius, res = OUTLINES[name]
+        lattice = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 16, True, 0.2)
+        common = (lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
+        for b in range(lattice.bins):  # outermost first in every bin
+            cells = lattice.pose_cells[lattice.pose_start[b]:lattice.pose_start[b + 1]]
+            assert (np.diff((cells ** 2).sum(axis=1)) <= 0).all()
+        free = blocked_poses = 0
+        for density in (0.002, 0.02, 0.1):
+            blocked = rng.random((60, 70)) < density
+            clear = clearance_map(blocked, res)
+            agree = 0
+            for _ in range(1500):
+                x, y = rng.uniform(-2 * res, 72 * res), rng.uniform(-2 * res, 62 * res)
+                theta = rng.uniform(-math.pi, math.pi)
+                expected = pose_free(blocked, res, x, y, theta, *common)
+                agree += _pose_free_near(blocked, res, x, y, theta, *common, clear) == expected
+                free += expected
+                blocked_poses += not expected
+            assert agree == 1500
+            for _ in range(150):
+                a = (rng.uniform(0, 70 * res), rng.uniform(0, 60 * res), rng.uniform(-3, 3))
+                b = (rng.uniform(0, 70 * res), rng.uniform(0, 60 * res), rng.uniform(-3, 3))
+                kinds, lengths = reeds_shepp.shortest(a, b, radius)._codes()
+                args = (blocked, res, *a, kinds, lengths, radius, lattice.ds, *common)
+                assert curve_free(*args, clear, lattice.clear_disc) == curve_free(*args, *NO_CLEARANCE)
+        assert free > 100 and blocked_poses > 100  # both answers are tested

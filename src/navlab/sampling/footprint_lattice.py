@@ -214,15 +214,17 @@ def _quarter_turned(cells: np.ndarray) -> np.ndarray:
 
 @njit(cache=True)
 def _pose_table(vertices, disc, reach, theta0, step, bins, margin, res):
-    """Per bin, the cells :func:`_cells_touched` gives for the outline at the bin's heading
-    (quarter turns as in :func:`swept_group`), packed (:func:`_packed`)."""
+    """Per bin, the cells :func:`_cells_touched` gives for the outline at the bin's heading, outermost
+    first (:func:`_outermost_first`: :func:`_pose_free_near` stops at the first cell nearer than the
+    nearest blocked one; quarter turns as in :func:`swept_group`, which keep the order), packed
+    (:func:`_packed`)."""
     traced = bins // 4 if bins % 4 == 0 else bins
     groups = []
     pose = np.zeros((1, 3))
     for b in range(bins):
         if b < traced:
             pose[0, 2] = theta0 + b * step
-            groups.append(_cells_touched(vertices, disc, reach, pose, margin, res))
+            groups.append(_outermost_first(_cells_touched(vertices, disc, reach, pose, margin, res)))
         else:
             groups.append(_quarter_turned(groups[b - traced]))
     return _packed(groups)
@@ -367,6 +369,29 @@ def pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_st
     return free_cells(blocked, cx, cy, pose_cells, pose_start[b], pose_start[b + 1])
 
 
+@njit(cache=True)
+def _pose_free_near(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear) -> bool:
+    """:func:`pose_free`'s answer, reading fewer cells with a clearance map (:func:`clearance_map`; or none,
+    shape (0, 0)): the pose's cells come outermost first, and from the first one whose centre is nearer the
+    pose cell's centre than the nearest blocked or off-map cell's, every remaining one is nearer too, so
+    none of them can be blocked. Nearer is decided on whole squared cell distances, with the clearance
+    lowered by a relative 1e-9 so its rounding cannot let a blocked cell pass."""
+    cx, cy = int(math.floor(x / res)), int(math.floor(y / res))
+    b = int(round((theta - theta0) / step)) % bins
+    h, w = blocked.shape
+    inside = 0.0
+    if clear.shape[0] and 0 <= cx < w and 0 <= cy < h:
+        inside = (clear[cy, cx] / res) ** 2 * (1.0 - 1e-9)
+    for i in range(pose_start[b], pose_start[b + 1]):
+        ox, oy = pose_cells[i, 0], pose_cells[i, 1]
+        if ox * ox + oy * oy < inside:
+            return True
+        px, py = cx + ox, cy + oy
+        if px < 0 or py < 0 or px >= w or py >= h or blocked[py, px]:
+            return False
+    return True
+
+
 def clearance_map(blocked: np.ndarray, res: float) -> np.ndarray:
     """[m] The distance from each cell's centre to the nearest blocked cell's centre,
     cells beyond the map's edge counting as blocked (0 on blocked cells): with
@@ -415,7 +440,9 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     is far from every blocked cell passes without reading its cells, and so
     do the following poses while the disc centre cannot have moved out of
     that room (a pose's centre moves at most ``(1 + |c0| / r)`` times the arc
-    length between them): exactly the same answers, in open space far sooner."""
+    length between them), and a pose near one reads only its cells farther out
+    than the nearest blocked cell (:func:`_pose_free_near`): exactly the same
+    answers, in open space far sooner."""
     n = kinds.shape[0]
     start = np.empty((n, 3))
     pieces = np.zeros(n, dtype=np.int64)
@@ -427,7 +454,7 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
         pieces[j] = max(1, int(math.ceil(abs(lengths[j]) / ds)))
         cx, cy, ct = advance(cx, cy, ct, kinds[j], lengths[j] * pieces[j] / pieces[j], radius)
     if clear_slack(clear, res, x, y, theta, disc) < 0.0 and \
-            not pose_free(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start):
+            not _pose_free_near(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear):
         return False
     # the end first: a tree's curves mostly end in what they hit (a sample inside an obstacle)
     last = n - 1
@@ -436,7 +463,7 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     if last >= 0:
         ex, ey, et = advance(start[last, 0], start[last, 1], start[last, 2], kinds[last], lengths[last], radius)
         if clear_slack(clear, res, ex, ey, et, disc) < 0.0 and \
-                not pose_free(blocked, res, ex, ey, et, theta0, step, bins, pose_cells, pose_start):
+                not _pose_free_near(blocked, res, ex, ey, et, theta0, step, bins, pose_cells, pose_start, clear):
             return False
     offset = math.hypot(disc[0], disc[1])
     for fine in range(2):
@@ -459,7 +486,7 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
                     else:
                         p += 1
                     continue
-                if not pose_free(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start):
+                if not _pose_free_near(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start, clear):
                     return False
                 p += 1
     return True

@@ -22,7 +22,6 @@ import numpy as np
 
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
-from .sampling.curves import LETTERS, CurvePath, check_turning_radius
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
@@ -125,6 +124,8 @@ def _pose_grid(world, resolution):
 
 def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str, Any], Any]:
     """The settings shared by every heading-aware query, checked; the rest returned as ``settings``."""
+    from .sampling.curves import check_turning_radius  # not at the top: navlab plan clutter never steers curves
+
     settings = dict(params)
     unknown = sorted(set(settings) - set(valid))
     if unknown:
@@ -200,6 +201,7 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
     steering (:mod:`navlab.sampling.se2_planners`), edges checked with the
     footprint on the world's cells (as Hybrid A*), the path re-checked
     against the exact world."""
+    from .sampling.curves import LETTERS, CurvePath
     from .sampling.footprint_lattice import check_turning_scale, lattice_for, robot_outline
     from .sampling.se2_planners import SE2_TREE_PARAMS, plan_se2_tree
 
@@ -249,6 +251,7 @@ def footprint_hits_world(world, footprint, result: Result) -> Optional[str]:
     """Why the path's footprint overlaps an obstacle of the exact world (None
     when it does not), checked with shapely at poses :data:`VERIFY_SPACING` apart.
     On a map, against its blocked cells (:func:`~navlab.sampling.footprint_lattice.first_overlap`)."""
+    from .sampling.curves import CurvePath
     from .sampling.footprint_lattice import first_overlap, robot_outline
 
     curve = CurvePath(tuple(result.path[0]), result.stats["word"], tuple(result.stats["segments"]),

@@ -188,3 +188,17 @@ def test_the_map_tables_are_cached_by_content_not_by_the_array():
     assert warm.success and np.array_equal(warm.path, cold.path) and warm.cost == cold.cost
     assert warm.stats["expansions"] == cold.stats["expansions"] and warm.cost > before.cost
     assert_clear(grid, retrace(warm, query[0])[1], ROBOT)
+
+
+def test_the_default_analytic_reach_is_three_metres_or_three_turning_radii():
+    """By default the analytic expansion reaches max(3 m, 3 r): a car turning on 4 m tries it from 12 m, so
+    an obstacle-free goal 10 m away is reached at the first expansion, on the exact Reeds-Shepp path; with
+    Smac's 3 m it is not; a robot turning on 0.5 m keeps 3 m."""
+    free = OccupancyGrid(np.zeros((400, 400), bool), resolution=RES)
+    start, goal = (5.0, 5.0, 0.0), (13.0, 11.0, 2.0)
+    default = plan_hybrid(free, start, goal, 4.0, robot_radius=0.2)
+    assert default.params["analytic_expansion_max_length"] == 12.0 and default.stats["expansions"] == 1
+    assert default.cost == pytest.approx(reeds_shepp.distance(start, goal, 4.0), rel=1e-9)
+    smac = plan_hybrid(free, start, goal, 4.0, robot_radius=0.2, analytic_expansion_max_length=3.0)
+    assert smac.stats["expansions"] > 1
+    assert plan_hybrid(free, start, goal, 0.5, robot_radius=0.2).params["analytic_expansion_max_length"] == 3.0

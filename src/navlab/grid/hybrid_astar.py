@@ -73,9 +73,15 @@ DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
     "reverse_penalty": 2.0,
     "change_penalty": 0.0,
     "non_straight_penalty": 1.2,
-    "analytic_expansion_max_length": 3.0,  # [m]
+    "analytic_expansion_max_length": None,  # [m] None: ANALYTIC_MIN_LENGTH or ANALYTIC_RADII turning radii
     "max_expansions": 200_000,
 }
+#: [m] the analytic expansion's reach at least (Nav2 Smac's default ``analytic_expansion_max_length``)
+ANALYTIC_MIN_LENGTH = 3.0
+#: ... and at least this many turning radii: a shortest path to a goal within about one radius is
+#: mostly turning, which Smac's 3 m assumes of a robot turning on 0.4 m; a car turning on 4.4 m
+#: (PythonRobotics') would otherwise try it only from poses nearer than its own radius
+ANALYTIC_RADII = 3.0
 
 # ---------------------------------------------------------------------------
 # the planner
@@ -86,7 +92,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                 change_penalty: float = DEFAULTS["change_penalty"],
                 non_straight_penalty: float = DEFAULTS["non_straight_penalty"],
                 analytic_expansion: bool = True,
-                analytic_expansion_max_length: float = DEFAULTS["analytic_expansion_max_length"],
+                analytic_expansion_max_length: Optional[float] = DEFAULTS["analytic_expansion_max_length"],
                 analytic_expansion_ratio: Optional[float] = None,
                 max_expansions: int = DEFAULTS["max_expansions"], smooth: bool = True,
                 waypoint_spacing: Optional[float] = None) -> Result:
@@ -112,6 +118,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         Try the exact Dubins/Reeds–Shepp path to the goal from nodes within
         ``analytic_expansion_max_length`` of it [m]. Without it the search ends
         in the goal's cell and heading bin (the path then ends there, not at the goal).
+    analytic_expansion_max_length : float, optional
+        [m] None (the default): the larger of 3 m (Nav2 Smac's default) and 3
+        turning radii (:data:`ANALYTIC_MIN_LENGTH`, :data:`ANALYTIC_RADII`).
     analytic_expansion_ratio : float, optional
         Try the analytic expansion only on Nav2 Smac's schedule: every
         max(⌊h / ratio⌋, ⌈ratio⌉)-th expansion within ``analytic_expansion_max_length``,
@@ -150,7 +159,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth)):
         if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
             raise ValueError(f"{name} must be true or false, got {value!r}")
-    analytic_max = check_length("analytic_expansion_max_length", analytic_expansion_max_length)
+    analytic_max = max(ANALYTIC_MIN_LENGTH, ANALYTIC_RADII * r) if analytic_expansion_max_length is None else \
+        check_length("analytic_expansion_max_length", analytic_expansion_max_length)
     if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
                                                                    analytic_expansion_ratio) > 0:
         raise ValueError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")

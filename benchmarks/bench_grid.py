@@ -119,8 +119,8 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     fresh grid (kernels already loaded) is timed apart from repeated ones;
     medians of wall and of CPU time (``cpu`` ratios). Bytes per expanded
     cell: the search state the query touched over the cells it expanded,
-    counted two ways: cells written (their 8-byte state, the padded grid's
-    byte and the legal-move byte) and whole 4 KB pages of the state
+    counted two ways: cells written (their 8-byte state and the
+    legal-move byte) and whole 4 KB pages of the state
     array written (what a first query pays to map). With ``with_scipy``,
     navlab's Dijkstra against scipy's on the explicit graph (built apart,
     untimed; scipy has no goal, so it settles every reachable cell)."""
@@ -161,7 +161,7 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
     print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
     print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (8 B of")
-    print("state each, +1 grid byte, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
+    print("state each, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
     print(load_line("at end"))
 
 
@@ -260,7 +260,7 @@ def touched_bytes(grid):
 
     (searcher,) = pool_for(grid, False)._idle
     written = searcher.g != 0
-    per_cell = 8 + 1 + 1
+    per_cell = 8 + 1  # the state and the legal-move byte (A* and JPS build no padded copy of the grid)
     page = 4096 // searcher.g.itemsize
     pages = np.count_nonzero(np.add.reduceat(written, np.arange(0, written.size, page)))
     return int(np.count_nonzero(written)) * per_cell, pages * 4096

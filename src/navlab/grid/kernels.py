@@ -149,9 +149,9 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 # -- per-cell search state -------------------------------------------------------
 # One float64 per cell is all A* keeps: 0.0 unseen, g + 1 while open, -(g + 1)
 # once closed (g + 1 > 0 keeps the start's g = 0 apart from "unseen"). With the
-# padded grid's byte and its legal-move byte (:func:`legal_moves`) that is 10
-# bytes per cell, for JPS too (21 with separate g, parent, mark and slot
-# arrays): fewer bytes and one cache line per neighbour. The
+# legal-move byte (:func:`legal_moves`) that is 9 bytes per cell, for JPS too
+# (21 with separate g, parent, mark and slot arrays, 10 with a padded copy of
+# the grid): fewer bytes and one cache line per neighbour. The
 # state starts as np.zeros (untouched pages stay unallocated), and a query
 # records the rows and columns it expanded so that the next query can zero
 # just those (:func:`clear_touched`) instead of the whole grid.
@@ -231,36 +231,64 @@ CANONICAL = _canonical_table()
 
 
 @njit(cache=True)
-def legal_moves(free, S):
+def legal_moves(blocked, unknown):
     """Each padded cell's legal 8-connected moves as a bit mask (bit k: move
     ``(MOVES_X[k], MOVES_Y[k])`` stays on free cells and, diagonally, cuts no
     blocked corner; 0 for blocked and border cells; the 4-connected moves are
-    bits 0-3).
+    bits 0-3), from the unpadded ``blocked`` cells (and ``unknown`` ones,
+    also closed unless the array has no rows).
 
     Built once per grid (the grid is immutable; ``planner.PaddedGrid`` keeps
     it), so an expansion reads one byte and visits only its legal moves
     instead of testing up to eight grid bytes with a branch each (the
     branches follow the random map and mispredict): A* and Dijkstra 10-15%
     faster per expansion on random4096 and maze1001 (in-process A/B, CPU
-    medians of 5-9 interleaved runs at load 6). Branch-free and
-    indexed through ``np.uint64``, so LLVM vectorises it: 3 ms on a 4096 x 4096
-    grid plus the mask's fresh pages (~12 ms), paid by the grid's first query.
+    medians of 5-9 interleaved runs at load 6). Branch-free and indexed
+    through ``np.uint64``. It reads three padded rows of free cells kept in
+    a ring, not a padded copy of the whole grid: A*, Dijkstra and JPS need
+    no such copy (``PaddedGrid.free`` is built for Theta*, smoothing and
+    line of sight only), and its 4 KB pages were a first query's to map
+    (4100 on 4096 x 4096, at 2-14 us each in this VM): ``PaddedGrid`` on a
+    4096 x 4096 grid 18-23 -> 4.5-5.0 ms CPU (medians of 5, three
+    interleaved pairs of processes, load 14).
     """
-    n = free.shape[0]
-    out = np.empty(n, dtype=np.uint8)
-    out[:S + 1] = 0
-    out[n - S - 1:] = 0
-    s = np.uint64(S)
-    one = np.uint64(1)
-    for u in range(np.uint64(S + 1), np.uint64(n - S - 1)):
-        e = np.int32(free[u + one])
-        w = np.int32(free[u - one])
-        no = np.int32(free[u + s])
-        so = np.int32(free[u - s])
-        m = (e | (w << 1) | (no << 2) | (so << 3)
-             | ((e & no & np.int32(free[u + one + s])) << 4) | ((w & no & np.int32(free[u - one + s])) << 5)
-             | ((e & so & np.int32(free[u + one - s])) << 6) | ((w & so & np.int32(free[u - one - s])) << 7))
-        out[u] = np.uint8(m * np.int32(free[u]))
+    h, w = blocked.shape
+    S = w + 2
+    out = np.empty((h + 2) * S, dtype=np.uint8)
+    out[:S] = 0
+    out[(h + 1) * S:] = 0
+    ring = np.zeros((3, S), dtype=np.uint8)  # padded row p in slot p % 3; the border columns stay 0
+    closed_unknown = unknown.shape[0] > 0
+    for r in range(0, h + 1):
+        nxt = (r + 1) % 3
+        if r < h:  # padded row r + 1 is grid row r
+            row = ring[nxt]
+            if closed_unknown:
+                for x in range(w):
+                    row[x + 1] = np.uint8(1) ^ (np.uint8(blocked[r, x]) | np.uint8(unknown[r, x]))
+            else:
+                for x in range(w):
+                    row[x + 1] = np.uint8(1) ^ np.uint8(blocked[r, x])
+        else:
+            ring[nxt, :] = 0
+        if r == 0:
+            continue
+        so = ring[(r - 1) % 3]
+        me = ring[r % 3]
+        no = ring[nxt]
+        base = np.uint64(r * S)
+        out[base] = 0
+        out[base + np.uint64(w + 1)] = 0
+        one = np.uint64(1)
+        for x in range(one, np.uint64(w + 1)):
+            east = np.int32(me[x + one])
+            west = np.int32(me[x - one])
+            north = np.int32(no[x])
+            south = np.int32(so[x])
+            m = (east | (west << 1) | (north << 2) | (south << 3)
+                 | ((east & north & np.int32(no[x + one])) << 4) | ((west & north & np.int32(no[x - one])) << 5)
+                 | ((east & south & np.int32(so[x + one])) << 6) | ((west & south & np.int32(so[x - one])) << 7))
+            out[base + x] = np.uint8(m * np.int32(me[x]))
     return out
 
 
@@ -489,17 +517,14 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
 
 
 @njit(cache=True)
-def _predecessor(free, S, gs, v, n_moves):
+def _predecessor(moves, S, gs, v, n_moves):
     """A reached neighbour u of v with |gs[u]| + step(u, v) == |gs[v]| (the
-    same float sum that set gs[v]), over a legal move; -1 if there is none."""
+    same float sum that set gs[v]), over a legal move (``moves``: the legal-move
+    masks); -1 if there is none."""
     gv = abs(gs[v])
     for k in range(n_moves):
-        dx = MOVES_X[k]
-        dy = MOVES_Y[k]
-        u = v - dx - dy * S
-        if free[u] == 0 or gs[u] == 0.0:
-            continue
-        if k >= 4 and (free[u + dx] == 0 or free[u + dy * S] == 0):
+        u = v - MOVES_X[k] - MOVES_Y[k] * S
+        if (moves[u] >> k) & 1 == 0 or gs[u] == 0.0:  # u cannot step to v, or was never reached
             continue
         if abs(gs[u]) + (SQRT2 if k >= 4 else 1.0) == gv:
             return u
@@ -507,7 +532,7 @@ def _predecessor(free, S, gs, v, n_moves):
 
 
 @njit(cache=True)
-def trace_back(free, S, gs, start, goal, conn):
+def trace_back(moves, S, gs, start, goal, conn):
     """Cells (x, y) from start to goal of the path A* found, read from ``gs``
     alone (A* keeps no parents).
 
@@ -527,7 +552,7 @@ def trace_back(free, S, gs, start, goal, conn):
     count = 1
     v = goal
     while v != start:
-        v = _predecessor(free, S, gs, v, n_moves)
+        v = _predecessor(moves, S, gs, v, n_moves)
         if v < 0:
             return np.empty((0, 2), dtype=np.int64)
         count += 1
@@ -537,7 +562,7 @@ def trace_back(free, S, gs, start, goal, conn):
         out[m, 0] = v % S - 1
         out[m, 1] = v // S - 1
         if m > 0:
-            v = _predecessor(free, S, gs, v, n_moves)
+            v = _predecessor(moves, S, gs, v, n_moves)
     return out
 
 

@@ -53,26 +53,46 @@ for _name, _doc in (("dijkstra", "uniform-cost search (no heuristic)"),
 
 
 class PaddedGrid:
-    """A grid's passable cells with a blocked border, flattened: read-only, shared by every query.
+    """A grid's legal moves (``kernels.legal_moves``) and passable cells, each
+    with a blocked border one cell wide, flattened: read-only, shared by every query.
 
-    Built from ``blocked`` (and ``unknown`` cells, also closed unless None)
-    straight into the padded array: no whole-grid temporaries, which on a
-    first query cost as much as the search's own state (fresh pages). With
-    it, each cell's legal moves (``kernels.legal_moves``).
+    ``moves`` is built at once, straight from ``blocked`` (and ``unknown``
+    cells, also closed unless None), and is all A*, Dijkstra and JPS read;
+    ``free`` (one byte per padded cell) only when first asked for, by Theta*,
+    smoothing or line of sight: its 4 KB pages were a first query's to map
+    (about 4100 on a 4096 x 4096 grid; ``kernels.legal_moves``). No
+    whole-grid temporaries either, which on a first query cost as much as
+    the search's own state (fresh pages).
     """
 
     def __init__(self, blocked: np.ndarray, unknown: Optional[np.ndarray] = None) -> None:
         h, w = blocked.shape
         self.stride = w + 2
+        self.blocked = blocked
+        self.unknown = unknown if unknown is not None and unknown.any() else None
+        closed = np.zeros((0, 0), dtype=bool) if self.unknown is None else self.unknown
+        self.moves = K.legal_moves(blocked, closed)  # one byte per cell: the legal moves A* reads
+        self.moves.flags.writeable = False
+        # what the A* and JPS kernels get for ``free``, which only Theta*'s line of sight reads
+        self.no_free = np.zeros(1, dtype=np.uint8)
+        self.no_free.flags.writeable = False
+
+    @functools.cached_property
+    def free(self) -> np.ndarray:
+        """Passable cells as 0/1 bytes, padded (two threads asking at once may both
+        build it: equal arrays, either kept)."""
+        h, w = self.blocked.shape
         padded = np.zeros((h + 2, w + 2), dtype=np.uint8)
         inner = padded[1:-1, 1:-1].view(np.bool_)
-        np.logical_not(blocked, out=inner)
-        if unknown is not None and unknown.any():
-            inner[unknown] = False
-        self.free = padded.ravel()
-        self.free.flags.writeable = False
-        self.moves = K.legal_moves(self.free, self.stride)  # one byte per cell: the legal moves A* reads
-        self.moves.flags.writeable = False
+        np.logical_not(self.blocked, out=inner)
+        if self.unknown is not None:
+            inner[self.unknown] = False
+        free = padded.ravel()
+        free.flags.writeable = False
+        return free
+
+    def is_free(self, x: int, y: int) -> bool:
+        return not self.blocked[y, x] and not (self.unknown is not None and self.unknown[y, x])
 
     def index(self, x: int, y: int) -> int:
         return (y + 1) * self.stride + (x + 1)
@@ -90,9 +110,9 @@ class GridSearcher:
 
     def __init__(self, grid: PaddedGrid) -> None:
         self.stride = grid.stride
-        self.free = grid.free
+        self.grid = grid
         self.moves = grid.moves
-        n = self.free.size
+        n = self.moves.size
         rows = n // self.stride
         self.g = np.zeros(n)  # zero pages are mapped when first written: a search pays for the cells it reaches
         self.parent = np.empty(0, dtype=np.int32)
@@ -118,14 +138,16 @@ class GridSearcher:
         """One query from flat index ``a`` to ``b``, rerun with larger open
         lists until they suffice: (status, expanded) as the kernels return."""
         if algorithm == "theta_star" and self.parent.size == 0:
-            self.parent = np.empty(self.free.size, dtype=np.int32)
+            self.parent = np.empty(self.moves.size, dtype=np.int32)
         while True:
             if algorithm == "jps":
-                status, expanded = K.jps(self.free, self.moves, self.stride, a, b, self.g, self.lo, self.hi,
+                status, expanded = K.jps(self.grid.no_free, self.moves, self.stride, a, b, self.g, self.lo, self.hi,
                                          self.extent, self.key, self.cell, self.next, self.head, self.stack)
             else:
-                kernel = astar_kernel(connectivity, hcode, algorithm == "theta_star")
-                status, expanded = kernel(self.free, self.moves, self.stride, a, b, weight, self.g, self.parent, self.lo,
+                any_angle = algorithm == "theta_star"
+                kernel = astar_kernel(connectivity, hcode, any_angle)
+                free = self.grid.free if any_angle else self.grid.no_free
+                status, expanded = kernel(free, self.moves, self.stride, a, b, weight, self.g, self.parent, self.lo,
                                           self.hi, self.extent, self.key, self.cell, self.next,
                                           self.head, self.stack)
             if status != K.OVERFLOW:
@@ -139,7 +161,7 @@ class GridSearcher:
         if algorithm == "jps":
             cells = K.trace_jumps(self.moves, self.stride, self.g, a, b)
         else:
-            cells = K.trace_back(self.free, self.stride, self.g, a, b, connectivity)
+            cells = K.trace_back(self.moves, self.stride, self.g, a, b, connectivity)
         if len(cells) == 0:  # impossible after a successful search (kernels.trace_back); never report it as found
             raise RuntimeError(f"grid search state broken: no predecessor chain from {b} back to {a}")
         return cells
@@ -253,7 +275,7 @@ def line_of_sight(grid: OccupancyGrid, a, b, method: str = "supercover", allow_u
     if not (grid.contains([[ax, ay]])[0] and grid.contains([[bx, by]])[0]):
         return False
     s = pool_for(grid, allow_unknown).grid
-    if s.free[s.index(ax, ay)] == 0:
+    if not s.is_free(ax, ay):
         return False
     fn = K.los_bresenham if method == "bresenham" else K.los_supercover
     return bool(fn(s.free, s.stride, ax, ay, bx, by))
@@ -331,7 +353,7 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         if not (0 <= cell[0] < grid.width and 0 <= cell[1] < grid.height):
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
-        if pool.grid.free[pool.grid.index(*cell)] == 0:
+        if not pool.grid.is_free(*cell):
             kind = "unknown" if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")

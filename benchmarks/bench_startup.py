@@ -12,9 +12,10 @@ the wall time does. Three floors run beside them: importing numpy; a process
 that loads one cached numba function (numba's own start-up, which every
 planning command pays, including numba's BLAS check importing scipy.linalg,
 and the garbage collections over numba's objects when the process exits);
-and the same done navlab's way: SciPy's BLAS module preloaded
-(navlab.numba_start), the collector paused (navlab.cli.plan) and the objects
-frozen at exit (navlab.cli). The last
+and the same done navlab's way: OpenBLAS on one thread (navlab.cli), SciPy's
+BLAS module preloaded (navlab.numba_start), the collector paused
+(navlab.cli.plan) and the process ended at once after its work (navlab.cli).
+The last
 lines are navlab's share above that floor. `python -X importtime -m navlab plan clutter` shows where an import's
 time goes; tests/test_lazy_imports.py keeps the heavy modules out of
 `navlab --help` and the unneeded ones out of `navlab plan clutter` (tests on
@@ -40,8 +41,10 @@ from conditions import load_line, spread
 # every navlab command that plans pays too.
 NUMBA_FLOOR = """
 import sys
-if "navlab" in sys.argv[1:]:  # what navlab plan does: numba's BLAS check without scipy.linalg, no collections
-    import atexit, gc
+NAVLAB_WAY = "navlab" in sys.argv[1:]
+if NAVLAB_WAY:  # what navlab plan does: BLAS on one thread, numba's BLAS check without scipy.linalg, no collections
+    import atexit, gc, os
+    os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # as navlab.cli._one_blas_thread, without click's import
     from navlab.numba_start import preload_cython_blas
     preload_cython_blas()
     gc.disable()
@@ -52,17 +55,22 @@ import numpy as np
 def one(x):
     return x[0] + 1.0
 one(np.zeros(1))  # an array, like every navlab kernel's arguments (numba's typeof then imports numpy.ma)
+if NAVLAB_WAY:  # and it ends at once (navlab.cli._exit_now): atexit handlers, no teardown
+    atexit._run_exitfuncs()
+    os._exit(0)
 """
-# `--phases`: the steps of `navlab plan clutter` one by one, in the command's order and done its way (BLAS
-# preloaded, collector paused, frozen at exit), each timed in wall and CPU milliseconds; the exit is timed from
-# the last line written to the process's end.
+# `--phases`: the steps of `navlab plan clutter` one by one, in the command's order and done its way (BLAS on one
+# thread, SciPy's BLAS module preloaded, collector paused, ended at once), each timed in wall and CPU milliseconds;
+# the exit is timed from the last line written to the process's end.
 PHASES = """
 import time
 marks = [("", time.perf_counter(), time.process_time())]
 def mark(name):
     marks.append((name, time.perf_counter(), time.process_time()))
+import click, navlab.cli; mark("click, navlab.cli")
+navlab.cli._one_blas_thread()  # as the command does, before any verb imports numpy
 import numpy as np; mark("import numpy")
-import click, navlab.cli, navlab.cli.plan; mark("click, navlab.cli, the plan verb")
+import navlab.cli.plan; mark("the plan verb")
 import atexit, gc
 gc.disable(); atexit.register(gc.freeze)
 from navlab.numba_start import preload_cython_blas
@@ -81,6 +89,7 @@ tree_query(world, "rrt_star", "uniform", 0, {}); mark("the query")
 for (_, w0, c0), (name, w1, c1) in zip(marks, marks[1:]):
     print(f"{name}\t{(w1 - w0) * 1000:.1f}\t{(c1 - c0) * 1000:.1f}")
 print(f"END\t{time.time():.6f}", flush=True)
+navlab.cli._exit_now(0)  # as navlab plan ends when run as the command
 """
 COMMANDS = [("navlab --help", ["-m", "navlab", "--help"], 0.3),
             ("navlab plan clutter", ["-m", "navlab", "plan", "clutter"], 0.8),
@@ -127,7 +136,7 @@ def phases(runs: int) -> None:
     print(f"{'python start (site, .pth files; wall only)':<48} {statistics.median(starts):>8.0f} {'':>8}")
     for name, (wall, cpu) in rows.items():
         print(f"{name:<48} {statistics.median(wall):>8.0f} {statistics.median(cpu):>8.0f}")
-    print(f"{'exit (objects frozen; wall only)':<48} {statistics.median(exits):>8.0f}")
+    print(f"{'exit (atexit handlers, os._exit; wall only)':<48} {statistics.median(exits):>8.0f}")
     print(f"{'whole process':<48} {statistics.median([w for w, _ in totals]):>8.0f} "
           f"{statistics.median([c for _, c in totals]):>8.0f}")
 

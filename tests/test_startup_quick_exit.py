@@ -45,7 +45,8 @@ def test_plan_output_is_whole_in_a_file_and_so_is_the_plot(tmp_path, truth):
     assert code == 0
     check_json((tmp_path / "out.json").read_text(), truth)
     data = png.read_bytes()
-    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[-12:] == b"\x00\x00\x00\x00IEND\xaeB`\x82"  # PNG's signature and last chunk
+    # PNG's signature first and its IEND chunk last: the file was closed whole before the exit
+    assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[-12:] == b"\x00\x00\x00\x00IEND\xaeB`\x82"
 
 
 def test_exit_statuses_and_messages_survive():

@@ -140,20 +140,6 @@ class NavlabGroup(click.Group):
     traceback.
     """
 
-    def __call__(self, *args, **kwargs):
-        """``main()`` called bare, the way the console script and ``python -m navlab`` call it: this
-        process is the command, so a verb that declared it safe (``exits_quickly``) ends it at once
-        (:func:`_exit_now`). Any call with arguments (tests, a program running a verb) is click's."""
-        if args or kwargs:
-            return super().__call__(*args, **kwargs)
-        try:
-            return self.main()
-        except SystemExit as exc:
-            verb = self.get_command(None, sys.argv[1]) if len(sys.argv) > 1 else None  # the group takes no values
-            if getattr(verb, "exits_quickly", False):
-                _exit_now(exc.code)
-            raise
-
     def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
         """click's main, with its usage errors on one line (click prints the
         usage and a hint on lines of their own): ``Error: <what> (see
@@ -209,6 +195,27 @@ VERBS = {
 
 class LazyNavlabGroup(NavlabGroup):
     """The top-level group, importing a verb's module only when the verb runs."""
+
+    def __call__(self, *args, **kwargs):
+        """``main()`` called bare, the way the console script and ``python -m navlab`` call it: this
+        process is the command, so a verb that declared it safe (``exits_quickly``) ends it at once
+        (:func:`_exit_now`). Any call with arguments (tests, a program running a verb) is click's."""
+        if args or kwargs:
+            return super().__call__(*args, **kwargs)
+        try:
+            return self.main()
+        except SystemExit as exc:
+            if getattr(self._loaded_verb(sys.argv[1:2]), "exits_quickly", False):
+                _exit_now(exc.code)
+            raise
+
+    def _loaded_verb(self, first: list):
+        """The command of the verb named by the first argument (the group takes no option with a value), if its
+        module is loaded; never imports one (a verb whose import failed must not fail again here)."""
+        if not first or first[0] not in VERBS:
+            return None
+        module, attr, _ = VERBS[first[0]]
+        return getattr(sys.modules.get(f"{__name__}.{module}"), attr, None)
 
     def list_commands(self, ctx):
         return list(VERBS)

@@ -5,6 +5,7 @@ interpreter's teardown is skipped. Each case is a fresh process run the way a us
 structure, and an object whose __del__ runs only in an ordinary teardown."""
 
 import json
+import os
 import subprocess
 import sys
 
@@ -53,6 +54,9 @@ def test_exit_statuses_and_messages_survive():
     failed = navlab_command(["plan", "clutter", "--max-iter", "1"], capture_output=True, text=True)
     assert failed.returncode == 1  # answered without reaching the goal
     assert failed.stdout.startswith("clutter: rrt_star + uniform, seed 0: FAILED")
+    closed = navlab_command(["plan", "clutter", "--max-iter", "50"], stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
+                            text=True, preexec_fn=lambda: os.close(1))  # started without a stdout (sys.stdout is None)
+    assert closed.returncode == 0 and closed.stderr == ""
     bad = navlab_command(["plan", "clutter", "--seed", "-1"], capture_output=True, text=True)
     assert bad.returncode == 2 and bad.stdout == ""
     assert bad.stderr.startswith("Error: ") and bad.stderr.count("\n") == 1

@@ -115,13 +115,14 @@ def _exit_now(code) -> None:
         code = 0
     if not isinstance(code, int) or threading.active_count() > 1:
         return
+    streams = [stream for stream in (sys.stdout, sys.stderr) if stream is not None]  # None: started with it closed
     try:
-        sys.stdout.flush()
-        sys.stderr.flush()
+        for stream in streams:
+            stream.flush()
     except (OSError, ValueError):  # a closed pipe or stream: the ordinary exit deals with it
         return
     atexit._run_exitfuncs()  # noqa: SLF001 - what the ordinary exit would run first, in the same order
-    for stream in (sys.stdout, sys.stderr):
+    for stream in streams:
         try:
             stream.flush()  # what the handlers wrote
         except (OSError, ValueError):

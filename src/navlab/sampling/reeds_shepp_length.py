@@ -47,7 +47,7 @@ _NORM = 1e-12
 FRAMES = 8  # 4 symmetries (identity, timeflip, reflect, both) x (forwards, backwards)
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _frame(f, x, y, phi, sp, cp, xb, yb):
     """Frame ``f``'s pose (x, y, φ, sin φ) as reeds_shepp._shortest_into hands it to a family: timeflip
     negates x, reflect y, either (not both) φ; frames 4–7 are the goal's view of the start."""
@@ -57,7 +57,7 @@ def _frame(f, x, y, phi, sp, cp, xb, yb):
     return -bx if flip else bx, -by if reflect else by, -phi if negate else phi, -sp if negate else sp
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _mod_2pi(a):
     """A lower bound on the sum s >= 0 of two arcs in [0, π] that turn by ``a`` (mod 2π): ``a`` in
     [0, 2π), taken as 0 near 2π, where rounding may have wrapped a sum of almost 0."""
@@ -65,7 +65,7 @@ def _mod_2pi(a):
     return m if m < 2.0 * PI - 1e-6 else 0.0
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _below(bound):
     """``bound`` lowered by the margin, so that rounding cannot lift it above the length as computed."""
     return bound * (1.0 - _SAFE) - _SAFE
@@ -161,7 +161,7 @@ def _word(k, x, y, phi, sp, cp, turn, best):
     return best
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _prebound(k, x, y, phi, sp, cp, turn):
     """A lower bound on family ``k``'s length at (x, y, φ) from cheap stand-ins (a squared norm for
     ``hypot``, no atan2), lowered by the margin; inf where as cheap a test shows it has no solution.
@@ -210,7 +210,7 @@ def _prebound(k, x, y, phi, sp, cp, turn):
     return math.inf
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _try(k, x, y, phi, sp, cp, turn, best):
     """The shorter of ``best`` and family ``k``'s length, solved only where :func:`_prebound` allows."""
     if _prebound(k, x, y, phi, sp, cp, turn) < best:
@@ -218,25 +218,25 @@ def _try(k, x, y, phi, sp, cp, turn, best):
     return best
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _csc(x, y, phi, sp, cp, turn, best):
     """8.1 and 8.2 at (x, y, φ); returns the shorter of ``best`` and their lengths."""
-    best = _try(0, x, y, phi, sp, cp, turn, best)
-    return _try(1, x, y, phi, sp, cp, turn, best)
+    for k in (0, 1):
+        best = _try(k, x, y, phi, sp, cp, turn, best)
+    return best
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True)
 def _others(x, y, phi, sp, cp, turn, backwards, best):
     """The other families at (x, y, φ) (only 8.3, 8.9, 8.10 when ``backwards``); returns the shorter of
     ``best`` and their lengths."""
-    best = _try(2, x, y, phi, sp, cp, turn, best)
-    best = _try(5, x, y, phi, sp, cp, turn, best)
-    best = _try(6, x, y, phi, sp, cp, turn, best)
+    for k in (2, 5, 6):
+        best = _try(k, x, y, phi, sp, cp, turn, best)
     if backwards:
         return best
-    best = _try(3, x, y, phi, sp, cp, turn, best)
-    best = _try(4, x, y, phi, sp, cp, turn, best)
-    return _try(7, x, y, phi, sp, cp, turn, best)
+    for k in (3, 4, 7):
+        best = _try(k, x, y, phi, sp, cp, turn, best)
+    return best
 
 
 @njit(cache=True)

@@ -59,6 +59,18 @@ def test_headings_default_to_the_direction_from_start_to_goal():
     assert clearance > 0.15
 
 
+def test_the_scenes_own_point_keeps_its_heading_and_a_derived_heading_is_named():
+    scene = navlab.plan("parking", planner="hybrid_astar")
+    again = navlab.plan("parking", planner="hybrid_astar", start=(3.0, 9.0), goal=(16.4, 2.0))  # the scene's points
+    assert again.status is Status.EXACT and again.cost == scene.cost and again.params["goal"][2] == math.pi / 2
+    moved = navlab.plan("parking", planner="hybrid_astar", goal=(16.4, 2.5))  # another point: start to goal
+    assert moved.status is Status.INVALID_GOAL
+    assert moved.params["goal"][2] == pytest.approx(math.atan2(2.5 - 9.0, 16.4 - 3.0))
+    assert "heading points from start to goal; give the goal as X Y THETA" in moved.reason
+    given = navlab.plan("trap_car", planner="hybrid_astar", goal=(0.2, 6.0, 0.0))  # a pose: no such note
+    assert given.status is Status.INVALID_GOAL and "X Y THETA" not in given.reason
+
+
 def test_an_open_floor_costs_the_exact_curve_distance():
     """No obstacle in reach: Hybrid A*'s analytic expansion is the exact shortest curve."""
     world = World(name="open", bounds=navlab.load_world("trap").bounds, start=(4.0, 6.0, 0.0), goal=(6.0, 6.5, 2.5))

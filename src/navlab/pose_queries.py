@@ -144,6 +144,8 @@ def _invalid_endpoint(world, planner: str, common, start, goal, t0: float) -> Op
     for label, pose, status in (("start", start, Status.INVALID_START), ("goal", goal, Status.INVALID_GOAL)):
         why = pose_problem(world, footprint, pose, label)
         if why is not None:
+            if getattr(world, f"{label}_heading") is None:  # the heading was not given: say where it came from
+                why += f" (its heading points from start to goal; give the {label} as X Y THETA for another)"
             return Result(status=status, reason=why, stats={"time_s": time.perf_counter() - t0},
                           params={"planner": planner, "motion": common["motion"],
                                   "turning_radius": common["turning_radius"], "start": list(start),

@@ -196,7 +196,8 @@ class World:
 
         changes: Dict[str, Any] = {}
         for what, value in (("start", start), ("goal", goal)):
-            if value is not None:  # a new point drops the old heading unless it is a pose itself
+            # a new point drops the old heading unless it is a pose itself; the same point keeps it
+            if value is not None and tuple(float(v) for v in value) != tuple(getattr(self, what)):
                 changes[what], changes[f"{what}_heading"] = value, None
         return replace(self, **changes)
 

@@ -33,8 +33,10 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 @click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A* (>= 1).")
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
 @click.option("--robot-radius", "--inflate", "inflate", type=float, default=0.0, show_default=True,
-              help="The robot's radius [m]: obstacles are inflated by it (--inflate is the old name), as "
-                   "navlab plan's --robot-radius.")
+              help="The robot's radius [m]: a cell is blocked when its centre is within it of a blocked cell's "
+                   "centre (OccupancyGrid.inflate; --inflate is the old name). navlab plan's --robot-radius is "
+                   "stricter: it blocks a cell when any part of its square is within the radius of a blocked "
+                   "cell's square, so the same radius can give it a longer path.")
 @click.option("--allow-unknown", is_flag=True, help="Let the path cross cells of unknown occupancy.")
 @click.option("--map-rule", type=click.Choice(["nav2", "ros1"]), default="nav2", show_default=True,
               help="How a map_server image is read: Nav2's map_io (inclusive thresholds) or ROS 1's map_server.")

@@ -85,6 +85,11 @@ def test_cli_experiment_json_and_bad_input(tmp_path):
     assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "inside obstacle" in res.output
     res = runner.invoke(main, ["sim", "clutter", "--goal", "4.75", "10.45"])  # 0.04 m from circle 0 (r 0.3 at y 10.11)
     assert res.exit_code == 1 and "of obstacle 0 (circle; clearance 0.04 m)" in res.output
+    for controller in ("rpp", "dwa", "mppi"):  # the costmap controllers answer as the others do
+        res = runner.invoke(main, ["sim", "clutter", "--controller", controller, "--goal", "4.75", "10.11"])
+        assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "inside obstacle 0" in res.output
+    res = runner.invoke(main, ["sim", "clutter", "--controller", "rpp", "--start", "4.75", "10.11", "0"])
+    assert res.exit_code == 1 and res.output.startswith("INVALID_START (")
     res = runner.invoke(main, ["sim", "squarefield", "--controller", "potential_feild"])
     assert res.exit_code == 2 and "Did you mean" in res.output
     res = runner.invoke(main, ["sim", "squarefield", "--robot-param", "wheel_radius=-0.1"])

@@ -140,8 +140,11 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
                                                                                   is not None else ()),
                                                  planner, plan_params, seed)
         if not result.success:
-            raise NoPathError(f"no path between the poses: {result.status.name} {result.reason}")
+            invalid = result.status.name.startswith("INVALID_")  # an endpoint the robot cannot stand on
+            raise NoPathError(result.reason if invalid else f"no path between the poses: {result.status.name} "
+                              f"{result.reason}", result.status.name if invalid else "NO_PATH")
     elif getattr(ctrl, "needs_costmap", False) and planner is None:
+        check_endpoints(scene_world, bot, start, goal, goal_heading)
         path = costmap_path(scene_world, bot, ctrl, start, goal)
     else:
         path = plan_path(scene_world, bot, start, goal, planner, sampler, plan_params) if ctrl.needs_path else None
@@ -183,16 +186,24 @@ def costmap_path(scene_world, robot, controller, start, goal) -> np.ndarray:
     return path
 
 
+def check_endpoints(scene_world, robot, start, goal, goal_heading: Optional[float] = None) -> None:
+    """NoPathError INVALID_START / INVALID_GOAL (an answer about the world, as navlab plan's) when the
+    robot's shape cannot stand at the start, or at the goal at its heading (at any of 8 headings when it
+    has none), by the rule the simulation itself applies."""
+    from ..sim.scene import Scene
+
+    scene = Scene(scene_world, robot.radius, getattr(robot, "footprint", None))
+    if not scene.free(np.asarray(start, float)):
+        raise NoPathError(f"the start is in collision: {scene.describe(start)}", "INVALID_START")
+    headings = np.linspace(0, np.pi, 8, False) if goal_heading is None else (goal_heading,)
+    if not any(scene.free(np.array((*goal[:2], heading))) for heading in headings):
+        raise NoPathError(f"the goal is in collision: {scene.describe(goal)}", "INVALID_GOAL")
+
+
 def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform",
               params: Optional[Dict] = None) -> np.ndarray:
     """A collision-free path for the robot's footprint (plus a margin)."""
-    from ..sim.scene import Scene
-
-    scene = Scene(scene_world, robot.radius)
-    for label, p in (("start", start), ("goal", goal)):
-        if not scene.free(p):
-            # an answer about the world, as navlab plan's INVALID_START / INVALID_GOAL
-            raise NoPathError(f"the {label} is in collision: {scene.describe(p)}", f"INVALID_{label.upper()}")
+    check_endpoints(scene_world, robot, start, goal)
     path = _plan_path(scene_world, robot.radius, start, goal, planner, sampler, params=params or None)
     if not isinstance(path, np.ndarray):
         raise NoPathError(f"no path for the robot from {start[:2]} to {goal}: {path.status.name} {path.reason}")

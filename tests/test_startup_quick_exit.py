@@ -87,9 +87,10 @@ navlab.cli.main()  # bare, as the console script calls it
 
 @pytest.mark.parametrize("args, quick", [(["plan", "clutter", "--max-iter", "50"], True),
                                          (["list", "scenes"], False)])
-def test_only_a_verb_that_says_so_skips_the_teardown_and_atexit_still_runs(args, quick):
-    out = subprocess.run([sys.executable, "-c", TEARDOWN.replace("ARGS", repr(args))], capture_output=True,
-                         text=True, timeout=300)
+def test_only_a_verb_that_says_so_skips_the_teardown_and_atexit_still_runs(args, quick, tmp_path):
+    script = tmp_path / "navlab"  # run as the console script is: a file named navlab
+    script.write_text(TEARDOWN.replace("ARGS", repr(args)))
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)
     assert out.returncode == 0, out.stderr
     lines = out.stderr.splitlines()
     assert "ATEXIT" in lines  # atexit handlers run either way
@@ -99,6 +100,27 @@ def test_only_a_verb_that_says_so_skips_the_teardown_and_atexit_still_runs(args,
         # gone at once: no object destroyed in a teardown (whether an ordinary exit reaches this one depends
         # on the hash seed, as objects frozen at exit in reference cycles are never freed: asserted one way only)
         assert "TEARDOWN" not in lines
+
+
+PROGRAM = """
+import sys
+sys.argv = ["prog", "plan", "clutter", "--max-iter", "50", "--json"]
+import navlab.cli
+try:
+    navlab.cli.main()  # bare, from a program of its own: not the navlab command
+except SystemExit as exc:
+    print("CAUGHT", exc.code, file=sys.stderr)
+print("STILL RUNNING", file=sys.stderr)
+"""
+
+
+def test_a_program_calling_main_bare_keeps_its_process(tmp_path):
+    script = tmp_path / "prog.py"
+    script.write_text(PROGRAM)
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.splitlines()[-2:] == ["CAUGHT 0", "STILL RUNNING"]
+    assert json.loads(out.stdout.splitlines()[0])["status"] == "EXACT"
 
 
 EXIT_NOW = """

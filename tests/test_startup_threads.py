@@ -7,6 +7,7 @@ import json
 import os
 import subprocess
 import sys
+import tempfile
 
 import pytest
 
@@ -27,11 +28,17 @@ COMMAND
 COMMAND = "from navlab.cli import main\nmain(['list', 'scenes'])"
 
 
-def run(env=None, before="", command=COMMAND):
+def run(env=None, before="", command=COMMAND, name="navlab"):
+    """The script run as a file called ``name``: ``navlab`` is how the console script runs (the command),
+    any other name a program of the user's."""
     clean = {k: v for k, v in os.environ.items() if k not in SETTINGS}
     clean.update(env or {})
     script = SCRIPT.replace("BEFORE", before).replace("COMMAND", command).replace("SETTINGS", repr(SETTINGS))
-    out = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True, env=clean, timeout=120)
+    with tempfile.TemporaryDirectory() as folder:
+        path = os.path.join(folder, name)
+        with open(path, "w") as f:
+            f.write(script)
+        out = subprocess.run([sys.executable, path], capture_output=True, text=True, env=clean, timeout=120)
     assert out.returncode == 0, out.stderr
     return json.loads(out.stderr.strip().splitlines()[-1])
 
@@ -63,6 +70,8 @@ def test_any_thread_setting_of_the_user_leaves_the_others_alone(name):
 
 def test_nothing_changes_when_numpy_was_imported_first_or_for_the_library():
     assert run(before="import numpy")["env"] == dict.fromkeys(SETTINGS)  # BLAS started already: env left as is
+    program = run(name="prog.py")  # a program calling main(['list', 'scenes']) keeps its environment
+    assert program["env"] == dict.fromkeys(SETTINGS)
     library = run(command="import navlab, navlab.cli\nnavlab.plan('clutter', max_iter=50)")
     assert library["env"] == dict.fromkeys(SETTINGS)
     if linux_with_cores():

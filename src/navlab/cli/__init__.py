@@ -52,6 +52,18 @@ def _quick_exit() -> None:
 BLAS_THREAD_SETTINGS = ("OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS", "OMP_NUM_THREADS", "GOTO_NUM_THREADS")
 
 
+def _is_the_command() -> bool:
+    """Whether this process is the ``navlab`` command: its ``__main__`` is the console script
+    (a file named ``navlab``) or ``python -m navlab``. A program that calls :func:`main` itself is
+    not, and keeps its environment and its process."""
+    entry = sys.modules.get("__main__")
+    spec = getattr(entry, "__spec__", None)
+    if spec is not None and spec.name == "navlab.__main__":
+        return True
+    name = os.path.basename(getattr(entry, "__file__", None) or "")
+    return name in ("navlab", "navlab.exe", "navlab-script.py")
+
+
 def _one_blas_thread() -> None:
     """Run numpy's and SciPy's BLAS on one thread in this command's process, unless the user said otherwise.
 
@@ -69,9 +81,10 @@ def _one_blas_thread() -> None:
     Only ``OPENBLAS_NUM_THREADS`` and ``MKL_NUM_THREADS`` are set, and only
     when none of :data:`BLAS_THREAD_SETTINGS` is (a user's own setting wins);
     ``OMP_NUM_THREADS`` is never set, as it governs more than BLAS. Nothing
-    changes when numpy is already imported (a program calling :func:`main`
-    in-process, a test): its BLAS has started, and the user's environment
-    stays theirs. ``import navlab`` never calls this.
+    changes when numpy is already imported, or when the process is not the
+    ``navlab`` command (:func:`_is_the_command`: a program or a test calling
+    :func:`main` keeps its environment, which its child processes inherit).
+    ``import navlab`` never calls this.
 
     References
     ----------
@@ -80,7 +93,8 @@ def _one_blas_thread() -> None:
     ``blas_thread_init`` in ``driver/others/blas_server.c`` (threads made
     when the library loads).
     """
-    if "numpy" in sys.modules or any(name in os.environ for name in BLAS_THREAD_SETTINGS):
+    if "numpy" in sys.modules or any(name in os.environ for name in BLAS_THREAD_SETTINGS) \
+            or not _is_the_command():
         return
     for name in BLAS_THREAD_SETTINGS[:2]:
         os.environ[name] = "1"
@@ -200,8 +214,9 @@ class LazyNavlabGroup(NavlabGroup):
     def __call__(self, *args, **kwargs):
         """``main()`` called bare, the way the console script and ``python -m navlab`` call it: this
         process is the command, so a verb that declared it safe (``exits_quickly``) ends it at once
-        (:func:`_exit_now`). Any call with arguments (tests, a program running a verb) is click's."""
-        if args or kwargs:
+        (:func:`_exit_now`). Any call with arguments, or from a program that is not the command
+        (:func:`_is_the_command`), is click's: its SystemExit can be caught."""
+        if args or kwargs or not _is_the_command():
             return super().__call__(*args, **kwargs)
         try:
             return self.main()
@@ -248,7 +263,8 @@ def main() -> None:
     ...); 130 after Ctrl-C. Set NAVLAB_DEBUG=1 to see Python tracebacks.
 
     numpy's BLAS runs on one thread (OPENBLAS_NUM_THREADS=1,
-    MKL_NUM_THREADS=1) unless you set one of these or OMP_NUM_THREADS.
+    MKL_NUM_THREADS=1) unless you set one of these, OMP_NUM_THREADS or
+    GOTO_NUM_THREADS.
     """
 
 

@@ -67,10 +67,11 @@ def make_controller(name: str, **params) -> Controller:
     check_finite(params, f"controller '{name}'")
     try:
         return factory(**params)
-    except ValueError as exc:  # a setting out of range: say whose, as the checks above do
-        if isinstance(exc, UnknownNameError) or name in str(exc):
-            raise
-        raise ValueError(f"controller '{name}': {exc}") from None
+    except ValueError as exc:  # a setting out of range: say whose, as the checks above do (same type)
+        message = str(exc)
+        if not isinstance(exc, UnknownNameError) and not message.startswith((f"{name} ", f"controller '{name}'")):
+            exc.args = (f"controller '{name}': {message}",) + exc.args[1:]
+        raise
 
 
 class StallDetector:

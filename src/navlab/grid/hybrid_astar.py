@@ -271,11 +271,13 @@ def _merged(segments):
     return out
 
 
-@functools.lru_cache(maxsize=8)
+@functools.lru_cache(maxsize=1)
 def _map_tables(shape, res: float, packed: bytes):
     """What the search reads of a map that is the same for every query on it, cached by the map's content
     (``packed``: ``np.packbits`` of the blocked cells; a robot plans on one map many times, and on
-    PythonRobotics' 61 x 61 map these cost about 0.5 ms a query): ``distance_transform_edt(~blocked)``
+    PythonRobotics' 61 x 61 map these cost about 0.5 ms a query). Only the last map's are kept: they take
+    24 bytes per cell (2.4 GB at the 10⁸-cell limit), and a replanning loop on a changing costmap would
+    only fill a longer cache with maps it never sees again: ``distance_transform_edt(~blocked)``
     [cells], :func:`_nearest_blocked2` [cells²] and its roots times ``res``, the values of
     :func:`~navlab.sampling.footprint_lattice.clearance_map` [m] (the same squares' roots), which let
     curve checks pass poses far from everything unread. Read-only arrays."""

@@ -38,6 +38,7 @@ def test_two_different_adhoc_runs_get_two_folders_and_the_same_one_is_resumable(
     assert len(list((tmp_path / "bench-results").iterdir())) == 2
     again = CliRunner().invoke(main, base + ["--planner", "rrt", "--resume"])
     assert again.exit_code == 0 and "0 run now" in again.output
+    assert "warm-up (compiling" not in again.output  # nothing ran: no worker warmed up in this run
 
 
 @pytest.mark.parametrize("args,message", [

@@ -194,11 +194,12 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         sys.exit(EXIT_INTERRUPTED)
     summary = run.summary
     repeats = run.breakdown.get("repeats", 0)
-    ran = f"{run.ran - repeats} run now + {repeats} noise repeats" if repeats else f"{run.ran} run now"
-    click.echo(f"{len(run.rows)} trials ({ran}, {run.errors} errors) in {run.elapsed_s:.1f} s; "
-               f"times are {summary['time_label']}")
-    click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
-               f"{summary['warmup_s']:.1f} s in all, not counted in any trial")
+    ran = f"{run.ran - repeats} run now, {run.errors} errors" + (f"; {repeats} noise repeats besides" if repeats
+                                                                 else "")
+    click.echo(f"{len(run.rows)} trials ({ran}) in {run.elapsed_s:.1f} s; times are {summary['time_label']}")
+    if run.ran:  # a resumed run with nothing left ran no worker: the rows' warm-up is an earlier run's
+        click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
+                   f"{summary['warmup_s']:.1f} s in all, not counted in any trial")
     if summary.get("torn_lines"):
         click.echo(f"{summary['torn_lines']} torn line(s) cut from results.jsonl (kept in results.torn.jsonl)")
     width = max([len(c["group"]) for c in summary["cells"]] + [20]) + 2

@@ -37,7 +37,7 @@ from numba import njit
 
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
-from ..sampling.footprint_lattice import curve_free, swept_group
+from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
@@ -237,17 +237,9 @@ def _swept_free(blocked, near2, cx, cy, offsets, lo, hi) -> bool:
 
     ``near2`` is the squared distance [cells²] from each cell to the nearest blocked or off-map
     cell (centre to centre), and the offsets come outermost first: from the first offset nearer
-    than that, every remaining one is nearer too, so none of them can be blocked."""
-    h, w = blocked.shape
-    inside = near2[cy, cx]
-    for i in range(lo, hi):
-        ox, oy = offsets[i, 0], offsets[i, 1]
-        if ox * ox + oy * oy < inside:
-            return True
-        x, y = cx + ox, cy + oy
-        if x < 0 or y < 0 or x >= w or y >= h or blocked[y, x]:
-            return False
-    return True
+    than that, every remaining one is nearer too, so none of them can be blocked
+    (:func:`~navlab.sampling.footprint_lattice.free_cells_near`)."""
+    return free_cells_near(blocked, cx, cy, offsets, lo, hi, near2[cy, cx])
 
 
 @njit(cache=True)

@@ -382,12 +382,22 @@ def _pose_free_near(blocked, res, x, y, theta, theta0, step, bins, pose_cells, p
     inside = 0.0
     if clear.shape[0] and 0 <= cx < w and 0 <= cy < h:
         inside = (clear[cy, cx] / res) ** 2 * (1.0 - 1e-9)
-    for i in range(pose_start[b], pose_start[b + 1]):
-        ox, oy = pose_cells[i, 0], pose_cells[i, 1]
+    return free_cells_near(blocked, cx, cy, pose_cells, pose_start[b], pose_start[b + 1], inside)
+
+
+@njit(cache=True)
+def free_cells_near(blocked, cx, cy, offsets, lo, hi, inside) -> bool:
+    """:func:`free_cells`' answer (none of the cells ``offsets[lo:hi]`` from cell (cx, cy) blocked or off
+    the map), reading fewer cells: the offsets come outermost first, and from the first one whose squared
+    length [cells²] is below ``inside`` (the squared distance from (cx, cy) to the nearest blocked or
+    off-map cell, or 0 to read them all) every remaining one is nearer too, so none can be blocked."""
+    h, w = blocked.shape
+    for i in range(lo, hi):
+        ox, oy = offsets[i, 0], offsets[i, 1]
         if ox * ox + oy * oy < inside:
             return True
-        px, py = cx + ox, cy + oy
-        if px < 0 or py < 0 or px >= w or py >= h or blocked[py, px]:
+        x, y = cx + ox, cy + oy
+        if x < 0 or y < 0 or x >= w or y >= h or blocked[y, x]:
             return False
     return True
 

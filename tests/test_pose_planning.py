@@ -125,8 +125,10 @@ def test_world_files_carry_poses_and_a_footprint():
     again = world_from_dict(world.to_dict())
     assert again.start_heading == world.start_heading and again.goal_heading == pytest.approx(math.pi / 2)
     assert again.footprint == world.footprint
-    moved = world.with_query(start=(3.0, 9.0))
+    moved = world.with_query(start=(3.0, 8.5))  # a new point drops the old heading
     assert moved.start_heading is None and moved.goal_heading == world.goal_heading
+    same = world.with_query(start=(3, 9))  # the same point keeps it
+    assert same.start_heading == world.start_heading and same.start == world.start
 
 
 def test_the_command_line_takes_a_pose(tmp_path):

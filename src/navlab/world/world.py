@@ -197,7 +197,7 @@ class World:
         changes: Dict[str, Any] = {}
         for what, value in (("start", start), ("goal", goal)):
             # a new point drops the old heading unless it is a pose itself; the same point keeps it
-            if value is not None and tuple(float(v) for v in value) != tuple(getattr(self, what)):
+            if value is not None and tuple(value) != tuple(getattr(self, what)):  # (3, 9) == (3.0, 9.0)
                 changes[what], changes[f"{what}_heading"] = value, None
         return replace(self, **changes)
 

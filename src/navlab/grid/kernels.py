@@ -621,7 +621,7 @@ def _jump_diagonal(moves, S, v, dx, dy, k, goal):
 
 
 @njit(cache=True)
-def jps(free, moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
+def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
     """Jump Point Search for 8-connected grids without corner cutting.
 
     Same per-cell state (``gs``, recorded rows) and return values as the A*

@@ -73,7 +73,7 @@ class PaddedGrid:
         closed = np.zeros((0, 0), dtype=bool) if self.unknown is None else self.unknown
         self.moves = K.legal_moves(blocked, closed)  # one byte per cell: the legal moves A* reads
         self.moves.flags.writeable = False
-        # what the A* and JPS kernels get for ``free``, which only Theta*'s line of sight reads
+        # what the A* kernels get for ``free`` when they are not Theta*, the only one whose line of sight reads it
         self.no_free = np.zeros(1, dtype=np.uint8)
         self.no_free.flags.writeable = False
 
@@ -141,7 +141,7 @@ class GridSearcher:
             self.parent = np.empty(self.moves.size, dtype=np.int32)
         while True:
             if algorithm == "jps":
-                status, expanded = K.jps(self.grid.no_free, self.moves, self.stride, a, b, self.g, self.lo, self.hi,
+                status, expanded = K.jps(self.moves, self.stride, a, b, self.g, self.lo, self.hi,
                                          self.extent, self.key, self.cell, self.next, self.head, self.stack)
             else:
                 any_angle = algorithm == "theta_star"

@@ -113,3 +113,32 @@ def test_non_finite_or_huge_queries_are_never_free(bad):
         assert not checker.points_free([[0.5, bad]])[0]
         assert not checker.segments_free([[0.5, 0.5]], [[bad, 0.5]])[0]
         assert not checker.segments_free([[bad, bad]], [[0.5, 0.5]])[0]
+
+
+def test_built_in_scenes_polygons_are_simple_by_shapely():
+    # the scenes build their fixed outlines with Polygon.known_simple (no shapely at a command's start): shapely,
+    # which the constructor asks, must agree that each is simple and has an area
+    import shapely
+
+    from navlab.world import SCENES
+
+    seen = 0
+    for name in SCENES.names():
+        for obstacle in SCENES.get(name)().obstacles:
+            if isinstance(obstacle, Polygon):
+                shape = shapely.Polygon(obstacle.points)
+                assert shape.is_valid and shape.area > 0, (name, obstacle.points)
+                assert Polygon(obstacle.points, obstacle.motion) == obstacle  # what the constructor makes
+                seen += 1
+    assert seen >= 5  # clutter's five at least
+
+
+def test_known_simple_reads_points_as_the_constructor_does():
+    square = [(0, 0), (1, 0), (1, 1), (0, 1)]
+    assert Polygon.known_simple(square) == Polygon(square)
+    assert Polygon.known_simple(square).points == ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0))
+    for bad, message in (([(0, 0), (1, 0)], "at least 3 points"), ([(0, 0), (1, math.nan), (1, 1)], "finite")):
+        with pytest.raises(ValueError, match=message):
+            Polygon.known_simple(bad)
+    with pytest.raises(ValueError, match="not simple"):  # a bow tie from a caller: the constructor still asks shapely
+        Polygon([(0, 0), (1, 1), (1, 0), (0, 1)])

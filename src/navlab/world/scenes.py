@@ -43,10 +43,11 @@ def pythonrobotics() -> World:
 
 
 # 34 scattered circles, boxes and star-shaped polygons (drawn once from
-# numpy.random.default_rng(7), then frozen here so the scene never changes).
+# numpy.random.default_rng(7), then frozen here so the scene never changes; the polygons are
+# known simple: tests/world/test_world_validation.py checks them with shapely).
 _CLUTTER = (
     Circle((4.75, 10.11), 0.3),
-    Polygon(((10.94, 6.45), (10.84, 6.35), (10.35, 5.87), (10.17, 5.62), (10.50, 5.49))),
+    Polygon.known_simple(((10.94, 6.45), (10.84, 6.35), (10.35, 5.87), (10.17, 5.62), (10.50, 5.49))),
     Circle((8.66, 0.98), 0.31),
     Rectangle((6.38, 10.18), (7.28, 10.99)),
     Circle((4.09, 0.63), 0.38),
@@ -59,12 +60,12 @@ _CLUTTER = (
     Rectangle((2.07, 9.23), (3.22, 10.36)),
     Rectangle((2.25, 2.20), (3.39, 3.04)),
     Rectangle((5.41, 4.81), (6.00, 5.24)),
-    Polygon(((7.39, 6.61), (6.67, 6.89), (6.85, 6.07))),
-    Polygon(((8.85, 5.77), (8.76, 4.92), (9.65, 4.77))),
+    Polygon.known_simple(((7.39, 6.61), (6.67, 6.89), (6.85, 6.07))),
+    Polygon.known_simple(((8.85, 5.77), (8.76, 4.92), (9.65, 4.77))),
     Rectangle((11.79, 1.96), (12.94, 2.36)),
     Circle((11.19, 0.66), 0.55),
     Rectangle((7.12, 8.20), (7.70, 8.76)),
-    Polygon(((8.08, 4.84), (7.59, 4.45), (8.89, 4.02), (8.86, 4.16))),
+    Polygon.known_simple(((8.08, 4.84), (7.59, 4.45), (8.89, 4.02), (8.86, 4.16))),
     Rectangle((8.54, 10.83), (9.20, 11.55)),
     Circle((8.85, 7.49), 0.37),
     Circle((6.14, 8.90), 0.63),
@@ -76,7 +77,7 @@ _CLUTTER = (
     Circle((9.28, 9.64), 0.45),
     Circle((7.74, 2.87), 0.4),
     Circle((6.72, 1.40), 0.6),
-    Polygon(((12.95, 5.38), (12.39, 4.32), (12.52, 4.33), (12.86, 4.05), (12.94, 4.74))),
+    Polygon.known_simple(((12.95, 5.38), (12.39, 4.32), (12.52, 4.33), (12.86, 4.05), (12.94, 4.74))),
     Circle((1.41, 3.95), 0.42),
     Rectangle((10.88, 8.33), (11.85, 9.41)),
 )

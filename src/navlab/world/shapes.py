@@ -32,6 +32,13 @@ def _point(value: Any, what: str) -> Point:
     return (float(arr[0]), float(arr[1]))
 
 
+def _polygon_points(points: Any) -> Tuple[Point, ...]:
+    pts = tuple(_point(p, "polygon point") for p in points)
+    if len(pts) < 3:
+        raise ValueError(f"polygon needs at least 3 points, got {len(pts)}")
+    return pts
+
+
 @dataclass(frozen=True)
 class Circle:
     """A disc with ``center`` (m) and ``radius`` (m)."""
@@ -103,15 +110,30 @@ class Polygon:
     motion: Optional[Any] = None  #: see :class:`Circle`
 
     def __post_init__(self) -> None:
-        import shapely
+        pts = _polygon_points(self.points)
+        import shapely  # here, not at the top: a built-in scene's polygons need none (see known_simple)
 
-        pts = tuple(_point(p, "polygon point") for p in self.points)
-        if len(pts) < 3:
-            raise ValueError(f"polygon needs at least 3 points, got {len(pts)}")
         shape = shapely.Polygon(pts)
         if not shape.is_valid or shape.area <= 0:
             raise ValueError(f"polygon {pts} is not simple (edges cross or it has no area)")
         object.__setattr__(self, "points", pts)
+
+    @classmethod
+    def known_simple(cls, points, motion: Optional[Any] = None) -> "Polygon":
+        """A polygon whose outline is a constant already proven simple, made without shapely.
+
+        navlab's built-in scenes (:mod:`navlab.world.scenes`) hold fixed
+        outlines; tests/world/test_world_validation.py checks every one of
+        them with shapely, as the constructor would. Building them this way
+        keeps shapely's import (~15 ms) out of ``navlab plan clutter``. The
+        points are still read as the constructor reads them (two finite
+        numbers each, at least three); a polygon from a file or a caller
+        goes through the constructor, whose checks and messages are unchanged.
+        """
+        polygon = object.__new__(cls)
+        object.__setattr__(polygon, "points", _polygon_points(points))
+        object.__setattr__(polygon, "motion", motion)
+        return polygon
 
     def bbox(self) -> Tuple[float, float, float, float]:
         a = np.asarray(self.points)

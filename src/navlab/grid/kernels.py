@@ -231,7 +231,7 @@ CANONICAL = _canonical_table()
 
 
 @njit(cache=True)
-def legal_moves(blocked, unknown):
+def legal_moves(blocked, unknown, out):
     """Each padded cell's legal 8-connected moves as a bit mask (bit k: move
     ``(MOVES_X[k], MOVES_Y[k])`` stays on free cells and, diagonally, cuts no
     blocked corner; 0 for blocked and border cells; the 4-connected moves are
@@ -251,10 +251,15 @@ def legal_moves(blocked, unknown):
     (4100 on 4096 x 4096, at 2-14 us each in this VM): ``PaddedGrid`` on a
     4096 x 4096 grid 18-23 -> 4.5-5.0 ms CPU (medians of 5, three
     interleaved pairs of processes, load 14).
+
+    Written into ``out`` (``(h + 2) * (w + 2)`` bytes), which the caller
+    allocates with numpy: numpy asks for transparent huge pages on arrays
+    of 4 MB or more (``madvise(MADV_HUGEPAGE)``), numba's allocator does
+    not, so a fresh 4096 x 4096 grid maps 8 huge pages instead of about
+    4100 small ones (each a fault).
     """
     h, w = blocked.shape
     S = w + 2
-    out = np.empty((h + 2) * S, dtype=np.uint8)
     out[:S] = 0
     out[(h + 1) * S:] = 0
     ring = np.zeros((3, S), dtype=np.uint8)  # padded row p in slot p % 3; the border columns stay 0

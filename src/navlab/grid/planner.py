@@ -71,7 +71,8 @@ class PaddedGrid:
         self.blocked = blocked
         self.unknown = unknown if unknown is not None and unknown.any() else None
         closed = np.zeros((0, 0), dtype=bool) if self.unknown is None else self.unknown
-        self.moves = K.legal_moves(blocked, closed)  # one byte per cell: the legal moves A* reads
+        # one byte per cell: the legal moves A* reads; numpy's allocation (huge pages, kernels.legal_moves)
+        self.moves = K.legal_moves(blocked, closed, np.empty((h + 2) * self.stride, dtype=np.uint8))
         self.moves.flags.writeable = False
         # what the A* kernels get for ``free`` when they are not Theta*, the only one whose line of sight reads it
         self.no_free = np.zeros(1, dtype=np.uint8)

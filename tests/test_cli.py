@@ -146,3 +146,29 @@ def test_a_heading_beyond_two_pi_gets_a_degrees_hint_and_is_still_taken():
     assert res.exit_code in (0, 1) and json.loads(res.stdout)["status"]
     quiet = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "3.14"])
     assert "more than 2π" not in quiet.stderr
+
+
+@pytest.mark.parametrize("args", [["list"], ["plan", "clutter", "--max-iter", "10", "--json"]])
+def test_a_reader_that_went_away_ends_the_command_quietly(args):
+    # `navlab list | head -1`: the reader closes the pipe; a pipe closed before the first write makes it certain
+    import os
+    import subprocess
+    import sys
+
+    read, write = os.pipe()
+    os.close(read)
+    try:
+        out = subprocess.run([sys.executable, "-m", "navlab", *args], stdout=write, stderr=subprocess.PIPE,
+                             timeout=300)
+    finally:
+        os.close(write)
+    assert (out.returncode, out.stderr) == (0, b"")  # as `ls | head -1` looks to the shell; click alone exits 1
+
+
+def test_a_broken_pipe_that_is_not_stdout_stays_an_error():
+    # the pipe is asked, not the exception: a verb's own broken pipe (a worker's) is reported as before
+    from unittest import mock
+
+    with mock.patch("navlab.cli.plan.parse_params", side_effect=BrokenPipeError(32, "Broken pipe")):
+        result = CliRunner().invoke(main, ["plan", "clutter"])
+    assert result.exit_code == 2 and "Broken pipe" in result.output

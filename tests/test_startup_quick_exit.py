@@ -145,3 +145,52 @@ def test_exit_now_leaves_the_cases_it_cannot_take_to_the_ordinary_exit(case, pri
     out = subprocess.run([sys.executable, "-c", EXIT_NOW.replace("CASE", case)], capture_output=True, text=True,
                          timeout=60)
     assert out.stdout.split() == printed and out.returncode == code
+
+
+NO_RUN_EXITFUNCS = """
+import atexit, os, sys
+del atexit._run_exitfuncs  # CPython's private function: a Python without it must still exit as it should
+atexit.register(lambda: sys.stderr.write("ATEXIT\\n"))
+real_exit = os._exit
+os._exit = lambda code: (sys.stderr.write("QUICK\\n"), real_exit(code))
+sys.argv = ["navlab", *ARGS]
+import navlab.cli
+navlab.cli.main()  # bare, as the console script calls it
+"""
+
+
+@pytest.mark.parametrize("args, code", [(PLAN, 0), (["plan", "clutter", "--max-iter", "1", "--json"], 1)])
+def test_without_run_exitfuncs_the_ordinary_exit_flushes_and_keeps_the_status(args, code, tmp_path, truth):
+    script = tmp_path / "navlab"
+    script.write_text(NO_RUN_EXITFUNCS.replace("ARGS", repr(args)))
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)
+    assert out.returncode == code, out.stderr
+    lines = out.stderr.splitlines()
+    assert lines.count("ATEXIT") == 1 and "QUICK" not in lines  # the ordinary exit ran the handlers, once
+    got = json.loads(out.stdout)  # whole, flushed by the ordinary exit
+    if code == 0:
+        check_json(out.stdout, truth)
+    else:
+        assert got["status"] == "FAILED"
+
+
+COUNTED = """
+import sys
+sys.argv = ["navlab", "list", "scenes"]
+import navlab.cli
+asked = navlab.cli._is_the_command
+calls = []
+navlab.cli._is_the_command = lambda: calls.append(1) or asked()
+try:
+    navlab.cli.main()
+finally:
+    sys.stderr.write(f"ASKED {len(calls)}\\n")
+"""
+
+
+def test_the_command_asks_whether_it_is_the_command_once(tmp_path):
+    script = tmp_path / "navlab"
+    script.write_text(COUNTED)
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stderr.splitlines()[-1] == "ASKED 1" and "clutter" in out.stdout

@@ -64,7 +64,7 @@ def _is_the_command() -> bool:
     return name in ("navlab", "navlab.exe", "navlab-script.py")
 
 
-def _one_blas_thread() -> None:
+def _one_blas_thread(the_command: bool) -> None:
     """Run numpy's and SciPy's BLAS on one thread in this command's process, unless the user said otherwise.
 
     OpenBLAS starts one thread per core when its library loads (numpy's at
@@ -82,9 +82,10 @@ def _one_blas_thread() -> None:
     when none of :data:`BLAS_THREAD_SETTINGS` is (a user's own setting wins);
     ``OMP_NUM_THREADS`` is never set, as it governs more than BLAS. Nothing
     changes when numpy is already imported, or when the process is not the
-    ``navlab`` command (:func:`_is_the_command`: a program or a test calling
-    :func:`main` keeps its environment, which its child processes inherit).
-    ``import navlab`` never calls this.
+    ``navlab`` command (``the_command`` False, :func:`_is_the_command` asked
+    once per run by the caller: a program or a test calling :func:`main`
+    keeps its environment, which its child processes inherit). ``import
+    navlab`` never calls this.
 
     References
     ----------
@@ -93,8 +94,7 @@ def _one_blas_thread() -> None:
     ``blas_thread_init`` in ``driver/others/blas_server.c`` (threads made
     when the library loads).
     """
-    if "numpy" in sys.modules or any(name in os.environ for name in BLAS_THREAD_SETTINGS) \
-            or not _is_the_command():
+    if not the_command or "numpy" in sys.modules or any(name in os.environ for name in BLAS_THREAD_SETTINGS):
         return
     for name in BLAS_THREAD_SETTINGS[:2]:
         os.environ[name] = "1"
@@ -116,8 +116,10 @@ def _exit_now(code) -> None:
     error are flushed before and after them. It returns, leaving the
     ordinary exit to run, when the status is not a number (a message for
     Python to print), another Python thread is alive (the ordinary exit
-    joins it), or a flush fails (a reader that went away: the ordinary exit
-    reports it as usual).
+    joins it), a flush fails (a reader that went away: the ordinary exit
+    reports it as usual), or this Python has no ``atexit._run_exitfuncs``
+    (a private function, CPython's: without it the handlers could not run
+    here, and the ordinary exit runs them).
 
     References
     ----------
@@ -127,7 +129,8 @@ def _exit_now(code) -> None:
     """
     if code is None:
         code = 0
-    if not isinstance(code, int) or threading.active_count() > 1:
+    run_exit_handlers = getattr(atexit, "_run_exitfuncs", None)  # noqa: SLF001 - the ordinary exit's first step
+    if run_exit_handlers is None or not isinstance(code, int) or threading.active_count() > 1:
         return
     streams = [stream for stream in (sys.stdout, sys.stderr) if stream is not None]  # None: started with it closed
     try:
@@ -135,13 +138,53 @@ def _exit_now(code) -> None:
             stream.flush()
     except (OSError, ValueError):  # a closed pipe or stream: the ordinary exit deals with it
         return
-    atexit._run_exitfuncs()  # noqa: SLF001 - what the ordinary exit would run first, in the same order
+    run_exit_handlers()  # what the ordinary exit would run first, in the same order
     for stream in streams:
         try:
             stream.flush()  # what the handlers wrote
         except (OSError, ValueError):
             pass
     os._exit(code)
+
+
+def _stdout_reader_gone() -> bool:
+    """Whether standard output is a pipe whose reader went away (``navlab list | head -1``).
+
+    The pipe is asked, not the exception: polled with no event requested, a
+    pipe's writing end reports an error (Linux: ``POLLERR``; a hang-up
+    elsewhere) once no reader is left; a file, a terminal or a live pipe
+    reports nothing, and a BrokenPipeError from another pipe (a worker's, a
+    socket) stays an ordinary error. If the reader is gone, standard output
+    is pointed at ``os.devnull`` (its file descriptor, so no later flush
+    fails: the interpreter's own at exit would print ``Exception ignored ...
+    BrokenPipeError`` and end with status 120), and the command ends quietly
+    with status 0, as ``ls | head -1`` looks to the shell; click alone ends
+    it with status 1. Without ``select.poll`` (Windows) the answer is no.
+
+    References
+    ----------
+    Python documentation, "Note on SIGPIPE" in the ``signal`` module
+    (https://docs.python.org/3/library/signal.html#note-on-sigpipe): Python
+    ignores SIGPIPE, so a write to a closed pipe raises BrokenPipeError; send
+    the rest of the output to ``os.devnull``. POSIX ``poll()``: POLLERR and
+    POLLHUP are reported whatever the events asked.
+    """
+    import select
+
+    try:
+        fd = sys.stdout.fileno()
+        poller = select.poll()
+    except (AttributeError, OSError, ValueError):  # no stream, no file descriptor (a test's stream), no poll
+        return False
+    poller.register(fd, 0)
+    if not any(events & (select.POLLERR | select.POLLHUP) for _, events in poller.poll(0)):
+        return False
+    devnull = os.open(os.devnull, os.O_WRONLY)
+    try:
+        os.dup2(devnull, fd)
+    finally:
+        os.close(devnull)
+    return True
 
 
 class NavlabGroup(click.Group):
@@ -155,13 +198,15 @@ class NavlabGroup(click.Group):
     traceback.
     """
 
-    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, **extra):
+    def main(self, args=None, prog_name=None, complete_var=None, standalone_mode=True, the_command=None, **extra):
         """click's main, with its usage errors on one line (click prints the
         usage and a hint on lines of their own): ``Error: <what> (see
-        'navlab plan --help')``, exit 2."""
+        'navlab plan --help')``, exit 2. ``the_command``: whether this process
+        is the ``navlab`` command, if the caller asked :func:`_is_the_command`
+        already (None: ask it here)."""
         if not standalone_mode:
             return super().main(args, prog_name, complete_var, standalone_mode, **extra)
-        _one_blas_thread()  # before any verb imports numpy
+        _one_blas_thread(_is_the_command() if the_command is None else the_command)  # before a verb imports numpy
         _quick_exit()
         try:
             code = super().main(args, prog_name, complete_var, False, **extra)
@@ -189,8 +234,10 @@ class NavlabGroup(click.Group):
             click.echo("Interrupted.", err=True)
             sys.exit(EXIT_INTERRUPTED)
         except Exception as exc:
-            if debug_enabled() or (isinstance(exc, BrokenPipeError)):
-                raise  # click itself exits quietly when the reader of stdout went away (`navlab list | head`)
+            if isinstance(exc, BrokenPipeError) and _stdout_reader_gone():
+                sys.exit(0)  # `navlab list | head -1`: the reader has what it wanted; no message, like ls or cat
+            if debug_enabled():
+                raise
             status, line = describe_error(exc)
             click.echo(line, err=True)
             sys.exit(status)
@@ -216,10 +263,11 @@ class LazyNavlabGroup(NavlabGroup):
         process is the command, so a verb that declared it safe (``exits_quickly``) ends it at once
         (:func:`_exit_now`). Any call with arguments, or from a program that is not the command
         (:func:`_is_the_command`), is click's: its SystemExit can be caught."""
-        if args or kwargs or not _is_the_command():
-            return super().__call__(*args, **kwargs)
+        the_command = _is_the_command()  # once per run: main() gets the answer
+        if args or kwargs or not the_command:
+            return self.main(*args, the_command=the_command, **kwargs)  # what click's __call__ does
         try:
-            return self.main()
+            return self.main(the_command=True)
         except SystemExit as exc:
             if getattr(self._loaded_verb(sys.argv[1:2]), "exits_quickly", False):
                 _exit_now(exc.code)

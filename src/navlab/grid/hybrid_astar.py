@@ -41,9 +41,13 @@ none of those cells is blocked, so a returned path never overlaps a blocked
 cell; the check is conservative by at most ``√2·res + δ/2`` (δ = res/2 by
 default). Analytic and smoothed segments use per-bin footprints grown also by
 ``R·sin(Δθ/2)`` (R the footprint's circumscribed radius), which covers any
-heading within the bin. Every returned path is checked once more that way.
-The footprint's cells and checks live in :mod:`navlab.sampling.footprint_lattice`,
-shared with the SE(2) trees.
+heading within the bin. The footprint's cells and checks live in
+:mod:`navlab.sampling.footprint_lattice`, shared with the SE(2) trees.
+
+Every returned path is checked once more, independently of those cell lists
+(:mod:`navlab.grid.hybrid_certify`): the outline placed at poses traced along
+the final path, no footprint point moving more than δ between two, against
+every blocked cell's square grown by δ/2, by an exact polygon–rectangle test.
 """
 
 from __future__ import annotations
@@ -62,8 +66,8 @@ from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp
 from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_compiled, advance, check_pose,
                               check_turning_radius, trace_word)
-from ..sampling.footprint_lattice import (check_turning_scale, curve_free, first_overlap, lattice_for, pose_free,
-                                          robot_outline)
+from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattice_for, pose_free, robot_outline
+from .hybrid_certify import first_overlap_exact
 from .hybrid_search import holonomic_field, search
 from .occupancy import OccupancyGrid
 
@@ -206,7 +210,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                                 ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL)):
         if pose_free(blocked, *common[:1], *pose, *common[1:]):
             continue  # the lattice's cells for the pose are a superset of what it overlaps: no shapely needed
-        hit = first_overlap(blocked, res, vertices, disc, np.array([pose]), 0.0)
+        hit = first_overlap_exact(blocked, res, vertices, disc, np.array([pose]), 0.0)
         if hit is not None:
             what = "leaves the map at" if hit[0] in (-1, grid.width) or hit[1] in (-1, grid.height) else \
                 "overlaps the blocked or unknown cell"
@@ -246,7 +250,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     kinds = np.array([k for k, _ in segments], dtype=np.int64)
     lengths = np.array([s for _, s in segments])
     traced, _ = trace_word(lsx, lsy, lst, kinds, lengths, r, lattice.ds)
-    hit = first_overlap(blocked, res, vertices, disc, traced, 0.5 * lattice.delta)
+    hit = first_overlap_exact(blocked, res, vertices, disc, traced, 0.5 * lattice.delta)
     if hit is not None:
         return finish(Status.FAILED, f"internal check: the path found overlaps cell {hit}; please report it")
     poses, direction = trace_word(lsx, lsy, lst, kinds, lengths, r, spacing)

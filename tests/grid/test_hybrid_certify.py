@@ -1,0 +1,113 @@
+"""Hybrid A*'s compiled re-check of a path against shapely: the same overlaps, the same cell named."""
+
+import math
+
+import numpy as np
+import pytest
+import shapely
+
+from navlab.grid.hybrid_certify import first_overlap_exact
+from navlab.sampling.footprint_lattice import first_overlap
+
+OUTLINES = {
+    "car": [[-1.0, -1.0], [3.3, -1.0], [3.3, 1.0], [-1.0, 1.0]],
+    "skew triangle": [[-0.3, -0.2], [0.5, 0.05], [-0.1, 0.3]],
+    "L (not convex)": [[-0.5, -0.5], [0.6, -0.5], [0.6, -0.1], [-0.1, -0.1], [-0.1, 0.7], [-0.5, 0.7]],
+}
+
+
+def _case(rng, outline):
+    h, w = rng.integers(8, 30, 2)
+    res = rng.uniform(0.02, 1.0)
+    blocked = rng.random((h, w)) < rng.choice([0.0, 0.005, 0.02, 0.1])
+    # from footprints within a cell to footprints covering many cells (a blocked cell wholly inside)
+    verts = np.array(outline) * rng.uniform(0.1, 3.0) * res
+    k = rng.integers(1, 6)
+    poses = np.column_stack([rng.uniform(0.1, 0.9, k) * w * res, rng.uniform(0.1, 0.9, k) * h * res,
+                             rng.uniform(-4, 4, k)])
+    if rng.random() < 0.1:  # and some off the map
+        poses[0, :2] = -0.2 * res
+    grow = rng.choice([0.0, 0.25 * res, 0.7 * res])
+    return blocked, res, verts, poses, grow
+
+
+def _ringed_cells(blocked, res, grow):
+    """Every blocked cell and the ring just outside the map, as shapely boxes grown by ``grow``, row by row."""
+    h, w = blocked.shape
+    ringed = np.ones((h + 2, w + 2), bool)
+    ringed[1:-1, 1:-1] = blocked
+    ys, xs = np.nonzero(ringed)
+    return xs - 1, ys - 1, shapely.box((xs - 1) * res - grow, (ys - 1) * res - grow, xs * res + grow,
+                                       ys * res + grow)
+
+
+@pytest.mark.parametrize("name", sorted(OUTLINES))
+def test_the_compiled_recheck_finds_the_cell_shapely_finds(name):
+    """None exactly when shapely finds no pose's polygon meeting a blocked or ring cell's grown square;
+    else the first such pose's lowest cell (row by row), which is also first_overlap's answer."""
+    rng = np.random.default_rng(31)
+    hits = misses = 0
+    for _ in range(300):
+        blocked, res, verts, poses, grow = _case(rng, OUTLINES[name])
+        xs, ys, cells = _ringed_cells(blocked, res, grow)
+        c, s = np.cos(poses[:, 2])[:, None], np.sin(poses[:, 2])[:, None]
+        shapes = shapely.polygons(np.stack([poses[:, :1] + c * verts[:, 0] - s * verts[:, 1],
+                                            poses[:, 1:2] + s * verts[:, 0] + c * verts[:, 1]], axis=-1))
+        expected = None
+        for shape in shapes:
+            meets = np.nonzero(shapely.intersects(shape, cells))[0]
+            if len(meets):
+                expected = (int(xs[meets[0]]), int(ys[meets[0]]))  # row by row: nonzero's order
+                break
+        got = first_overlap_exact(blocked, res, verts, 0.0, poses, grow)
+        assert got == expected
+        assert got == first_overlap(blocked, res, verts, 0.0, poses, grow)
+        hits += got is not None
+        misses += got is None
+    assert hits > 50 and misses > 50  # both answers exercised
+
+
+def test_a_footprint_around_a_blocked_cell_overlaps_it():
+    """No edge crosses the cell: only the inside test finds it."""
+    blocked = np.zeros((9, 9), bool)
+    blocked[4, 4] = True
+    square = np.array([[-2.0, -2.0], [2.0, -2.0], [2.0, 2.0], [-2.0, 2.0]])
+    assert first_overlap_exact(blocked, 1.0, square, 0.0, np.array([[4.5, 4.5, 0.3]]), 0.0) == (4, 4)
+    assert first_overlap_exact(blocked, 1.0, square * 0.1, 0.0, np.array([[2.5, 2.5, 0.3]]), 0.0) is None
+
+
+def test_touching_counts():
+    blocked = np.zeros((4, 4), bool)
+    blocked[1, 2] = True  # the square [2, 3] x [1, 2]
+    unit = np.array([[-0.5, -0.5], [0.5, -0.5], [0.5, 0.5], [-0.5, 0.5]])
+    assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5, 1.5, 0.0]]), 0.0) == (2, 1)
+    assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5 - 1e-6, 1.5, 0.0]]), 0.0) is None
+    assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5 - 1e-6, 1.5, 0.0]]), 1e-6) == (2, 1)
+
+
+@pytest.mark.parametrize("disc", [0.0, 0.3, 1.7])
+def test_discs_and_points_by_their_distance_from_the_squares(disc):
+    """A disc (or a point) overlaps exactly the grown squares within its radius (shapely's distance)."""
+    rng = np.random.default_rng(5)
+    hits = 0
+    for _ in range(200):
+        blocked, res, _, poses, grow = _case(rng, OUTLINES["car"])
+        radius = disc * res
+        xs, ys, cells = _ringed_cells(blocked, res, grow)
+        expected = None
+        for x, y, _ in poses:
+            near = np.nonzero(shapely.distance(shapely.Point(x, y), cells) <= radius)[0]
+            if len(near):
+                expected = (int(xs[near[0]]), int(ys[near[0]]))
+                break
+        assert first_overlap_exact(blocked, res, np.empty((0, 2)), radius, poses, grow) == expected
+        hits += expected is not None
+    assert 20 < hits < 180
+
+
+def test_poses_off_the_map_meet_the_ring():
+    blocked = np.zeros((3, 3), bool)
+    unit = np.array([[-0.2, -0.2], [0.2, -0.2], [0.2, 0.2], [-0.2, 0.2]])
+    assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5, 1.5, 0.0]]), 0.0) is None
+    assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5, 1.5, 0.0], [0.1, 2.5, math.pi / 4]]),
+                               0.0) == (-1, 2)

@@ -103,19 +103,8 @@ class BucketGrid:
         h, nx, ny = grid_shape(self.bounds, expected)
         gparams = grid_params(self.bounds, h)
         dims = np.array([nx, ny, -(-nx // COARSE), -(-ny // COARSE)], dtype=np.int64)
-        cells = _cells_of(xy, n, gparams, dims)
-        counts = np.bincount(cells, minlength=nx * ny)
-        room = np.ceil(counts * (expected / max(n, 1))).astype(np.int64) + BLOCK_SLACK
-        meta = np.empty((nx * ny + 1, 3), dtype=np.int64)  # one spare row: the end of the last block
-        meta[0, M_START] = 0
-        np.cumsum(room, out=meta[1:, M_START])
-        meta[:, M_FILL] = meta[:, M_START]
-        meta[:, M_HEAD] = -1
-        total = int(meta[-1, M_START])
-        # Slots past a block's fill are never read, so never written before use.
-        self.arrays = (meta, np.empty((total, 3)), np.empty(total, dtype=np.int32), next_node, slot,
-                       gparams, dims, np.zeros(dims[D_CX] * dims[D_CY], dtype=np.int64))
-        _fill(n, xy, cost, cells, self.arrays)
+        meta, block, block_id, coarse = _build(xy, cost, next_node, slot, n, expected / max(n, 1), gparams, dims)
+        self.arrays = (meta, block, block_id, next_node, slot, gparams, dims, coarse)
         self.built_at = n
 
     def with_nodes(self, next_node: np.ndarray, slot: np.ndarray) -> tuple:
@@ -175,17 +164,29 @@ def _cell(x, y, gparams, dims):
 
 
 @njit(cache=True)
-def _cells_of(xy, n, gparams, dims):
-    out = np.empty(n, dtype=np.int64)
+def _build(xy, cost, next_node, slot, n, growth, gparams, dims):
+    """The bookkeeping, blocks and coarse counts of a grid over nodes 0..n-1, each cell's block sized for
+    its nodes times ``growth`` (the expected nodes over n) plus ``BLOCK_SLACK``. One compiled entry point, not
+    one per step: a fresh process loads each entry point from numba's cache apart (index, unpickling, linking,
+    ~5 ms each at load 1), and a planning command builds a grid before its first query."""
+    cells = np.empty(n, dtype=np.int64)
+    counts = np.zeros(dims[D_NX] * dims[D_NY], dtype=np.int64)
     for k in range(n):
-        out[k] = _cell(xy[k, 0], xy[k, 1], gparams, dims)
-    return out
-
-
-@njit(cache=True)
-def _fill(n, xy, cost, cells, grid):
+        cells[k] = _cell(xy[k, 0], xy[k, 1], gparams, dims)
+        counts[cells[k]] += 1
+    meta = np.empty((len(counts) + 1, 3), dtype=np.int64)  # one spare row: the end of the last block
+    meta[0, M_START] = 0
+    for c in range(len(counts)):
+        meta[c + 1, M_START] = meta[c, M_START] + np.int64(math.ceil(counts[c] * growth)) + BLOCK_SLACK
+    meta[:, M_FILL] = meta[:, M_START]
+    meta[:, M_HEAD] = -1
+    total = meta[-1, M_START]
+    # Slots past a block's fill are never read, so never written before use.
+    grid = (meta, np.empty((total, 3)), np.empty(total, dtype=np.int32), next_node, slot, gparams, dims,
+            np.zeros(dims[D_CX] * dims[D_CY], dtype=np.int64))
     for k in range(n):
         _put(k, xy[k, 0], xy[k, 1], cost[k], cells[k], grid)
+    return grid[0], grid[1], grid[2], grid[7]
 
 
 @njit(cache=True, inline="always")

@@ -3,6 +3,13 @@
     python benchmarks/bench_startup.py            # 9 runs of each command
     python benchmarks/bench_startup.py --runs 21
     python benchmarks/bench_startup.py --phases   # where plan clutter's time goes, step by step
+    python benchmarks/bench_startup.py --python /tmp/qs/bin/python   # another environment's navlab
+
+The first line says which environment ran: its python, where its navlab
+comes from (an installed copy, as `pip install .` gives a user, or an
+editable source tree) and the .pth files its site-packages runs at every
+start (a dev venv's editable finder and the ros2 extra's bootstrapper cost
+each process time a user's plain install does not pay).
 
 Each command runs in a new process (numba's cache warm: a first run compiles
 and is dropped), alternating between commands; the table gives the median wall
@@ -68,7 +75,9 @@ marks = [("", time.perf_counter(), time.process_time())]
 def mark(name):
     marks.append((name, time.perf_counter(), time.process_time()))
 import click, navlab.cli; mark("click, navlab.cli")
-navlab.cli._one_blas_thread(True)  # as the command does (this -c process is not it by its name), before numpy
+import os  # BLAS on one thread as navlab.cli._one_blas_thread does for the command (this -c process is not it)
+if not any(name in os.environ for name in navlab.cli.BLAS_THREAD_SETTINGS):
+    os.environ.update(OPENBLAS_NUM_THREADS="1", MKL_NUM_THREADS="1")
 import numpy as np; mark("import numpy")
 import navlab.cli.plan; mark("the plan verb")
 import atexit, gc
@@ -99,25 +108,44 @@ COMMANDS = [("navlab --help", ["-m", "navlab", "--help"], 0.3),
             ("floor: same, navlab's way", ["numba_floor.py", "navlab"], None)]
 
 
-def run(args, folder) -> tuple[float, float]:
+ENVIRONMENT = """
+import glob, json, os, site, sys
+import navlab
+pth = sorted(os.path.basename(p) for d in site.getsitepackages() for p in glob.glob(os.path.join(d, "*.pth")))
+print(json.dumps({"navlab": os.path.dirname(navlab.__file__), "pth": pth}))
+"""
+
+
+def environment_line(python: str) -> str:
+    """Which environment is measured: its python, where its navlab comes from, the .pth files run at its start."""
+    import json
+
+    out = subprocess.run([python, "-c", ENVIRONMENT], capture_output=True, text=True, check=True, cwd=os.sep)
+    found = json.loads(out.stdout)
+    where = "installed" if "site-packages" in found["navlab"] else "source tree (editable or PYTHONPATH)"
+    return (f"environment: {python}; navlab {where}: {found['navlab']}; "
+            f".pth run at start: {', '.join(found['pth']) or 'none'}")
+
+
+def run(python, args, folder) -> tuple[float, float]:
     """Wall seconds and CPU seconds (user + system) of one fresh process."""
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
-    subprocess.run([sys.executable, *args], cwd=folder, stdout=subprocess.DEVNULL,
+    subprocess.run([python, *args], cwd=folder, stdout=subprocess.DEVNULL,
                    stderr=subprocess.DEVNULL, check=False)
     wall = time.perf_counter() - t0
     after = resource.getrusage(resource.RUSAGE_CHILDREN)  # one child at a time: the difference is its own
     return wall, (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
 
 
-def phases(runs: int) -> None:
+def phases(python: str, runs: int) -> None:
     """Where `navlab plan clutter`'s time goes: median wall and CPU ms of each step over fresh processes."""
     rows: dict = {}
     totals, exits, starts = [], [], []
     for _ in range(runs):
         before = resource.getrusage(resource.RUSAGE_CHILDREN)
         t0 = time.perf_counter()
-        out = subprocess.run([sys.executable, "-c", PHASES], capture_output=True, text=True, check=True).stdout
+        out = subprocess.run([python, "-c", PHASES], capture_output=True, text=True, check=True, cwd=os.sep).stdout
         ended, wall = time.time(), time.perf_counter() - t0
         after = resource.getrusage(resource.RUSAGE_CHILDREN)
         totals.append((wall * 1000, ((after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)) * 1000))
@@ -146,10 +174,14 @@ def main() -> None:
     ap.add_argument("--runs", type=int, default=9)
     ap.add_argument("--phases", action="store_true",
                     help="time the steps of navlab plan clutter instead of the commands")
+    ap.add_argument("--python", default=sys.executable,
+                    help="the python of the environment to measure (default: this one), e.g. a venv with "
+                         "`pip install .` as a user gets it")
     args = ap.parse_args()
     print(load_line("at start"))
+    print(environment_line(args.python))
     if args.phases:
-        phases(args.runs)
+        phases(args.python, args.runs)
         print(load_line("at end"))
         return
     times = {name: [] for name, _, _ in COMMANDS}
@@ -158,10 +190,10 @@ def main() -> None:
         with open(os.path.join(folder, "numba_floor.py"), "w", encoding="utf-8") as f:
             f.write(NUMBA_FLOOR)
         for _, argv, _ in COMMANDS:
-            run(argv, folder)  # compile / fill the numba cache
+            run(args.python, argv, folder)  # compile / fill the numba cache
         for _ in range(args.runs):
             for name, argv, _ in COMMANDS:
-                wall, seconds = run(argv, folder)
+                wall, seconds = run(args.python, argv, folder)
                 times[name].append(wall)
                 cpu[name].append(seconds)
     print(f"\n{'command':<28} {'median':>8} {'range':>14} {'goal':>6}  {'CPU':>7} {'range':>14}  "

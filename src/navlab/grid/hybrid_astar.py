@@ -63,7 +63,7 @@ from shapely.geometry import Point, Polygon
 
 from ..limits import check_length, finite_number
 from ..result import Result, Status
-from ..sampling import dubins, reeds_shepp
+from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_compiled, advance, check_pose,
                               check_turning_radius, trace_word)
 from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattice_for, pose_free, robot_outline
@@ -394,7 +394,13 @@ def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, the
         x1, y1, t1 = waypoints[j, 0], waypoints[j, 1], waypoints[j, 2]
         if reverse:
             lx, ly, phi = reeds_shepp._local(x0, y0, t0, x1, y1, t1, radius)
-            reeds_shepp._shortest_into(lx, ly, phi, seg, word_kinds, word_lens)
+            # the full solver's word, bit for bit, by branch and bound; none (inf) when its length is
+            # surely no shorter than the stretch it would replace (widened by a relative 1e-9, far above
+            # the rounding and the negligible segments dropped below), which the test below skips anyway
+            cutoff = (acc[j] - acc[i] - 1e-9) / radius
+            if reeds_shepp_length.word_below(lx, ly, phi, cutoff * (1.0 + 1e-9) + 1e-12, seg, word_kinds,
+                                             word_lens) == math.inf:
+                continue
             for k in range(MAX_SEGMENTS):
                 word_lens[k] *= radius
         else:

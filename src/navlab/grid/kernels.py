@@ -397,6 +397,15 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
             if top == 0:  # the next non-empty bucket: its smallest keys go on the stack
                 while head[np.uint64(cb)] < 0:
                     cb = (cb + 1) & mask
+                    if cb & 7 == 0:
+                        # Eight empty buckets (-1) at a time: the AND of their heads stays negative. Where
+                        # expansions are few per unit of f (maze1001: 20 empty buckets passed per expansion)
+                        # the one-by-one walk was a tenth of A*'s time: maze1001 -6 to -8%, random4096
+                        # unchanged (in-process A/B, CPU medians of 11-21 interleaved runs at load 11).
+                        while (head[np.uint64(cb)] & head[np.uint64(cb + 1)] & head[np.uint64(cb + 2)]
+                               & head[np.uint64(cb + 3)] & head[np.uint64(cb + 4)] & head[np.uint64(cb + 5)]
+                               & head[np.uint64(cb + 6)] & head[np.uint64(cb + 7)]) < 0:
+                            cb = (cb + 8) & mask
                 n = head[np.uint64(cb)]
                 fcur = key[np.uint64(n)]
                 n = nxt[np.uint64(n)]

@@ -136,14 +136,15 @@ def _ends_table(theta0, step, bins, prim_kind, prim_len, radius, ds):
     nprim = prim_kind.shape[0]
     dx, dy = np.empty((bins, nprim)), np.empty((bins, nprim))
     dbin = np.empty(nprim, dtype=np.int64)
-    kinds, lengths = np.empty(1, dtype=np.int64), np.empty(1)
     for b in range(bins):
         theta = theta0 + b * step
         for j in range(nprim):
-            kinds[0], lengths[0] = prim_kind[j], prim_len[j]
-            poses, _ = trace_word(0.0, 0.0, theta, kinds, lengths, radius, ds)
-            dx[b, j], dy[b, j] = poses[-1, 0], poses[-1, 1]
-            dbin[j] = round((poses[-1, 2] - theta) / step)
+            # trace_word's last pose, computed as it computes it (the segment's length times its
+            # pieces over its pieces, which need not round back to the length), without the poses
+            pieces = max(1, int(math.ceil(abs(prim_len[j]) / ds)))
+            x, y, t = advance(0.0, 0.0, theta, prim_kind[j], prim_len[j] * pieces / pieces, radius)
+            dx[b, j], dy[b, j] = x, y
+            dbin[j] = round((t - theta) / step)
     return dx, dy, dbin
 
 

@@ -111,3 +111,28 @@ def test_poses_off_the_map_meet_the_ring():
     assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5, 1.5, 0.0]]), 0.0) is None
     assert first_overlap_exact(blocked, 1.0, unit, 0.0, np.array([[1.5, 1.5, 0.0], [0.1, 2.5, math.pi / 4]]),
                                0.0) == (-1, 2)
+
+
+@pytest.mark.parametrize("disc", [0.0, 0.3])
+def test_a_footprint_wholly_beyond_the_ring_leaves_the_map(disc):
+    """Poses several cells outside the map meet none of the ring's squares, yet the
+    footprint is off the map: each names the ring cell nearest its pose (shapely's
+    first_overlap, which tests the ring only, misses these)."""
+    blocked = np.zeros((10, 10), bool)
+    outline = np.empty((0, 2)) if disc else np.array([[-0.3, -0.2], [0.4, -0.2], [0.4, 0.2], [-0.3, 0.2]])
+    for pose, ring_cell in (((-5.0, 5.5), (-1, 5)), ((15.0, 5.5), (10, 5)), ((5.5, 40.0), (5, 10)),
+                            ((-7.0, -7.0), (-1, -1)), ((12.5, -3.0), (10, -1))):
+        assert first_overlap_exact(blocked, 1.0, outline, disc, np.array([[*pose, 0.7]]), 0.0) == ring_cell
+    inside = np.array([[5.5, 5.5, 0.7], [1.0, 9.0, 0.0]])
+    assert first_overlap_exact(blocked, 1.0, outline, disc, inside, 0.0) is None
+
+
+def test_a_start_pose_off_the_map_is_an_invalid_start():
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.hybrid_astar import plan_hybrid
+    from navlab.result import Status
+
+    grid = OccupancyGrid(np.zeros((20, 20), bool), resolution=1.0)
+    result = plan_hybrid(grid, (-5.0, 10.0, 0.0), (15.0, 10.0, 0.0), turning_radius=2.0)
+    assert result.status == Status.INVALID_START, result.reason
+    assert "leaves the map" in result.reason

@@ -31,7 +31,8 @@ def first_overlap_exact(blocked: np.ndarray, res: float, vertices: np.ndarray, d
     """The first cell (x, y) the footprint at any of ``poses`` (grid frame, (N, 3)) overlaps with
     the blocked cells' squares grown by ``grow`` [m] on every side; None when it overlaps none.
     Outside the map counts, as the cell just beyond the edge; the first pose's lowest cell (row
-    by row) is named, as :func:`~navlab.sampling.footprint_lattice.first_overlap` names it.
+    by row) is named, as :func:`~navlab.sampling.footprint_lattice.first_overlap` names it. A
+    footprint wholly beyond that ring of cells names the ring cell nearest its pose.
 
     ``vertices`` (K, 2) the outline in body coordinates [m], or none and ``disc`` [m] a disc's
     radius (0: a point). A disc here is exact, where shapely's is a 64-gon inside it, so a disc
@@ -79,6 +80,10 @@ def _first_overlap(blocked, res, vertices, disc, poses, grow):
                     hit = ex * ex + ey * ey <= disc * disc
                 if hit:
                     return True, cx, cy
+        # none of the ring's squares met: the footprint leaves the map only by lying wholly beyond
+        # them (the map is a rectangle, so the outline's extremes tell); name the nearest ring cell
+        if x0 <= grow + slack or y0 <= grow + slack or x1 >= w * res - grow - slack or y1 >= h * res - grow - slack:
+            return True, min(max(int(math.floor(x / res)), -1), w), min(max(int(math.floor(y / res)), -1), h)
     return False, 0, 0
 
 

@@ -105,3 +105,10 @@ def test_weighted_and_inconsistent_searches_return_legal_bounded_paths(heuristic
             assert d - 1e-9 <= r.cost <= weight * inflation * d + 1e-9
             if heuristic != "manhattan" and weight == 1.0:
                 assert r.cost == pytest.approx(d, abs=1e-9)
+
+
+@pytest.mark.parametrize("out", [np.zeros(100, np.uint8), np.zeros((12, 12), np.uint8)], ids=["short", "2-D"])
+def test_legal_moves_refuses_an_output_array_of_the_wrong_shape(out):
+    """The kernel writes its bytes unchecked: a short or 2-D ``out`` must be refused, not overrun."""
+    with pytest.raises(ValueError, match="out must be"):
+        K.legal_moves(np.zeros((10, 10), np.bool_), np.zeros((0, 0), np.bool_), out)

@@ -263,6 +263,8 @@ def legal_moves(blocked, unknown, out):
     """
     h, w = blocked.shape
     S = w + 2
+    if out.ndim != 1 or out.shape[0] != (h + 2) * S:  # the writes below index it unchecked
+        raise ValueError("legal_moves: out must be a 1-D array of (h + 2) * (w + 2) bytes")
     out[:S] = 0
     out[(h + 1) * S:] = 0
     ring = np.zeros((3, S), dtype=np.uint8)  # padded row p in slot p % 3; the border columns stay 0

@@ -148,7 +148,8 @@ def test_a_heading_beyond_two_pi_gets_a_degrees_hint_and_is_still_taken():
     assert "more than 2π" not in quiet.stderr
 
 
-@pytest.mark.parametrize("args", [["list"], ["plan", "clutter", "--max-iter", "10", "--json"]])
+@pytest.mark.parametrize("args", [["list"], ["plan", "clutter", "--max-iter", "10", "--json"], ["--help"],
+                                  ["plan", "--help"]])
 def test_a_reader_that_went_away_ends_the_command_quietly(args):
     # `navlab list | head -1`: the reader closes the pipe; a pipe closed before the first write makes it certain
     import os

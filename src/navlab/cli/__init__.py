@@ -210,6 +210,12 @@ class NavlabGroup(click.Group):
         _quick_exit()
         try:
             code = super().main(args, prog_name, complete_var, False, **extra)
+        except SystemExit as exc:
+            # click's own EPIPE branch (output outside a verb, as `navlab --help | true`) exits 1 after
+            # wrapping stdout in PacifyFlushWrapper; a reader that went away ends quietly, as in invoke
+            if exc.code == 1 and isinstance(sys.stdout, click.utils.PacifyFlushWrapper) and _stdout_reader_gone():
+                sys.exit(0)
+            raise
         except click.exceptions.UsageError as exc:
             where = f" (see '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
             message = " ".join(exc.format_message().splitlines())  # one line, even for a value holding newlines

@@ -13,7 +13,7 @@ HEAVY = ("numba", "scipy", "matplotlib", "shapely", "navlab.bench", "navlab.samp
 #: what `navlab plan clutter` (rrt_star on a built-in scene) never calls: the grid search and its kernels, the
 #: map readers, the pose planners and their curves, plotting, the bench, ROS, OMPL, and the scipy.linalg package
 #: that numba's BLAS check would import (navlab.numba_start hands numba the one extension module it needs), and
-#: shapely (a built-in scene's polygons are constants known simple: shapes.Polygon.known_simple)
+#: shapely (a built-in scene's polygons are constants known simple: shapes.Polygon._known_simple)
 NOT_FOR_A_TREE_QUERY = ("shapely", "scipy.linalg", "scipy.spatial", "scipy.ndimage", "matplotlib", "navlab.bench", "navlab.viz",
                         "navlab.grid.planner", "navlab.grid.kernels", "navlab.grid.mapio", "navlab.grid.rasterize",
                         "navlab.grid.hybrid_astar", "navlab.sampling.reeds_shepp", "navlab.sampling.dubins",

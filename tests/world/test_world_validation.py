@@ -116,7 +116,7 @@ def test_non_finite_or_huge_queries_are_never_free(bad):
 
 
 def test_built_in_scenes_polygons_are_simple_by_shapely():
-    # the scenes build their fixed outlines with Polygon.known_simple (no shapely at a command's start): shapely,
+    # the scenes build their fixed outlines with Polygon._known_simple (no shapely at a command's start): shapely,
     # which the constructor asks, must agree that each is simple and has an area
     import shapely
 
@@ -135,10 +135,10 @@ def test_built_in_scenes_polygons_are_simple_by_shapely():
 
 def test_known_simple_reads_points_as_the_constructor_does():
     square = [(0, 0), (1, 0), (1, 1), (0, 1)]
-    assert Polygon.known_simple(square) == Polygon(square)
-    assert Polygon.known_simple(square).points == ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0))
+    assert Polygon._known_simple(square) == Polygon(square)
+    assert Polygon._known_simple(square).points == ((0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0))
     for bad, message in (([(0, 0), (1, 0)], "at least 3 points"), ([(0, 0), (1, math.nan), (1, 1)], "finite")):
         with pytest.raises(ValueError, match=message):
-            Polygon.known_simple(bad)
+            Polygon._known_simple(bad)
     with pytest.raises(ValueError, match="not simple"):  # a bow tie from a caller: the constructor still asks shapely
         Polygon([(0, 0), (1, 1), (1, 0), (0, 1)])

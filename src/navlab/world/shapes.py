@@ -111,7 +111,7 @@ class Polygon:
 
     def __post_init__(self) -> None:
         pts = _polygon_points(self.points)
-        import shapely  # here, not at the top: a built-in scene's polygons need none (see known_simple)
+        import shapely  # here, not at the top: a built-in scene's polygons need none (see _known_simple)
 
         shape = shapely.Polygon(pts)
         if not shape.is_valid or shape.area <= 0:
@@ -119,7 +119,7 @@ class Polygon:
         object.__setattr__(self, "points", pts)
 
     @classmethod
-    def known_simple(cls, points, motion: Optional[Any] = None) -> "Polygon":
+    def _known_simple(cls, points, motion: Optional[Any] = None) -> "Polygon":
         """A polygon whose outline is a constant already proven simple, made without shapely.
 
         navlab's built-in scenes (:mod:`navlab.world.scenes`) hold fixed

@@ -122,7 +122,8 @@ def environment_line(python: str) -> str:
 
     out = subprocess.run([python, "-c", ENVIRONMENT], capture_output=True, text=True, check=True, cwd=os.sep)
     found = json.loads(out.stdout)
-    where = "installed" if "site-packages" in found["navlab"] else "source tree (editable or PYTHONPATH)"
+    installed = any(part in found["navlab"] for part in ("site-packages", "dist-packages"))  # pip's; Debian's
+    where = "installed" if installed else "source tree (editable or PYTHONPATH)"
     return (f"environment: {python}; navlab {where}: {found['navlab']}; "
             f".pth run at start: {', '.join(found['pth']) or 'none'}")
 

@@ -202,3 +202,24 @@ def test_the_default_analytic_reach_is_three_metres_or_three_turning_radii():
     smac = plan_hybrid(free, start, goal, 4.0, robot_radius=0.2, analytic_expansion_max_length=3.0)
     assert smac.stats["expansions"] > 1
     assert plan_hybrid(free, start, goal, 0.5, robot_radius=0.2).params["analytic_expansion_max_length"] == 3.0
+
+
+@pytest.mark.parametrize("footprint", [None, [[-0.3, -0.2], [0.4, -0.2], [0.4, 0.2], [-0.3, 0.2]]])
+def test_a_walled_off_goal_fails_at_once_and_says_why(footprint):
+    """A goal inside a closed room: FAILED before any expansion (the field of the cells the robot's
+    centre can cross does not reach the start), as grid A* finds no path for a point there either;
+    max_expansions is not the reason."""
+    from navlab.grid import plan as grid_plan
+
+    blocked = np.zeros((40, 40), bool)
+    blocked[25:36, 25] = blocked[25:36, 35] = blocked[25, 25:36] = blocked[35, 25:36] = True
+    grid = OccupancyGrid(blocked, resolution=0.5)
+    assert grid_plan(grid, (6, 6), (30, 30)).status == Status.FAILED  # independent: no path even for a point
+    result = plan_hybrid(grid, (3.0, 3.0, 0.0), (15.0, 15.0, 0.0), turning_radius=1.0,
+                         **({} if footprint is None else {"footprint": footprint}))
+    assert result.status == Status.FAILED and "walled off" in result.reason, result.reason
+    assert result.stats["expansions"] == 0
+    opened = blocked.copy()
+    opened[30, 25] = opened[31, 25] = opened[29, 25] = False  # a 1.5 m door: the same query is planned
+    assert plan_hybrid(OccupancyGrid(opened, resolution=0.5), (3.0, 3.0, 0.0), (15.0, 15.0, 0.0),
+                       turning_radius=1.0).status == Status.EXACT

@@ -221,6 +221,14 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     passable = cells_clear * res > max(0.0, inscribed - math.sqrt(2.0) * res)
     gcx, gcy = int(lgx // res), int(lgy // res)
     hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
+    scx, scy = int(lsx // res), int(lsy // res)
+    if not math.isfinite(hfield[scy, scx]) and not math.isfinite(holonomic_field(
+            passable | _cell_mask(blocked.shape, gcx, gcy) | _cell_mask(blocked.shape, scx, scy), gcx, gcy, res)[scy, scx]):
+        # the passable cells hold every cell the robot's centre can cross (its inscribed circle free), so the
+        # search could only exhaust max_expansions in vain; the start's own cell is added in case its
+        # clearance sits at the margin's edge
+        what = f"a disc of the robot's inscribed radius ({inscribed:.3g} m)" if inscribed > 0 else "a point"
+        return finish(Status.FAILED, f"no collision-free path: the goal is walled off from the start even for {what}")
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
     with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
         found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1] = search(

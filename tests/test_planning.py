@@ -210,3 +210,12 @@ def test_warm_up_runs_before_the_timed_query_and_is_reported_apart(monkeypatch):
     # had the budget started before the warm-up, no iteration would have run
     assert r.success and r.stats["iterations"] > 0
     assert r.stats["warmup_s"] == 0.3
+
+
+@pytest.mark.parametrize("typo, meant", [("motoin", "motion"), ("goal_tolerence", "goal_tolerance"),
+                                         ("turning_radios", "turning_radius")])
+def test_a_misspelt_query_setting_is_suggested_and_listed(typo, meant):
+    # a scene's note says --param motion=reeds_shepp: a typo there must point back to it
+    with pytest.raises(UnknownNameError, match=f"Did you mean '{meant}'") as caught:
+        navlab.plan("parking", "rrt_star", max_iter=10, **{typo: 1})
+    assert "for the query: motion" in str(caught.value)

@@ -26,6 +26,14 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
                   "allow_unknown")
 
 
+
+#: settings of the query rather than of a planner, which every tree planner's --param takes
+#: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
+QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance")
+QUERY_PARAMS_HELP = ("motion (holonomic, dubins or reeds_shepp; the last two with turning_radius and footprint), "
+                     "goal_tolerance")
+
+
 def planner_names() -> list[str]:
     """Every planner ``navlab.plan`` accepts: tree planners and grid algorithms."""
     from .grid.planner import GRID_ALGORITHMS
@@ -67,7 +75,8 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
         else:
             valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
             raise UnknownNameError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
-                             f"valid: {', '.join(valid)}." + suggest(key, valid))
+                                   f"valid: {', '.join(valid)}; and for the query: {QUERY_PARAMS_HELP}."
+                                   + suggest(key, valid + list(QUERY_PARAMS)))
     return to_planner, to_sampler
 
 

@@ -221,3 +221,16 @@ def test_open_lists_grow_when_full_and_the_query_is_rerun():
         r = plan(cramped, (2, 5), (57, 55), algorithm=algo)
         assert roomy.status == r.status == Status.EXACT and np.array_equal(r.cells, roomy.cells)
         assert s.key.size > 3 and s.stack.size > 2  # it did run out of room
+
+
+def test_a_search_stopped_by_unknown_cells_says_so():
+    blocked = np.zeros((10, 10), bool)
+    unknown = np.zeros((10, 10), bool)
+    unknown[:, 5] = True  # a column of unknown cells cuts the map in two
+    grid = OccupancyGrid(blocked, unknown=unknown)
+    closed = plan(grid, (1, 1), (8, 8))
+    assert closed.status == Status.FAILED and "10 unknown cells were closed" in closed.reason
+    assert "--allow-unknown" in closed.reason
+    assert plan(grid, (1, 1), (8, 8), allow_unknown=True).status == Status.EXACT
+    walled = plan(OccupancyGrid(unknown), (1, 1), (8, 8))  # the same column blocked: no hint
+    assert walled.status == Status.FAILED and "unknown" not in walled.reason

@@ -201,6 +201,14 @@ class SearcherPool:
                 self._idle.append(searcher)
 
 
+def _unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
+    """What a failed search on a map with unknown cells adds to its reason: they were closed to it."""
+    if allow_unknown or not grid.unknown.any():
+        return ""
+    return (f"; the map's {int(np.count_nonzero(grid.unknown & ~grid.blocked))} unknown cells were closed to the "
+            "search (allow_unknown=true, --allow-unknown on the command line, opens them)")
+
+
 def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
     """The grid's searcher pool (kept in the immutable grid's cache)."""
     key = ("searchers", allow_unknown)
@@ -366,7 +374,8 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         if status != 1:
             return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded, warmup_s=warmup_s),
                           cells=np.empty((0, 2), dtype=np.int64),
-                          reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)")
+                          reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)" + _unknown_hint(
+                              grid, allow_unknown))
         cells = s.cells(algorithm, connectivity, a, b)
     raw = None
     raw_cost = path_cost(cells)

@@ -1,0 +1,99 @@
+"""Seconds numba spends compiling inside a planner's timed call, moved to its warm-up.
+
+A planner's kernels are compiled or loaded before its clock starts (the
+``warmup_s`` of :mod:`navlab.warmup` and ``grid.planner.warm_kernels``), but
+the warm-up compiles the argument types navlab's own worlds and maps give;
+another map (a PNG's image, a robot without a footprint, ...) can ask a kernel
+for a signature it has never compiled, and numba then compiles it inside the
+timed call: a first query of 5 ms reported as 580 ms of planning. The clock
+below listens to numba's ``numba:compile`` events, which fire for compiles
+only (a signature found in numba's cache loads without one), and
+:meth:`CompileClock.moved_to_warmup` moves their seconds from the result's
+``time_s`` to its ``warmup_s``.
+
+Clocks nest (navlab.plan around a grid planner's own): an event counts for
+the innermost clock of the thread that compiles, so no second is moved twice,
+and another thread's compiles are not this call's.
+
+References
+----------
+Numba documentation, "Event API" (``numba.core.event``: ``install_listener``,
+the ``numba:compile`` event kind).
+"""
+
+from __future__ import annotations
+
+import functools
+import threading
+import time
+from contextlib import contextmanager
+from typing import Iterator, List
+
+from .result import Result
+
+_local = threading.local()  # this thread's open clocks, innermost last
+
+
+class CompileClock:
+    """Seconds of numba compiling seen while it was the thread's innermost open clock."""
+
+    def __init__(self) -> None:
+        self.seconds = 0.0
+
+    def moved_to_warmup(self, result: Result) -> Result:
+        """``result`` with the compile seconds taken from ``stats["time_s"]`` (never below 0)
+        and added to ``stats["warmup_s"]``."""
+        stats = result.stats
+        moved = min(self.seconds, stats.get("time_s") or 0.0)
+        if moved > 0.0:
+            stats["time_s"] -= moved
+            stats["warmup_s"] = (stats.get("warmup_s") or 0.0) + moved
+        return result
+
+
+def _open_clocks() -> List[CompileClock]:
+    if not hasattr(_local, "clocks"):
+        _local.clocks = []
+    return _local.clocks
+
+
+@contextmanager
+def compile_clock() -> Iterator[CompileClock]:
+    """A :class:`CompileClock` running for the ``with`` block (this thread's compiles only)."""
+    from numba.core import event
+
+    clock = CompileClock()
+    clocks = _open_clocks()
+    clocks.append(clock)
+    try:
+        with event.install_listener("numba:compile", _listener_class()(threading.get_ident())):
+            yield clock
+    finally:
+        clocks.remove(clock)
+
+
+@functools.lru_cache(maxsize=1)
+def _listener_class():
+    """numba's Listener subclass, made on first use (importing numba here would put it in ``navlab --help``)."""
+    from numba.core import event
+
+    class OutermostCompiles(event.Listener):
+        """Times outermost compiles (a kernel's includes its callees') into the thread's innermost clock."""
+
+        def __init__(self, thread: int) -> None:
+            self._started: List[float] = []
+            self._thread = thread
+
+        def on_start(self, ev) -> None:
+            if threading.get_ident() == self._thread:
+                self._started.append(time.perf_counter())
+
+        def on_end(self, ev) -> None:
+            if threading.get_ident() != self._thread or not self._started:
+                return
+            began = self._started.pop()
+            clocks = _open_clocks()
+            if not self._started and clocks:
+                clocks[-1].seconds += time.perf_counter() - began
+
+    return OutermostCompiles

@@ -234,7 +234,8 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
                 f"differs in: {', '.join(_differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
                 "Use another --out, or --overwrite to discard them.")
         if old_rows and not resume:
-            raise ExperimentError(f"'{folder}' already holds {len(old_rows)} finished trials of this experiment; "
+            raise ExperimentError(f"'{folder}' already holds {len(old_rows)} finished runs of this experiment "
+                                  "(trials and noise repeats); "
                                   "pass --resume to continue it or --overwrite to start again")
     elif old_rows:
         raise ExperimentError(f"'{folder}' holds results without {EXPERIMENT_FILE}; use another --out")

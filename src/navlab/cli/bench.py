@@ -197,9 +197,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     ran = f"{run.ran - repeats} run now, {run.errors} errors" + (f"; {repeats} noise repeats besides" if repeats
                                                                  else "")
     click.echo(f"{len(run.rows)} trials ({ran}) in {run.elapsed_s:.1f} s; times are {summary['time_label']}")
-    if run.ran:  # a resumed run with nothing left ran no worker: the rows' warm-up is an earlier run's
+    if run.ran:  # this run's workers' warm-up: a resumed run's earlier rows hold an earlier run's
         click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
-                   f"{summary['warmup_s']:.1f} s in all, not counted in any trial")
+                   f"{run.breakdown.get('warmup_s', 0.0):.1f} s in all, not counted in any trial")
     if summary.get("torn_lines"):
         click.echo(f"{summary['torn_lines']} torn line(s) cut from results.jsonl (kept in results.torn.jsonl)")
     width = max([len(c["group"]) for c in summary["cells"]] + [20]) + 2

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import sys
+import time
 from pathlib import Path
 
 import click
@@ -103,6 +104,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
             check_output_file(name, flag)
     from ..sim.runner import NoPathError, simulate
 
+    began = time.perf_counter()
     try:
         result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
                                             planner=planner, sampler=sampler, lidar=lidar,
@@ -134,6 +136,10 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         click.echo(f"{result.status.name}" + (f" ({result.reason})" if result.reason else "")
                    + f" after {result.time_s:.2f} s simulated in {result.wall_time_s * 1000:.0f} ms "
                    f"(real-time factor {result.real_time_factor:.0f}x, {result.steps} steps)")
+        setup_s = time.perf_counter() - began - result.wall_time_s
+        if setup_s > 3.0:  # a first use compiles for up to minutes (loading them takes about a second): say so
+            click.echo(f"  set-up before the run {setup_s:.1f} s (the world, the plan, compiling or loading kernels: "
+                       "a first use compiles them once)")
         click.echo(f"  final true pose ({result.final_true[0]:.3f}, {result.final_true[1]:.3f}) m, "
                    f"{1000 * result.error_true:.1f} mm from the goal; odometry says "
                    f"({result.final_odom[0]:.3f}, {result.final_odom[1]:.3f}), travelled {result.distance:.2f} m")

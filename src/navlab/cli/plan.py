@@ -125,7 +125,7 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
     elif "expansions" in s:  # a heading-aware planner
         p = result.params
         click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {s['expansions']} expansions, "
-                   f"{s.get('cusps', 0)} cusps, planning {s['time_s'] * 1000:.1f} ms")
+                   f"{s.get('cusps', 0)} cusp{'' if s.get('cusps', 0) == 1 else 's'}, planning {s['time_s'] * 1000:.1f} ms")
     elif "time_s" in s and s.get("grid"):  # a grid planner that searched (not one refused at its start)
         line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:

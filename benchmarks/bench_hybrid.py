@@ -41,7 +41,9 @@ from pathlib import Path
 
 import numpy as np
 
-from navlab.grid.hybrid_astar import plan_hybrid
+from navlab.grid.hybrid_astar import _map_tables, plan_hybrid
+from navlab.grid.hybrid_certify import first_overlap_exact
+from navlab.grid.maze import maze_walls
 from navlab.grid.occupancy import OccupancyGrid
 from navlab.result import Status
 from navlab.sampling.footprint_lattice import lattice_for
@@ -197,12 +199,9 @@ def reference_map(options, runs: int = 5) -> None:
     ``solves`` counts the heuristic values the search's lazy queue computed (Reeds–Shepp motion;
     Dubins keys are computed as children are queued, so it is 0 there).
     """
-    res, n = 0.05, 384
-    blocked = np.zeros((n, n), dtype=bool)
-    for x0, y0, x1, y1 in ((6.0, 0.0, 6.2, 12.0), (12.0, 7.0, 12.2, 19.2), (6.0, 15.0, 9.0, 15.2)):  # walls [m]
-        blocked[round(y0 / res):round(y1 / res), round(x0 / res):round(x1 / res)] = True
-    grid = OccupancyGrid(blocked, resolution=res)
-    footprint = [[-0.25, -0.2], [0.25, -0.2], [0.25, 0.2], [-0.25, 0.2]]
+    res, n = SMAC_RES, SMAC_CELLS
+    grid = OccupancyGrid(three_walls(), resolution=res)
+    footprint = ROBOT
     start, goal = (2.0, 2.0, 0.0), (16.0, 8.0, math.pi / 2)
     print(f"reference: {n} x {n} cells ({n * n} cells) at {res:g} m, three walls, robot 0.5 x 0.4 m, turning "
           f"radius 0.4 m, 72 bins, start to goal {math.hypot(goal[0] - start[0], goal[1] - start[1]):.1f} m; "
@@ -230,6 +229,216 @@ def reference_map(options, runs: int = 5) -> None:
               f"{spread([1000 * t for t in warm[motion]], 1, ' ms'):>16} "
               f"{result.cost:>9.2f} {result.stats['expansions']:>10} {result.stats['heuristics_solved']:>7}")
 
+# ---------------------------------------------------------------------------
+# --smac-maps: Nav2 Smac's README figure ("2-20 ms for planning across 147,456 cell maps with 72 angular
+# bins") on maps of that size of the kinds its users plan on
+# ---------------------------------------------------------------------------
+SMAC_RES, SMAC_CELLS = 0.05, 384  # [m], cells a side: 147 456 cells, 19.2 m square
+ROBOT = [[-0.25, -0.2], [0.25, -0.2], [0.25, 0.2], [-0.25, 0.2]]  # [m] 0.5 x 0.4 m, the pose at its centre
+TURNING_RADIUS = 0.4  # [m] Smac README's example minimum_turning_radius
+SMAC_SEED = 21  # issue 21; maps and queries were fixed with it before any timing was seen
+QUERIES_PER_MAP = 6
+QUERY_DISTANCE = (8.0, 18.0)  # [m] start to goal, straight line
+#: Smac README's example parameters that navlab has (its cost_penalty has no counterpart: navlab's maps
+#: are binary); angle_quantization_bins is 72 as in its metric, navlab's default too
+SMAC_README = {"analytic_expansion_ratio": 3.5, "analytic_expansion_max_length": 3.0, "reverse_penalty": 2.1,
+               "change_penalty": 0.20, "non_straight_penalty": 1.25}
+SMAC_SETTINGS = (  # (label, motion, options): the same for every map and query
+    ("navlab defaults, dubins", "dubins", {}),
+    ("navlab defaults, reeds_shepp", "reeds_shepp", {}),
+    ("Smac README, dubins", "dubins", SMAC_README),
+)
+
+
+def _box(blocked, x0, y0, x1, y1, res=SMAC_RES):
+    """Block the cells whose centres lie in the rectangle [x0, x1] x [y0, y1] [m] (clipped to the map)."""
+    h, w = blocked.shape
+    i0, i1 = max(0, math.ceil(x0 / res - 0.5)), min(w, math.floor(x1 / res - 0.5) + 1)
+    j0, j1 = max(0, math.ceil(y0 / res - 0.5)), min(h, math.floor(y1 / res - 0.5) + 1)
+    blocked[j0:j1, i0:i1] = True
+
+
+def three_walls() -> np.ndarray:
+    """The hand-made reference map: three walls on a 384^2 map at 0.05 m (blocked cells, row = y)."""
+    res, n = SMAC_RES, SMAC_CELLS
+    blocked = np.zeros((n, n), dtype=bool)
+    for x0, y0, x1, y1 in ((6.0, 0.0, 6.2, 12.0), (12.0, 7.0, 12.2, 19.2), (6.0, 15.0, 9.0, 15.2)):  # walls [m]
+        blocked[round(y0 / res):round(y1 / res), round(x0 / res):round(x1 / res)] = True
+    return blocked
+
+
+def office(rng: np.random.Generator, rooms: int = 6, wall: float = 0.1, door: float = 1.0,
+           extra_doors: float = 0.3) -> np.ndarray:
+    """Rooms and doors: a 6 x 6 grid of 3.2 m rooms, 0.1 m walls; the walls a perfect maze opens
+    (:func:`navlab.grid.maze.maze_walls`, so every room is reachable) get a 1 m door at a random place,
+    each other inner wall one with probability ``extra_doors`` (loops, as offices have)."""
+    n, size = SMAC_CELLS, SMAC_CELLS * SMAC_RES / rooms
+    blocked = np.zeros((n, n), dtype=bool)
+    east, north = maze_walls(rooms, rooms, rng)
+    for k in range(1, rooms):  # the wall lines x = k size (vertical) and y = k size (horizontal)
+        _box(blocked, k * size - wall / 2, 0.0, k * size + wall / 2, n * SMAC_RES)
+        _box(blocked, 0.0, k * size - wall / 2, n * SMAC_RES, k * size + wall / 2)
+    for vertical, stands in ((True, east), (False, north)):
+        for a in range(rooms - 1):  # the line between room a and a + 1
+            for b in range(rooms):  # the room along it
+                if stands[b, a] if vertical else stands[a, b]:
+                    if rng.random() >= extra_doors:
+                        continue
+                lo = b * size + wall / 2 + rng.uniform(0.2, size - wall - door - 0.2)  # [m] the door's near edge
+                across = (a + 1) * size
+                x0, y0, x1, y1 = (across - wall, lo, across + wall, lo + door) if vertical else \
+                    (lo, across - wall, lo + door, across + wall)
+                j0, j1 = round(y0 / SMAC_RES), round(y1 / SMAC_RES)
+                i0, i1 = round(x0 / SMAC_RES), round(x1 / SMAC_RES)
+                blocked[j0:j1, i0:i1] = False
+    return blocked
+
+
+def warehouse(shelf: float = 1.0, aisle: float = 1.6, margin: float = 2.0, cross: float = 2.0) -> np.ndarray:
+    """Shelf rows: back-to-back racks 1 m deep in rows 1.6 m apart (the aisles), each row split by a 2 m
+    cross aisle in the middle, 2 m of open floor around (the docks)."""
+    extent = SMAC_CELLS * SMAC_RES
+    blocked = np.zeros((SMAC_CELLS, SMAC_CELLS), dtype=bool)
+    half = (extent - 2 * margin - cross) / 2
+    y = margin
+    while y + shelf <= extent - margin:
+        _box(blocked, margin, y, margin + half, y + shelf)
+        _box(blocked, extent - margin - half, y, extent - margin, y + shelf)
+        y += shelf + aisle
+    return blocked
+
+
+def clutter(rng: np.random.Generator, count: int) -> np.ndarray:
+    """``count`` obstacles at uniform places: half discs (radius 0.15-0.5 m), half axis-aligned boxes
+    (sides 0.3-1.2 m)."""
+    blocked = np.zeros((SMAC_CELLS, SMAC_CELLS), dtype=bool)
+    extent = SMAC_CELLS * SMAC_RES
+    centres = (np.arange(SMAC_CELLS) + 0.5) * SMAC_RES
+    for k in range(count):
+        x, y = rng.uniform(0.0, extent, 2)
+        if k % 2:
+            w, h = rng.uniform(0.3, 1.2, 2)
+            _box(blocked, x - w / 2, y - h / 2, x + w / 2, y + h / 2)
+        else:
+            r = rng.uniform(0.15, 0.5)
+            blocked |= (centres[None, :] - x) ** 2 + (centres[:, None] - y) ** 2 <= r * r
+    return blocked
+
+
+def smac_maps(seed: int = SMAC_SEED):
+    """The fixed map set: (name, blocked cells), every map 384 x 384 at 0.05 m, from one seeded Generator."""
+    rng = np.random.default_rng(seed)
+    return [("office (6x6 rooms, 1 m doors)", office(rng)), ("warehouse (1.6 m aisles)", warehouse()),
+            ("clutter, 40 obstacles", clutter(rng, 40)), ("clutter, 120 obstacles", clutter(rng, 120)),
+            ("three walls (reference)", three_walls())]
+
+
+def smac_queries(blocked: np.ndarray, rng: np.random.Generator, count: int = QUERIES_PER_MAP, tries: int = 100_000):
+    """``count`` (start, goal) poses [m, m, rad], uniform places and headings, 8-18 m apart, drawn with
+    ``rng`` among poses where the robot fits (no blocked cell under its footprint, exactly) whose centre
+    has clearance >= the robot's circumscribed radius; start and goal are joined by cells with that
+    clearance (so a disc the robot fits in at any heading can drive between them; a car still may not)."""
+    from scipy.ndimage import distance_transform_edt, label
+
+    vertices = np.array(ROBOT, dtype=float)
+    reach = float(np.hypot(vertices[:, 0], vertices[:, 1]).max())
+    roomy = distance_transform_edt(~blocked) * SMAC_RES >= reach
+    parts, _ = label(roomy, structure=np.ones((3, 3)))
+    extent = SMAC_CELLS * SMAC_RES
+
+    def pose():
+        while True:
+            x, y = rng.uniform(0.0, extent, 2)
+            p = (float(x), float(y), float(rng.uniform(-math.pi, math.pi)))
+            part = parts[int(y / SMAC_RES), int(x / SMAC_RES)]
+            if part and first_overlap_exact(blocked, SMAC_RES, vertices, 0.0, np.array([p]), 0.0) is None:
+                return p, part
+
+    queries = []
+    for _ in range(tries):
+        (start, a), (goal, b) = pose(), pose()
+        if a == b and QUERY_DISTANCE[0] <= math.hypot(goal[0] - start[0], goal[1] - start[1]) <= QUERY_DISTANCE[1]:
+            queries.append((start, goal))
+            if len(queries) == count:
+                return queries
+    raise RuntimeError(f"found only {len(queries)} queries in {tries} tries")
+
+
+def _timed(grid, start, goal, motion, options):
+    """One plan: (wall [s], CPU [s], Result)."""
+    w0, c0 = time.perf_counter(), time.process_time()
+    result = plan_hybrid(grid, start, goal, TURNING_RADIUS, motion=motion, footprint=ROBOT, **options)
+    return time.perf_counter() - w0, time.process_time() - c0, result
+
+
+def _ms(values) -> str:
+    """median (min-max) in ms."""
+    values = [1000 * v for v in values]
+    return f"{statistics.median(values):.1f} ({spread(values, 1)})" if values else "-"
+
+
+def smac_benchmark(seed: int = SMAC_SEED) -> None:
+    """Hybrid A* on the fixed map set against Smac's README figure (2-20 ms, 147 456 cells, 72 bins).
+
+    Per query and setting, interleaved setting by setting: ``new heading`` from a cleared footprint
+    lattice (a query whose start heading the planner has not seen: it traces the swept cells it needs
+    as it goes), then ``warm``, the same query again with it kept (a replanning robot's query). The map's
+    tables (:func:`navlab.grid.hybrid_astar._map_tables`: clearance and distance transforms) are kept
+    per map, as Smac keeps its per-map collision data: only the first query on a map pays them; that
+    cost is timed apart and printed per map. A failed query counts, its time included.
+    """
+    maps = smac_maps(seed)
+    rng = np.random.default_rng([seed, 1])
+    queries = [smac_queries(blocked, rng) for _, blocked in maps]
+    print(f"Smac maps: {len(maps)} maps of {SMAC_CELLS} x {SMAC_CELLS} cells ({SMAC_CELLS ** 2} cells) at "
+          f"{SMAC_RES:g} m, {QUERIES_PER_MAP} queries each {QUERY_DISTANCE[0]:g}-{QUERY_DISTANCE[1]:g} m apart "
+          f"(seed {seed}); robot 0.5 x 0.4 m, turning radius {TURNING_RADIUS:g} m, 72 heading bins")
+    for label_, motion, options in SMAC_SETTINGS:
+        print(f"  {label_}: motion={motion}, {_described(options)}")
+    grid0 = OccupancyGrid(maps[0][1], resolution=SMAC_RES)
+    t0 = time.perf_counter()
+    for motion in ("dubins", "reeds_shepp"):  # loads (or compiles) the kernels
+        plan_hybrid(grid0, *queries[0][0], TURNING_RADIUS, motion=motion, footprint=ROBOT, max_expansions=2000)
+    print(f"first calls (load compiled kernels): {time.perf_counter() - t0:.2f} s, not counted")
+    rows = {label_: [] for label_, _, _ in SMAC_SETTINGS}  # (map, new wall, new cpu, warm wall, warm cpu, result)
+    table_s = {}
+    for (name, blocked), pairs in zip(maps, queries):
+        grid = OccupancyGrid(blocked, resolution=SMAC_RES)
+        _map_tables.cache_clear()
+        packed = np.packbits(blocked).tobytes()
+        t = time.perf_counter()
+        _map_tables(blocked.shape, SMAC_RES, packed)
+        table_s[name] = time.perf_counter() - t
+        for start, goal in pairs:
+            for label_, motion, options in SMAC_SETTINGS:
+                lattice_for.cache_clear()
+                new_w, new_c, _ = _timed(grid, start, goal, motion, options)
+                warm_w, warm_c, result = _timed(grid, start, goal, motion, options)
+                rows[label_].append((name, new_w, new_c, warm_w, warm_c, result))
+    print(f"{'map':<30} {'blocked':>7} {'tables ms':>9} {'d median m':>10}")
+    for (name, blocked), pairs in zip(maps, queries):
+        d = statistics.median(math.hypot(g[0] - s[0], g[1] - s[1]) for s, g in pairs)
+        print(f"{name:<30} {blocked.mean():>6.1%} {1000 * table_s[name]:>9.1f} {d:>10.1f}")
+    header = (f"{'map':<30} {'ok':>4} {'new heading ms (range)':>23} {'CPU ms':>8} {'warm ms (range)':>20} "
+              f"{'CPU ms':>8} {'expansions (range)':>22} {'length m':>8}")
+    for label_, _, _ in SMAC_SETTINGS:
+        print(f"\n{label_}: median (min-max) over queries")
+        print(header)
+        for name in [m for m, _ in maps] + ["all maps"]:
+            sel = [r for r in rows[label_] if name in (r[0], "all maps")]
+            ok = [r[5] for r in sel if r[5].status == Status.EXACT]
+            exp = [r[5].stats["expansions"] for r in sel]
+            length = f"{statistics.median(r.cost for r in ok):.2f}" if ok else "-"
+            print(f"{name:<30} {len(ok):>2}/{len(sel):<1} {_ms([r[1] for r in sel]):>23} "
+                  f"{1000 * statistics.median(r[2] for r in sel):>8.1f} {_ms([r[3] for r in sel]):>20} "
+                  f"{1000 * statistics.median(r[4] for r in sel):>8.1f} "
+                  f"{f'{statistics.median(exp):.0f} ({min(exp)}-{max(exp)})':>22} {length:>8}")
+        fails = [(r[0], r[5].reason) for r in rows[label_] if r[5].status != Status.EXACT]
+        for name, reason in fails:
+            print(f"  failed on {name}: {reason}")
+    within = {label_: sum(0.002 <= r[3] <= 0.020 for r in rows[label_]) for label_ in rows}
+    print("\nwarm queries within 2-20 ms: " + ", ".join(f"{k} {v}/{len(rows[k])}" for k, v in within.items()))
+
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
@@ -246,6 +455,8 @@ def main() -> None:
                     help="navlab's analytic_expansion_max_length [m] (default: the planner's, max(3 m, 3 turning radii))")
     ap.add_argument("--analytic-ratio", type=float, metavar="R",
                     help="navlab's analytic_expansion_ratio (Smac's schedule; default: try at every expansion)")
+    ap.add_argument("--smac-maps", action="store_true",
+                    help="only navlab on the fixed 384 x 384 map set against Nav2 Smac's README figure (2-20 ms)")
     args = ap.parse_args()
     if args.repeat < 1:
         ap.error("--repeat must be at least 1")
@@ -254,6 +465,11 @@ def main() -> None:
         options["analytic_expansion_max_length"] = args.analytic_max
     if args.analytic_ratio is not None:
         options["analytic_expansion_ratio"] = args.analytic_ratio
+    if args.smac_maps:
+        print(load_line("at start"))
+        smac_benchmark()
+        print(load_line("at end"))
+        return
     if args.reference_only:
         print(load_line("at start"))
         reference_map(options)

@@ -47,3 +47,39 @@ def test_moved_seconds_leave_the_planning_time_and_join_the_warmup():
     short = Result(status=Status.FAILED, stats={"time_s": clock.seconds / 2})  # never below zero
     clock.moved_to_warmup(short)
     assert short.stats["time_s"] == 0.0 and short.stats["warmup_s"] == clock.seconds / 2
+
+
+def test_a_ctrl_c_during_a_compile_is_raised_when_it_ends():
+    """SIGINT landing in a compile is held and raised by the listener when the compile ends (a
+    KeyboardInterrupt raised inside LLVM's ctypes callbacks was printed and dropped: the command ran
+    on); the default handler is back afterwards."""
+    import os
+    import subprocess
+    import sys
+
+    child = r"""
+import os, signal, sys, threading, traceback
+import numpy as np
+from numba import njit
+from navlab.compile_clock import hold_interrupts_while_compiling
+hold_interrupts_while_compiling()
+
+@njit  # not cached: it compiles here, for longer than the timer's delay
+def kernel(a):
+    total = 0.0
+    for i in range(a.shape[0]):
+        total += np.sin(a[i]) * np.cos(a[i]) + np.sqrt(abs(a[i]))
+    return total
+
+njit(lambda x: x + 1)(1)  # numba's own first-compile set-up, which runs before the compile event starts
+threading.Timer(0.05, os.kill, (os.getpid(), signal.SIGINT)).start()
+try:
+    kernel(np.arange(10.0))
+    print("not interrupted")
+except KeyboardInterrupt as exc:
+    where = traceback.extract_tb(exc.__traceback__)[-1].name
+    print("interrupted in", where, signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+"""
+    out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=300,
+                         env={**os.environ, "NUMBA_CACHE_DIR": os.devnull})
+    assert out.stdout.strip() == "interrupted in on_end True", (out.stdout, out.stderr)

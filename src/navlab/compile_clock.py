@@ -1,4 +1,5 @@
-"""Seconds numba spends compiling inside a planner's timed call, moved to its warm-up.
+"""numba's compiles, seen through its events: their seconds inside a planner's timed call
+are moved to its warm-up, and a Ctrl-C during one takes effect when it ends.
 
 A planner's kernels are compiled or loaded before its clock starts (the
 ``warmup_s`` of :mod:`navlab.warmup` and ``grid.planner.warm_kernels``), but
@@ -15,6 +16,15 @@ Clocks nest (navlab.plan around a grid planner's own): an event counts for
 the innermost clock of the thread that compiles, so no second is moved twice,
 and another thread's compiles are not this call's.
 
+Ctrl-C during a compile: LLVM calls back into Python while it compiles
+(llvmlite's object cache, through ctypes), and a KeyboardInterrupt raised
+inside such a callback is printed as "Exception ignored on calling ctypes
+callback function" and dropped: the command ran on to its end (a plan with
+``--max-time 120`` interrupted during its first compile finished, exit 0).
+:func:`hold_interrupts_while_compiling` makes SIGINT, while a compile runs on
+the main thread under Python's default handler, only noted, and raises the
+KeyboardInterrupt when the compile ends, outside any callback.
+
 References
 ----------
 Numba documentation, "Event API" (``numba.core.event``: ``install_listener``,
@@ -24,6 +34,7 @@ the ``numba:compile`` event kind).
 from __future__ import annotations
 
 import functools
+import signal
 import threading
 import time
 from contextlib import contextmanager
@@ -97,3 +108,39 @@ def _listener_class():
                 clocks[-1].seconds += time.perf_counter() - began
 
     return OutermostCompiles
+
+
+@functools.lru_cache(maxsize=1)
+def hold_interrupts_while_compiling() -> None:
+    """Register, once per process, the listener that holds a Ctrl-C until the compile it lands in
+    ends (see the module's docstring). A SIGINT handler other than Python's default is left alone."""
+    from numba.core import event
+
+    class HoldInterrupts(event.Listener):
+        def __init__(self) -> None:
+            self._depth = 0
+            self._noted = False
+            self._previous = None
+
+        def _note(self, signum, frame) -> None:
+            self._noted = True
+
+        def on_start(self, ev) -> None:
+            if threading.current_thread() is not threading.main_thread():
+                return  # only the main thread receives signals, and only it may set their handlers
+            self._depth += 1
+            if self._depth == 1 and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+                self._previous = signal.signal(signal.SIGINT, self._note)
+
+        def on_end(self, ev) -> None:
+            if threading.current_thread() is not threading.main_thread():
+                return
+            self._depth -= 1
+            if self._depth == 0 and self._previous is not None:
+                signal.signal(signal.SIGINT, self._previous)
+                self._previous = None
+                if self._noted:
+                    self._noted = False
+                    raise KeyboardInterrupt  # here, in numba's own Python frame: it reaches the caller
+
+    event.register("numba:compile", HoldInterrupts())

@@ -26,7 +26,7 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
-from .compile_clock import compile_clock
+from .compile_clock import compile_clock, hold_interrupts_while_compiling
 from .limits import check_seed
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
@@ -139,6 +139,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     from .world.sources import load_source
 
     preload_cython_blas()  # before the first kernel loads: numba's BLAS check then skips scipy.linalg
+    hold_interrupts_while_compiling()  # a Ctrl-C during a first use's compile is not lost (navlab.compile_clock)
     if not isinstance(planner, str):
         raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     check_seed(seed)

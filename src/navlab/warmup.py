@@ -147,9 +147,11 @@ def warm_up(planner: str = "rrt_star", sampler: str = "uniform", *, on_map: bool
         Seconds spent. The second and later calls in a process with the same
         arguments return at once (about 0 s): the kernels are loaded.
     """
+    from .compile_clock import hold_interrupts_while_compiling
     from .numba_start import preload_cython_blas
 
     t0 = time.perf_counter()
     preload_cython_blas()  # a process's first kernel then loads without scipy.linalg (see navlab.numba_start)
+    hold_interrupts_while_compiling()  # a Ctrl-C during the compile is not lost (navlab.compile_clock)
     _warm(planner, sampler, bool(on_map))
     return time.perf_counter() - t0

@@ -151,3 +151,31 @@ def test_the_progress_bar_title_counts_trials_and_noise_repeats_apart():
     assert _bar_label("e", 20, 5, 10) == "e: 15 of 20 trials done before (5 trials + 10 noise repeats)"
     assert _bar_label("e", 20, 20, 0) == "e"
     assert _bar_label("e", 20, 0, 3) == "e: 20 of 20 trials done before (0 trials + 3 noise repeats)"
+
+
+def test_the_bar_is_drawn_on_a_terminal_only(monkeypatch):
+    """A bench whose stderr is a log file writes no carriage-return redraws into it."""
+    import io
+
+    from navlab.bench.runner import _progress
+
+    log = io.StringIO()  # not a terminal
+    monkeypatch.setattr("sys.stderr", log)
+    with _progress(3, "e", enabled=True) as bar:
+        bar.update(3)
+    assert "\r" not in log.getvalue() and "e" not in log.getvalue()
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    tty = Terminal()
+    monkeypatch.setattr("sys.stderr", tty)
+    with _progress(3, "e", enabled=True) as bar:
+        bar.update(3)
+    assert "\r" in tty.getvalue() and "3/3" in tty.getvalue()
+    quiet = Terminal()
+    monkeypatch.setattr("sys.stderr", quiet)
+    with _progress(3, "e", enabled=False) as bar:
+        bar.update(3)
+    assert quiet.getvalue() == ""

@@ -160,9 +160,11 @@ def _bar_label(name: str, trials: int, trials_todo: int, repeats_todo: int) -> s
 
 
 def _progress(total: int, desc: str, enabled: bool):
+    """The run's bar on stderr; off when not ``enabled`` or when stderr is not a terminal (a log
+    file would fill with carriage-return redraws; the run's summary lines say what it did)."""
     from tqdm import tqdm
 
-    return tqdm(total=total, desc=desc, unit="trial", disable=not enabled, dynamic_ncols=True)
+    return tqdm(total=total, desc=desc, unit="trial", disable=None if enabled else True, dynamic_ncols=True)
 
 
 def write_report(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,

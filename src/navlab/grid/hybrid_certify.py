@@ -4,13 +4,13 @@ against the blocked cells' squares, exactly, compiled.
 The search's own checks read precomputed cell lists (:mod:`navlab.sampling.footprint_lattice`:
 footprints grown by margins, quarter-turned, read through distance maps). This check shares
 none of that: it places the outline at each pose and tests it against every blocked cell (and
-the ring of cells just outside the map) whose square can reach it, with the exact
-polygon–rectangle intersection test (an edge crosses the rectangle — Liang and Barsky's
-clipping, "A new concept and method for line clipping", ACM TOG 3(1), 1984 — or the rectangle
-lies inside the polygon, by the even–odd rule). It answers as
-:func:`~navlab.sampling.footprint_lattice.first_overlap` (shapely) does, touching counting,
-which the tests check it against, at about a hundredth of the cost on a small query
-(shapely builds a polygon per pose and a box per cell).
+the ring of cells just outside the map) whose square can reach it, with the world's exact
+polygon–rectangle and point–rectangle tests (:mod:`navlab.world.footprint_collision`, which the
+simulator's footprint checks use: an edge of one meets an edge of the other, or one holds a
+vertex of the other; touching counts). It answers as
+:func:`~navlab.sampling.footprint_lattice.first_overlap` (shapely) does, which the tests check
+it against, at about a hundredth of the cost on a small query (shapely builds a polygon per pose
+and a box per cell).
 """
 
 from __future__ import annotations
@@ -20,6 +20,9 @@ from typing import Optional, Tuple
 
 import numpy as np
 from numba import njit
+
+from ..world.footprint_collision import polygon_rect_touch
+from ..world.geometry import point_rect_dist2
 
 #: [cells] every cell's square is widened by this fraction of a cell on each side, so rounding in the
 #: test can only report an overlap that is not there (within 1e-9 cells), never miss one
@@ -48,16 +51,18 @@ def _first_overlap(blocked, res, vertices, disc, poses, grow):
     """:func:`first_overlap_exact`'s loop: (found, x, y)."""
     h, w = blocked.shape
     k = vertices.shape[0]
-    wx, wy = np.empty(k), np.empty(k)
+    outline = np.empty((k, 2))
+    box = np.empty((4, 2))  # polygon_rect_touch's scratch
     slack = SLACK * res
     for p in range(poses.shape[0]):
         x, y = poses[p, 0], poses[p, 1]
         if k:
             c, s = math.cos(poses[p, 2]), math.sin(poses[p, 2])
             for i in range(k):
-                wx[i] = x + c * vertices[i, 0] - s * vertices[i, 1]
-                wy[i] = y + s * vertices[i, 0] + c * vertices[i, 1]
-            x0, x1, y0, y1 = wx.min(), wx.max(), wy.min(), wy.max()
+                outline[i, 0] = x + c * vertices[i, 0] - s * vertices[i, 1]
+                outline[i, 1] = y + s * vertices[i, 0] + c * vertices[i, 1]
+            x0, x1 = outline[:, 0].min(), outline[:, 0].max()
+            y0, y1 = outline[:, 1].min(), outline[:, 1].max()
         else:
             x0, x1, y0, y1 = x - disc, x + disc, y - disc, y + disc
         # cell i's grown square [i·res − grow, (i+1)·res + grow] can meet [x0, x1] only for
@@ -72,66 +77,11 @@ def _first_overlap(blocked, res, vertices, disc, poses, grow):
                     continue
                 bx0, by0 = cx * res - grow - slack, cy * res - grow - slack
                 bx1, by1 = (cx + 1) * res + grow + slack, (cy + 1) * res + grow + slack
-                if k:
-                    hit = _polygon_meets_box(wx, wy, bx0, by0, bx1, by1)
-                else:
-                    ex = max(bx0 - x, 0.0, x - bx1)  # the centre's distance from the square, per axis
-                    ey = max(by0 - y, 0.0, y - by1)
-                    hit = ex * ex + ey * ey <= disc * disc
-                if hit:
+                if polygon_rect_touch(outline, bx0, by0, bx1, by1, box) if k else \
+                        point_rect_dist2(x, y, bx0, by0, bx1, by1) <= disc * disc:
                     return True, cx, cy
         # none of the ring's squares met: the footprint leaves the map only by lying wholly beyond
         # them (the map is a rectangle, so the outline's extremes tell); name the nearest ring cell
         if x0 <= grow + slack or y0 <= grow + slack or x1 >= w * res - grow - slack or y1 >= h * res - grow - slack:
             return True, min(max(int(math.floor(x / res)), -1), w), min(max(int(math.floor(y / res)), -1), h)
     return False, 0, 0
-
-
-@njit(cache=True)
-def _polygon_meets_box(wx, wy, bx0, by0, bx1, by1) -> bool:
-    """Whether the polygon (vertices ``wx``, ``wy``) and the closed rectangle meet: an edge meets the
-    rectangle, or else (the boundaries apart) the rectangle lies inside the polygon, which its centre tells."""
-    k = wx.shape[0]
-    for i in range(k):
-        j = i + 1 if i + 1 < k else 0
-        if _segment_meets_box(wx[i], wy[i], wx[j], wy[j], bx0, by0, bx1, by1):
-            return True
-    return _inside(wx, wy, 0.5 * (bx0 + bx1), 0.5 * (by0 + by1))
-
-
-@njit(cache=True)
-def _segment_meets_box(ax, ay, bx, by, bx0, by0, bx1, by1) -> bool:
-    """Liang–Barsky: whether the segment a–b meets the closed rectangle [bx0, bx1] × [by0, by1]."""
-    dx, dy = bx - ax, by - ay
-    t0, t1 = 0.0, 1.0
-    for side in range(4):
-        if side == 0:
-            p, q = -dx, ax - bx0
-        elif side == 1:
-            p, q = dx, bx1 - ax
-        elif side == 2:
-            p, q = -dy, ay - by0
-        else:
-            p, q = dy, by1 - ay
-        if p == 0.0:
-            if q < 0.0:  # parallel to this side and outside it
-                return False
-        elif p < 0.0:
-            t0 = max(t0, q / p)
-        else:
-            t1 = min(t1, q / p)
-        if t0 > t1:
-            return False
-    return True
-
-
-@njit(cache=True)
-def _inside(wx, wy, px, py) -> bool:
-    """Even–odd rule: whether (px, py) lies inside the polygon."""
-    inside = False
-    k = wx.shape[0]
-    for i in range(k):
-        j = i - 1 if i > 0 else k - 1
-        if (wy[i] > py) != (wy[j] > py) and px < wx[i] + (py - wy[i]) * (wx[j] - wx[i]) / (wy[j] - wy[i]):
-            inside = not inside
-    return inside

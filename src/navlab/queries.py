@@ -26,7 +26,6 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
                   "allow_unknown")
 
 
-
 #: settings of the query rather than of a planner, which every tree planner's --param takes
 #: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
 QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance")

@@ -219,3 +219,8 @@ def test_a_misspelt_query_setting_is_suggested_and_listed(typo, meant):
     with pytest.raises(UnknownNameError, match=f"Did you mean '{meant}'") as caught:
         navlab.plan("parking", "rrt_star", max_iter=10, **{typo: 1})
     assert "for the query: motion" in str(caught.value)
+
+
+def test_a_misspelt_goal_tolerance_is_suggested_for_hybrid_astar_too():
+    with pytest.raises(UnknownNameError, match="Did you mean 'goal_tolerance'"):
+        navlab.plan("parking", "hybrid_astar", goal_tolerence=1)

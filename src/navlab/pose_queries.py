@@ -130,7 +130,7 @@ def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str
     unknown = sorted(set(settings) - set(valid))
     if unknown:
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
-                         f"valid: {', '.join(valid)}." + suggest(unknown[0], list(valid)))
+                         f"valid: {', '.join(valid)}." + suggest(unknown[0], list(valid) + ["goal_tolerance"]))
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),

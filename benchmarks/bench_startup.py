@@ -20,10 +20,11 @@ that loads one cached numba function (numba's own start-up, which every
 planning command pays, including numba's BLAS check importing scipy.linalg,
 and the garbage collections over numba's objects when the process exits);
 and the same done navlab's way: OpenBLAS on one thread (navlab.cli), SciPy's
-BLAS module preloaded (navlab.numba_start), the collector paused
+BLAS module preloaded (navlab.numba_start), the cached function loaded
+without numba's typing and lowering registries
+(numba_start.cached_loads_without_registries), the collector paused
 (navlab.cli.plan) and the process ended at once after its work (navlab.cli).
-The last
-lines are navlab's share above that floor. `python -X importtime -m navlab plan clutter` shows where an import's
+The last lines are navlab's share above that floor. `python -X importtime -m navlab plan clutter` shows where an import's
 time goes; tests/test_lazy_imports.py keeps the heavy modules out of
 `navlab --help` and the unneeded ones out of `navlab plan clutter` (tests on
 the import graph, not on time).
@@ -44,8 +45,8 @@ from conditions import load_line, spread
 
 # The floors: what any program pays before navlab's own code runs. A process that
 # loads one cached numba function pays numba's import and its target set-up (the
-# code generator's registries, numba's BLAS check importing scipy.linalg), which
-# every navlab command that plans pays too.
+# code generator's registries, numba's BLAS check importing scipy.linalg; navlab's
+# way: the runtime only), which every navlab command that plans pays too.
 NUMBA_FLOOR = """
 import sys
 NAVLAB_WAY = "navlab" in sys.argv[1:]
@@ -58,6 +59,9 @@ if NAVLAB_WAY:  # what navlab plan does: BLAS on one thread, numba's BLAS check 
     atexit.register(gc.freeze)
 import numba
 import numpy as np
+if NAVLAB_WAY:  # and the cached function loads without numba's typing and lowering registries (navlab.cli.plan)
+    from navlab.numba_start import cached_loads_without_registries
+    cached_loads_without_registries()
 @numba.njit(cache=True)
 def one(x):
     return x[0] + 1.0
@@ -86,11 +90,13 @@ from navlab.numba_start import preload_cython_blas
 preload_cython_blas(); mark("scipy (numba imports it) + cython_blas")
 import numba; mark("import numba")
 import navlab.planning, navlab.world.sources; mark("navlab's modules (their numba dispatchers)")
+from navlab.numba_start import cached_loads_without_registries
+cached_loads_without_registries()
 from navlab.world.sources import load_source
 world = load_source("clutter"); mark("load_source clutter")
 from navlab.endpoints import endpoint_problem
 checker = world.checker()
-endpoint_problem(world, world.start, "start", checker); mark("first kernel (numba's registries) + endpoints")
+endpoint_problem(world, world.start, "start", checker); mark("first kernel (numba's runtime) + endpoints")
 from navlab.warmup import warm_up
 warm_up("rrt_star", "uniform"); mark("warm-up (loads the tree kernels)")
 from navlab.queries import tree_query

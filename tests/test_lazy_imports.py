@@ -71,9 +71,12 @@ def test_every_verb_is_reachable_and_documented_lazily():
 def test_plan_clutter_loads_only_what_a_tree_query_uses():
     code = ("from navlab.cli import main\n"
             "try:\n    main(['plan', 'clutter', '--max-iter', '50'])\nexcept SystemExit:\n    pass")
+    loaded_after(code)  # a cold numba cache compiles here, and compiling loads numba's registries
     modules = loaded_after(code)
     assert "navlab.sampling.tree_kernel" in modules and "scipy.linalg.cython_blas" in modules  # it did plan
     assert heavy(modules - {"scipy.linalg.cython_blas"}, NOT_FOR_A_TREE_QUERY) == []  # loaded alone, not its package
+    # the cached kernels loaded without numba's typing and lowering registries (numba_start.cached_loads_without_registries)
+    assert heavy(modules, ("numba.np.arraymath", "numba.np.linalg", "numba.np.npyimpl", "numba.typed.typeddict")) == []
 
 
 def test_a_grid_planner_still_finds_the_grid_search():

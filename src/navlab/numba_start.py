@@ -1,5 +1,5 @@
-"""Cut numba's start-up in a process: SciPy's BLAS module without ``scipy.linalg``, and no garbage collections
-while numba builds its registries.
+"""Cut numba's start-up in a process: SciPy's BLAS module without ``scipy.linalg``, no garbage collections
+while numba builds its registries, and cached kernels loaded without those registries.
 
 When a process loads its first compiled function (from numba's cache or not),
 numba sets up its target and imports its array implementations
@@ -30,10 +30,26 @@ that their creation triggers walk them several times over for nothing. The
 and collecting after gains nothing: the first collection then walks all of
 them at once.
 
+:func:`cached_loads_without_registries` goes one step further for a
+process that only loads cached kernels (``navlab plan`` on a warm cache):
+numba's ``Cache.load_overload`` first calls ``target_context.refresh()``,
+which imports about 60 modules of typing and lowering implementations
+(``numba.np.arraymath``, ``numba.cpython.*``, ...) and installs their
+registries: 80-90 ms of a 0.2 s first load, for a cached function that needs
+none of them (its machine code is in the cache; typing and lowering happen
+only when something is compiled). What the loaded code does need of it is
+the runtime (``rtsys.initialize``: NRT's allocator symbols), and that is all
+the replacement calls before loading. Whatever compiles later in the process
+still gets every registry: numba's compiler refreshes both contexts itself
+before each compile (``CompilerBase.__init__``), and a cache miss goes there.
+
 References
 ----------
 numba 0.68, ``numba/np/arraymath.py`` (``_HAVE_BLAS = _check_blas()``) and
-``numba/np/linalg.py`` (``ensure_blas``); Python's import system,
+``numba/np/linalg.py`` (``ensure_blas``), ``numba/core/caching.py``
+(``Cache.load_overload``), ``numba/core/base.py`` (``BaseContext.refresh``),
+``numba/core/cpu.py`` (``load_additional_registries``),
+``numba/core/compiler.py`` (``CompilerBase.__init__``); Python's import system,
 https://docs.python.org/3/reference/import.html#the-module-cache (a module
 found in ``sys.modules`` is returned as is, its parents are not imported);
 Python's ``gc`` module, https://docs.python.org/3/library/gc.html (collections
@@ -127,6 +143,43 @@ def _extension_spec():
         if os.path.isfile(path):
             return importlib.util.spec_from_file_location(BLAS_MODULE, path)
     return None
+
+
+def cached_loads_without_registries() -> bool:
+    """Let numba load cached functions without first importing its typing and lowering registries.
+
+    For a process of navlab's own (the ``navlab plan`` command), where
+    start-up is the point: it replaces numba's ``Cache.load_overload`` for the
+    rest of the process, not only for navlab's kernels. Call it once numba is
+    imported; later calls do nothing.
+
+    Returns
+    -------
+    bool
+        True when cached loads skip the registries from now on; False,
+        changing nothing, when this numba lacks the pieces the replacement
+        calls (another numba version: its own loads run as they always do).
+    """
+    from numba.core import caching
+    from numba.core.runtime import rtsys
+
+    cache = caching.Cache
+    if getattr(cache.load_overload, "skips_registries", False):
+        return True
+    if not all(hasattr(cache, name) for name in ("_load_overload", "_guard_against_spurious_io_errors")) or \
+            not callable(getattr(rtsys, "initialize", None)):
+        return False
+
+    def load_overload(self, sig, target_context):
+        rtsys.initialize(target_context)  # the runtime the machine code calls; refresh() would start with it too
+        with self._guard_against_spurious_io_errors():
+            return self._load_overload(sig, target_context)
+        # None when the guard swallowed an I/O error, as numba's own method returns: the caller compiles
+
+    load_overload.skips_registries = True
+    load_overload.__doc__ = cache.load_overload.__doc__
+    cache.load_overload = load_overload
+    return True
 
 
 @contextlib.contextmanager

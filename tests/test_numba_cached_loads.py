@@ -1,0 +1,72 @@
+"""navlab.numba_start.cached_loads_without_registries: a cached kernel loads and runs without numba's typing
+and lowering registries, and whatever compiles afterwards in the same process still gets all of them. Each
+check runs in fresh processes (a cache written by one, read by the next); the truth is numpy's."""
+
+import json
+import subprocess
+import sys
+import textwrap
+
+import numpy as np
+
+KERNELS = '''
+import numba
+import numpy as np
+
+@numba.njit(cache=True)
+def cumulative(x):  # allocates (numba's runtime) and loops: what navlab's kernels do
+    out = np.empty(x.size + 1)
+    out[0] = 0.0
+    for i in range(x.size):
+        out[i + 1] = out[i] + x[i]
+    return out
+'''
+
+LOAD = '''
+import json, sys
+sys.path.insert(0, {folder!r})
+lean = {lean!r}
+import numba
+if lean:
+    from navlab.numba_start import cached_loads_without_registries
+    switched = cached_loads_without_registries()
+    again = cached_loads_without_registries()
+else:
+    switched = again = None
+import numpy as np
+from kernels import cumulative
+got = cumulative(np.arange(5.0))
+registries_after_load = "numba.np.arraymath" in sys.modules
+
+@numba.njit
+def sorted_norms(a):  # compiled now: needs the array registries (np.sort, np.linalg.norm)
+    return np.sort(np.array([np.linalg.norm(row) for row in a]))
+
+norms = sorted_norms(np.array([[3.0, 4.0], [1.0, 0.0], [6.0, 8.0]]))
+print(json.dumps({{"switched": switched, "again": again, "got": got.tolist(),
+                  "registries_after_load": registries_after_load, "norms": norms.tolist(),
+                  "registries_after_compile": "numba.np.arraymath" in sys.modules,
+                  "loaded_from_cache": len(cumulative.stats.cache_hits) == 1}}))
+'''
+
+
+def run(folder, lean):
+    out = subprocess.run([sys.executable, "-c", LOAD.format(folder=str(folder), lean=lean)],
+                         capture_output=True, text=True, check=True)
+    return json.loads(out.stdout.strip().splitlines()[-1])
+
+
+def test_a_cached_kernel_loads_without_the_registries_and_later_compiles_get_them(tmp_path):
+    (tmp_path / "kernels.py").write_text(textwrap.dedent(KERNELS))
+    first = run(tmp_path, lean=True)  # nothing cached yet: it compiles, and compiling loads the registries
+    assert first["loaded_from_cache"] is False and first["registries_after_load"] is True
+    plain = run(tmp_path, lean=False)  # numba's own load, for comparison
+    assert plain["loaded_from_cache"] is True and plain["registries_after_load"] is True
+    lean = run(tmp_path, lean=True)
+    assert lean["switched"] is True and lean["again"] is True
+    assert lean["loaded_from_cache"] is True
+    assert lean["registries_after_load"] is False  # what the switch saves
+    for got in (first, plain, lean):
+        np.testing.assert_array_equal(got["got"], np.concatenate([[0.0], np.cumsum(np.arange(5.0))]))
+        assert got["norms"] == [1.0, 5.0, 10.0]  # a compile after the lean load still has np.sort and np.linalg
+        assert got["registries_after_compile"] is True

@@ -147,6 +147,15 @@ def _exit_now(code) -> None:
     os._exit(code)
 
 
+def _pacified(stream) -> bool:
+    """Whether click's EPIPE branch wrapped ``stream`` (newer click names the
+    wrapper ``_PacifyFlushWrapper``, and its old public name warns as deprecated)."""
+    wrapper = getattr(click.utils, "_PacifyFlushWrapper", None)
+    if wrapper is None:  # an older click: the public name only
+        wrapper = click.utils.PacifyFlushWrapper
+    return isinstance(stream, wrapper)
+
+
 def _stdout_reader_gone() -> bool:
     """Whether standard output is a pipe whose reader went away (``navlab list | head -1``).
 
@@ -213,7 +222,7 @@ class NavlabGroup(click.Group):
         except SystemExit as exc:
             # click's own EPIPE branch (output outside a verb, as `navlab --help | true`) exits 1 after
             # wrapping stdout in PacifyFlushWrapper; a reader that went away ends quietly, as in invoke
-            if exc.code == 1 and isinstance(sys.stdout, click.utils.PacifyFlushWrapper) and _stdout_reader_gone():
+            if exc.code == 1 and _pacified(sys.stdout) and _stdout_reader_gone():
                 sys.exit(0)
             raise
         except click.exceptions.UsageError as exc:

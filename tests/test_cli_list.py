@@ -12,6 +12,7 @@ from navlab.cli import main
 from navlab.cli.listing import KINDS, first_paragraph
 from navlab.control.base import CONTROLLERS
 from navlab.grid.planner import GRID_ALGORITHMS, HEURISTICS
+from navlab.pose_queries import POSE_PLANNERS, TREE_POSE_PLANNERS
 from navlab.robots.kinematics import ROBOTS
 from navlab.sampling import PLANNERS, SAMPLERS
 from navlab.sensors.lidar import NOISE_MODELS
@@ -43,7 +44,14 @@ def entries(text):
 
 
 def test_every_kind_has_a_registry_checked_here():
-    assert set(KINDS) == set(REGISTRIES)
+    assert set(KINDS) == set(REGISTRIES) | {"pose"}  # pose planners: test_pose_planners_have_their_own_kind
+
+
+def test_pose_planners_have_their_own_kind():
+    pose = entries(listing("pose"))
+    assert set(POSE_PLANNERS) <= set(pose) and not set(POSE_PLANNERS) & set(entries(listing("grid")))
+    assert all(name in pose["(trees)"] for name in TREE_POSE_PLANNERS) and "motion=reeds_shepp" in pose["(trees)"]
+    assert "motion='reeds_shepp'" in pose["hybrid_astar"] and "heading_bins=72" in pose["hybrid_astar"]
 
 
 @pytest.mark.parametrize("kind", sorted(REGISTRIES))

@@ -74,13 +74,19 @@ def _grid_planners() -> Iterator[str]:
     for name in GRID_ALGORITHMS:
         yield from _entry(name, first_paragraph(GRID_ALGORITHMS.get(name)), shared)
     yield from _entry("(heuristics)", f"for astar's heuristic=: {', '.join(HEURISTICS)}")
+
+
+def _pose_planners() -> Iterator[str]:
     from ..grid.hybrid_astar import plan_hybrid
+    from ..pose_queries import TREE_POSE_PLANNERS
 
     yield from _entry("hybrid_astar", "Hybrid A* between poses for a car-like robot (Dolgov et al. 2008; Nav2 Smac "
-                      "Hybrid); `navlab plan --planner hybrid_astar`, not `navlab grid plan`.",
+                      "Hybrid) on the source's occupancy grid; not `navlab grid plan`.",
                       "footprint=None (the world's, else a disc of its robot radius), turning_radius=None (the "
                       "scene's, else 0.4), " + _params(plan_hybrid, skip=("grid", "start", "goal", "turning_radius",
                                                                          "footprint", "robot_radius")))
+    yield from _entry("(trees)", f"{', '.join(TREE_POSE_PLANNERS)} plan between poses too with "
+                      "--param motion=dubins or motion=reeds_shepp (turning_radius=R)")
 
 
 def _samplers() -> Iterator[str]:
@@ -151,6 +157,8 @@ def _experiments() -> Iterator[str]:
 KINDS: Dict[str, Tuple[str, Callable[[], Iterator[str]]]] = {
     "planners": ("planners (sampling-based, on worlds and maps)", _tree_planners),
     "grid": ("grid planners (on occupancy grids; `navlab grid plan --algorithm`)", _grid_planners),
+    "pose": ("pose planners (car-like robots, between poses x y theta; `navlab plan --planner NAME`)",
+             _pose_planners),
     "samplers": ("samplers (for the sampling-based planners)", _samplers),
     "scenes": ("scenes (built-in worlds)", _scenes),
     "controllers": ("controllers (`navlab sim`)", _controllers),
@@ -167,7 +175,7 @@ KINDS: Dict[str, Tuple[str, Callable[[], Iterator[str]]]] = {
 def list_cmd(kind: Optional[str]) -> None:
     """Every registered part with its description and parameters (defaults shown).
 
-    KIND limits the list to one kind: planners, grid, samplers, scenes,
+    KIND limits the list to one kind: planners, grid, pose, samplers, scenes,
     controllers, robots, lidar, suites, executors or experiments.
     """
     for i, key in enumerate([kind] if kind else list(KINDS)):

@@ -16,7 +16,8 @@ shape; navlab follows it:
   (the exact Dubins or Reeds–Shepp length, :mod:`navlab.sampling.dubins`,
   :mod:`navlab.sampling.reeds_shepp`) and the holonomic-with-obstacles
   distance (an 8-connected Dijkstra field from the goal over the cells the
-  robot's inscribed circle fits in); the Reeds–Shepp length is solved only
+  robot's inscribed circle fits in, settled lazily as far as the search reads
+  it, as Smac's, :mod:`navlab.grid.hybrid_field`); the Reeds–Shepp length is solved only
   where the Dubins length, an upper bound on it, exceeds the field
   (:func:`~navlab.grid.hybrid_search._heuristic`), so the value is exact at a fraction of the cost, and
   only for queue entries that reach the top (:mod:`navlab.grid.hybrid_search`:
@@ -68,7 +69,8 @@ from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_com
                               check_turning_radius, trace_word)
 from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattice_for, pose_free, robot_outline
 from .hybrid_certify import first_overlap_exact
-from .hybrid_search import holonomic_field, search
+from .hybrid_field import field_at, field_start
+from .hybrid_search import search
 from .occupancy import OccupancyGrid
 
 MOTIONS = ("dubins", "reeds_shepp")
@@ -221,10 +223,15 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     cells_clear, near2, clear = _map_tables(blocked.shape, res, np.packbits(blocked).tobytes())
     passable = cells_clear * res > max(0.0, inscribed - math.sqrt(2.0) * res)
     gcx, gcy = int(lgx // res), int(lgy // res)
-    hfield = holonomic_field(passable | _cell_mask(blocked.shape, gcx, gcy), gcx, gcy, res)
+    # settled lazily: as far as the start here, then as far as the search reads (Smac's way; the same values)
+    passable |= _cell_mask(blocked.shape, gcx, gcy)
+    field = field_start(passable, gcx, gcy, res)
     scx, scy = int(lsx // res), int(lsy // res)
-    if not math.isfinite(hfield[scy, scx]) and not math.isfinite(holonomic_field(
-            passable | _cell_mask(blocked.shape, gcx, gcy) | _cell_mask(blocked.shape, scx, scy), gcx, gcy, res)[scy, scx]):
+    at_start, cells = field_at(*field, grid.width + 2, res, scx, scy)
+    field = (*field[:2], cells, *field[3:])
+    if not math.isfinite(at_start) and not math.isfinite(field_at(
+            *field_start(passable | _cell_mask(blocked.shape, scx, scy), gcx, gcy, res), grid.width + 2, res, scx,
+            scy)[0]):
         # the passable cells hold every cell the robot's centre can cross (its inscribed circle free), so the
         # search could only exhaust max_expansions in vain; the start's own cell is added in case its
         # clearance sits at the margin's edge
@@ -236,7 +243,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
             blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
             motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
             *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc, lattice.pose_cells,
-            lattice.pose_start, lattice.ds, hfield, penalties, analytic_max, int(max_expansions),
+            lattice.pose_start, lattice.ds, *field, penalties, analytic_max, int(max_expansions),
             bool(analytic_expansion), 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:

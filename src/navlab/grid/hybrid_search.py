@@ -1,7 +1,8 @@
-"""Hybrid A*'s compiled search: the holonomic field, the heuristic and the loop.
+"""Hybrid A*'s compiled search: the heuristic and the loop.
 
 The planner (:func:`navlab.grid.hybrid_astar.plan_hybrid`) sets up the map, the
-lattice and the field, then calls :func:`search`; this module holds only the
+lattice and the holonomic field (:mod:`navlab.grid.hybrid_field`, settled lazily
+as the search reads it), then calls :func:`search`; this module holds only the
 compiled kernels. The loop is Dolgov et al.'s ("Path planning for autonomous
 vehicles in unknown semi-structured environments", IJRR 29(5), 2010): one
 continuous pose per discrete state (cell, heading bin), three primitives per
@@ -38,94 +39,10 @@ from numba import njit
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
+from .hybrid_field import field_at, holonomic_field  # noqa: F401 (holonomic_field: the whole field, re-exported)
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
-
-
-@njit(cache=True)
-def holonomic_field(passable: np.ndarray, gx: int, gy: int, res: float) -> np.ndarray:
-    """Shortest 8-connected distances [m] from cell (gx, gy) over ``passable``
-    cells (Dijkstra; diagonal steps only between two free orthogonal cells).
-
-    Dial's bucket queue instead of a heap: buckets a little narrower than the
-    shortest step (one cell), so no cell can improve another of its own bucket
-    and each bucket's cells are final in any order. A step is at most √2 cells,
-    so a relaxed cell lands one or two buckets ahead and three buckets, reused
-    in turn, hold the whole frontier. Every cell ends at the minimum over its
-    neighbours of (their distance + step), as with a heap, so the values are
-    the same bit for bit.
-
-    The cells are numbered row by row in a copy of the map ringed by impassable
-    cells, one state byte each (bit 1 passable, bit 2 settled), so a neighbour
-    is a fixed offset away and needs no bounds test.
-    """
-    h, w = passable.shape
-    stride = w + 2
-    state = np.zeros((h + 2) * stride, dtype=np.uint8)
-    for y in range(h):
-        for x in range(w):
-            if passable[y, x]:
-                state[(y + 1) * stride + x + 1] = 1
-    dist = np.full((h + 2) * stride, np.inf)
-    # the eight neighbours in the order (dy, dx) = (−1, −1), (−1, 0), ... (1, 1)
-    offsets = np.empty(8, dtype=np.int64)
-    side_x = np.zeros(8, dtype=np.int64)  # a diagonal step's two orthogonal neighbours (0: not diagonal)
-    side_y = np.zeros(8, dtype=np.int64)
-    n = 0
-    for dy in (-1, 0, 1):
-        for dx in (-1, 0, 1):
-            if dx == 0 and dy == 0:
-                continue
-            offsets[n] = dy * stride + dx
-            if dx != 0 and dy != 0:
-                side_x[n], side_y[n] = dx, dy * stride
-            n += 1
-    goal = (gy + 1) * stride + gx + 1
-    dist[goal] = 0.0
-    width = res * (1.0 - 1e-6)  # below one step even after rounding
-    diag = math.sqrt(2.0) * res
-    cap = 1024
-    cells = np.empty((3, cap), dtype=np.int64)
-    size = np.zeros(3, dtype=np.int64)
-    cells[0, 0] = goal
-    size[0] = 1
-    pending = 1
-    bucket = 0
-    while pending > 0:
-        slot = bucket % 3
-        i = 0
-        while i < size[slot]:
-            v = cells[slot, i]
-            i += 1
-            pending -= 1
-            if state[v] & 2:  # entered again after an improvement: settled already
-                continue
-            state[v] |= 2
-            d = dist[v]
-            for k in range(8):
-                u = v + offsets[k]
-                if state[u] != 1:  # impassable (or off the map) or settled
-                    continue
-                if side_x[k] != 0:
-                    if not (state[v + side_x[k]] & 1 and state[v + side_y[k]] & 1):
-                        continue
-                    nd = d + diag
-                else:
-                    nd = d + res
-                if nd < dist[u]:
-                    dist[u] = nd
-                    to = int(nd / width) % 3
-                    if size[to] == cap:
-                        grown = np.empty((3, 2 * cap), dtype=np.int64)
-                        grown[:, :cap] = cells
-                        cells, cap = grown, 2 * cap
-                    cells[to, size[to]] = u
-                    size[to] += 1
-                    pending += 1
-        size[slot] = 0
-        bucket += 1
-    return np.ascontiguousarray(dist.reshape(h + 2, stride)[1:h + 1, 1:w + 1])
 
 
 @njit(cache=True)
@@ -273,8 +190,8 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
-           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, hfield, penalties, analytic_max,
-           max_expansions, use_analytic, analytic_ratio):
+           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, fstate, fdist, fcells, fsize, fcursor,
+           penalties, analytic_max, max_expansions, use_analytic, analytic_ratio):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
 
@@ -286,8 +203,10 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     table, :func:`~navlab.sampling.footprint_lattice.swept_group`) are built the first time a child
     needs them, from the outline (``vertices``, ``disc``, ``reach``) and ``swept_margin``. ``clear`` [m] is
     ``sqrt(near2)·res`` (:func:`~navlab.sampling.footprint_lattice.clearance_map`'s values) for the analytic
-    expansion's curve checks, with the lattice's ``clear_disc``."""
+    expansion's curve checks, with the lattice's ``clear_disc``. ``fstate`` ... ``fcursor`` are the lazy
+    holonomic field (:func:`~navlab.grid.hybrid_field.field_start`), settled as far as the lookups need."""
     h, w = blocked.shape
+    fstride = w + 2
     nprim = prim_kind.shape[0]
     cap = 1024
     nx = np.empty(cap)
@@ -340,7 +259,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         if elazy[e]:
             elazy[e] = False
             theta = theta0 + nb[v] * step
-            field = hfield[int(ey[e] // res), int(ex[e] // res)]
+            field = fdist[(int(ey[e] // res) + 1) * fstride + int(ex[e] // res) + 1]  # settled at the push
             forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
             # the order needs the key only against the next entry's: an upper bound below it settles that
             # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
@@ -439,11 +358,12 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                 eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
                 hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
             eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, reverse
+            field, fcells = field_at(fstate, fdist, fcells, fsize, fcursor, fstride, res, cx2, cy2)
             if reverse:
-                _push(hkey, hnode, hentry, hsize, g2 + hfield[cy2, cx2], u, nentries)
+                _push(hkey, hnode, hentry, hsize, g2 + field, u, nentries)
             else:  # a Dubins solve costs little more than the queue's bookkeeping for putting it off
-                _push(hkey, hnode, hentry, hsize, g2 + max(hfield[cy2, cx2], _forward(x2, y2, theta0 + b2 * step, gx, gy,
-                                                                                       gtheta, radius)), u, nentries)
+                _push(hkey, hnode, hentry, hsize, g2 + max(field, _forward(x2, y2, theta0 + b2 * step, gx, gy,
+                                                                           gtheta, radius)), u, nentries)
             hsize += 1
             nentries += 1
     return False, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \

@@ -173,3 +173,27 @@ def test_a_broken_pipe_that_is_not_stdout_stays_an_error():
     with mock.patch("navlab.cli.plan.parse_params", side_effect=BrokenPipeError(32, "Broken pipe")):
         result = CliRunner().invoke(main, ["plan", "clutter"])
     assert result.exit_code == 2 and "Broken pipe" in result.output
+
+
+@pytest.mark.parametrize("args, typo, verb", [(["plna", "clutter"], "plna", "plan"), (["lst"], "lst", "list"),
+                                              (["grid", "paln"], "paln", "plan"), (["grid", "mze"], "mze", "maze"),
+                                              (["ros", "dmeo"], "dmeo", "demo")])
+def test_a_misspelt_verb_gets_did_you_mean(args, typo, verb):
+    res = CliRunner().invoke(main, args)
+    assert res.exit_code == 2 and f"No such command '{typo}'. Did you mean '{verb}'?" in res.output
+    assert len(res.output.strip().splitlines()) == 1
+
+
+def test_an_unknown_verb_far_from_any_is_named_alone():
+    res = CliRunner().invoke(main, ["zzz"])
+    assert res.exit_code == 2 and "No such command 'zzz'." in res.output and "Did you mean" not in res.output
+
+
+@pytest.mark.parametrize("args, verbs", [([], ("plan", "list", "grid", "bench", "sim", "ros")),
+                                         (["grid"], ("maze", "plan", "scen"))])
+def test_a_group_alone_prints_its_help_whole(args, verbs):
+    res = CliRunner().invoke(main, args)
+    lines = res.output.splitlines()
+    assert res.exit_code in (0, 2) and lines[0].startswith("Usage:") and len(lines) > 5  # not folded into one line
+    listed = [line.split()[0] for line in lines[lines.index("Commands:") + 1:] if line.startswith("  ")]
+    assert set(verbs) <= set(listed)

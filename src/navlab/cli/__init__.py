@@ -15,7 +15,7 @@ STARTED = time.perf_counter()
 
 import click  # noqa: E402 - after the clock starts
 
-from .common import EXIT_INTERRUPTED, debug_enabled, describe_error
+from .common import EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error
 
 
 def _quick_exit() -> None:
@@ -196,7 +196,7 @@ def _stdout_reader_gone() -> bool:
     return True
 
 
-class NavlabGroup(click.Group):
+class NavlabGroup(SuggestingGroup):
     """The top-level group: no Python traceback ever reaches a user.
 
     Bad input (navlab's ``ValueError`` types, unreadable files, a missing
@@ -226,6 +226,10 @@ class NavlabGroup(click.Group):
                 sys.exit(0)
             raise
         except click.exceptions.UsageError as exc:
+            if isinstance(exc, getattr(click.exceptions, "NoArgsIsHelpError", ())):  # `navlab` or `navlab grid`
+                # alone: click 8.2+ raises the group's help as a usage error; it is shown whole, not as one line
+                exc.show()
+                sys.exit(exc.exit_code)
             where = f" (see '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
             message = " ".join(exc.format_message().splitlines())  # one line, even for a value holding newlines
             click.echo(f"Error: {message}{where}", err=True)

@@ -23,6 +23,24 @@ _EXTRAS = {"dask": "dask", "distributed": "dask", "ompl": "ompl", "pyastar2d": "
            "sensor_msgs": "ros2", "std_msgs": "ros2", "tf2_msgs": "ros2", "visualization_msgs": "ros2"}
 
 
+class SuggestingGroup(click.Group):
+    """A command group whose "No such command" names the closest verb, as click
+    already does for a misspelt option ("Did you mean --seed?")."""
+
+    def resolve_command(self, ctx, args):
+        try:
+            return super().resolve_command(ctx, args)
+        except click.UsageError as exc:
+            import difflib
+
+            name = args[0] if args else ""
+            verbs = self.list_commands(ctx)
+            close = difflib.get_close_matches(name, verbs, n=1) if name not in verbs else []
+            if not close:
+                raise
+            raise click.UsageError(f"No such command '{name}'. Did you mean '{close[0]}'?", exc.ctx) from None
+
+
 def debug_enabled() -> bool:
     """True when ``NAVLAB_DEBUG`` is set to anything but ''/0: show Python tracebacks."""
     return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")

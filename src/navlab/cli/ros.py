@@ -9,7 +9,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import EXIT_INTERRUPTED, parse_params
+from .common import EXIT_INTERRUPTED, SuggestingGroup, parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -23,7 +23,7 @@ def _require_rclpy() -> None:
         raise error from None
 
 
-@click.group("ros")
+@click.group("ros", cls=SuggestingGroup)
 def ros_group() -> None:
     """ROS 2 nodes: map_server, sim, pathplanner (alias astar_pathplanner), goto_waypoint,
     potential_field_navigator, local_planner (dwa, mppi, rpp on a costmap); `navlab ros demo` runs a

@@ -78,7 +78,9 @@ def field_settle(state, dist, cells, size, cursor, stride: int, res: float, targ
     and refilled only for two buckets on), so the entries pending are their sizes less the position.
     ``cursor[2:10]`` are the eight neighbours' offsets, ``cursor[10:18]`` and ``cursor[18:26]`` a
     diagonal step's two orthogonal neighbours' (0: not diagonal), set by :func:`field_start`."""
-    width = res * (1.0 - 1e-6)  # below one step even after rounding
+    # buckets (1 - 1e-6) res wide, below one step even after rounding (a product, not a quotient, per
+    # relaxed cell: a value a rounding off its bucket's edge lands in the next, which the slack allows)
+    per_width = 1.0 / (res * (1.0 - 1e-6))
     diag = math.sqrt(2.0) * res
     cap = cells.shape[1]
     offsets, side_x, side_y = cursor[2:10].copy(), cursor[10:18].copy(), cursor[18:26].copy()
@@ -106,7 +108,7 @@ def field_settle(state, dist, cells, size, cursor, stride: int, res: float, targ
                     nd = d + res
                 if nd < dist[u]:
                     dist[u] = nd
-                    to = int(nd / width) % 3
+                    to = int(nd * per_width) % 3
                     if size[to] == cap:
                         grown = np.empty((3, 2 * cap), dtype=np.int64)
                         grown[:, :cap] = cells

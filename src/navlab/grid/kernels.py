@@ -155,14 +155,6 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 # state starts as np.zeros (untouched pages stay unallocated), and a query
 # records the rows and columns it expanded so that the next query can zero
 # just those (:func:`clear_touched`) instead of the whole grid.
-@njit(cache=True, inline="always")
-def _record(lo, hi, x, y):
-    if x < lo[y]:
-        lo[y] = x
-    if x > hi[y]:
-        hi[y] = x
-
-
 @njit(cache=True)
 def clear_touched(gs, S, lo, hi, extent):
     """Zero the state a query wrote: every cell within one of a recorded cell
@@ -600,11 +592,12 @@ _SIDES_Y = 0b0011  # moving along y: east (bit 0) and west (bit 1)
 _NEXT = np.array([0b01011101, 0b10101110, 0b00110111, 0b11001011,
                   0b00010101, 0b00100110, 0b01001001, 0b10001010, 0b11111111], dtype=np.int64)
 # Helpers that take arrays are plain njit functions (LLVM inlines them), not numba's
-# inline="always", and the search loop records rows itself instead of calling _record: numba
-# inlined at its own level leaves an atomic NRT_incref/NRT_decref of each array argument around
-# every call (its reference-count pruning misses them), and a locked add drains the store buffer.
-# In the loop that was an increment and a decrement of ``moves`` per jump and of ``lo`` and ``hi``
-# per push: random4096 JPS 0.81x the time without them (in-process A/B, CPU medians, 7 runs).
+# inline="always", and JPS records rows itself instead of calling a helper: numba leaves an
+# atomic NRT_incref/NRT_decref of each array argument around such calls (inlined at its own
+# level, or a helper whose body branches), which its reference-count pruning misses, and a
+# locked add drains the store buffer. In the loop that was an increment and a decrement of
+# ``moves`` per jump and of ``lo`` and ``hi`` per push: random4096 JPS 0.81x the time without
+# them (in-process A/B, CPU medians, 9 runs; tests/grid/test_kernel_refcounts.py).
 
 
 @njit(cache=True)
@@ -679,7 +672,8 @@ def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
     cap_stack = stack.shape[0]
     gs[np.uint64(start)] = 1.0
     rmin = rmax = start // S
-    _record(lo, hi, start % S, start // S)
+    lo[np.uint64(rmin)] = min(lo[np.uint64(rmin)], start % S)  # the start's row and column, recorded
+    hi[np.uint64(rmin)] = max(hi[np.uint64(rmin)], start % S)
     fcur = 1.0 + heuristic(H_OCTILE, start % S, start // S, gx, gy)  # keys are (g + 1) + h, as A*'s
     cur = np.int64(fcur * inv_width)  # the ring's lowest bucket number (not wrapped)
     stack[np.uint64(0)] = start * 16 + 8  # open entries are cell * 16 + the move that reached it (8: none)
@@ -776,7 +770,7 @@ def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
                 gs[np.uint64(jp)] = ng
                 jx = ux + (n + 1) * dx
                 jy = uy + (n + 1) * dy
-                if jx < lo[np.uint64(jy)]:  # (not _record: see above _jump_straight)
+                if jx < lo[np.uint64(jy)]:
                     lo[np.uint64(jy)] = jx
                 if jx > hi[np.uint64(jy)]:
                     hi[np.uint64(jy)] = jx

@@ -1,0 +1,49 @@
+"""The grid search kernels take no array references inside their loops.
+
+Numba reference-counts arrays. Around a call that numba inlines at its own
+level (``inline="always"``), or a helper whose body branches, it can leave an
+atomic ``NRT_incref``/``NRT_decref`` of each array argument that its pruning
+pass does not remove; inside a search loop that is two locked adds per call
+(JPS paid them per jump and per push: 1.2x its time on random4096,
+kernels.py above ``_jump_straight``). A kernel whose loops are clean increments
+each array argument at most once, on entry, so its LLVM IR holds at most as
+many ``NRT_incref`` calls as it has array arguments. Checked on an uncached
+compile of each kernel's Python source (cached code cannot be inspected).
+"""
+
+import numpy as np
+import pytest
+from numba import njit, types
+
+from navlab.grid import kernels as K
+from navlab.grid.planner import GridSearcher, PaddedGrid
+
+
+def incref_calls(py_func, args):
+    fn = njit(py_func)
+    fn(*args)
+    (sig,) = fn.signatures
+    return fn.inspect_llvm(sig).count("call void @NRT_incref"), sum(isinstance(t, types.Array) for t in sig)
+
+
+def small_query():
+    grid = PaddedGrid(np.eye(8, dtype=bool)[::-1] & (np.arange(8) < 6))  # an anti-diagonal wall with a gap
+    return grid, GridSearcher(grid), grid.index(0, 0), grid.index(7, 7)
+
+
+def test_jps_takes_no_references_in_its_loop():
+    grid, s, a, b = small_query()
+    calls, arrays = incref_calls(K.jps.py_func, (grid.moves, grid.stride, a, b, s.g, s.lo, s.hi, s.extent,
+                                                 s.key, s.cell, s.next, s.head, s.stack))
+    assert calls <= arrays
+
+
+@pytest.mark.parametrize("conn, hcode, any_angle", [(8, K.H_OCTILE, False), (8, K.H_ZERO, False),
+                                                     (4, K.H_MANHATTAN, False), (8, K.H_EUCLIDEAN, True)])
+def test_astar_variants_take_no_references_in_their_loops(conn, hcode, any_angle):
+    grid, s, a, b = small_query()
+    parent = np.empty(grid.moves.size, dtype=np.int32)
+    kernel = K.make_astar(conn, hcode, any_angle)
+    calls, arrays = incref_calls(kernel.py_func, (grid.free, grid.moves, grid.stride, a, b, 1.0, s.g, parent,
+                                                  s.lo, s.hi, s.extent, s.key, s.cell, s.next, s.head, s.stack))
+    assert calls <= arrays

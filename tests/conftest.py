@@ -19,6 +19,48 @@ settings.register_profile("long", max_examples=400, derandomize=False, **_COMMON
 settings.load_profile(os.environ.get("NAVLAB_HYPOTHESIS_PROFILE", "default"))
 
 
+def _compile_each_kernel_once_across_workers():
+    """On a cold numba cache, a kernel that two pytest-xdist workers need at
+    about the same time was compiled by both (Hybrid A*'s search, the tree's
+    grow: 20-25 s of CPU each, on 2 cores). Here a cached dispatcher's compile
+    takes a file lock named after its function first: the second worker waits
+    for the first, then finds the kernel in the cache and loads it. Numba's own
+    in-process compiler lock is taken before the file lock, so threads of one
+    worker cannot cross each other; across workers the locks follow the
+    (acyclic) call graph, a caller's before its callees', and cannot cross
+    either. ``NAVLAB_TEST_COMPILE_LOCKS=0`` turns it off."""
+    if os.environ.get("NAVLAB_TEST_COMPILE_LOCKS", "1") == "0":
+        return
+    import fcntl
+    import hashlib
+    import tempfile
+
+    from numba.core import sigutils
+    from numba.core.caching import NullCache
+    from numba.core.compiler_lock import global_compiler_lock
+    from numba.core.dispatcher import Dispatcher
+
+    folder = os.path.join(tempfile.gettempdir(), f"navlab-test-compile-locks-{os.getuid()}")
+    os.makedirs(folder, exist_ok=True)
+    compile_here = Dispatcher.compile
+
+    def compile_once(self, sig):
+        with global_compiler_lock:
+            args, _ = sigutils.normalize_signature(sig)
+            if tuple(args) in self.overloads or isinstance(self._cache, (NullCache, type(None))):
+                return compile_here(self, sig)  # loaded already, or nothing another process could share
+            func = self.py_func
+            name = hashlib.sha1(f"{func.__module__}.{func.__qualname__}:{func.__code__.co_filename}".encode())
+            with open(os.path.join(folder, name.hexdigest()), "a") as lock:
+                fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes, or the process dies
+                return compile_here(self, sig)
+
+    Dispatcher.compile = compile_once
+
+
+_compile_each_kernel_once_across_workers()
+
+
 @pytest.fixture
 def rng():
     return np.random.default_rng(12345)

@@ -385,7 +385,8 @@ def smac_benchmark(seed: int = SMAC_SEED) -> None:
     lattice (a query whose start heading the planner has not seen: it traces the swept cells it needs
     as it goes), then ``warm``, the same query again with it kept (a replanning robot's query), then
     ``floor``, the same query stopped after one expansion: what every query pays before its search
-    (pose checks and the holonomic field over the whole map, from the goal). The map's
+    (pose checks and the holonomic field from the goal as far as the start's cell, the search settling
+    more of it lazily as it reads it: :mod:`navlab.grid.hybrid_field`). The map's
     tables (:func:`navlab.grid.hybrid_astar._map_tables`: clearance and distance transforms) are kept
     per map, as Smac keeps its per-map collision data: only the first query on a map pays them; that
     cost is timed apart and printed per map. A failed query counts, its time included.

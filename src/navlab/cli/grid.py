@@ -12,6 +12,7 @@ import numpy as np
 
 from .common import SuggestingGroup
 
+
 @click.group("grid", cls=SuggestingGroup)
 def grid_group() -> None:
     """Grid planning on ROS map_server maps (.yaml) and Moving AI maps (.map)."""

@@ -39,7 +39,7 @@ from numba import njit
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
-from .hybrid_field import field_at, holonomic_field  # noqa: F401 (holonomic_field: the whole field, re-exported)
+from .hybrid_field import PASSABLE, SETTLED, field_at, holonomic_field  # noqa: F401 (the whole field, re-exported)
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
@@ -310,6 +310,21 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         if expansions >= max_expansions:
             break
         cx, cy = int(x // res), int(y // res)
+        # room for every child first. Arrays replaced inside the children's loop, and a call there that can
+        # replace one, cost numba's reference counting on every child, dominated or not: with the growth
+        # here and the field's rare call behind its own test, 0.86x (Reeds–Shepp) and 0.94x (Dubins) of
+        # the CPU time on nine smac-maps queries (in-process A/B, 5 interleaved runs, load 1.5-2)
+        if count + nprim > cap:
+            cap = max(2 * cap, count + nprim)
+            nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
+            nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
+        if nblocks + nprim > blocks.shape[0]:
+            blocks = _grow(blocks, 2 * blocks.shape[0])
+            blocks[nblocks:] = -1
+        if nentries + nprim > ecap:
+            ecap = max(2 * ecap, nentries + nprim)
+            eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
+            hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
         for j in range(nprim):
             x2, y2 = x + pdx[b, j], y + pdy[b, j]
             b2 = (b + pdbin[j]) % bins
@@ -337,14 +352,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]):
                 continue
             if u < 0:
-                if count == cap:
-                    cap *= 2
-                    nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
-                    nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
                 if blk < 0:
-                    if nblocks == blocks.shape[0]:
-                        blocks = _grow(blocks, 2 * nblocks)
-                        blocks[nblocks:] = -1
                     blk = nblocks
                     nblocks += 1
                     block_of[cell] = blk
@@ -353,12 +361,12 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                 blocks[blk, b2] = u
                 closed[u] = False
             nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
-            if nentries == ecap:
-                ecap *= 2
-                eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
-                hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
             eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, reverse
-            field, fcells = field_at(fstate, fdist, fcells, fsize, fcursor, fstride, res, cx2, cy2)
+            fv = (cy2 + 1) * fstride + cx2 + 1
+            if fstate[fv] & (PASSABLE | SETTLED) == PASSABLE:  # the wave goes on (seldom once past the start)
+                field, fcells = field_at(fstate, fdist, fcells, fsize, fcursor, fstride, res, cx2, cy2)
+            else:
+                field = fdist[fv]
             if reverse:
                 _push(hkey, hnode, hentry, hsize, g2 + field, u, nentries)
             else:  # a Dubins solve costs little more than the queue's bookkeeping for putting it off

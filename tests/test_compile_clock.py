@@ -83,3 +83,30 @@ except KeyboardInterrupt as exc:
     out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=300,
                          env={**os.environ, "NUMBA_CACHE_DIR": os.devnull})
     assert out.stdout.strip() == "interrupted in on_end True", (out.stdout, out.stderr)
+
+
+def test_a_first_compile_says_so_once_on_a_terminal_only():
+    """navlab plan / grid plan on a cold cache compiled for a minute in silence (a newcomer took it for a
+    hang): the first compile of the process writes one line to a terminal's stderr, none to a pipe."""
+    import subprocess
+    import sys
+
+    child = r"""
+import io, sys
+from numba import njit
+class Terminal(io.StringIO):
+    def isatty(self):
+        return {tty}
+sys.stderr = said = Terminal()
+from navlab.compile_clock import say_when_compiling
+say_when_compiling()
+say_when_compiling()  # registered once
+njit(lambda x: x + 1)(1)
+njit(lambda x: x * 2.0)(1.0)
+sys.__stdout__.write(repr(said.getvalue()))
+"""
+    for tty, lines in ((True, 1), (False, 0)):
+        out = subprocess.run([sys.executable, "-c", child.format(tty=tty)], capture_output=True, text=True,
+                             timeout=300, check=True)
+        said = eval(out.stdout)  # the repr of what the child's stderr got
+        assert said.count("\n") == lines and said.count("compiling navlab's kernels for a first use") == lines, said

@@ -16,6 +16,10 @@ Clocks nest (navlab.plan around a grid planner's own): an event counts for
 the innermost clock of the thread that compiles, so no second is moved twice,
 and another thread's compiles are not this call's.
 
+:func:`say_when_compiling` (for the command line) writes one line to a
+terminal's standard error when a process's first compile starts, so that a
+first use that compiles for a minute does not look like a hang.
+
 Ctrl-C during a compile: LLVM calls back into Python while it compiles
 (llvmlite's object cache, through ctypes), and a KeyboardInterrupt raised
 inside such a callback is printed as "Exception ignored on calling ctypes
@@ -144,3 +148,32 @@ def hold_interrupts_while_compiling() -> None:
                     raise KeyboardInterrupt  # here, in numba's own Python frame: it reaches the caller
 
     event.register("numba:compile", HoldInterrupts())
+
+
+@functools.lru_cache(maxsize=1)
+def say_when_compiling() -> None:
+    """Register, once per process, a listener that writes one line to standard error when the
+    process's first compile starts, if standard error is a terminal (a log or a pipe gets none:
+    the warm-up line after the plan gives the seconds)."""
+    import sys
+
+    from numba.core import event
+
+    class SayOnce(event.Listener):
+        def __init__(self) -> None:
+            self._said = False
+
+        def on_start(self, ev) -> None:
+            if self._said:
+                return
+            self._said = True
+            stream = sys.stderr
+            if stream is not None and stream.isatty():
+                stream.write("compiling navlab's kernels for a first use (once: they are cached afterwards; "
+                             "up to a few minutes on a busy machine) ...\n")
+                stream.flush()
+
+        def on_end(self, ev) -> None:
+            pass
+
+    event.register("numba:compile", SayOnce())

@@ -41,6 +41,17 @@ class SuggestingGroup(click.Group):
             raise click.UsageError(f"No such command '{name}'. Did you mean '{close[0]}'?", exc.ctx) from None
 
 
+def before_first_kernel() -> None:
+    """What a planning verb's process does once numba is imported, before its first kernel loads:
+    cached kernels load without numba's registries (``numba_start.cached_loads_without_registries``)
+    and a first use's compile says so on a terminal (``compile_clock.say_when_compiling``)."""
+    from ..compile_clock import say_when_compiling
+    from ..numba_start import cached_loads_without_registries
+
+    cached_loads_without_registries()
+    say_when_compiling()
+
+
 def debug_enabled() -> bool:
     """True when ``NAVLAB_DEBUG`` is set to anything but ''/0: show Python tracebacks."""
     return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")

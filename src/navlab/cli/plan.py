@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from .common import PointOrPoseOption, parse_params
+from .common import PointOrPoseOption, before_first_kernel, parse_params
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -49,7 +49,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     (APPROXIMATE, FAILED, INVALID_START, INVALID_GOAL: the first line says
     why); 2 for bad input (one line, Error: ...).
     """
-    from ..numba_start import cached_loads_without_registries, collections_paused
+    from ..numba_start import collections_paused
 
     # One query in a process of its own: what loads on the way (numba, its registries, the kernels) lives until
     # the exit, and the query's own objects are freed by reference counting, so collections would only walk
@@ -59,7 +59,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
         from ..pose_queries import POSE_PLANNERS
         from ..world.sources import MissingQueryError, load_source
 
-        cached_loads_without_registries()  # numba is imported by now (the planners' kernels); ~85 ms less
+        before_first_kernel()  # numba is imported by now (the planners' kernels)
         settings = parse_params(params)
         for flag, value in (("max_iter", max_iter), ("max_time", max_time)):
             if value is not None:

@@ -48,6 +48,16 @@ def test_parking_needs_reverse_and_dubins_says_so():
     assert forward.status is Status.FAILED and "reverse" in forward.reason
 
 
+def test_a_search_cut_short_says_to_raise_its_budget_not_to_reverse():
+    # trap_car's goal is reachable driving forward (23.08 m with 30 000 iterations): running out of budget
+    # is not evidence that only reversing reaches it
+    short = navlab.plan("trap_car", planner="hybrid_astar", motion="dubins", max_expansions=100)
+    assert short.status is Status.FAILED and "raise max_expansions" in short.reason and "reverse" not in short.reason
+    assert navlab.plan("trap_car", planner="hybrid_astar", motion="dubins").status is Status.EXACT
+    tree = navlab.plan("trap_car", planner="rrt_star", motion="dubins", max_iter=200)
+    assert tree.status is Status.FAILED and "more iterations or time may reach it" in tree.reason
+
+
 def test_headings_default_to_the_direction_from_start_to_goal():
     r = navlab.plan("trap", planner="hybrid_astar", start=(2.0, 2.0), goal=(5.0, 5.0), turning_radius=0.5)
     assert r.status is Status.EXACT, r.reason

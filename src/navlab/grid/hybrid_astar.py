@@ -247,11 +247,13 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
             bool(analytic_expansion), 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
-        why = "the search space is exhausted" if expansions < max_expansions else \
-            f"max_expansions ({max_expansions}) reached"
-        extra = " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')" \
-            if motion == "dubins" else ""
-        return finish(Status.FAILED, f"no collision-free path: {why}{extra}")
+        if expansions < max_expansions:  # no path at this resolution; forward-only motion may be why
+            why = "the search space is exhausted" + (
+                " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')"
+                if motion == "dubins" else "")
+        else:
+            why = f"max_expansions ({max_expansions}) reached before the goal (raise max_expansions)"
+        return finish(Status.FAILED, f"no collision-free path: {why}")
     # the chain of primitives, then the analytic tail, as (kind, signed length) segments from the start
     chain = []
     v = last

@@ -180,9 +180,9 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
         tree = Tree(nodes=a.pose[:n].copy(), parent=a.parent[:n].copy())
     best = int(istate[K.S_BEST])
     if best < 0:
-        why = f"the goal pose was not reached in {it} iterations" + (
-            " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')"
-            if motion == "dubins" else "")
+        why = f"the goal pose was not reached in {it} iterations (more iterations or time may reach it" + (
+            "; dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp'"
+            if motion == "dubins" else "") + ")"
         return Result(status=Status.FAILED, path=np.empty((0, 3)), cost=math.inf, stats=stats, reason=why,
                       params=params, tree=tree)
     # the chain of nodes, each edge's word as it was checked, then the goal connection's

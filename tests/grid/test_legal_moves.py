@@ -61,3 +61,16 @@ def test_a_changed_grid_gets_its_own_masks():
     walled = grid.with_blocked(wall)
     assert plan(walled, (0, 0), (5, 0)).cost > 5.0
     assert plan(grid, (0, 0), (5, 0)).cost == 5.0
+
+
+def test_an_end_on_an_unknown_cell_names_the_setting_that_opens_it():
+    blocked = np.zeros((5, 5), bool)
+    unknown = np.zeros((5, 5), bool)
+    unknown[4, 4] = True
+    blocked[0, 4] = True
+    grid = OccupancyGrid(blocked, unknown=unknown)
+    closed = plan(grid, (0, 0), (4, 4))
+    assert closed.status.name == "INVALID_GOAL" and "is unknown" in closed.reason and "--allow-unknown" in closed.reason
+    wall = plan(grid, (0, 0), (4, 0))  # a blocked cell is not opened by any setting: no hint
+    assert wall.status.name == "INVALID_GOAL" and wall.reason.endswith("is blocked")
+    assert plan(grid, (0, 0), (4, 4), allow_unknown=True).cost == 4 * 2 ** 0.5

@@ -375,7 +375,8 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
         if not pool.grid.is_free(*cell):
-            kind = "unknown" if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
+            kind = "unknown (allow_unknown=true, --allow-unknown on the command line, opens unknown cells)" \
+                if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
     code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)

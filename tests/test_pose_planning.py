@@ -157,3 +157,10 @@ def test_the_command_line_takes_a_pose(tmp_path):
     assert bad.exit_code == 2 and "'--start'" in bad.output and "Traceback" not in bad.output
     bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "hybrid_astar", "--param", "motion=sideways"])
     assert bad.exit_code == 2 and "motion must be one of" in bad.output
+
+
+def test_the_summary_counts_in_words_and_a_failure_has_no_cusps():
+    res = CliRunner().invoke(main, ["plan", "parking", "--planner", "hybrid_astar", "--param", "max_expansions=1"])
+    assert res.exit_code == 1 and ", 1 expansion, planning" in res.output and "cusp" not in res.output
+    res = CliRunner().invoke(main, ["plan", "parking", "--planner", "hybrid_astar"])
+    assert res.exit_code == 0 and re.search(r"\d+ expansions, 1 cusp, planning", res.output)

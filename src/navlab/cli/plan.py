@@ -124,9 +124,11 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
                    f"planning {s['time_s'] * 1000:.1f} ms"
                    + (f", first solution at iteration {first}" if first is not None else ""))
     elif "expansions" in s:  # a heading-aware planner
-        p = result.params
-        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {s['expansions']} expansions, "
-                   f"{s.get('cusps', 0)} cusp{'' if s.get('cusps', 0) == 1 else 's'}, planning {s['time_s'] * 1000:.1f} ms")
+        p, n = result.params, s["expansions"]
+        cusps = s.get("cusps", 0)  # of a path found: a failed search has none to count
+        cusps_said = f"{cusps} cusp{'' if cusps == 1 else 's'}, " if len(result.path) else ""
+        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {n} expansion"
+                   f"{'' if n == 1 else 's'}, {cusps_said}planning {s['time_s'] * 1000:.1f} ms")
     elif "time_s" in s and s.get("grid"):  # a grid planner that searched (not one refused at its start)
         line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:

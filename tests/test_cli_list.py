@@ -86,3 +86,10 @@ def test_first_paragraph():
 def test_unknown_kind_is_a_usage_error():
     result = CliRunner().invoke(main, ["list", "planers"])
     assert result.exit_code == 2 and "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("typo, kind", [("poses", "pose"), ("planner", "planners"), ("scene", "scenes")])
+def test_a_misspelt_kind_gets_did_you_mean(typo, kind):
+    result = CliRunner().invoke(main, ["list", typo])
+    assert result.exit_code == 2 and f"Did you mean '{kind}'?" in result.output
+    assert result.output.count("Invalid value") == 1 and len(result.output.strip().splitlines()) == 1

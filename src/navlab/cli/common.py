@@ -41,6 +41,21 @@ class SuggestingGroup(click.Group):
             raise click.UsageError(f"No such command '{name}'. Did you mean '{close[0]}'?", exc.ctx) from None
 
 
+class SuggestingChoice(click.Choice):
+    """click's Choice whose refusal names the closest choice ("Did you mean 'pose'?")."""
+
+    def convert(self, value, param, ctx):
+        try:
+            return super().convert(value, param, ctx)
+        except click.BadParameter as exc:
+            import difflib
+
+            close = difflib.get_close_matches(str(value), [str(c) for c in self.choices], n=1)
+            if not close:
+                raise
+            self.fail(f"{exc.message} Did you mean {close[0]!r}?", param, ctx)
+
+
 def before_first_kernel() -> None:
     """What a planning verb's process does once numba is imported, before its first kernel loads:
     cached kernels load without numba's registries (``numba_start.cached_loads_without_registries``)

@@ -10,6 +10,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 import click
 
 from ..registry import Registry, parameters_of
+from .common import SuggestingChoice
 
 NAME_WIDTH = 20  #: [characters] the name column
 #: parameters of a grid search other than the query itself (shown for every grid planner)
@@ -171,7 +172,7 @@ KINDS: Dict[str, Tuple[str, Callable[[], Iterator[str]]]] = {
 
 
 @click.command("list")
-@click.argument("kind", required=False, type=click.Choice(list(KINDS)))
+@click.argument("kind", required=False, metavar="[KIND]", type=SuggestingChoice(list(KINDS)))
 def list_cmd(kind: Optional[str]) -> None:
     """Every registered part with its description and parameters (defaults shown).
 

@@ -178,7 +178,7 @@ def phases(python: str, runs: int) -> None:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--runs", type=int, default=9)
+    ap.add_argument("--runs", type=int, default=9, help="fresh processes per command (default 9); medians are printed")
     ap.add_argument("--phases", action="store_true",
                     help="time the steps of navlab plan clutter instead of the commands")
     ap.add_argument("--python", default=sys.executable,
@@ -214,8 +214,10 @@ def main() -> None:
     for what, table in (("wall", times), ("CPU", cpu)):
         share = statistics.median(table["navlab plan clutter"]) - statistics.median(table["floor: same, navlab's way"])
         print(f"navlab plan clutter above the numba floor done navlab's way ({what}): {share:.3f} s")
-    print("goal: issue 19's target on this 2-core machine, against the median wall time; floor rows: what numpy "
-          "and numba alone cost (a floor above a command is numba's own start without navlab's preloads: --help)")
+    print("goal: the target for each command's median wall time on this 2-core machine (issue 19). "
+          "floor rows: what numpy and numba alone cost; 'one numba kernel' is numba's own start-up done the usual "
+          "way, and may take longer than navlab plan itself, which starts numba navlab's way (the row below it; "
+          "--help of this script says what that way is)")
     print(load_line("at end"))
 
 

@@ -101,7 +101,7 @@ def fail(message: str) -> None:
     sys.exit(2)
 
 
-@grid_group.command("scen")
+@grid_group.command("scen", short_help="Run a Moving AI scenario file against its stored optima.")
 @click.argument("scen_path", metavar="FILE.scen", type=click.Path(dir_okay=False))
 @click.option("--map", "map_path", type=click.Path(dir_okay=False), default=None,
               help="The .map file (default: the scenario's map name next to FILE.scen).")

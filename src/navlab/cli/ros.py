@@ -82,7 +82,7 @@ for _node in NODES:
     ros_group.add_command(NodeCommand(_node))
 
 
-@ros_group.command("delay")
+@ros_group.command("delay", short_help="Measure how late messages arrive on topics.")
 @click.argument("topics", nargs=-1, required=True)
 @click.option("--duration", type=float, default=10.0, show_default=True,
               help="How long to listen (wall-clock seconds, from when the first topic appears).")
@@ -113,7 +113,7 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
         sys.exit(1)
 
 
-@ros_group.command("demo")
+@ros_group.command("demo", short_help="Drive a simulated robot to a goal through ROS 2 nodes.")
 @click.option("--map", "--world", "world", default=None,
               help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "
                    "diff, the one_obstacle scene for omni3.")

@@ -3,18 +3,14 @@
 import numpy as np
 
 from navlab.grid.hybrid_field import SETTLED, field_at, field_start
-from grid.test_hybrid_heuristic import heap_field  # tests/ is on the path (pyproject: pythonpath)
+from grid.test_hybrid_heuristic import heap_field, random_field_problems  # tests/ is on the path (pyproject: pythonpath)
 
 
 def test_lazy_lookups_in_random_order_equal_heap_dijkstra_bit_for_bit():
     rng = np.random.default_rng(5)
     partial = 0
-    for _ in range(80):
-        h, w = rng.integers(1, 30, 2)
-        passable = rng.random((h, w)) > rng.uniform(0.0, 0.5)
-        gy, gx = rng.integers(0, h), rng.integers(0, w)
-        passable[gy, gx] = True
-        res = rng.uniform(0.01, 2.0)
+    for passable, gx, gy, res in random_field_problems(rng, 80):
+        h, w = passable.shape
         truth = heap_field(passable, gx, gy, res)
         state, dist, cells, size, cursor = field_start(passable, gx, gy, res)
         for _ in range(rng.integers(1, 3 * h * w)):

@@ -82,14 +82,18 @@ def heap_field(passable, gx, gy, res):
     return dist
 
 
-def test_the_bucket_queue_field_equals_heap_dijkstra_bit_for_bit():
-    rng = np.random.default_rng(3)
-    for _ in range(60):
+def random_field_problems(rng, count):
+    """``count`` random (passable, gx, gy, res): maps of 1-29 cells a side, up to half blocked, the goal free."""
+    for _ in range(count):
         h, w = rng.integers(1, 30, 2)
         passable = rng.random((h, w)) > rng.uniform(0.0, 0.5)
         gy, gx = rng.integers(0, h), rng.integers(0, w)
         passable[gy, gx] = True
-        res = rng.uniform(0.01, 2.0)
+        yield passable, gx, gy, rng.uniform(0.01, 2.0)
+
+
+def test_the_bucket_queue_field_equals_heap_dijkstra_bit_for_bit():
+    for passable, gx, gy, res in random_field_problems(np.random.default_rng(3), 60):
         assert np.array_equal(holonomic_field(passable, gx, gy, res), heap_field(passable, gx, gy, res))
 
 

@@ -9,7 +9,8 @@ import pytest
 
 from navlab.grid import hybrid_astar
 from navlab.grid.hybrid_astar import plan_hybrid
-from navlab.grid.hybrid_search import _heuristic, holonomic_field
+from navlab.grid.hybrid_field import holonomic_field
+from navlab.grid.hybrid_search import _heuristic
 from navlab.grid.occupancy import OccupancyGrid
 from navlab.sampling import dubins, reeds_shepp
 from navlab.sampling.curves import MAX_SEGMENTS

@@ -39,7 +39,7 @@ from numba import njit
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
-from .hybrid_field import PASSABLE, SETTLED, field_at, holonomic_field  # noqa: F401 (the whole field, re-exported)
+from .hybrid_field import PASSABLE, SETTLED, field_at
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9

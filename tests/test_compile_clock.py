@@ -110,3 +110,28 @@ sys.__stdout__.write(repr(said.getvalue()))
                              timeout=300, check=True)
         said = eval(out.stdout)  # the repr of what the child's stderr got
         assert said.count("\n") == lines and said.count("compiling navlab's kernels for a first use") == lines, said
+
+
+def test_a_ctrl_c_under_numbas_compiler_lock_is_raised_when_it_is_released():
+    """Loading a cached kernel and compiling the runtime's module run LLVM under numba's compiler lock without a
+    compile event; a Ctrl-C there was printed from LLVM's callback and lost (CI, under load). Held the same way."""
+    import subprocess
+    import sys
+
+    child = r"""
+import os, signal, time, traceback
+from numba.core.compiler_lock import global_compiler_lock
+from navlab.compile_clock import hold_interrupts_while_compiling
+hold_interrupts_while_compiling()
+try:
+    with global_compiler_lock:
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(0.2)  # the signal arrives and is only noted
+        print("held", flush=True)
+    print("not interrupted")
+except KeyboardInterrupt as exc:
+    print("interrupted in", traceback.extract_tb(exc.__traceback__)[-1].name,
+          signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+"""
+    out = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, timeout=120)
+    assert out.stdout.split("\n")[:2] == ["held", "interrupted in on_end True"], (out.stdout, out.stderr)

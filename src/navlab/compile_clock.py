@@ -27,7 +27,10 @@ callback function" and dropped: the command ran on to its end (a plan with
 ``--max-time 120`` interrupted during its first compile finished, exit 0).
 :func:`hold_interrupts_while_compiling` makes SIGINT, while a compile runs on
 the main thread under Python's default handler, only noted, and raises the
-KeyboardInterrupt when the compile ends, outside any callback.
+KeyboardInterrupt when the compile ends, outside any callback. It does the
+same while numba's compiler lock is held (its ``numba:compiler_lock``
+events): loading a cached kernel and the runtime's own module, which LLVM
+compiles in every process, run LLVM outside any compile event.
 
 References
 ----------
@@ -116,8 +119,9 @@ def _listener_class():
 
 @functools.lru_cache(maxsize=1)
 def hold_interrupts_while_compiling() -> None:
-    """Register, once per process, the listener that holds a Ctrl-C until the compile it lands in
-    ends (see the module's docstring). A SIGINT handler other than Python's default is left alone."""
+    """Register, once per process, the listener that holds a Ctrl-C until the compile (or anything
+    else done under numba's compiler lock) it lands in ends (see the module's docstring). A SIGINT
+    handler other than Python's default is left alone."""
     from numba.core import event
 
     class HoldInterrupts(event.Listener):
@@ -147,7 +151,12 @@ def hold_interrupts_while_compiling() -> None:
                     self._noted = False
                     raise KeyboardInterrupt  # here, in numba's own Python frame: it reaches the caller
 
-    event.register("numba:compile", HoldInterrupts())
+    held = HoldInterrupts()
+    event.register("numba:compile", held)
+    # numba's compiler lock is held around every compile and also around what runs LLVM without a compile
+    # event: loading a cached kernel, and the runtime's own module, compiled in every process (rtsys.initialize);
+    # a Ctrl-C landing there was lost the same way (fuzz test_real_command_ctrl_c_is_one_line, CI under load)
+    event.register("numba:compiler_lock", held)
 
 
 @functools.lru_cache(maxsize=1)

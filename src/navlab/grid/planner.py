@@ -202,12 +202,16 @@ class SearcherPool:
                 self._idle.append(searcher)
 
 
+#: what opens unknown cells to a search, as a reason names it
+OPENS_UNKNOWN = "allow_unknown=true, --allow-unknown on the command line"
+
+
 def _unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
     """What a failed search on a map with unknown cells adds to its reason: they were closed to it."""
     if allow_unknown or not grid.unknown.any():
         return ""
     return (f"; the map's {int(np.count_nonzero(grid.unknown & ~grid.blocked))} unknown cells were closed to the "
-            "search (allow_unknown=true, --allow-unknown on the command line, opens them)")
+            f"search ({OPENS_UNKNOWN}, opens them)")
 
 
 def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
@@ -375,7 +379,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
         if not pool.grid.is_free(*cell):
-            kind = "unknown (allow_unknown=true, --allow-unknown on the command line, opens unknown cells)" \
+            kind = f"unknown ({OPENS_UNKNOWN}, opens unknown cells)" \
                 if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")

@@ -18,7 +18,8 @@ NOT_FOR_A_TREE_QUERY = ("shapely", "scipy.linalg", "scipy.spatial", "scipy.ndima
                         "navlab.grid.planner", "navlab.grid.kernels", "navlab.grid.mapio", "navlab.grid.rasterize",
                         "navlab.grid.hybrid_astar", "navlab.sampling.reeds_shepp", "navlab.sampling.dubins",
                         "navlab.sampling.curves", "navlab.sampling.se2_planners",
-                        "navlab.sim", "navlab.ros", "rclpy", "ompl", "PIL")
+                        "navlab.sim", "navlab.ros", "rclpy", "ompl", "PIL",
+                        "yaml")  # numba's configuration imports PyYAML for a file the working folder lacks
 
 
 def loaded_after(code):
@@ -77,6 +78,20 @@ def test_plan_clutter_loads_only_what_a_tree_query_uses():
     assert heavy(modules - {"scipy.linalg.cython_blas"}, NOT_FOR_A_TREE_QUERY) == []  # loaded alone, not its package
     # the cached kernels loaded without numba's typing and lowering registries (numba_start.cached_loads_without_registries)
     assert heavy(modules, ("numba.np.arraymath", "numba.np.linalg", "numba.np.npyimpl", "numba.typed.typeddict")) == []
+    # nor the modules their environments name (numba_start._environments_without_imports)
+    assert heavy(modules, ("numba.np.arrayobj", "numba.cpython.unicode", "numba.cpython.charseq")) == []
+
+
+def test_plan_clutter_defers_the_entry_points_reader():
+    """numba imports importlib.metadata for its extensions' entry points; the command never reads them
+    (numba_start.import_numba_lean), so the module is there but its code never ran."""
+    code = ("import sys\nfrom navlab.cli import main\n"
+            "try:\n    main(['plan', 'clutter', '--max-iter', '50'])\n"
+            "except SystemExit:\n    pass\n"
+            "module = sys.modules['importlib.metadata']\n"
+            "print('deferred' if 'entry_points' not in object.__getattribute__(module, '__dict__') else 'ran')")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    assert out.stdout.strip().splitlines()[-1] == "deferred"
 
 
 def test_a_grid_planner_still_finds_the_grid_search():

@@ -1,6 +1,8 @@
 """navlab.numba_start.cached_loads_without_registries: a cached kernel loads and runs without numba's typing
-and lowering registries, and whatever compiles afterwards in the same process still gets all of them. Each
-check runs in fresh processes (a cache written by one, read by the next); the truth is numpy's."""
+and lowering registries, the modules its environments name (numba.np.arrayobj) or the third-party extensions'
+entry points, and whatever compiles afterwards in the same process still gets all of them, extensions first.
+Each check runs in fresh processes (a cache written by one, read by the next); the truth is numpy's, and a
+numba extension installed for the test (an entry point in a .dist-info folder) that records when it ran."""
 
 import json
 import subprocess
@@ -23,7 +25,7 @@ def cumulative(x):  # allocates (numba's runtime) and loops: what navlab's kerne
 '''
 
 LOAD = '''
-import json, sys
+import json, os, sys
 sys.path.insert(0, {folder!r})
 lean = {lean!r}
 import numba
@@ -37,6 +39,8 @@ import numpy as np
 from kernels import cumulative
 got = cumulative(np.arange(5.0))
 registries_after_load = "numba.np.arraymath" in sys.modules
+arrayobj_after_load = "numba.np.arrayobj" in sys.modules  # the module np.empty's helpers' environment names
+extension_after_load = os.path.exists({marker!r})
 
 @numba.njit
 def sorted_norms(a):  # compiled now: needs the array registries (np.sort, np.linalg.norm)
@@ -46,18 +50,42 @@ norms = sorted_norms(np.array([[3.0, 4.0], [1.0, 0.0], [6.0, 8.0]]))
 print(json.dumps({{"switched": switched, "again": again, "got": got.tolist(),
                   "registries_after_load": registries_after_load, "norms": norms.tolist(),
                   "registries_after_compile": "numba.np.arraymath" in sys.modules,
+                  "arrayobj_after_load": arrayobj_after_load, "extension_after_load": extension_after_load,
+                  "extension_ran": open({marker!r}).read() if os.path.exists({marker!r}) else None,
                   "loaded_from_cache": len(cumulative.stats.cache_hits) == 1}}))
 '''
 
 
+#: a numba extension as a distribution installs one: an ``init`` entry point in group ``numba_extensions``
+EXTENSION = '''
+import os, sys
+
+def init():  # numba runs it once per process, before the first typing (or, lean, the first compile)
+    with open({marker!r}, "w") as f:
+        f.write("numba.np.arraymath" if "numba.np.arraymath" in sys.modules else "before the registries")
+'''
+
+
+def install_extension(folder, marker):
+    (folder / "fake_numba_ext.py").write_text(EXTENSION.format(marker=str(marker)))
+    info = folder / "fake_numba_ext-1.0.dist-info"
+    info.mkdir()
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: fake-numba-ext\nVersion: 1.0\n")
+    (info / "entry_points.txt").write_text("[numba_extensions]\ninit = fake_numba_ext:init\n")
+
+
 def run(folder, lean):
-    out = subprocess.run([sys.executable, "-c", LOAD.format(folder=str(folder), lean=lean)],
+    marker = folder / "extension-ran"
+    if marker.exists():
+        marker.unlink()
+    out = subprocess.run([sys.executable, "-c", LOAD.format(folder=str(folder), lean=lean, marker=str(marker))],
                          capture_output=True, text=True, check=True)
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
 def test_a_cached_kernel_loads_without_the_registries_and_later_compiles_get_them(tmp_path):
     (tmp_path / "kernels.py").write_text(textwrap.dedent(KERNELS))
+    install_extension(tmp_path, tmp_path / "extension-ran")
     first = run(tmp_path, lean=True)  # nothing cached yet: it compiles, and compiling loads the registries
     assert first["loaded_from_cache"] is False and first["registries_after_load"] is True
     plain = run(tmp_path, lean=False)  # numba's own load, for comparison
@@ -66,7 +94,11 @@ def test_a_cached_kernel_loads_without_the_registries_and_later_compiles_get_the
     assert lean["switched"] is True and lean["again"] is True
     assert lean["loaded_from_cache"] is True
     assert lean["registries_after_load"] is False  # what the switch saves
+    assert lean["arrayobj_after_load"] is False and plain["arrayobj_after_load"] is True
+    # numba runs the extensions before its first call's typing; lean, at the first compile (and before it)
+    assert plain["extension_after_load"] is True and lean["extension_after_load"] is False
     for got in (first, plain, lean):
         np.testing.assert_array_equal(got["got"], np.concatenate([[0.0], np.cumsum(np.arange(5.0))]))
         assert got["norms"] == [1.0, 5.0, 10.0]  # a compile after the lean load still has np.sort and np.linalg
         assert got["registries_after_compile"] is True
+        assert got["extension_ran"] is not None  # every process ran the extension before it compiled

@@ -61,7 +61,7 @@ from __future__ import annotations
 
 import contextlib
 import gc
-import importlib.abc
+import importlib
 import importlib.machinery
 import importlib.util
 import os
@@ -100,7 +100,7 @@ def preload_cython_blas() -> bool:
     return True
 
 
-class _LinkToPackage(importlib.abc.MetaPathFinder):
+class _LinkToPackage:
     """Set ``scipy.linalg.cython_blas`` when ``scipy.linalg`` is imported after the preload.
 
     Python sets a submodule as an attribute of its package when it imports the
@@ -109,6 +109,9 @@ class _LinkToPackage(importlib.abc.MetaPathFinder):
     scipy.linalg.cython_blas`` raised AttributeError in a user's code). This
     finder answers only for ``scipy.linalg``, once: it takes the ordinary spec
     from the other finders and links the module after the package's code ran.
+    A meta path finder needs only ``find_spec``
+    (https://docs.python.org/3/reference/import.html#the-meta-path), so the
+    class skips ``importlib.abc.MetaPathFinder`` and the 10 ms its import costs.
     """
 
     def find_spec(self, name, path=None, target=None):
@@ -145,6 +148,76 @@ def _extension_spec():
     return None
 
 
+NUMBA_CONFIG_FILE = ".numba_config.yaml"  # numba.core.config reads it from the working folder, if present
+
+
+def import_numba_lean() -> None:
+    """Import numba without the two modules it imports for files and plug-ins a planning command lacks.
+
+    ``import numba`` imports PyYAML (``numba.core.config``, to read a
+    ``.numba_config.yaml`` in the working folder, which it opens only if the
+    file exists) and ``importlib.metadata`` (``numba.core.entrypoints``, to
+    find third-party extensions, read at the first compile: see
+    :func:`cached_loads_without_registries`): 25-30 ms and 20-50 ms of a
+    ``navlab plan`` that needs neither.
+
+    - ``importlib.metadata`` is put in ``sys.modules`` through Python's
+      ``importlib.util.LazyLoader``: its code runs at its first attribute
+      access, so numba's ``from importlib import metadata`` costs nothing and
+      a later use loads it as usual.
+    - PyYAML cannot be deferred that way (an ``import yaml`` statement reads
+      the module's ``__spec__``, which runs a lazy module), so when the
+      working folder has no ``.numba_config.yaml`` numba's configuration is
+      imported with ``sys.modules["yaml"] = None`` (Python's way to make an
+      import fail): numba records that it has no YAML, which it consults only
+      for that file. The entry is removed at once; navlab's own YAML loading
+      imports PyYAML as usual.
+
+    Does nothing when numba is imported already.
+
+    References
+    ----------
+    Python documentation: ``importlib.util.LazyLoader`` and "Implementing lazy
+    imports", https://docs.python.org/3/library/importlib.html#implementing-lazy-imports;
+    "The module cache" (a ``None`` entry raises ``ModuleNotFoundError``),
+    https://docs.python.org/3/reference/import.html#the-module-cache;
+    numba 0.68, ``numba/core/config.py`` (``_HAVE_YAML``, ``_config_fname``).
+    """
+    if "numba" in sys.modules:
+        return
+    _import_lazily("importlib.metadata")
+    hide_yaml = "yaml" not in sys.modules and not os.path.isfile(NUMBA_CONFIG_FILE)
+    if hide_yaml:
+        sys.modules["yaml"] = None
+    try:
+        import numba  # noqa: F401 - the import is the point
+    finally:
+        if hide_yaml and sys.modules.get("yaml", 0) is None:
+            del sys.modules["yaml"]
+
+
+def _import_lazily(name: str) -> None:
+    """Put module ``name`` in ``sys.modules`` with its code deferred to its first attribute access.
+
+    A module already imported, or not found, is left alone.
+    """
+    if name in sys.modules:
+        return
+    try:
+        spec = importlib.util.find_spec(name)
+    except (ImportError, ValueError):
+        return
+    if spec is None or spec.loader is None or not hasattr(spec.loader, "exec_module"):
+        return
+    spec.loader = importlib.util.LazyLoader(spec.loader)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    parent, _, child = name.rpartition(".")
+    if parent:
+        setattr(sys.modules[parent], child, module)  # as the import system links a submodule to its package
+
+
 def cached_loads_without_registries() -> bool:
     """Let numba load cached functions without first importing its typing and lowering registries.
 
@@ -179,7 +252,68 @@ def cached_loads_without_registries() -> bool:
     load_overload.skips_registries = True
     load_overload.__doc__ = cache.load_overload.__doc__
     cache.load_overload = load_overload
+    _environments_without_imports()
+    _extensions_at_first_compile()
     return True
+
+
+def _extensions_at_first_compile() -> None:
+    """Let numba run its third-party extensions' entry points at a process's first compile, not at its first call.
+
+    Before typing a call's arguments, every dispatcher runs
+    ``entrypoints.init_all()``, which reads the entry points of every
+    installed distribution (7-14 ms here, and ``importlib.metadata``'s
+    import, 20-50 ms) to find ``numba_extensions``. navlab's kernels take
+    only numpy arrays and scalars, so a process that loads them from the
+    cache needs no extension; numba's compiler runs ``init_all()`` itself
+    when it refreshes the target before any compile
+    (``CPUContext.load_additional_registries``), so whatever compiles still
+    sees every extension first.
+    """
+    from numba.core import dispatcher
+
+    dispatcher_class = getattr(dispatcher, "Dispatcher", None)
+    if dispatcher_class is not None and hasattr(dispatcher_class, "_compilation_chain_init_hook"):
+        dispatcher_class._compilation_chain_init_hook = _no_extensions_yet  # noqa: SLF001
+
+
+def _no_extensions_yet(dispatcher) -> None:
+    """A dispatcher's pre-call hook that leaves the extensions to the first compile's refresh (see above)."""
+
+
+def _environments_without_imports() -> None:
+    """Rebuild a cached function's environments without importing numba's implementation modules for them.
+
+    A cached library pickles an ``Environment`` for every function in it,
+    numba's own helpers included (``numba.np.arrayobj``'s array constructors
+    in nearly every kernel), and unpickling one imports the module it names
+    to hold that module's globals: ``numba.np.arrayobj`` and what it imports
+    (``numba.cpython.unicode``, ``charseq``, ``slicing``, the sorts) are about
+    60 ms of a first load, for globals that nopython code never reads (only
+    object-mode lowering reads ``env.globals``; nopython code reads
+    ``env.consts``, which stay as pickled). For a numba module not yet
+    imported, the environment gets a dict holding only the module's name,
+    which is what pickling it again reads (``Environment.__reduce__``,
+    ``can_cache``); every other environment is rebuilt by numba's own code.
+    """
+    from numba.core import environment
+
+    rebuild = environment._rebuild_env  # noqa: SLF001 - numba's unpickling hook, looked up by name at load time
+    if getattr(rebuild, "imports_nothing", False) or not hasattr(environment, "lookup_environment"):
+        return
+
+    def rebuild_env(modname, consts, env_name):
+        if environment.lookup_environment(env_name) is not None or \
+                not str(modname).startswith("numba.") or modname in sys.modules:
+            return rebuild(modname, consts, env_name)
+        env = environment.Environment({"__name__": modname})
+        env.consts[:] = consts
+        env.env_name = env_name
+        environment.Environment._memo[env_name] = env  # noqa: SLF001 - as numba's own rebuild records it
+        return env
+
+    rebuild_env.imports_nothing = True
+    environment._rebuild_env = rebuild_env  # noqa: SLF001
 
 
 @contextlib.contextmanager

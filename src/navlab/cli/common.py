@@ -56,6 +56,14 @@ class SuggestingChoice(click.Choice):
             self.fail(f"{exc.message} Did you mean {close[0]!r}?", param, ctx)
 
 
+def before_numba_import() -> None:
+    """What a planning verb's process does first: import numba without PyYAML and with
+    ``importlib.metadata`` deferred to its first use (``numba_start.import_numba_lean``)."""
+    from ..numba_start import import_numba_lean
+
+    import_numba_lean()
+
+
 def before_first_kernel() -> None:
     """What a planning verb's process does once numba is imported, before its first kernel loads:
     cached kernels load without numba's registries (``numba_start.cached_loads_without_registries``)
@@ -129,7 +137,9 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
     planner's or sampler's own checks reject what is out of range, with a
     message naming the parameter.
     """
-    import yaml  # only when a --param is given
+    if not items:
+        return {}
+    import yaml  # only when a --param is given: PyYAML's import is ~25 ms of a planning command's start
 
     out: Dict[str, Any] = {}
     for item in items:

@@ -10,7 +10,7 @@ import sys
 import click
 import numpy as np
 
-from .common import SuggestingGroup, before_first_kernel
+from .common import SuggestingGroup, before_first_kernel, before_numba_import
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -47,6 +47,7 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivity, weight, smooth, inflate,
               allow_unknown, map_rule, as_json, plot) -> None:
     """Plan a path on MAP between two cells (x = column, y = row)."""
+    before_numba_import()
     from ..grid import load_map, plan, plan_world
 
     for label, v in (("--start", start), ("--goal", goal)):

@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from .common import PointOrPoseOption, before_first_kernel, parse_params
+from .common import PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -54,6 +54,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     # One query in a process of its own: what loads on the way (numba, its registries, the kernels) lives until
     # the exit, and the query's own objects are freed by reference counting, so collections would only walk
     # the ~110 000 long-lived objects again and again (~0.1 s of CPU); reference cycles wait for the exit.
+    before_numba_import()
     with collections_paused():
         from ..planning import is_grid_planner, plan
         from ..pose_queries import POSE_PLANNERS

@@ -20,8 +20,9 @@ that loads one cached numba function (numba's own start-up, which every
 planning command pays, including numba's BLAS check importing scipy.linalg,
 and the garbage collections over numba's objects when the process exits);
 and the same done navlab's way: OpenBLAS on one thread (navlab.cli), SciPy's
-BLAS module preloaded (navlab.numba_start), the cached function loaded
-without numba's typing and lowering registries
+BLAS module preloaded (navlab.numba_start), numba imported without PyYAML
+and with importlib.metadata deferred (numba_start.import_numba_lean), the
+cached function loaded without numba's typing and lowering registries
 (numba_start.cached_loads_without_registries), the collector paused
 (navlab.cli.plan) and the process ended at once after its work (navlab.cli).
 The last lines are navlab's share above that floor. `python -X importtime -m navlab plan clutter` shows where an import's
@@ -57,6 +58,8 @@ if NAVLAB_WAY:  # what navlab plan does: BLAS on one thread, numba's BLAS check 
     preload_cython_blas()
     gc.disable()
     atexit.register(gc.freeze)
+    from navlab.numba_start import import_numba_lean  # numba without PyYAML, importlib.metadata deferred
+    import_numba_lean()
 import numba
 import numpy as np
 if NAVLAB_WAY:  # and the cached function loads without numba's typing and lowering registries (navlab.cli.plan)
@@ -88,7 +91,8 @@ import atexit, gc
 gc.disable(); atexit.register(gc.freeze)
 from navlab.numba_start import preload_cython_blas
 preload_cython_blas(); mark("scipy (numba imports it) + cython_blas")
-import numba; mark("import numba")
+from navlab.numba_start import import_numba_lean
+import_numba_lean(); mark("import numba, navlab's way")
 import navlab.planning, navlab.world.sources; mark("navlab's modules (their numba dispatchers)")
 from navlab.numba_start import cached_loads_without_registries
 cached_loads_without_registries()

@@ -23,7 +23,7 @@ and the same done navlab's way: OpenBLAS on one thread (navlab.cli), SciPy's
 BLAS module preloaded (navlab.numba_start), numba imported without PyYAML
 and with importlib.metadata deferred (numba_start.import_numba_lean), the
 cached function loaded without numba's typing and lowering registries
-(numba_start.cached_loads_without_registries), the collector paused
+(numba_cached_loads.cached_loads_without_registries), the collector paused
 (navlab.cli.plan) and the process ended at once after its work (navlab.cli).
 The last lines are navlab's share above that floor. `python -X importtime -m navlab plan clutter` shows where an import's
 time goes; tests/test_lazy_imports.py keeps the heavy modules out of
@@ -63,7 +63,7 @@ if NAVLAB_WAY:  # what navlab plan does: BLAS on one thread, numba's BLAS check 
 import numba
 import numpy as np
 if NAVLAB_WAY:  # and the cached function loads without numba's typing and lowering registries (navlab.cli.plan)
-    from navlab.numba_start import cached_loads_without_registries
+    from navlab.numba_cached_loads import cached_loads_without_registries
     cached_loads_without_registries()
 @numba.njit(cache=True)
 def one(x):
@@ -94,7 +94,7 @@ preload_cython_blas(); mark("scipy (numba imports it) + cython_blas")
 from navlab.numba_start import import_numba_lean
 import_numba_lean(); mark("import numba, navlab's way")
 import navlab.planning, navlab.world.sources; mark("navlab's modules (their numba dispatchers)")
-from navlab.numba_start import cached_loads_without_registries
+from navlab.numba_cached_loads import cached_loads_without_registries
 cached_loads_without_registries()
 from navlab.world.sources import load_source
 world = load_source("clutter"); mark("load_source clutter")

@@ -76,7 +76,7 @@ def test_plan_clutter_loads_only_what_a_tree_query_uses():
     modules = loaded_after(code)
     assert "navlab.sampling.tree_kernel" in modules and "scipy.linalg.cython_blas" in modules  # it did plan
     assert heavy(modules - {"scipy.linalg.cython_blas"}, NOT_FOR_A_TREE_QUERY) == []  # loaded alone, not its package
-    # the cached kernels loaded without numba's typing and lowering registries (numba_start.cached_loads_without_registries)
+    # the cached kernels loaded without numba's typing and lowering registries (numba_cached_loads.cached_loads_without_registries)
     assert heavy(modules, ("numba.np.arraymath", "numba.np.linalg", "numba.np.npyimpl", "numba.typed.typeddict")) == []
     # nor the modules their environments name (numba_start._environments_without_imports)
     assert heavy(modules, ("numba.np.arrayobj", "numba.cpython.unicode", "numba.cpython.charseq")) == []

@@ -1,10 +1,11 @@
-"""navlab.numba_start.cached_loads_without_registries: a cached kernel loads and runs without numba's typing
+"""navlab.numba_cached_loads.cached_loads_without_registries: a cached kernel loads and runs without numba's typing
 and lowering registries, the modules its environments name (numba.np.arrayobj) or the third-party extensions'
 entry points, and whatever compiles afterwards in the same process still gets all of them, extensions first.
 Each check runs in fresh processes (a cache written by one, read by the next); the truth is numpy's, and a
 numba extension installed for the test (an entry point in a .dist-info folder) that records when it ran."""
 
 import json
+import os
 import subprocess
 import sys
 import textwrap
@@ -30,7 +31,7 @@ sys.path.insert(0, {folder!r})
 lean = {lean!r}
 import numba
 if lean:
-    from navlab.numba_start import cached_loads_without_registries
+    from navlab.numba_cached_loads import cached_loads_without_registries
     switched = cached_loads_without_registries()
     again = cached_loads_without_registries()
 else:
@@ -102,3 +103,57 @@ def test_a_cached_kernel_loads_without_the_registries_and_later_compiles_get_the
         assert got["norms"] == [1.0, 5.0, 10.0]  # a compile after the lean load still has np.sort and np.linalg
         assert got["registries_after_compile"] is True
         assert got["extension_ran"] is not None  # every process ran the extension before it compiled
+
+
+RUNTIME = '''
+import glob, json, os, sys
+sys.path.insert(0, {folder!r})
+import numba
+from navlab.numba_cached_loads import cached_loads_without_registries
+cached_loads_without_registries()
+import numpy as np
+from numba.core.runtime import nrtdynmod, rtsys
+from kernels import cumulative
+got = cumulative(np.arange(5.0))
+
+@numba.njit
+def grown(n):  # compiled now, linked against the runtime library: allocates, copies, frees
+    out = np.zeros(0)
+    for i in range(n):
+        out = np.append(out, float(i))
+    return out
+
+total = grown(50).sum()
+stats = rtsys.get_allocation_stats()
+print(json.dumps({{"loaded_from": nrtdynmod.compile_nrt_functions.loaded_from, "got": got.tolist(), "total": total,
+                  "allocs_minus_frees": stats.alloc - stats.free,
+                  "files": sorted(os.path.basename(p) for p in glob.glob(os.path.join({cache!r}, "**", "*.nbo"),
+                                                                          recursive=True))}}))
+'''
+
+
+def test_the_runtime_module_is_compiled_once_then_loaded_and_frees_what_it_allocates(tmp_path):
+    """numba's runtime module from navlab's file (_runtime_from_cache): the second process loads what the first
+    compiled; kernels loaded or compiled with it allocate and free in balance (NRT's own counters); a damaged
+    file is compiled over."""
+    (tmp_path / "kernels.py").write_text(textwrap.dedent(KERNELS))
+    cache = tmp_path / "cache"
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(cache), NUMBA_NRT_STATS="1")
+    code = RUNTIME.format(folder=str(tmp_path), cache=str(cache))
+
+    def run_once():
+        out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True, check=True)
+        return json.loads(out.stdout.strip().splitlines()[-1])
+
+    first, second = run_once(), run_once()
+    assert first["loaded_from"] is None and len(first["files"]) == 1  # compiled, and written for the next process
+    assert second["loaded_from"] is not None and second["loaded_from"].endswith(first["files"][0])
+    for got in (first, second):
+        np.testing.assert_array_equal(got["got"], [0.0, 0.0, 1.0, 3.0, 6.0, 10.0])
+        assert got["total"] == sum(range(50))
+        assert got["allocs_minus_frees"] <= 1  # at most `got`'s buffer, still alive: every temporary was freed
+    with open(second["loaded_from"], "wb") as f:
+        f.write(b"not a pickle")
+    damaged = run_once()
+    assert damaged["loaded_from"] is None and damaged["total"] == sum(range(50))
+    assert run_once()["loaded_from"] == second["loaded_from"]  # written again, whole

@@ -1,5 +1,5 @@
 """Cut numba's start-up in a process: SciPy's BLAS module without ``scipy.linalg``, no garbage collections
-while numba builds its registries, and cached kernels loaded without those registries.
+while numba builds its registries, numba imported without the modules a planning command does not use.
 
 When a process loads its first compiled function (from numba's cache or not),
 numba sets up its target and imports its array implementations
@@ -30,26 +30,14 @@ that their creation triggers walk them several times over for nothing. The
 and collecting after gains nothing: the first collection then walks all of
 them at once.
 
-:func:`cached_loads_without_registries` goes one step further for a
-process that only loads cached kernels (``navlab plan`` on a warm cache):
-numba's ``Cache.load_overload`` first calls ``target_context.refresh()``,
-which imports about 60 modules of typing and lowering implementations
-(``numba.np.arraymath``, ``numba.cpython.*``, ...) and installs their
-registries: 80-90 ms of a 0.2 s first load, for a cached function that needs
-none of them (its machine code is in the cache; typing and lowering happen
-only when something is compiled). What the loaded code does need of it is
-the runtime (``rtsys.initialize``: NRT's allocator symbols), and that is all
-the replacement calls before loading. Whatever compiles later in the process
-still gets every registry: numba's compiler refreshes both contexts itself
-before each compile (``CompilerBase.__init__``), and a cache miss goes there.
+:func:`import_numba_lean` imports numba without PyYAML and with
+``importlib.metadata`` deferred; ``navlab.numba_cached_loads`` loads cached
+kernels without numba's registries.
 
 References
 ----------
 numba 0.68, ``numba/np/arraymath.py`` (``_HAVE_BLAS = _check_blas()``) and
-``numba/np/linalg.py`` (``ensure_blas``), ``numba/core/caching.py``
-(``Cache.load_overload``), ``numba/core/base.py`` (``BaseContext.refresh``),
-``numba/core/cpu.py`` (``load_additional_registries``),
-``numba/core/compiler.py`` (``CompilerBase.__init__``); Python's import system,
+``numba/np/linalg.py`` (``ensure_blas``); Python's import system,
 https://docs.python.org/3/reference/import.html#the-module-cache (a module
 found in ``sys.modules`` is returned as is, its parents are not imported);
 Python's ``gc`` module, https://docs.python.org/3/library/gc.html (collections
@@ -158,7 +146,7 @@ def import_numba_lean() -> None:
     ``.numba_config.yaml`` in the working folder, which it opens only if the
     file exists) and ``importlib.metadata`` (``numba.core.entrypoints``, to
     find third-party extensions, read at the first compile: see
-    :func:`cached_loads_without_registries`): 25-30 ms and 20-50 ms of a
+    ``numba_cached_loads.cached_loads_without_registries``): 25-30 ms and 20-50 ms of a
     ``navlab plan`` that needs neither.
 
     - ``importlib.metadata`` is put in ``sys.modules`` through Python's
@@ -216,104 +204,6 @@ def _import_lazily(name: str) -> None:
     parent, _, child = name.rpartition(".")
     if parent:
         setattr(sys.modules[parent], child, module)  # as the import system links a submodule to its package
-
-
-def cached_loads_without_registries() -> bool:
-    """Let numba load cached functions without first importing its typing and lowering registries.
-
-    For a process of navlab's own (the ``navlab plan`` command), where
-    start-up is the point: it replaces numba's ``Cache.load_overload`` for the
-    rest of the process, not only for navlab's kernels. Call it once numba is
-    imported; later calls do nothing.
-
-    Returns
-    -------
-    bool
-        True when cached loads skip the registries from now on; False,
-        changing nothing, when this numba lacks the pieces the replacement
-        calls (another numba version: its own loads run as they always do).
-    """
-    from numba.core import caching
-    from numba.core.runtime import rtsys
-
-    cache = caching.Cache
-    if getattr(cache.load_overload, "skips_registries", False):
-        return True
-    if not all(hasattr(cache, name) for name in ("_load_overload", "_guard_against_spurious_io_errors")) or \
-            not callable(getattr(rtsys, "initialize", None)):
-        return False
-
-    def load_overload(self, sig, target_context):
-        rtsys.initialize(target_context)  # the runtime the machine code calls; refresh() would start with it too
-        with self._guard_against_spurious_io_errors():
-            return self._load_overload(sig, target_context)
-        # None when the guard swallowed an I/O error, as numba's own method returns: the caller compiles
-
-    load_overload.skips_registries = True
-    load_overload.__doc__ = cache.load_overload.__doc__
-    cache.load_overload = load_overload
-    _environments_without_imports()
-    _extensions_at_first_compile()
-    return True
-
-
-def _extensions_at_first_compile() -> None:
-    """Let numba run its third-party extensions' entry points at a process's first compile, not at its first call.
-
-    Before typing a call's arguments, every dispatcher runs
-    ``entrypoints.init_all()``, which reads the entry points of every
-    installed distribution (7-14 ms here, and ``importlib.metadata``'s
-    import, 20-50 ms) to find ``numba_extensions``. navlab's kernels take
-    only numpy arrays and scalars, so a process that loads them from the
-    cache needs no extension; numba's compiler runs ``init_all()`` itself
-    when it refreshes the target before any compile
-    (``CPUContext.load_additional_registries``), so whatever compiles still
-    sees every extension first.
-    """
-    from numba.core import dispatcher
-
-    dispatcher_class = getattr(dispatcher, "Dispatcher", None)
-    if dispatcher_class is not None and hasattr(dispatcher_class, "_compilation_chain_init_hook"):
-        dispatcher_class._compilation_chain_init_hook = _no_extensions_yet  # noqa: SLF001
-
-
-def _no_extensions_yet(dispatcher) -> None:
-    """A dispatcher's pre-call hook that leaves the extensions to the first compile's refresh (see above)."""
-
-
-def _environments_without_imports() -> None:
-    """Rebuild a cached function's environments without importing numba's implementation modules for them.
-
-    A cached library pickles an ``Environment`` for every function in it,
-    numba's own helpers included (``numba.np.arrayobj``'s array constructors
-    in nearly every kernel), and unpickling one imports the module it names
-    to hold that module's globals: ``numba.np.arrayobj`` and what it imports
-    (``numba.cpython.unicode``, ``charseq``, ``slicing``, the sorts) are about
-    60 ms of a first load, for globals that nopython code never reads (only
-    object-mode lowering reads ``env.globals``; nopython code reads
-    ``env.consts``, which stay as pickled). For a numba module not yet
-    imported, the environment gets a dict holding only the module's name,
-    which is what pickling it again reads (``Environment.__reduce__``,
-    ``can_cache``); every other environment is rebuilt by numba's own code.
-    """
-    from numba.core import environment
-
-    rebuild = environment._rebuild_env  # noqa: SLF001 - numba's unpickling hook, looked up by name at load time
-    if getattr(rebuild, "imports_nothing", False) or not hasattr(environment, "lookup_environment"):
-        return
-
-    def rebuild_env(modname, consts, env_name):
-        if environment.lookup_environment(env_name) is not None or \
-                not str(modname).startswith("numba.") or modname in sys.modules:
-            return rebuild(modname, consts, env_name)
-        env = environment.Environment({"__name__": modname})
-        env.consts[:] = consts
-        env.env_name = env_name
-        environment.Environment._memo[env_name] = env  # noqa: SLF001 - as numba's own rebuild records it
-        return env
-
-    rebuild_env.imports_nothing = True
-    environment._rebuild_env = rebuild_env  # noqa: SLF001
 
 
 @contextlib.contextmanager

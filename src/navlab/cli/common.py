@@ -66,10 +66,10 @@ def before_numba_import() -> None:
 
 def before_first_kernel() -> None:
     """What a planning verb's process does once numba is imported, before its first kernel loads:
-    cached kernels load without numba's registries (``numba_start.cached_loads_without_registries``)
+    cached kernels load without numba's registries (``numba_cached_loads.cached_loads_without_registries``)
     and a first use's compile says so on a terminal (``compile_clock.say_when_compiling``)."""
     from ..compile_clock import say_when_compiling
-    from ..numba_start import cached_loads_without_registries
+    from ..numba_cached_loads import cached_loads_without_registries
 
     cached_loads_without_registries()
     say_when_compiling()

@@ -41,6 +41,7 @@ from kernels import cumulative
 got = cumulative(np.arange(5.0))
 registries_after_load = "numba.np.arraymath" in sys.modules
 arrayobj_after_load = "numba.np.arrayobj" in sys.modules  # the module np.empty's helpers' environment names
+linking_parsed_after_load = next(iter(cumulative.overloads.values())).library._shared_module is not None
 extension_after_load = os.path.exists({marker!r})
 
 @numba.njit
@@ -48,10 +49,17 @@ def sorted_norms(a):  # compiled now: needs the array registries (np.sort, np.li
     return np.sort(np.array([np.linalg.norm(row) for row in a]))
 
 norms = sorted_norms(np.array([[3.0, 4.0], [1.0, 0.0], [6.0, 8.0]]))
+
+@numba.njit
+def last_of_cumulative(x):  # compiled now, calling the cached kernel: links its library's bitcode in
+    return cumulative(x)[-1]
+
+linked = last_of_cumulative(np.arange(5.0))
 print(json.dumps({{"switched": switched, "again": again, "got": got.tolist(),
                   "registries_after_load": registries_after_load, "norms": norms.tolist(),
                   "registries_after_compile": "numba.np.arraymath" in sys.modules,
                   "arrayobj_after_load": arrayobj_after_load, "extension_after_load": extension_after_load,
+                  "linking_parsed_after_load": linking_parsed_after_load, "linked": linked,
                   "extension_ran": open({marker!r}).read() if os.path.exists({marker!r}) else None,
                   "loaded_from_cache": len(cumulative.stats.cache_hits) == 1}}))
 '''
@@ -98,11 +106,14 @@ def test_a_cached_kernel_loads_without_the_registries_and_later_compiles_get_the
     assert lean["arrayobj_after_load"] is False and plain["arrayobj_after_load"] is True
     # numba runs the extensions before its first call's typing; lean, at the first compile (and before it)
     assert plain["extension_after_load"] is True and lean["extension_after_load"] is False
+    # the library's linking bitcode is parsed when a compile links it in (last_of_cumulative), not at its load
+    assert plain["linking_parsed_after_load"] is True and lean["linking_parsed_after_load"] is False
     for got in (first, plain, lean):
         np.testing.assert_array_equal(got["got"], np.concatenate([[0.0], np.cumsum(np.arange(5.0))]))
         assert got["norms"] == [1.0, 5.0, 10.0]  # a compile after the lean load still has np.sort and np.linalg
         assert got["registries_after_compile"] is True
         assert got["extension_ran"] is not None  # every process ran the extension before it compiled
+        assert got["linked"] == 10.0
 
 
 RUNTIME = '''
@@ -157,3 +168,49 @@ def test_the_runtime_module_is_compiled_once_then_loaded_and_frees_what_it_alloc
     damaged = run_once()
     assert damaged["loaded_from"] is None and damaged["total"] == sum(range(50))
     assert run_once()["loaded_from"] == second["loaded_from"]  # written again, whole
+
+
+SYMBOLS = '''
+import glob, json, os, pickle, sys
+sys.path.insert(0, {folder!r})
+import numpy as np
+import llvmlite.binding as ll
+from kernels import cumulative, sorted_rows
+cumulative(np.arange(3.0)), sorted_rows(np.ones((2, 2)))
+from navlab.numba_cached_loads import _elf_defined_symbols
+out = []
+for path in sorted(glob.glob(os.path.join({cache!r}, "**", "*.nbc"), recursive=True)):
+    name, kind, (object_code, bitcode) = pickle.loads(open(path, "rb").read())[0]
+    module = ll.parse_bitcode(bitcode)  # numba's own record: every function and global the module defines
+    walked = {{g.name for group in (module.functions, module.global_variables) for g in group if not g.is_declaration}}
+    out.append([sorted(walked), sorted(_elf_defined_symbols(object_code))])
+print(json.dumps(out))
+'''
+
+
+def test_the_object_codes_symbol_table_lists_what_numbas_walk_of_the_bitcode_lists(tmp_path):
+    """_elf_defined_symbols, against numba's own record of a library's symbols (the bitcode's defined functions
+    and globals, walked through llvmlite), on kernels with numba's helpers inlined (np.empty, np.sort)."""
+    (tmp_path / "kernels.py").write_text(textwrap.dedent(KERNELS) + textwrap.dedent('''
+        @numba.njit(cache=True)
+        def sorted_rows(a):
+            out = np.empty_like(a)
+            for i in range(a.shape[0]):
+                out[i] = np.sort(a[i])
+            return out
+        '''))
+    cache = tmp_path / "cache"
+    out = subprocess.run([sys.executable, "-c", SYMBOLS.format(folder=str(tmp_path), cache=str(cache))],
+                         env=dict(os.environ, NUMBA_CACHE_DIR=str(cache)), capture_output=True, text=True, check=True)
+    libraries = json.loads(out.stdout.strip().splitlines()[-1])
+    assert len(libraries) == 2
+    for walked, listed in libraries:
+        assert len(walked) > 3 and walked == listed
+
+
+def test_object_code_that_is_not_elf64_little_endian_is_left_to_numba():
+    from navlab.numba_cached_loads import _elf_defined_symbols
+
+    for data in (b"", b"\xcf\xfa\xed\xfe" + bytes(60), b"\x7fELF\x01\x01" + bytes(60), b"\x7fELF\x02\x01" + bytes(10),
+                 b"\x7fELF\x02\x01" + bytes(0x3A) + b"\xff\xff"):  # Mach-O, 32-bit, truncated, absurd count
+        assert _elf_defined_symbols(data) is None

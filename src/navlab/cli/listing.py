@@ -10,7 +10,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 import click
 
 from ..registry import Registry, parameters_of
-from .common import SuggestingChoice
+from .common import SuggestingChoice, before_numba_import
 
 NAME_WIDTH = 20  #: [characters] the name column
 #: parameters of a grid search other than the query itself (shown for every grid planner)
@@ -179,6 +179,7 @@ def list_cmd(kind: Optional[str]) -> None:
     KIND limits the list to one kind: planners, grid, pose, samplers, scenes,
     controllers, robots, lidar, suites, executors or experiments.
     """
+    before_numba_import()  # the registries live beside the kernels, so listing imports numba
     for i, key in enumerate([kind] if kind else list(KINDS)):
         title, lines = KINDS[key]
         if i:

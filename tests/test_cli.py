@@ -184,6 +184,14 @@ def test_a_misspelt_verb_gets_did_you_mean(args, typo, verb):
     assert len(res.output.strip().splitlines()) == 1
 
 
+@pytest.mark.parametrize("typo", ["exprot", "exports", "expotr"])
+def test_a_misspelt_bench_export_gets_did_you_mean(typo, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # no file of that name here
+    res = CliRunner().invoke(main, ["bench", typo, "results"])
+    assert res.exit_code == 2 and f"no experiment file or suite named '{typo}'" in res.output
+    assert "Did you mean 'navlab bench export DIR'?" in res.output
+
+
 def test_an_unknown_verb_far_from_any_is_named_alone():
     res = CliRunner().invoke(main, ["zzz"])
     assert res.exit_code == 2 and "No such command 'zzz'." in res.output and "Did you mean" not in res.output

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import difflib
+import os
 import shlex
 import sys
 from typing import List, Optional
@@ -24,6 +26,14 @@ class BenchCommand(click.Command):
         if args[:1] == ["export"]:
             ctx.meta["navlab.bench.export"] = args[1:]
             return []
+        first = args[0] if args else ""
+        if first and not first.startswith("-") and not os.path.exists(first) and \
+                difflib.get_close_matches(first, ["export"], n=1, cutoff=0.7):
+            from ..bench.suites import find_suite
+
+            if find_suite(first) is None:  # a near miss of the sub-verb, not a suite or a file
+                raise click.UsageError(f"no experiment file or suite named '{first}'. "
+                                       f"Did you mean 'navlab bench export DIR'?", ctx)
         return super().parse_args(ctx, args)
 
     def invoke(self, ctx):

@@ -92,6 +92,17 @@ def run(folder, lean):
     return json.loads(out.stdout.strip().splitlines()[-1])
 
 
+def test_this_numba_is_one_the_switches_were_checked_against():
+    """A new numba release turns the lean loads off (numba_cached_loads.CHECKED_NUMBA); this says so, so that
+    someone reads numba's new loading code, runs these tests and adds the release, rather than start-up silently
+    losing a third of its speed."""
+    import numba
+
+    from navlab.numba_cached_loads import CHECKED_NUMBA
+
+    assert numba.__version__.startswith(CHECKED_NUMBA), (numba.__version__, CHECKED_NUMBA)
+
+
 def test_a_cached_kernel_loads_without_the_registries_and_later_compiles_get_them(tmp_path):
     (tmp_path / "kernels.py").write_text(textwrap.dedent(KERNELS))
     install_extension(tmp_path, tmp_path / "extension-ran")

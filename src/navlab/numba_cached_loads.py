@@ -56,6 +56,10 @@ _ELF64_SYMBOL = np.dtype([("name", "<u4"), ("info", "u1"), ("other", "u1"), ("sh
                           ("size", "<u8")])
 _SHT_SYMTAB, _SHN_UNDEF, _STT_OBJECT, _STT_FUNC = 2, 0, 1, 2
 
+#: the numba releases whose private loading pieces the switches were read against and tested with
+#: (tests/test_numba_cached_loads.py); another release loads numba's own way until checked and added here
+CHECKED_NUMBA = ("0.68.",)
+
 
 def cached_loads_without_registries() -> bool:
     """Let numba load cached functions without its registries, environments' modules, extensions or runtime compile.
@@ -68,15 +72,20 @@ def cached_loads_without_registries() -> bool:
     -------
     bool
         True when cached loads skip the registries from now on; False,
-        changing nothing, when this numba lacks the pieces the replacement
-        calls (another numba version: its own loads run as they always do).
+        changing nothing, when this numba is not a version the switches were
+        checked against (:data:`CHECKED_NUMBA`: they replace private pieces of
+        numba's) or lacks the pieces they call: its own loads then run as they
+        always do.
     """
+    import numba
     from numba.core import caching
     from numba.core.runtime import rtsys
 
     cache = caching.Cache
     if getattr(cache.load_overload, "skips_registries", False):
         return True
+    if not numba.__version__.startswith(CHECKED_NUMBA):
+        return False
     if not all(hasattr(cache, name) for name in ("_load_overload", "_guard_against_spurious_io_errors")) or \
             not callable(getattr(rtsys, "initialize", None)):
         return False

@@ -61,3 +61,23 @@ def test_a_closed_port_is_one_line():
     sock.close()
     with pytest.raises(ExperimentError, match="not a Dask scheduler, or not reachable|no Dask scheduler answered"):
         check_executor("dask", f"tcp://127.0.0.1:{port}")
+
+
+def test_the_command_ends_after_its_line_while_the_far_end_still_holds_the_connection(tmp_path):
+    """The connection attempt is abandoned, not waited for at exit: an outside check found the process alive
+    after its error line for as long as an HTTP server kept the socket open (a thread pool's worker is joined
+    when Python exits)."""
+    import subprocess
+    import sys
+
+    address, stop = serve(b"")  # accepts and never answers, nor closes, until stopped below
+    study = tmp_path / "study.yaml"
+    study.write_text("name: dask-hang\nworlds: [clutter]\nplanners: [rrt]\ntrials: 1\n")
+    try:
+        done = subprocess.run([sys.executable, "-m", "navlab", "bench", str(study), "--executor", "dask",
+                               "--scheduler", address, "--out", str(tmp_path / "out")],
+                              capture_output=True, text=True, timeout=180)  # a hang detector, not a speed limit
+    finally:
+        stop.set()
+    assert done.returncode == 2 and f"--scheduler {address}: no Dask scheduler answered" in done.stderr + done.stdout
+    assert len((done.stderr + done.stdout).strip().splitlines()) == 1

@@ -186,30 +186,40 @@ def _client(scheduler):
     Dask's own timeout does not cover every way an address can fail: a port
     that answers in another protocol (SSH's banner was read as a 2.82 EiB
     message length) or that accepts and never answers (an HTTP server) hung or
-    gave a baffling message. The connection is therefore made in a helper
-    thread and abandoned at the deadline.
+    gave a baffling message. The connection is therefore made in a daemon
+    thread and abandoned at the deadline: a daemon thread, because Python
+    joins every other thread at exit (a ``ThreadPoolExecutor``'s too), and a
+    connection that never ends kept the process alive after its error line
+    for as long as the far end held the line.
     """
-    from concurrent.futures import ThreadPoolExecutor
-    from concurrent.futures import TimeoutError as Late
+    import threading
 
     from distributed import Client
 
     if not isinstance(scheduler, str):  # a LocalCluster this process started
         return Client(scheduler, timeout=DASK_CONNECT_TIMEOUT)
-    pool = ThreadPoolExecutor(1, thread_name_prefix="navlab-dask-connect")
-    attempt = pool.submit(Client, scheduler, timeout=DASK_CONNECT_TIMEOUT)
-    pool.shutdown(wait=False)
-    try:
-        return attempt.result(timeout=DASK_CONNECT_TIMEOUT + 1)
-    except Late:
+    outcome = {}
+
+    def connect():
+        try:
+            outcome["client"] = Client(scheduler, timeout=DASK_CONNECT_TIMEOUT)
+        except BaseException as exc:  # noqa: BLE001 - handed to the caller below
+            outcome["error"] = exc
+
+    attempt = threading.Thread(target=connect, name="navlab-dask-connect", daemon=True)
+    attempt.start()
+    attempt.join(DASK_CONNECT_TIMEOUT + 1)
+    if "client" in outcome:
+        return outcome["client"]
+    exc = outcome.get("error")
+    if exc is None:  # still connecting: abandoned, and not waited for at exit
         raise ExperimentError(f"--scheduler {scheduler}: no Dask scheduler answered within "
-                              f"{DASK_CONNECT_TIMEOUT} s (is it a Dask scheduler's address, tcp://HOST:8786?)") from None
-    except Exception as exc:  # noqa: BLE001 - whatever the far end did, it is not a scheduler we can use
-        if isinstance(exc, MemoryError):  # another protocol's bytes read as a message length
-            detail = "it answered, but not in Dask's protocol"
-        else:
-            detail = str(exc).splitlines()[0][:200] if str(exc) else type(exc).__name__
-        raise ExperimentError(f"--scheduler {scheduler}: not a Dask scheduler, or not reachable ({detail})") from None
+                              f"{DASK_CONNECT_TIMEOUT} s (is it a Dask scheduler's address, tcp://HOST:8786?)")
+    if isinstance(exc, MemoryError):  # another protocol's bytes read as a message length
+        detail = "it answered, but not in Dask's protocol"
+    else:
+        detail = str(exc).splitlines()[0][:200] if str(exc) else type(exc).__name__
+    raise ExperimentError(f"--scheduler {scheduler}: not a Dask scheduler, or not reachable ({detail})")
 
 
 @EXECUTORS.register("dask")

@@ -28,6 +28,13 @@ time it took to give up: comparing it with a planner that succeeded says
 nothing about either. Every cost and time comparison (claims and pairwise
 tables) therefore uses only the trials that reached the goal, and on map
 experiments with several queries per world only the queries both sides solved.
+The per-cell cost and time statistics, the box plots and the seed's
+side-by-side means follow the same rule (:func:`compared_rows`): on a map
+experiment a cell's statistics are over the queries every cell of its world
+that solved anything solved, so the cells are described on the same queries
+(a cell that solved only the short query is not set beside one that also
+solved the long one). Experiments without queries repeat one start and goal,
+so there each cell is described over all its solved trials.
 A verdict needs at least :data:`MIN_SOLVED` such trials on each side;
 otherwise it is *not shown* with the counts ("not shown: boundary solved 0/20,
 integration 20/20"). Every verdict carries both sides' success rates. The
@@ -46,7 +53,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
+from .stats import ALPHA, cell_summary, compare, describe, holm, magnitude, metric_values
 
 #: a time ratio within a third of 1 is never a verdict: below what a shared machine keeps stable
 MIN_TIME_EFFECT = math.log(4 / 3)
@@ -174,19 +181,46 @@ def solved_text(rows: List[Dict[str, Any]]) -> str:
     return f"{sum(bool(r.get('success')) for r in rows)}/{ran}"
 
 
+def compared_rows(groups: Dict[str, List[Dict[str, Any]]]
+                  ) -> Tuple[Dict[str, List[Dict[str, Any]]], Optional[Dict[str, int]]]:
+    """The rows a cost or time comparison of ``groups`` uses: each group's
+    solved trials and, when the rows carry a map ``query``, only the queries
+    every group that solved anything solved (a group that solved nothing has
+    no rows and does not empty the others' comparison).
+
+    Returns the rows per group and the scope: ``None`` without queries, else
+    ``{"common": queries compared, "queries": queries run}``.
+    """
+    solved = {g: [r for r in rows if r.get("success")] for g, rows in groups.items()}
+    queries = {r["query"] for rows in groups.values() for r in rows if r.get("query") is not None}
+    if not queries:
+        return solved, None
+    # each trial is a different start and goal: costs over different queries measure the queries, not the cells
+    sets = [{r.get("query") for r in rows} for rows in solved.values() if rows]
+    common = set.intersection(*sets) if sets else set()
+    return ({g: [r for r in rows if r.get("query") in common] for g, rows in solved.items()},
+            {"common": len(common), "queries": len(queries)})
+
+
+def scope_text(scope: Optional[Dict[str, int]]) -> str:
+    """What a world's cost and time statistics are over, as the report and
+    the box plots say it (see :func:`compared_rows`)."""
+    if scope is None:
+        return "cost and time over the trials that reached the goal"
+    k = scope["common"]
+    return (f"cost and time over the {k} quer{'y' if k == 1 else 'ies'} all cells solved "
+            f"(of {scope['queries']})")
+
+
 def judged_values(rows_a: List[Dict[str, Any]], rows_b: List[Dict[str, Any]],
                   metric: str) -> Tuple[List[float], List[float], str]:
     """The values a verdict on ``metric`` compares: solved trials only, and on
-    map experiments only the queries both groups solved; with a reason when a
-    side has fewer than :data:`MIN_SOLVED` (then no verdict may be drawn)."""
-    solved_a = [r for r in rows_a if r.get("success")]
-    solved_b = [r for r in rows_b if r.get("success")]
-    if any(r.get("query") is not None for r in solved_a + solved_b):
-        common = {r.get("query") for r in solved_a} & {r.get("query") for r in solved_b}
-        solved_a = [r for r in solved_a if r.get("query") in common]
-        solved_b = [r for r in solved_b if r.get("query") in common]
-    va = [r[metric] for r in solved_a if r.get(metric) is not None]
-    vb = [r[metric] for r in solved_b if r.get(metric) is not None]
+    map experiments only the queries both groups solved (:func:`compared_rows`);
+    with a reason when a side has fewer than :data:`MIN_SOLVED` (then no
+    verdict may be drawn)."""
+    picked, _ = compared_rows({"a": rows_a, "b": rows_b})
+    va = [r[metric] for r in picked["a"] if r.get(metric) is not None]
+    vb = [r[metric] for r in picked["b"] if r.get(metric) is not None]
     short = ""
     if min(len(va), len(vb)) < MIN_SOLVED:
         short = (f"a cost or time verdict needs {MIN_SOLVED} solved trials on each side; "

@@ -223,6 +223,9 @@ def test_each_trial_is_timed_apart_from_the_warm_up(tmp_path, monkeypatch):
                          executor="serial", progress=False, plots=False)
     rows = run.rows
     assert all(r["cpu_s"] > 0 and r["wall_s"] > 0 and "warmup_s" in r for r in rows)
+    # each row says which clock each time is (issue 19), and the planner's own time lies inside the trial's
+    assert all("cpu_s: the trial's thread CPU time" in r["clocks"] and "time_s: the planner's own wall time"
+               in r["clocks"] and r["time_s"] <= r["wall_s"] for r in rows)
     # one warm-up per kind of query in this process, before its first trial, then none
     assert sorted((r["sampler"], r["trial"]) for r in rows if r["warmup_s"] > 0) == [("gaussian", 0), ("uniform", 0)]
     assert run.summary["warmup_s"] == pytest.approx(sum(r["warmup_s"] for r in rows), abs=1e-9)

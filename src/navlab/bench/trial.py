@@ -157,6 +157,11 @@ def identity_fields(spec: Dict[str, Any]) -> Dict[str, Any]:
     return row
 
 
+#: what each row's times were measured with, in the row itself (results.jsonl and results.csv)
+CLOCKS = ("cpu_s: the trial's thread CPU time (time.thread_time); wall_s: its wall time (time.perf_counter); "
+          "time_s: the planner's own wall time (time.perf_counter), inside wall_s; warmup_s: wall time, apart")
+
+
 def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] = execute,
               warm: Callable[[Dict[str, Any]], float] = warm_trial) -> Dict[str, Any]:
     """Warm up (timed apart), then run one trial with ``runner`` and time it
@@ -169,6 +174,7 @@ def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] =
         wall0, cpu0 = time.perf_counter(), time.thread_time()
         result = runner(spec)
         row["cpu_s"], row["wall_s"] = time.thread_time() - cpu0, time.perf_counter() - wall0
+        row["clocks"] = CLOCKS
         row.update(result_fields(result))
         if row.get("optimum") and row["success"] and row.get("cost") is not None:
             row["vs_optimum"] = row["cost"] / row["optimum"]

@@ -53,7 +53,8 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .stats import ALPHA, cell_summary, compare, describe, holm, magnitude, metric_values
+from .stats import (ALPHA, SUCCESS_ONLY, SUMMARY_METRICS, cell_summary, compare, describe, holm, magnitude,
+                    metric_values)
 
 #: a time ratio within a third of 1 is never a verdict: below what a shared machine keeps stable
 MIN_TIME_EFFECT = math.log(4 / 3)
@@ -206,7 +207,7 @@ def scope_text(scope: Optional[Dict[str, int]]) -> str:
     """What a world's cost and time statistics are over, as the report and
     the box plots say it (see :func:`compared_rows`)."""
     if scope is None:
-        return "cost and time over the trials that reached the goal"
+        return "cost and time of the trials that reached the goal"
     k = scope["common"]
     return (f"cost and time over the {k} quer{'y' if k == 1 else 'ies'} all cells solved "
             f"(of {scope['queries']})")
@@ -228,6 +229,12 @@ def judged_values(rows_a: List[Dict[str, Any]], rows_b: List[Dict[str, Any]],
     return va, vb, short
 
 
+#: the per-cell statistics described over :func:`compared_rows`: every one that
+#: exists only for solved trials (path length, its ratios, times, first
+#: solution); iterations stay over every trial that ran
+COMPARED_METRICS = tuple(m for m in SUMMARY_METRICS if m in SUCCESS_ONLY)
+
+
 #: Worlds with more cells than this get no all-pairs comparison table (40 cells
 #: are 780 pairs); the cells' own statistics and the claims are still there.
 #: Comparisons one cares about in a larger sweep are stated as claims.
@@ -241,12 +248,16 @@ def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
     noise = timing_noise(rows)
     worlds = by_world(rows)
     cells = []
+    scopes = {}
     for world, groups in worlds.items():
+        compared, scopes[world] = compared_rows(groups)
         for group, members in groups.items():
             first = members[0]
             cells.append({"world": world, "group": group, "cell_id": first["cell_id"], "planner": first["planner"],
                           "sampler": first["sampler"], "swept": dict(first.get("swept") or {}),
-                          **cell_summary(members), **failures(members),
+                          **cell_summary(members),
+                          **{m: describe(metric_values(compared[group], m)) for m in COMPARED_METRICS},
+                          **failures(members),
                           "warmup_s": sum(r.get("warmup_s") or 0.0 for r in members),
                           "params_used": next((r["params_used"] for r in members if r.get("params_used")), {}),
                           "timing_noise": float(np.median(noise[first["cell_id"]])) if noise.get(first["cell_id"]) else None})
@@ -257,7 +268,8 @@ def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
     too_many = {world: len(groups) for world, groups in worlds.items() if len(groups) > MAX_PAIRWISE_CELLS}
     swept = sorted({k for c in cells for k in c["swept"]})
     return {"time": time, "time_label": TIME_LABELS[time], "swept": swept, "cells": cells,
-            "comparisons": comparisons, "pairwise_skipped": too_many, "rule": rule_text()}
+            "comparisons": comparisons, "pairwise_skipped": too_many, "rule": rule_text(),
+            "compared": {w: scope for w, scope in scopes.items() if scope is not None}}
 
 
 def rule_text() -> str:
@@ -441,9 +453,12 @@ def reference_table(study: Dict[str, Any], summary: Dict[str, Any]) -> Optional[
 
 def side_by_side(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> List[List[Any]]:
     """The seed's per-trial layout: trial, cost and time of ``a``, then of
-    ``b``, with mean and min rows (costs of failed trials shown as '-')."""
+    ``b`` (costs of failed trials shown as '-'), with mean and min rows over
+    the trials :func:`compared_rows` picks for the pair (on maps, the queries
+    both solved)."""
     ra = sorted(groups[a], key=lambda r: r["trial"])
     rb = sorted(groups[b], key=lambda r: r["trial"])
+    picked, _ = compared_rows({"a": ra, "b": rb})
     table = []
     for i in range(max(len(ra), len(rb))):
         row: List[Any] = [i + 1]
@@ -453,7 +468,7 @@ def side_by_side(groups: Dict[str, List[Dict[str, Any]]], a: str, b: str) -> Lis
         table.append(row)
     for label, fn in (("mean", lambda v: sum(v) / len(v)), ("min", min)):
         row = [label]
-        for side in (ra, rb):
+        for side in (picked["a"], picked["b"]):
             for metric in ("cost", "time"):
                 vals = metric_values(side, metric)
                 row.append(fn(vals) if vals else None)

@@ -13,7 +13,8 @@ import math
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
 
-from .analysis import MAX_PAIRWISE_CELLS, MIN_SOLVED, by_world, overall_verdicts, reference_table, side_by_side
+from .analysis import (MAX_PAIRWISE_CELLS, MIN_SOLVED, by_world, overall_verdicts, reference_table, scope_text,
+                       side_by_side)
 
 #: per-trial side-by-side tables (the seed's layout) in a world: the first cell beside this many others
 MAX_SIDE_BY_SIDE = 8
@@ -62,9 +63,10 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
 
     swept = summary.get("swept") or []
     blocks.append(("h2", "Summary per cell"))
+    compared = summary.get("compared") or {}
     blocks.append(("p", "Cost and time over the trials that reached the goal (a failed trial has no path, "
                         "and its time is the time it took to give up); iterations over every trial that ran. "
-                        "CI: 95% t-interval of the mean."))
+                        "CI: 95% t-interval of the mean." + (_compared_text(compared) if compared else "")))
     header = (["world", "planner", "sampler"] + swept
               + ["success", "cost mean", "cost 95% CI", "cost median", "cost min", "cost max", "cost std",
                  "time mean [s]", "time median [s]", "first solution it. (median)"])
@@ -74,7 +76,8 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
         ran = c["trials"] - c["errors"]
         table.append([c["world"], c["planner"], c["sampler"]] + [fmt(c["swept"].get(k)) for k in swept]
                      + [f"{c['successes']}/{ran}" + (f" ({c['errors']} err)" if c["errors"] else ""),
-                        fmt(cost["mean"]), f"[{fmt(cost['ci95'][0])}, {fmt(cost['ci95'][1])}]",
+                        _no_cost(c, c["world"] in compared) or fmt(cost["mean"]),
+                        f"[{fmt(cost['ci95'][0])}, {fmt(cost['ci95'][1])}]",
                         fmt(cost["median"]), fmt(cost["min"]), fmt(cost["max"]), fmt(cost["std"]),
                         fmt(t["mean"], 4), fmt(t["median"], 4), fmt(c["first_solution_iteration"]["median"], 0)])
     blocks.append(("table", (header, table)))
@@ -93,7 +96,8 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
         blocks.append(("h2", "Path length against the optimum and against Theta*"))
         blocks.append(("p", "Per map query: the path's length over the stored Moving AI optimum (8-connected "
                             "octile length, corners not cut: any-angle paths can be shorter, below 1) and over the "
-                            "Theta* path's on the same query; over the successful trials."))
+                            "Theta* path's on the same query; over the successful trials, on the queries all "
+                            "cells of the world solved as in the summary per cell."))
         blocks.append(("table", (["world", "cell", "success", "÷ optimum (median)", "÷ optimum (mean)",
                                   "÷ optimum (max)", "÷ Theta* (median)", "÷ Theta* (max)", "time median [s]"],
                                  [[c["world"], c["group"], f"{c['successes']}/{c['trials'] - c['errors']}",
@@ -114,8 +118,9 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
     if ref:
         blocks.append(("h2", "The document's numbers beside ours"))
         blocks.append(("p", "The document's value (its mean unless stated) beside our mean and median over "
-                            "the cell's solved trials. The worlds are navlab's reconstructions (the document "
-                            "gives their names and pictures, not their geometry), so costs are comparable in "
+                            "the cell's solved trials (on maps, the queries all cells solved). The worlds are "
+                            "navlab's reconstructions (the document gives their names and pictures, not their "
+                            "geometry), so costs are comparable in "
                             "order of magnitude only; times are not comparable in size (different software "
                             "and machines), only in order. Where the document says two things (a reading), "
                             "the 'solved' rows say which one our run agrees with."))
@@ -151,6 +156,8 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
         blocks.append(("h2", f"World: {world}"))
         for image in images.get(world, []):
             blocks.append(("img", image))
+        if world in compared:
+            blocks.append(("p", f"Summary per cell and box plots: {scope_text(compared[world])}."))
         skipped = (summary.get("pairwise_skipped") or {}).get(world)
         if skipped:
             blocks.append(("p", f"{skipped} cells in this world: pairwise comparisons are made only up to "
@@ -169,12 +176,30 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
                                        fmt(c["p_holm"], 3), _verdict(c)] for c in comps])))
         names = list(groups)
         for other in names[1:MAX_SIDE_BY_SIDE + 1]:  # the seed's layout: a handful of tables, not one per cell
-            blocks.append(("h3", f"Per trial: {names[0]} beside {other} (the seed's layout)"))
+            blocks.append(("h3", f"Per trial: {names[0]} beside {other} (the seed's layout"
+                                 + ("; mean and min over the queries both solved)" if world in compared else ")")))
             body = side_by_side(groups, names[0], other)
             blocks.append(("table", (["trial", f"{names[0]} cost [m]", "time [s]", f"{other} cost [m]", "time [s]"],
                                      [[r[0]] + [fmt(v, 3 if i % 2 == 0 else 4) for i, v in enumerate(r[1:])]
                                       for r in body])))
     return blocks
+
+
+def _compared_text(compared: Dict[str, Dict[str, int]]) -> str:
+    """The summary's caption on a map experiment: which queries each world's
+    cost and time are over (see :func:`~navlab.bench.analysis.compared_rows`)."""
+    return (" On maps the trials run different queries (start and goal), so a world's cost, time and first "
+            "solution statistics (and the ratios to the optimum and to Theta* below) are over the queries every "
+            "cell of that world solved (a cell that solved nothing set aside): the same queries for every cell. "
+            "The success column counts all trials. "
+            + "; ".join(f"{world}: {scope_text(scope)}" for world, scope in compared.items()) + ".")
+
+
+def _no_cost(c: Dict[str, Any], on_queries: bool) -> str:
+    """Why a cell's cost mean is empty, or ''."""
+    if not c["successes"]:
+        return "no path in any trial"
+    return "no query all cells solved" if on_queries and not c["cost"]["n"] else ""
 
 
 def _verdict(c: Dict[str, Any]) -> str:

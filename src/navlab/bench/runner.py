@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence
 
 from ..atomic import write_text_atomic
-from .analysis import by_world, judge_claims, summarize, timed
+from .analysis import by_world, compared_rows, judge_claims, scope_text, summarize, timed
 from .executors import EXECUTORS, check_executor
 from .export import write_csv
 from .experiment import OMPL_PREFIX, Experiment
@@ -236,7 +236,7 @@ def make_plots(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
 
 
 #: what the figures read from a row
-_PLOT_FIELDS = ("cell_id", "trial", "status", "success", "cost", "time", "time_s", "trace")
+_PLOT_FIELDS = ("cell_id", "trial", "status", "success", "cost", "time", "time_s", "trace", "query")
 
 
 def _plot_fields(row: Dict[str, Any]) -> Dict[str, Any]:
@@ -254,7 +254,9 @@ def _plot_world(task):
     slug = _slug(world)
     names = [f"plots/box_{slug}.png"]
     try:
-        box_plots(world, groups, str(folder / names[0]), time_label=f"{time_label} [s]")
+        compared, scope = compared_rows(groups)  # the rows the summary and the verdicts describe
+        box_plots(world, groups, str(folder / names[0]), time_label=f"{time_label} [s]", compared=compared,
+                  scope=scope_text(scope))
         if convergence_plot(world, groups, str(folder / f"plots/convergence_{slug}.png")):
             names.append(f"plots/convergence_{slug}.png")
         examples = []

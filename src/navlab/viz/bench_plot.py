@@ -5,7 +5,7 @@ sampler and swept values. Every figure is saved through
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Sequence, Tuple
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -23,30 +23,38 @@ def _save(fig, out: str, dpi: int) -> None:
     save_figure(fig, out, dpi=dpi, pil_kwargs=PNG)
 
 
-def box_plots(world: str, groups: Dict[str, Rows], out: str, time_label: str = "time [s]") -> None:
+def box_plots(world: str, groups: Dict[str, Rows], out: str, time_label: str = "time [s]",
+              compared: Optional[Dict[str, Rows]] = None,
+              scope: str = "cost and time of the trials that reached the goal") -> None:
     """Cost and time (``row["time"]``, else the planner's ``time_s``) per group,
-    over the trials that reached the goal, as the verdicts compare them. Each
-    box is labelled with its group's solved/ran count, and a group that solved
-    nothing is marked "no path in any trial" where its box would stand."""
+    over ``compared[group]``: the rows the verdicts compare
+    (:func:`navlab.bench.analysis.compared_rows`; on map experiments the
+    queries every cell solved), by default each group's solved trials.
+    ``scope`` says which in the title. Each box is labelled with its group's
+    solved/ran count over all its trials, and a group that solved nothing is
+    marked "no path in any trial" where its box would stand."""
     plt = _pyplot()
     names = list(groups)
+    if compared is None:
+        compared = {g: [r for r in groups[g] if r.get("success")] for g in names}
     time_key = "time" if any("time" in r for g in groups.values() for r in g) else "time_s"
     fig, axes = plt.subplots(1, 2, figsize=(4 + 1.3 * len(names), 4.4))
     solved = [sum(bool(r.get("success")) for r in groups[g]) for g in names]
     ran = [sum(r.get("status") != "ERROR" for r in groups[g]) for g in names]
     labels = [f"{n.replace(' / ', chr(10))}\nsolved {k}/{m}" for n, k, m in zip(names, solved, ran)]
     for ax, metric, unit in ((axes[0], "cost", "path cost [m]"), (axes[1], time_key, time_label)):
-        data = [[r[metric] for r in groups[g] if r.get(metric) is not None and r.get("success")] for g in names]
+        data = [[r[metric] for r in compared[g] if r.get(metric) is not None and r.get("success")] for g in names]
         ax.boxplot([d if d else [np.nan] for d in data], showmeans=True)
         ax.set_xticks(range(1, len(names) + 1), labels, fontsize=8)
         ax.set_ylabel(unit)
         ax.set_xlabel("cell (solved trials only)")
         ax.grid(axis="y", alpha=0.3)
-        for i, d in enumerate(data):
+        for i, (d, k) in enumerate(zip(data, solved)):
             if not d:  # say so where the box would be, rather than leave a silent gap
-                ax.text(i + 1, 0.5, "no path in\nany trial", transform=ax.get_xaxis_transform(), ha="center",
-                        va="center", fontsize=8, color="#b00", rotation=90)
-    fig.suptitle(f"{world}: cost and time of the trials that reached the goal")
+                ax.text(i + 1, 0.5, "no query all\ncells solved" if k else "no path in\nany trial",
+                        transform=ax.get_xaxis_transform(), ha="center", va="center", fontsize=8, color="#b00",
+                        rotation=90)
+    fig.suptitle(f"{world}: {scope}")
     # fixed margins: tight_layout costs more than drawing the figure
     fig.subplots_adjust(left=0.08, right=0.98, bottom=0.27, top=0.9, wspace=0.25)
     _save(fig, out, 100)

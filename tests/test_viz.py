@@ -58,6 +58,23 @@ def test_plot_plan_draws_into_the_given_axes_and_returns_them():
     assert right.get_xlabel() == "x [m]" and right.get_ylabel() == "y [m]"
 
 
+def test_plot_plan_of_a_result_alone_draws_it_in_the_world_navlab_plan_recorded():
+    """plot_plan(result, ax=...) as issue 19 writes it: the same drawing as plot_plan(world, result, ax=...)."""
+    r = _trap_result()
+    fig, (alone, both) = plt.subplots(1, 2)
+    assert plot_plan(r, ax=alone) is alone
+    plot_plan(navlab.load_world("trap"), r, ax=both)
+    assert alone.get_title() == both.get_title() and len(alone.patches) == len(both.patches) > 0
+    assert [line.get_xydata().tolist() for line in alone.lines] == [line.get_xydata().tolist() for line in both.lines]
+    with pytest.raises(TypeError, match="plot_plan\\(world, result\\) or plot_plan\\(result\\)"):
+        plot_plan(navlab.load_world("trap"))
+    import dataclasses
+
+    with pytest.raises(ValueError, match="does not record its world"):
+        plot_plan(dataclasses.replace(r, world=None))
+    plt.close(fig)
+
+
 def test_plot_plan_without_ax_makes_and_saves_a_figure(tmp_path):
     fig = plot_plan(navlab.load_world("trap"), _trap_result(), str(tmp_path / "p.png"))
     assert (tmp_path / "p.png").stat().st_size > 0

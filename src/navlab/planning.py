@@ -184,7 +184,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
         why = endpoint_problem(world, point, label, checker)
         if why is not None:
-            result = Result(status=status, reason=why, params=dict(params), stats=_stats_skeleton(grid))
+            result = Result(status=status, reason=why, params=dict(params), stats=_stats_skeleton(grid), world=world)
             result.params.update(common)
             return result
 
@@ -192,6 +192,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         result = costmap_query(world, planner, settings)
         result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": 0.0}
         result.params.update(common)
+        result.world = world
         return result
     warmup_s = _warm(planner, sampler, settings if grid else None, on_map=world.occupancy is not None)
     with compile_clock() as compiled:  # a signature the warm-up did not compile: warm-up too
@@ -200,6 +201,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     result.stats = {**_stats_skeleton(grid), **result.stats,
                     "warmup_s": warmup_s + (result.stats.get("warmup_s") or 0.0)}
     result.params.update(common)
+    result.world = world
     return compiled.moved_to_warmup(result)
 
 
@@ -234,6 +236,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
     result.stats = {**skeleton, **result.stats, "warmup_s": warmup_s}
     result.params.update({"planner": planner, "sampler": sampler, "seed": seed if isinstance(seed, int) else None,
                           "world": world.name, "robot_radius": world.robot_radius})
+    result.world = world
     return compiled.moved_to_warmup(result)
 
 

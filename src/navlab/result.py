@@ -125,6 +125,9 @@ class Result:
     tree : Tree or None
         What the planner searched (tree nodes and parents, a grid path before
         smoothing), when kept for drawing: see :class:`Tree`.
+    world : World or None
+        What was planned in, when :func:`navlab.plan` made the result (so that
+        ``navlab.viz.plot_plan(result)`` can draw it); not part of ``to_dict``.
     """
 
     status: Status
@@ -138,6 +141,7 @@ class Result:
     #: SE(2) planners: (N,) +1 where the robot arrives at the waypoint driving forward, −1 in reverse
     #: (their ``path`` is (N, 3) poses x, y, θ)
     direction: Optional[np.ndarray] = None
+    world: Any = field(default=None, repr=False, compare=False)
 
     @property
     def success(self) -> bool:

@@ -6,7 +6,7 @@ from typing import Optional
 
 import numpy as np
 
-from ..result import Tree
+from ..result import Result, Tree
 from .legend import FRAME, place_legend
 from .save import save_figure
 
@@ -204,14 +204,31 @@ def draw_pose_path(ax, result) -> None:
                  color="black", zorder=6, length_includes_head=True)
 
 
-def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = None, ax=None):
+def _world_and_result(world, result):
+    """``plot_plan``'s two spellings, (world, result) and (result,), as (world, result)."""
+    if result is not None:
+        return world, result
+    if not isinstance(world, Result):
+        raise TypeError(f"plot_plan(world, result) or plot_plan(result): got one {type(world).__name__} and no result")
+    if world.world is None:
+        raise ValueError("this result does not record its world (navlab.plan records it; a planner called "
+                         "directly does not): plot_plan(world, result)")
+    return world.world, world
+
+
+def plot_plan(world, result=None, out: Optional[str] = None, title: Optional[str] = None, ax=None):
     """World, tree (if kept), path, start and goal.
+
+    ``plot_plan(result, ax=ax)`` draws a result of :func:`navlab.plan` in the
+    world it records (``result.world``); ``plot_plan(world, result)`` draws
+    any planner's result in ``world``.
 
     Parameters
     ----------
-    world : World
-        What was planned in (``navlab.load_world`` or the source's world).
-    result : Result
+    world : World or Result
+        What was planned in (``navlab.load_world`` or the source's world), or
+        the result itself when ``result`` is not given.
+    result : Result, optional
         A planner's result; its ``tree`` is drawn when it was kept.
     out : str, optional
         Write the figure here (format from the suffix); written whole or not at all.
@@ -232,8 +249,9 @@ def plot_plan(world, result, out: Optional[str] = None, title: Optional[str] = N
     >>> fig, axes = plt.subplots(1, 2)
     >>> for ax, sampler in zip(axes, ("uniform", "gaussian")):
     ...     r = navlab.plan("trap", sampler=sampler, seed=0, max_iter=300, keep_tree=True)
-    ...     _ = plot_plan(navlab.load_world("trap"), r, ax=ax)
+    ...     _ = plot_plan(r, ax=ax)
     """
+    world, result = _world_and_result(world, result)
     fig, ax, owned = new_axes(ax)
     tree = result.tree if result.tree is not None else Tree()
     if "raster" in tree and getattr(world, "occupancy", None) is None:

@@ -93,3 +93,26 @@ def test_the_map_suite_reads_the_shared_maps():
     assert len(exp.worlds) == 5 and all(len(exp.maps[w]["queries"]) == MOVINGAI_QUERIES for w in exp.worlds)
     assert all(q["optimum"] > 0 for w in exp.worlds for q in exp.maps[w]["queries"])
     assert math.isclose(exp.maps["arena"]["queries"][0]["start"][0] % 1, 0.5)
+
+
+def test_the_terminal_says_over_which_queries_a_map_suites_costs_are(tmp_path):
+    """The command's per-cell lines give cost means over the queries all cells of a map solved (issue 19), and
+    say so with the counts, as the report does."""
+    from click.testing import CliRunner
+
+    from navlab.bench.suites import movingai_dir
+    from navlab.cli import main
+
+    try:
+        movingai_dir()
+    except ExperimentError:
+        pytest.skip("no ../shared/data/movingai here")
+    res = CliRunner().invoke(main, ["bench", "--suite", "grid-vs-rrt-maps", "--trials", "2",
+                                    "--out", str(tmp_path / "out"), "--no-plots"])
+    assert res.exit_code == 0, res.output
+    line = next(x for x in res.output.splitlines() if x.startswith("cost and time below are over the queries"))
+    import json
+
+    compared = json.loads((tmp_path / "out" / "summary.json").read_text())["compared"]
+    assert len(compared) == 5 and all(f"{world} {s['common']} of {s['queries']}" in line for world, s in compared.items())
+    assert compared["maze512-32-9"]["common"] < 2  # RRT* reaches the goal on the shortest maze query only

@@ -213,6 +213,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if summary.get("torn_lines"):
         click.echo(f"{summary['torn_lines']} torn line(s) cut from results.jsonl (kept in results.torn.jsonl)")
     width = max([len(c["group"]) for c in summary["cells"]] + [20]) + 2
+    compared = summary.get("compared") or {}  # map experiments: costs and times over the queries all cells solved
+    if compared:
+        click.echo("cost and time below are over the queries all cells of a map solved: "
+                   + ", ".join(f"{world} {scope['common']} of {scope['queries']}" for world, scope in compared.items()))
     for cell in summary["cells"]:
         cost = cell["cost"]
         ran = cell["trials"] - cell["errors"]

@@ -114,5 +114,6 @@ def test_the_terminal_says_over_which_queries_a_map_suites_costs_are(tmp_path):
     import json
 
     compared = json.loads((tmp_path / "out" / "summary.json").read_text())["compared"]
-    assert len(compared) == 5 and all(f"{world} {s['common']} of {s['queries']}" in line for world, s in compared.items())
+    assert len(compared) == 5
+    assert all(f"{world} {s['common']} of {s['queries']}" in line for world, s in compared.items())
     assert compared["maze512-32-9"]["common"] < 2  # RRT* reaches the goal on the shortest maze query only

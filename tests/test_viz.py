@@ -165,9 +165,17 @@ def test_sim_plot_draws_the_true_trajectory_on_top():
     assert _legend_clear(ax)
 
 
-def test_gif_frames_aspect_legend_and_no_ghost(tmp_path):
+def test_gif_frames_aspect_legend_and_no_ghost(tmp_path, monkeypatch):
+    import matplotlib.text
+
     from navlab.sim.runner import simulate
     from navlab.world.io import world_from_dict
+
+    titles = []  # what each frame's title says (an outside check saw "REACHED" on the first frame)
+    set_text = matplotlib.text.Text.set_text
+    monkeypatch.setattr(matplotlib.text.Text, "set_text",
+                        lambda self, text: (titles.append(str(text)) if str(text).startswith("t = ") else None,
+                                            set_text(self, text))[1])
 
     world = world_from_dict({
         "name": "wide", "bounds": {"x": [0, 12], "y": [0, 4]}, "start": [1, 2], "goal": [11, 2],
@@ -178,6 +186,10 @@ def test_gif_frames_aspect_legend_and_no_ghost(tmp_path):
     animate_run(world, result, str(out), 0.15, max_frames=20, progress=False)
     im = Image.open(out)
     assert im.n_frames == min(20, len(result.true_poses))
+    outcome = result.status.name
+    assert titles and titles[-1].endswith(f": {outcome}") and outcome != "running"
+    assert [t for t in titles if t.endswith(f": {outcome}")] == [titles[-1]] * titles.count(titles[-1])  # the end only
+    assert any(t.endswith(": running") for t in titles)
     w, h = im.size
     assert w > 1.4 * h  # a 3:1 world makes a wide GIF (legend on the right adds width)
     # the obstacle's start position (6, 3.4) is empty in a late frame: no ghost left there

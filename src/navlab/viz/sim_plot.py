@@ -189,7 +189,9 @@ def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = G
                 patch.set_xy(moved.points)
             else:
                 patch.set_xy(moved.min)
-        clock.set_text(f"t = {result.t[i]:.1f} s of {result.time_s:.1f} s: {result.status.name}")
+        # the outcome only once it has happened: mid-run the robot has not REACHED anything yet
+        outcome = result.status.name if i == len(result.true_poses) - 1 else "running"
+        clock.set_text(f"t = {result.t[i]:.1f} s of {result.time_s:.1f} s: {outcome}")
         fig.canvas.restore_region(background)
         for artist in dynamic:
             ax.draw_artist(artist)

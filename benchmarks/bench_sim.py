@@ -202,13 +202,13 @@ def irsim_envs(scenes, folder: str) -> list:
     return envs
 
 
-def cell(values, scale: float = 1e3, unit: str = "ms") -> str:
-    """``median (min–max)`` of one figure over the rounds, in milliseconds."""
-    if not values:
+def cell(seconds) -> str:
+    """``median (min–max) ms`` of one figure over the rounds."""
+    if not seconds:
         return "-"
-    scaled = [v * scale for v in values]
-    digits = 3 if statistics.median(scaled) < 1 else 1
-    return f"{statistics.median(scaled):.{digits}f} ({spread(scaled, digits)}) {unit}"
+    ms = [1e3 * s for s in seconds]
+    digits = 3 if statistics.median(ms) < 1 else 2 if statistics.median(ms) < 10 else 1
+    return f"{statistics.median(ms):.{digits}f} ({spread(ms, digits)}) ms"
 
 
 def ratio(slow, fast) -> str:

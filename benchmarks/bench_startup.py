@@ -38,6 +38,7 @@ import os
 import resource
 import statistics
 import subprocess
+import shutil
 import sys
 import tempfile
 import time
@@ -189,6 +190,10 @@ def main() -> None:
                     help="the python of the environment to measure (default: this one), e.g. a venv with "
                          "`pip install .` as a user gets it")
     args = ap.parse_args()
+    if os.sep in args.python:  # the processes run in a folder of their own: a relative path must not change meaning
+        args.python = os.path.abspath(args.python)
+    if not shutil.which(args.python):
+        ap.error(f"--python {args.python}: no such program")
     print(load_line("at start"))
     print(environment_line(args.python))
     if args.phases:

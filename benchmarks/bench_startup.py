@@ -36,9 +36,9 @@ from __future__ import annotations
 import argparse
 import os
 import resource
+import shutil
 import statistics
 import subprocess
-import shutil
 import sys
 import tempfile
 import time

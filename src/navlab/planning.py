@@ -184,25 +184,28 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
         why = endpoint_problem(world, point, label, checker)
         if why is not None:
-            result = Result(status=status, reason=why, params=dict(params), stats=_stats_skeleton(grid), world=world)
-            result.params.update(common)
-            return result
+            return _recorded(Result(status=status, reason=why, params=dict(params), stats=_stats_skeleton(grid)),
+                             common, world)
 
     if on_costs:
         result = costmap_query(world, planner, settings)
         result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": 0.0}
-        result.params.update(common)
-        result.world = world
-        return result
+        return _recorded(result, common, world)
     warmup_s = _warm(planner, sampler, settings if grid else None, on_map=world.occupancy is not None)
     with compile_clock() as compiled:  # a signature the warm-up did not compile: warm-up too
         result = grid_query(world, planner, settings) if grid else tree_query(world, planner, sampler, seed, params)
     # a grid planner's own clock moved its compiles to its warmup_s already: add the warm-up above
     result.stats = {**_stats_skeleton(grid), **result.stats,
                     "warmup_s": warmup_s + (result.stats.get("warmup_s") or 0.0)}
+    return compiled.moved_to_warmup(_recorded(result, common, world))
+
+
+def _recorded(result: Result, common: Dict[str, Any], world) -> Result:
+    """``result`` with what every query records: the query's settings (``common``) in its params, and
+    the world it was planned in (``Result.world``, for ``plot_plan(result)``)."""
     result.params.update(common)
     result.world = world
-    return compiled.moved_to_warmup(result)
+    return result
 
 
 def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, seed: Any,
@@ -234,10 +237,9 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
                     "first_solution_iteration": None, "first_solution_time_s": None, "rewires": 0,
                     "cost_trace": np.zeros(0)}
     result.stats = {**skeleton, **result.stats, "warmup_s": warmup_s}
-    result.params.update({"planner": planner, "sampler": sampler, "seed": seed if isinstance(seed, int) else None,
-                          "world": world.name, "robot_radius": world.robot_radius})
-    result.world = world
-    return compiled.moved_to_warmup(result)
+    common = {"planner": planner, "sampler": sampler, "seed": seed if isinstance(seed, int) else None,
+              "world": world.name, "robot_radius": world.robot_radius}
+    return compiled.moved_to_warmup(_recorded(result, common, world))
 
 
 @functools.lru_cache(maxsize=None)

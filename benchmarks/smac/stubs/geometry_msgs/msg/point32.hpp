@@ -1,0 +1,2 @@
+// Stub (navlab benchmarks/smac).
+#include "geometry_msgs/msg/types.hpp"

@@ -1,0 +1,2 @@
+// Stub (navlab benchmarks/smac).
+#include "nav2_ros_common/lifecycle_node.hpp"

@@ -1,0 +1,2 @@
+// Stub (navlab benchmarks/smac).
+#include "rclcpp/rclcpp.hpp"

@@ -39,6 +39,7 @@ from numba import njit
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
+from .floor_cells import floor_div
 from .hybrid_field import PASSABLE, SETTLED, field_at
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
@@ -240,7 +241,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
 
     nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
     count = 1
-    cell = int(sy // res) * w + int(sx // res)
+    cell = int(floor_div(sy, res)) * w + int(floor_div(sx, res))
     block_of[cell] = 0
     blocks[0, sbin] = 0
     nblocks = 1
@@ -259,7 +260,8 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         if elazy[e]:
             elazy[e] = False
             theta = theta0 + nb[v] * step
-            field = fdist[(int(ey[e] // res) + 1) * fstride + int(ex[e] // res) + 1]  # settled at the push
+            # settled at the push
+            field = fdist[(int(floor_div(ey[e], res)) + 1) * fstride + int(floor_div(ex[e], res)) + 1]
             forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
             # the order needs the key only against the next entry's: an upper bound below it settles that
             # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
@@ -303,13 +305,13 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                 return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
                     alens, expansions, solved, swept, swept_used
         elif not use_analytic:
-            if int(x // res) == int(gx // res) and int(y // res) == int(gy // res) and \
+            if floor_div(x, res) == floor_div(gx, res) and floor_div(y, res) == floor_div(gy, res) and \
                     (b - int(round((gtheta - theta0) / step))) % bins == 0:
                 return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
                     alens, expansions, solved, swept, swept_used
         if expansions >= max_expansions:
             break
-        cx, cy = int(x // res), int(y // res)
+        cx, cy = int(floor_div(x, res)), int(floor_div(y, res))
         # room for every child first. Arrays replaced inside the children's loop, and a call there that can
         # replace one, cost numba's reference counting on every child, dominated or not: with the growth
         # here and the field's rare call behind its own test, 0.86x (Reeds–Shepp) and 0.94x (Dubins) of
@@ -328,7 +330,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
         for j in range(nprim):
             x2, y2 = x + pdx[b, j], y + pdy[b, j]
             b2 = (b + pdbin[j]) % bins
-            cx2, cy2 = int(x2 // res), int(y2 // res)
+            cx2, cy2 = int(floor_div(x2, res)), int(floor_div(y2, res))
             if cx2 < 0 or cy2 < 0 or cx2 >= w or cy2 >= h:
                 continue
             length = abs(prim_len[j])

@@ -4,6 +4,8 @@
     python benchmarks/bench_hybrid.py --quick     # PythonRobotics' demo query once, no reference map
     python benchmarks/bench_hybrid.py --reference-only   # navlab alone on the 384 x 384 map, no checkout needed
     python benchmarks/bench_hybrid.py --analytic-max 12 --analytic-ratio 3.5   # Smac's analytic schedule
+    python benchmarks/bench_hybrid.py --smac-maps    # navlab on five 384 x 384 maps against Smac's README figure
+    python benchmarks/bench_hybrid.py --smac-maps --smac-driver build-smac/smac_driver   # and Nav2 Smac itself
 
 PythonRobotics (github.com/AtsushiSakai/PythonRobotics) is imported from a
 checkout: ``--pythonrobotics``, else $PYTHONROBOTICS, else ./PythonRobotics
@@ -35,6 +37,7 @@ import io
 import math
 import os
 import statistics
+import subprocess
 import sys
 import time
 from pathlib import Path
@@ -182,6 +185,15 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
     )
     for note in notes:
         print(note)
+
+
+def _cpu_model() -> str:
+    """The CPU's model name as lscpu gives it."""
+    try:
+        out = subprocess.run(["lscpu"], capture_output=True, text=True, check=True).stdout
+    except (OSError, subprocess.CalledProcessError):
+        return "CPU: (lscpu not available)"
+    return next((line.strip() for line in out.splitlines() if line.startswith("Model name")), "CPU: unknown")
 
 
 def _radians(pose):
@@ -449,6 +461,182 @@ def smac_benchmark(seed: int = SMAC_SEED) -> None:
           "or an exhausted search). Smac's figure gives no success rate, query set or hardware.")
 
 
+# ---------------------------------------------------------------------------
+# --smac-maps --smac-driver PATH: Nav2 Smac's own Hybrid-A* (benchmarks/smac) on the same maps and
+# queries, interleaved with navlab query by query
+# ---------------------------------------------------------------------------
+#: Nav2's defaults for the parameters navlab shares (SmacPlannerHybrid::configure at a3a97043)
+NAV2_DEFAULTS = {"analytic_expansion_ratio": 3.5, "analytic_expansion_max_length": 3.0, "reverse_penalty": 2.0,
+                 "change_penalty": 0.0, "non_straight_penalty": 1.2}
+SMAC_PAIRS = (  # (label, navlab motion, the shared parameters, Smac's motion model)
+    ("DUBIN, Smac README settings", "dubins", SMAC_README, "DUBIN"),
+    ("REEDS_SHEPP, Nav2 defaults", "reeds_shepp", NAV2_DEFAULTS, "REEDS_SHEPP"),
+)
+#: Smac's parameters besides the shared ones; the rest are SmacPlannerHybrid's defaults
+SMAC_COMMON = {"angle_quantization_bins": 72, "minimum_turning_radius": TURNING_RADIUS,
+               "max_iterations": 1_000_000, "max_planning_time": 1000.0}
+#: Smac's variants: (label, costmap, Smac parameters besides SMAC_COMMON and the pair's). "binary" is
+#: navlab's map as it is (blocked cells lethal, no inflation layer): the one comparable to navlab.
+SMAC_VARIANTS = (
+    ("binary", "binary", {}),
+    ("binary, full-res heuristic", "binary", {"downsample_obstacle_heuristic": "false"}),
+    ("inflated", "inflated", {}),
+)
+#: navlab's search budget in the side by side: Smac's max_iterations
+NAVLAB_BUDGET = {"max_expansions": SMAC_COMMON["max_iterations"]}
+
+
+def _median(values, scale=1.0, digits=1) -> str:
+    values = [scale * v for v in values if not math.isnan(v)]
+    return f"{statistics.median(values):.{digits}f}" if values else "-"
+
+
+def _smac_drivers(driver, blocked, query, inscribed):
+    """The map's Smac processes, one per (pair, variant), each having answered ``query`` once untimed."""
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from smac.compare import INFLATION_RADIUS, COST_SCALING_FACTOR, SmacDriver, binary_costs, inflated_costs
+
+    costs = {"binary": binary_costs(blocked), "inflated": inflated_costs(blocked, SMAC_RES, inscribed)}
+    drivers = {}
+    for label_, _, shared, model in SMAC_PAIRS:
+        for variant, costmap, extra in SMAC_VARIANTS:
+            params = {"motion_model_for_search": model, **SMAC_COMMON, **shared, **extra}
+            inflation = (INFLATION_RADIUS, COST_SCALING_FACTOR) if costmap == "inflated" else None
+            drivers[label_, variant] = d = SmacDriver(driver, costs[costmap], SMAC_RES, ROBOT, params, inflation)
+            d.plan(*query)
+    return drivers
+
+
+def smac_side_by_side(driver: Path, seed: int = SMAC_SEED) -> None:
+    """navlab and Nav2 Smac's Hybrid-A* on the --smac-maps maps and queries, query by query.
+
+    Per map: navlab's map tables and Smac's plugin set-up (its distance lookup table) are paid
+    and timed before the queries, then each Smac process answers the map's first query once
+    untimed. Per query and setting pair: navlab from a cleared footprint lattice ("new heading"),
+    navlab again ("warm", the headline), then Smac's variants (SMAC_VARIANTS). Smac's time is its
+    createPlan without the smoother (Smac smooths afterwards; navlab's time includes its own
+    shortcut smoothing). Both get Smac's default budget, 10^6 expansions. A failed query counts,
+    its time included. Smac's poses are checked against the blocked cells with shapely (the robot
+    rectangle at each pose, and at 1 cm steps on the straight segments between poses).
+    """
+    import shapely  # noqa: F401  (fail early: the overlap check needs it)
+
+    sys.path.insert(0, str(Path(__file__).resolve().parent))
+    from smac.compare import INFLATION_RADIUS, COST_SCALING_FACTOR, BlockedCells, densified
+
+    maps = smac_maps(seed)
+    rng = np.random.default_rng([seed, 1])
+    queries = [smac_queries(blocked, rng) for _, blocked in maps]
+    inscribed = float(np.abs(np.array(ROBOT)).min())  # [m] the centred rectangle's half width
+    head = subprocess.run(["git", "-C", str(Path(__file__).resolve().parent), "log", "-1", "--format=%h %cI"],
+                          capture_output=True, text=True).stdout.strip()
+    dirty = subprocess.run(["git", "-C", str(Path(__file__).resolve().parent), "status", "--porcelain", "--", "../src"],
+                           capture_output=True, text=True).stdout.split()
+    print(f"navlab: commit {head or '?'}" + (f", src/ with uncommitted changes ({', '.join(dirty[1::2])})" if dirty else ""))
+    print(f"Smac side by side: {len(maps)} maps of {SMAC_CELLS} x {SMAC_CELLS} cells at {SMAC_RES:g} m, "
+          f"{QUERIES_PER_MAP} queries each (seed {seed}); robot 0.5 x 0.4 m, turning radius {TURNING_RADIUS:g} m, "
+          "72 heading bins")
+    print(f"Smac driver: {driver}")
+    for label_, motion, shared, model in SMAC_PAIRS:
+        print(f"  {label_}: navlab motion={motion}, Smac motion_model_for_search={model}; both: {_described(shared)}")
+    print(f"  navlab also: {_described(NAVLAB_BUDGET)}; Smac also: {_described(SMAC_COMMON)}, other parameters "
+          "SmacPlannerHybrid's defaults (tolerance 0.25 m, allow_primitive_interpolation true, "
+          "downsample_obstacle_heuristic true, cost_penalty 2.0, retrospective_penalty 0.015, lookup_table_size 20 m; "
+          "smoother not run)")
+    print("  Smac variants: binary = navlab's map (254 blocked, 0 free, no inflation layer); binary, full-res "
+          "heuristic = the same with downsample_obstacle_heuristic false; inflated = Nav2's inflation layer defaults "
+          f"(inflation_radius {INFLATION_RADIUS} m, cost_scaling_factor {COST_SCALING_FACTOR}, inscribed radius "
+          f"{inscribed} m)")
+    grid0 = OccupancyGrid(maps[0][1], resolution=SMAC_RES)
+    for _, motion, shared, _ in SMAC_PAIRS:  # loads (or compiles) navlab's kernels
+        plan_hybrid(grid0, *queries[0][0], TURNING_RADIUS, motion=motion, footprint=ROBOT, max_expansions=2000,
+                    **shared)
+    rows, setup = [], []
+    variants = [v for v, _, _ in SMAC_VARIANTS]
+    for (name, blocked), pairs in zip(maps, queries):
+        grid = OccupancyGrid(blocked, resolution=SMAC_RES)
+        _map_tables.cache_clear()
+        t = time.perf_counter()
+        _map_tables(blocked.shape, SMAC_RES, np.packbits(blocked).tobytes())
+        tables_ms = 1000 * (time.perf_counter() - t)
+        drivers = _smac_drivers(driver, blocked, pairs[0], inscribed)
+        setup.append((name, tables_ms, statistics.median(d.config["configure_ms"] for d in drivers.values()),
+                      {v: drivers[SMAC_PAIRS[0][0], v].config["circumscribed_cost"] for v in variants}))
+        cells = BlockedCells(blocked, SMAC_RES)
+        for q, (start, goal) in enumerate(pairs):
+            for label_, motion, shared, _ in SMAC_PAIRS:
+                row = {"map": name, "query": q, "pair": label_}
+                lattice_for.cache_clear()
+                row["new_w"], _, _ = _timed(grid, start, goal, motion, {**shared, **NAVLAB_BUDGET})
+                row["nav_w"], row["nav_c"], result = _timed(grid, start, goal, motion, {**shared, **NAVLAB_BUDGET})
+                row["nav_ok"] = result.status == Status.EXACT
+                row["nav_exp"] = result.stats["expansions"]
+                row["nav_len"] = result.cost if row["nav_ok"] else math.nan
+                for variant in variants:
+                    answer = row[variant] = drivers[label_, variant].plan(start, goal)
+                    if answer["found"]:
+                        answer["at_poses"] = cells.overlaps(ROBOT, answer["poses"])
+                        answer["between"] = cells.overlaps(ROBOT, densified(answer["poses"]))
+                rows.append(row)
+        for d in drivers.values():
+            d.close()
+    _print_side_by_side(rows, setup, [m for m, _ in maps], variants)
+
+
+def _print_side_by_side(rows, setup, map_names, variants) -> None:
+    print(f"\n{'map':<30} {'navlab tables ms':>16} {'Smac configure ms':>17}  Smac circumscribed cost")
+    for name, tables_ms, configure_ms, circumscribed in setup:
+        print(f"{name:<30} {tables_ms:>16.1f} {configure_ms:>17.1f}  "
+              + ", ".join(f"{v} {c:g}" for v, c in circumscribed.items()))
+    print("(navlab's tables: once per map; Smac's configure: once per plugin, its Dubins/Reeds-Shepp distance table; "
+          "circumscribed cost -1: no inflation layer, so every pose gets Smac's full footprint check)")
+    short = {"binary": "bin", "binary, full-res heuristic": "bin-fullH", "inflated": "infl"}
+    for label_, _, _, _ in SMAC_PAIRS:
+        print(f"\n{label_}: medians over queries, ms (min-max); nav/Smac: median over queries of navlab warm / "
+              "Smac binary wall time")
+        print(f"{'map':<30} {'ok nav/' + '/'.join(short[v] for v in variants):>24} {'navlab warm':>18} {'CPU':>6} "
+              f"{'new hd':>7} {'Smac bin':>19} {'CPU':>6} {'nav/Smac':>8} {'Smac bin-fullH':>19} "
+              f"{'Smac infl':>18} {'nav exp':>8} {'Smac it ' + '/'.join(short[v] for v in variants):>24} "
+              f"{'nav m':>6} {'Smac m':>6}")
+        for name in map_names + ["all maps"]:
+            sel = [r for r in rows if r["pair"] == label_ and name in (r["map"], "all maps")]
+            ok = [sum(r["nav_ok"] for r in sel)] + [sum(r[v]["found"] for r in sel) for v in variants]
+            both = [r for r in sel if r["nav_ok"] and r["binary"]["found"]]
+            ratio = statistics.median(1000 * r["nav_w"] / r["binary"]["wall_ms"] for r in sel)
+            iters = "/".join(_median([r[v]["iterations"] for r in sel], digits=0) for v in variants)
+            print(f"{name:<30} {'/'.join(map(str, ok)) + f' of {len(sel)}':>24} "
+                  f"{_ms([r['nav_w'] for r in sel]):>18} {_median([r['nav_c'] for r in sel], 1000):>6} "
+                  f"{_median([r['new_w'] for r in sel], 1000):>7} "
+                  f"{_ms([r['binary']['wall_ms'] / 1000 for r in sel]):>19} "
+                  f"{_median([r['binary']['cpu_ms'] for r in sel]):>6} {ratio:>7.2f}x "
+                  f"{_ms([r['binary, full-res heuristic']['wall_ms'] / 1000 for r in sel]):>19} "
+                  f"{_ms([r['inflated']['wall_ms'] / 1000 for r in sel]):>18} "
+                  f"{_median([r['nav_exp'] for r in sel], digits=0):>8} {iters:>24} "
+                  f"{_median([r['nav_len'] for r in both], digits=2):>6} "
+                  f"{_median([r['binary']['length_m'] for r in both], digits=2):>6}")
+        sel = [r for r in rows if r["pair"] == label_]
+        print(f"within 2-20 ms: navlab warm {sum(0.002 <= r['nav_w'] <= 0.020 for r in sel)}/{len(sel)}, "
+              + ", ".join(f"Smac {v} {sum(2 <= r[v]['wall_ms'] <= 20 for r in sel)}/{len(sel)}" for v in variants))
+        for v in variants:
+            found = [r for r in sel if r[v]["found"]]
+            at = [r for r in found if r[v]["at_poses"][0]]
+            between = [r for r in found if r[v]["between"][0]]
+            worst = max((r[v]["between"][1] for r in between), default=0.0)
+            print(f"Smac {v}: paths whose robot rectangle overlaps a blocked cell: {len(at)}/{len(found)} at its "
+                  f"poses, {len(between)}/{len(found)} counting 1 cm steps between them"
+                  + (f" (largest overlap {1e4 * worst:.1f} cm^2; a cell is 25 cm^2)" if between else ""))
+            for r in sel:
+                if not r[v]["found"]:
+                    print(f"  failed on {r['map']} query {r['query']}: {r[v]['reason']} after "
+                          f"{r[v]['iterations']} iterations")
+        fails = [f"{r['map']} query {r['query']}" for r in sel if not r["nav_ok"]]
+        if fails:
+            print(f"navlab failed on: {'; '.join(fails)}")
+    print("\nok: found / queries; a failed query counts in every time median (its time until it gave up), lengths "
+          "over queries both navlab and Smac binary found (navlab: its path's length; Smac: the polyline of its "
+          "unsmoothed poses). Smac it: A* iterations (expansions).")
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--pythonrobotics", type=Path,
@@ -466,6 +654,9 @@ def main() -> None:
                     help="navlab's analytic_expansion_ratio (Smac's schedule; default: try at every expansion)")
     ap.add_argument("--smac-maps", action="store_true",
                     help="only navlab on the fixed 384 x 384 map set against Nav2 Smac's README figure (2-20 ms)")
+    ap.add_argument("--smac-driver", type=Path, metavar="PATH",
+                    help="with --smac-maps: Nav2 Smac's Hybrid-A* (benchmarks/smac/build.sh builds it) side by side "
+                         "with navlab on the same maps and queries")
     args = ap.parse_args()
     if args.repeat < 1:
         ap.error("--repeat must be at least 1")
@@ -474,6 +665,14 @@ def main() -> None:
         options["analytic_expansion_max_length"] = args.analytic_max
     if args.analytic_ratio is not None:
         options["analytic_expansion_ratio"] = args.analytic_ratio
+    if args.smac_maps and args.smac_driver is not None:
+        if not args.smac_driver.is_file():
+            sys.exit(f"no Smac driver at {args.smac_driver}: build it with benchmarks/smac/build.sh NAV2_CHECKOUT")
+        print(load_line("at start"))
+        print(_cpu_model())
+        smac_side_by_side(args.smac_driver.resolve())
+        print(load_line("at end"))
+        return
     if args.smac_maps:
         print(load_line("at start"))
         smac_benchmark()

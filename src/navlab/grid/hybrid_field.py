@@ -72,7 +72,28 @@ def field_start(passable: np.ndarray, gx: int, gy: int, res: float):
 @njit(cache=True)
 def field_settle(state, dist, cells, size, cursor, stride: int, res: float, target: int):
     """Run the wave until cell ``target`` (an index into ``state``) is settled or nothing is pending
-    (``target`` −1: until nothing is). Returns ``cells`` (a larger copy when a bucket filled up).
+    (``target`` −1: until nothing is). Returns ``cells`` (a larger copy when a bucket filled up)."""
+    while not field_settle_within(state, dist, cells, size, cursor, stride, res, target):
+        cells = field_cells_grown(cells)
+    return cells
+
+
+@njit(cache=True)
+def field_cells_grown(cells):
+    """``cells`` with twice the room per bucket (what :func:`field_settle_within` asks for when it pauses)."""
+    cap = cells.shape[1]
+    grown = np.empty((3, 2 * cap), dtype=np.int64)
+    grown[:, :cap] = cells
+    return grown
+
+
+@njit(cache=True)
+def field_settle_within(state, dist, cells, size, cursor, stride: int, res: float, target: int) -> bool:
+    """:func:`field_settle` in the room ``cells`` has: whether it got there (``target`` settled or
+    nothing pending); False when it paused, before a cell, because a bucket had no room for the eight
+    entries the cell can add (give it :func:`field_cells_grown` and call again: pausing between two
+    settled cells changes nothing). It never replaces ``cells``, so a compiled loop that calls it keeps
+    one array (numba counts the references of an array variable reassigned in a loop on every pass).
 
     The buckets ahead of the current one hold only unprocessed entries (a bucket is emptied when done
     and refilled only for two buckets on), so the entries pending are their sizes less the position.
@@ -82,13 +103,16 @@ def field_settle(state, dist, cells, size, cursor, stride: int, res: float, targ
     # relaxed cell: a value a rounding off its bucket's edge lands in the next, which the slack allows)
     per_width = 1.0 / (res * (1.0 - 1e-6))
     diag = math.sqrt(2.0) * res
-    cap = cells.shape[1]
+    room = cells.shape[1] - 8
     offsets, side_x, side_y = cursor[2:10].copy(), cursor[10:18].copy(), cursor[18:26].copy()
     bucket, i = cursor[0], cursor[1]
     pending = size[0] + size[1] + size[2] - i
     while pending > 0:
         slot = bucket % 3
         while i < size[slot]:
+            if size[0] > room or size[1] > room or size[2] > room:
+                cursor[0], cursor[1] = bucket, i
+                return False
             v = cells[slot, i]
             i += 1
             pending -= 1
@@ -109,21 +133,17 @@ def field_settle(state, dist, cells, size, cursor, stride: int, res: float, targ
                 if nd < dist[u]:
                     dist[u] = nd
                     to = int(nd * per_width) % 3
-                    if size[to] == cap:
-                        grown = np.empty((3, 2 * cap), dtype=np.int64)
-                        grown[:, :cap] = cells
-                        cells, cap = grown, 2 * cap
                     cells[to, size[to]] = u
                     size[to] += 1
                     pending += 1
             if v == target:
                 cursor[0], cursor[1] = bucket, i
-                return cells
+                return True
         size[slot] = 0
         bucket += 1
         i = 0
     cursor[0], cursor[1] = bucket, i
-    return cells
+    return True
 
 
 @njit(cache=True)

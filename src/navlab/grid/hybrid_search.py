@@ -40,7 +40,7 @@ from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
 from .floor_cells import floor_div
-from .hybrid_field import PASSABLE, SETTLED, field_at
+from .hybrid_field import PASSABLE, SETTLED, field_cells_grown, field_settle_within
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
@@ -188,6 +188,13 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
                       pose_start, clear, clear_disc)
 
 
+# what the expansion loop (:func:`_expand`) hands back to :func:`search`
+_EXHAUSTED, _FOUND, _GROW, _SWEPT, _FIELD = 0, 1, 2, 3, 4
+# the loop's counters, kept in one int64 array between its calls
+(_COUNT, _NBLOCKS, _NENTRIES, _HSIZE, _EXPANSIONS, _SOLVED, _COUNTDOWN, _PENDING, _PENDING_CHILD,
+ _GOAL_NODE, _COUNTERS) = range(11)
+
+
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
@@ -205,10 +212,14 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     needs them, from the outline (``vertices``, ``disc``, ``reach``) and ``swept_margin``. ``clear`` [m] is
     ``sqrt(near2)·res`` (:func:`~navlab.sampling.footprint_lattice.clearance_map`'s values) for the analytic
     expansion's curve checks, with the lattice's ``clear_disc``. ``fstate`` ... ``fcursor`` are the lazy
-    holonomic field (:func:`~navlab.grid.hybrid_field.field_start`), settled as far as the lookups need."""
+    holonomic field (:func:`~navlab.grid.hybrid_field.field_start`), settled as far as the lookups need.
+
+    The loop itself is :func:`_expand`, which never replaces an array: numba counts the references of
+    an array variable that a loop may reassign on every pass, with atomic instructions (12 % of the
+    PythonRobotics demo query's time, ``perf``). When the node arrays, a primitive's swept cells or the
+    field's buckets need to grow, it returns; they grow here and it resumes where it stopped.
+    """
     h, w = blocked.shape
-    fstride = w + 2
-    nprim = prim_kind.shape[0]
     cap = 1024
     nx = np.empty(cap)
     ny = np.empty(cap)
@@ -220,7 +231,6 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     # discrete state -> node: a block of `bins` node numbers per cell reached
     block_of = np.full(h * w, -1, dtype=np.int32)  # int32: half what the field takes a cell
     blocks = np.full((64, bins), -1, dtype=np.int32)
-    nblocks = 0
     # queue entries: what the key was computed from (g and pose at the push) and whether it is lazy
     ecap = 1024
     eg = np.empty(ecap)
@@ -230,104 +240,149 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     hkey = np.empty(ecap)
     hnode = np.empty(ecap, dtype=np.int64)
     hentry = np.empty(ecap, dtype=np.int64)
-    nentries = 0
-    hsize = 0
-    seg = np.zeros(MAX_SEGMENTS)
     akinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     alens = np.zeros(MAX_SEGMENTS)
+    counters = np.zeros(_COUNTERS, dtype=np.int64)
+    closest = np.full(1, math.inf)  # the schedule's least heuristic so far [cells]
+
+    nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
+    block_of[int(floor_div(sy, res)) * w + int(floor_div(sx, res))] = 0
+    blocks[0, sbin] = 0
+    elazy[0] = False
+    hkey[0], hnode[0], hentry[0] = 0.0, 0, 0
+    counters[_COUNT] = counters[_NBLOCKS] = counters[_NENTRIES] = counters[_HSIZE] = 1
+    counters[_PENDING] = counters[_GOAL_NODE] = -1
+    nprim = prim_kind.shape[0]
+    while True:
+        event = _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len,
+                        pdx, pdy, pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells,
+                        pose_start, ds, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max,
+                        max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed,
+                        block_of, blocks, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, counters, closest)
+        if event == _GROW:  # room for every child of the pending node
+            count, nentries = counters[_COUNT], counters[_NENTRIES]
+            if count + nprim > cap:
+                cap = max(2 * cap, count + nprim)
+                nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
+                nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
+            if counters[_NBLOCKS] + nprim > blocks.shape[0]:
+                blocks = _grow(blocks, 2 * blocks.shape[0])
+                blocks[counters[_NBLOCKS]:] = -1
+            if nentries + nprim > ecap:
+                ecap = max(2 * ecap, nentries + nprim)
+                eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
+                hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
+        elif event == _SWEPT:  # the pending child's primitive, from the pending node's bin
+            swept, swept_used = swept_group(swept, swept_used, swept_lo, swept_hi, nb[counters[_PENDING]],
+                                            counters[_PENDING_CHILD], vertices, disc, reach, theta0, step, bins,
+                                            prim_kind, prim_len, radius, ds, swept_margin, res)
+        elif event == _FIELD:  # the wave paused for room
+            fcells = field_cells_grown(fcells)
+        else:
+            count = counters[_COUNT]
+            return event == _FOUND, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], \
+                nprim_of[:count], counters[_GOAL_NODE], akinds, alens, counters[_EXPANSIONS], counters[_SOLVED], \
+                swept, swept_used
+
+
+@njit(cache=True)
+def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len, pdx, pdy,
+            pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, fstate, fdist,
+            fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny,
+            nb, ng, nparent, nprim_of, closed, block_of, blocks, eg, ex, ey, elazy, hkey, hnode, hentry, akinds,
+            alens, counters, closest) -> int:
+    """:func:`search`'s loop over its arrays, which it fills but never replaces: pop, expand, push, until
+    the goal is reached (``_FOUND``, the node in ``counters[_GOAL_NODE]``) or nothing is left to expand
+    (``_EXHAUSTED``), or an array must grow first: ``_GROW`` (room for a node's children), ``_SWEPT`` (a
+    primitive's swept cells are not listed yet), ``_FIELD`` (the field's buckets are full). Then
+    ``counters[_PENDING]`` is the node being expanded and ``counters[_PENDING_CHILD]`` the child to
+    resume at: the children before it are done, and nothing of that child was written yet."""
+    h, w = blocked.shape
+    fstride = w + 2
+    nprim = prim_kind.shape[0]
+    seg = np.zeros(MAX_SEGMENTS)
     best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     best_lens = np.zeros(MAX_SEGMENTS)
     straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
-
-    nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
-    count = 1
-    cell = int(floor_div(sy, res)) * w + int(floor_div(sx, res))
-    block_of[cell] = 0
-    blocks[0, sbin] = 0
-    nblocks = 1
-    elazy[0] = False
-    hkey[0], hnode[0], hentry[0] = 0.0, 0, 0
-    nentries, hsize = 1, 1
-    expansions = 0
-    solved = 0
-    closest = math.inf  # the schedule's least heuristic so far [cells] and expansions to go
-    countdown = 0
-    while hsize > 0:
-        key, v, e = _pop(hkey, hnode, hentry, hsize)
-        hsize -= 1
-        if closed[v]:
-            continue
-        if elazy[e]:
-            elazy[e] = False
-            theta = theta0 + nb[v] * step
-            # settled at the push
-            field = fdist[(int(floor_div(ey[e], res)) + 1) * fstride + int(floor_div(ex[e], res)) + 1]
-            forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
-            # the order needs the key only against the next entry's: an upper bound below it settles that
-            # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
-            if reverse and (hsize == 0 or eg[e] + max(field, _above(forward, radius)) < hkey[0]):
-                f = key
-            elif reverse and eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)) > \
-                    hkey[0]:
-                # a better lower bound already puts it after the next entry: back in the queue, still
-                # unsolved (entries that never come back to the top are never solved)
-                elazy[e] = True
-                _push(hkey, hnode, hentry, hsize,
-                      eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)), v, e)
-                hsize += 1
+    count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
+    expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
+    v, first = counters[_PENDING], counters[_PENDING_CHILD]
+    event = _EXHAUSTED
+    while v >= 0 or hsize > 0:
+        if v < 0:
+            key, v, e = _pop(hkey, hnode, hentry, hsize)
+            hsize -= 1
+            if closed[v]:
+                v = -1
                 continue
-            else:
-                solved += 1
-                f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius, reverse,
-                                            seg, best_kinds, best_lens)
-            if f != key:
-                # the true key is larger: back in the queue (ties still go by node)
-                _push(hkey, hnode, hentry, hsize, f, v, e)
-                hsize += 1
-                continue
-        closed[v] = True
-        expansions += 1
+            if elazy[e]:
+                elazy[e] = False
+                theta = theta0 + nb[v] * step
+                # settled at the push
+                field = fdist[(int(floor_div(ey[e], res)) + 1) * fstride + int(floor_div(ex[e], res)) + 1]
+                forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
+                # the order needs the key only against the next entry's: an upper bound below it settles that
+                # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)
+                if reverse and (hsize == 0 or eg[e] + max(field, _above(forward, radius)) < hkey[0]):
+                    f = key
+                elif reverse and eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta,
+                                                                       radius)) > hkey[0]:
+                    # a better lower bound already puts it after the next entry: back in the queue, still
+                    # unsolved (entries that never come back to the top are never solved)
+                    elazy[e] = True
+                    _push(hkey, hnode, hentry, hsize,
+                          eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)), v, e)
+                    hsize += 1
+                    v = -1
+                    continue
+                else:
+                    solved += 1
+                    f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius,
+                                                reverse, seg, best_kinds, best_lens)
+                if f != key:
+                    # the true key is larger: back in the queue (ties still go by node)
+                    _push(hkey, hnode, hentry, hsize, f, v, e)
+                    hsize += 1
+                    v = -1
+                    continue
+            closed[v] = True
+            expansions += 1
+            x, y, b = nx[v], ny[v], nb[v]
+            theta = theta0 + b * step
+            # analytic expansion near the goal: the exact obstacle-free path, if it is free
+            if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
+                attempt = True
+                if analytic_ratio > 0.0:  # Smac's AnalyticExpansion::tryAnalyticExpansion
+                    closest[0] = min(closest[0], (key - ng[v]) / res)
+                    desired = max(int(closest[0] / analytic_ratio), int(math.ceil(analytic_ratio)))
+                    countdown = min(countdown, desired)
+                    attempt = countdown <= 0
+                    if attempt:
+                        countdown = desired
+                    countdown -= 1
+                if attempt and _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0,
+                                         step, bins, pose_cells, pose_start, clear, clear_disc, seg, best_kinds,
+                                         best_lens, akinds, alens):
+                    counters[_GOAL_NODE] = v
+                    event = _FOUND
+                    break
+            elif not use_analytic:
+                if floor_div(x, res) == floor_div(gx, res) and floor_div(y, res) == floor_div(gy, res) and \
+                        (b - int(round((gtheta - theta0) / step))) % bins == 0:
+                    counters[_GOAL_NODE] = v
+                    event = _FOUND
+                    break
+            if expansions >= max_expansions:
+                break
+            first = 0
         x, y, b = nx[v], ny[v], nb[v]
-        theta = theta0 + b * step
-        # analytic expansion near the goal: the exact obstacle-free path, if it is free
-        if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
-            attempt = True
-            if analytic_ratio > 0.0:  # Smac's AnalyticExpansion::tryAnalyticExpansion
-                closest = min(closest, (key - ng[v]) / res)
-                desired = max(int(closest / analytic_ratio), int(math.ceil(analytic_ratio)))
-                countdown = min(countdown, desired)
-                attempt = countdown <= 0
-                if attempt:
-                    countdown = desired
-                countdown -= 1
-            if attempt and _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins,
-                         pose_cells, pose_start, clear, clear_disc, seg, best_kinds, best_lens, akinds, alens):
-                return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
-                    alens, expansions, solved, swept, swept_used
-        elif not use_analytic:
-            if floor_div(x, res) == floor_div(gx, res) and floor_div(y, res) == floor_div(gy, res) and \
-                    (b - int(round((gtheta - theta0) / step))) % bins == 0:
-                return True, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], v, akinds, \
-                    alens, expansions, solved, swept, swept_used
-        if expansions >= max_expansions:
+        children = nprim - first  # room for each child still to come, first
+        if count + children > nx.shape[0] or nblocks + children > blocks.shape[0] or \
+                nentries + children > eg.shape[0]:
+            event = _GROW
             break
         cx, cy = int(floor_div(x, res)), int(floor_div(y, res))
-        # room for every child first. Arrays replaced inside the children's loop, and a call there that can
-        # replace one, cost numba's reference counting on every child, dominated or not: with the growth
-        # here and the field's rare call behind its own test, 0.86x (Reeds–Shepp) and 0.94x (Dubins) of
-        # the CPU time on nine smac-maps queries (in-process A/B, 5 interleaved runs, load 1.5-2)
-        if count + nprim > cap:
-            cap = max(2 * cap, count + nprim)
-            nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
-            nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
-        if nblocks + nprim > blocks.shape[0]:
-            blocks = _grow(blocks, 2 * blocks.shape[0])
-            blocks[nblocks:] = -1
-        if nentries + nprim > ecap:
-            ecap = max(2 * ecap, nentries + nprim)
-            eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
-            hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
-        for j in range(nprim):
+        for j in range(first, nprim):
             x2, y2 = x + pdx[b, j], y + pdy[b, j]
             b2 = (b + pdbin[j]) % bins
             cx2, cy2 = int(floor_div(x2, res)), int(floor_div(y2, res))
@@ -349,10 +404,18 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             # the collision check last: it is the dearest test, and it decides nothing a cheaper one rejected
             k = b * nprim + j
             if swept_lo[k] < 0:
-                swept, swept_used = swept_group(swept, swept_used, swept_lo, swept_hi, b, j, vertices, disc, reach,
-                                                theta0, step, bins, prim_kind, prim_len, radius, ds, swept_margin, res)
+                first = j
+                event = _SWEPT
+                break
             if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]):
                 continue
+            fv = (cy2 + 1) * fstride + cx2 + 1
+            if fstate[fv] & (PASSABLE | SETTLED) == PASSABLE and fsize[0] + fsize[1] + fsize[2] > fcursor[1] and \
+                    not field_settle_within(fstate, fdist, fcells, fsize, fcursor, fstride, res, fv):
+                first = j  # the wave goes on (seldom once past the start), once its buckets have room
+                event = _FIELD
+                break
+            field = fdist[fv]
             if u < 0:
                 if blk < 0:
                     blk = nblocks
@@ -364,11 +427,6 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                 closed[u] = False
             nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
             eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, reverse
-            fv = (cy2 + 1) * fstride + cx2 + 1
-            if fstate[fv] & (PASSABLE | SETTLED) == PASSABLE:  # the wave goes on (seldom once past the start)
-                field, fcells = field_at(fstate, fdist, fcells, fsize, fcursor, fstride, res, cx2, cy2)
-            else:
-                field = fdist[fv]
             if reverse:
                 _push(hkey, hnode, hentry, hsize, g2 + field, u, nentries)
             else:  # a Dubins solve costs little more than the queue's bookkeeping for putting it off
@@ -376,5 +434,11 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                                                                            gtheta, radius)), u, nentries)
             hsize += 1
             nentries += 1
-    return False, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], nprim_of[:count], -1, akinds, alens, \
-        expansions, solved, swept, swept_used
+        if event != _EXHAUSTED:
+            break
+        v = -1
+    counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE] = count, nblocks, nentries, hsize
+    counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN] = expansions, solved, countdown
+    counters[_PENDING] = v if event == _GROW or event == _SWEPT or event == _FIELD else -1
+    counters[_PENDING_CHILD] = first
+    return event

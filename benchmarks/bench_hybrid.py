@@ -532,7 +532,10 @@ def smac_side_by_side(driver: Path, seed: int = SMAC_SEED) -> None:
                           capture_output=True, text=True).stdout.strip()
     dirty = subprocess.run(["git", "-C", str(Path(__file__).resolve().parent), "status", "--porcelain", "--", "../src"],
                            capture_output=True, text=True).stdout.split()
-    print(f"navlab: commit {head or '?'}" + (f", src/ with uncommitted changes ({', '.join(dirty[1::2])})" if dirty else ""))
+    import navlab
+
+    print(f"navlab: imported from {Path(navlab.__file__).parent}; benchmark's repository at commit {head or '?'}"
+          + (f", its src/ with uncommitted changes ({', '.join(dirty[1::2])})" if dirty else ""))
     print(f"Smac side by side: {len(maps)} maps of {SMAC_CELLS} x {SMAC_CELLS} cells at {SMAC_RES:g} m, "
           f"{QUERIES_PER_MAP} queries each (seed {seed}); robot 0.5 x 0.4 m, turning radius {TURNING_RADIUS:g} m, "
           "72 heading bins")

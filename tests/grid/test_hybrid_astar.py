@@ -223,3 +223,32 @@ def test_a_walled_off_goal_fails_at_once_and_says_why(footprint):
     opened[30, 25] = opened[31, 25] = opened[29, 25] = False  # a 1.5 m door: the same query is planned
     assert plan_hybrid(OccupancyGrid(opened, resolution=0.5), (3.0, 3.0, 0.0), (15.0, 15.0, 0.0),
                        turning_radius=1.0).status == Status.EXACT
+
+
+@pytest.mark.parametrize("options", [{"analytic_expansion_ratio": 1e6}, {"analytic_expansion_ratio": 1e-9},
+                                     {"analytic_expansion_ratio": 1e300}, {"analytic_expansion_max_length": 0.001}])
+def test_a_schedule_that_never_comes_round_still_ends_at_the_goal(options):
+    """The analytic expansion is tried at every node in the goal's cell and heading bin whatever the
+    schedule or the reach: a ratio of 1e6 (tried every 10⁶ expansions), 1e-9 (h / ratio expansions
+    apart), 1e300 (which overflowed the conversion to int64) or a 1 mm reach used to exhaust the
+    search on a query that has a path (FAILED, "max_expansions reached")."""
+    blocked = np.zeros((100, 100), bool)
+    blocked[20:100, 50:52] = True  # a wall between start and goal, open at the bottom
+    grid = OccupancyGrid(blocked, resolution=RES)
+    start, goal = (1.0, 3.5, 0.0), (4.0, 3.5, 0.0)
+    result = plan_hybrid(grid, start, goal, 0.5, robot_radius=0.15, **options)
+    assert result.success, result.reason
+    poses = retrace(result, start)[1]
+    np.testing.assert_allclose(poses[-1], goal, atol=1e-9)  # the analytic tail ends at the goal itself
+    assert_clear(grid, poses, [[0.15 * math.cos(a), 0.15 * math.sin(a)] for a in np.linspace(0, 2 * math.pi, 33)])
+
+
+def test_max_expansions_may_be_written_as_a_float():
+    """1e6 from a command line or a YAML file is a whole number; 1.5 is not."""
+    grid = OccupancyGrid(np.zeros((40, 40), bool), resolution=RES)
+    result = plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, max_expansions=1e6)
+    assert result.success and result.params["max_expansions"] == 1_000_000
+    assert plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1,
+                       max_expansions=1e300).params["max_expansions"] == 2 ** 62
+    with pytest.raises(ValueError, match="max_expansions"):
+        plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, max_expansions=1.5)

@@ -131,7 +131,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         Try the analytic expansion only on Nav2 Smac's schedule: every
         max(⌊h / ratio⌋, ⌈ratio⌉)-th expansion within ``analytic_expansion_max_length``,
         h the least heuristic seen so far [cells] (Smac's default ratio is 3.5).
-        None (the default) tries it at every such expansion. With a long
+        None (the default) tries it at every such expansion. Either way it is
+        tried at every node in the goal's cell and heading bin. With a long
         ``analytic_expansion_max_length`` the search can end far from the goal,
         in far fewer expansions; the path may differ (longer or shorter).
     max_expansions : int
@@ -170,8 +171,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
                                                                    analytic_expansion_ratio) > 0:
         raise ValueError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
+    if isinstance(max_expansions, (float, np.floating)) and math.isfinite(max_expansions) and \
+            float(max_expansions).is_integer():
+        max_expansions = int(max_expansions)  # 1e6 from a command line or a YAML file is a whole number
     if isinstance(max_expansions, bool) or not isinstance(max_expansions, (int, np.integer)) or max_expansions < 1:
         raise ValueError(f"max_expansions must be a positive whole number, got {max_expansions!r}")
+    max_expansions = min(int(max_expansions), 2 ** 62)  # beyond any search's reach; int64 for the kernel
     vertices, disc = robot_outline(footprint, robot_radius)
     res = grid.resolution
     spacing = res if waypoint_spacing is None else check_length("waypoint_spacing", waypoint_spacing, allow_zero=False)

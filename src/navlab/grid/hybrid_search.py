@@ -313,6 +313,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
     count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
     expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
     v, first = counters[_PENDING], counters[_PENDING_CHILD]
+    goal_cx, goal_cy, goal_bin = floor_div(gx, res), floor_div(gy, res), int(round((gtheta - theta0) / step))
     event = _EXHAUSTED
     while v >= 0 or hsize > 0:
         if v < 0:
@@ -355,12 +356,18 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
             expansions += 1
             x, y, b = nx[v], ny[v], nb[v]
             theta = theta0 + b * step
+            # the goal's state (its cell and heading bin): where the search ends without the analytic
+            # expansion, and where it always tries one with it (a schedule that seldom comes round, a large
+            # analytic_expansion_ratio, or a short analytic_max would otherwise pass the goal by)
+            at_goal = floor_div(x, res) == goal_cx and floor_div(y, res) == goal_cy and (b - goal_bin) % bins == 0
             # analytic expansion near the goal: the exact obstacle-free path, if it is free
-            if use_analytic and math.hypot(gx - x, gy - y) <= analytic_max:
+            if use_analytic and (at_goal or math.hypot(gx - x, gy - y) <= analytic_max):
                 attempt = True
-                if analytic_ratio > 0.0:  # Smac's AnalyticExpansion::tryAnalyticExpansion
+                if analytic_ratio > 0.0 and not at_goal:  # Smac's AnalyticExpansion::tryAnalyticExpansion
                     closest[0] = min(closest[0], (key - ng[v]) / res)
-                    desired = max(int(closest[0] / analytic_ratio), int(math.ceil(analytic_ratio)))
+                    # (capped: a ratio of 1e-300 or 1e300 must not overflow the conversion to int64)
+                    desired = max(int(min(closest[0] / analytic_ratio, 1e18)),
+                                  int(min(math.ceil(analytic_ratio), 1e18)))
                     countdown = min(countdown, desired)
                     attempt = countdown <= 0
                     if attempt:
@@ -372,12 +379,10 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                     counters[_GOAL_NODE] = v
                     event = _FOUND
                     break
-            elif not use_analytic:
-                if floor_div(x, res) == floor_div(gx, res) and floor_div(y, res) == floor_div(gy, res) and \
-                        (b - int(round((gtheta - theta0) / step))) % bins == 0:
-                    counters[_GOAL_NODE] = v
-                    event = _FOUND
-                    break
+            elif not use_analytic and at_goal:
+                counters[_GOAL_NODE] = v
+                event = _FOUND
+                break
             if expansions >= max_expansions:
                 break
             first = 0

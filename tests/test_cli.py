@@ -146,6 +146,9 @@ def test_a_heading_beyond_two_pi_gets_a_degrees_hint_and_is_still_taken():
     assert res.exit_code in (0, 1) and json.loads(res.stdout)["status"]
     quiet = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "3.14"])
     assert "more than 2π" not in quiet.stderr
+    huge = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "1e300", "--json"])
+    assert "--goal heading 1e300 is more than 2π: headings are radians (it wraps to " in huge.stderr
+    assert len(huge.stderr.splitlines()[0]) < 120  # not 1e300 degrees in radians, 300 digits long
 
 
 @pytest.mark.parametrize("args", [["list"], ["plan", "clutter", "--max-iter", "10", "--json"], ["--help"],

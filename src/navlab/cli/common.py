@@ -213,6 +213,10 @@ class PointOrPoseOption(click.Option):
         pose = tuple(float(t) for t in tokens)
         if len(pose) == 3 and math.isfinite(pose[2]) and abs(pose[2]) > 2 * math.pi:
             # legal (headings wrap), but far more often degrees typed where radians belong
-            click.echo(f"note: {self.opts[-1]} heading {tokens[2]} is more than 2π: headings are radians "
-                       f"({tokens[2]}° would be {math.radians(pose[2]):.4f})", err=True)
+            from ..angles import wrap_angle
+
+            hint = f"{tokens[2]}° would be {math.radians(pose[2]):.4f}" if abs(pose[2]) <= 360.0 else \
+                f"it wraps to {wrap_angle(pose[2]):.4f}"
+            click.echo(f"note: {self.opts[-1]} heading {tokens[2]} is more than 2π: headings are radians ({hint})",
+                       err=True)
         return pose

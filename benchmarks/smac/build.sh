@@ -82,5 +82,12 @@ for f in "${OMPL_OWN[@]}"; do compile "$OMPL_SRC/src/ompl/base/spaces/src/$f.cpp
 compile "$HERE/smac_driver.cpp" smac_driver
 for job in $(jobs -p); do wait "$job"; done
 g++ "${FLAGS[@]}" "${objects[@]}" -lompl -o "$BUILD/smac_driver"
-commit=$(git -C "$NAV2" rev-parse --short HEAD 2>/dev/null || echo "unknown (not a git work tree)")
+# only a work tree whose top is the checkout itself names Nav2's commit: an archive unpacked inside
+# another repository (navlab's, say) would otherwise report that repository's
+top=$(git -C "$NAV2" rev-parse --show-toplevel 2>/dev/null || true)
+if [[ -n "$top" && "$(cd "$top" && pwd -P)" == "$(cd "$NAV2" && pwd -P)" ]]; then
+  commit=$(git -C "$NAV2" rev-parse --short HEAD)
+else
+  commit="unknown (not a git work tree: an archive; the README's is a3a97043)"
+fi
 echo "built $BUILD/smac_driver from $NAV2 (commit $commit) with g++ ${FLAGS[*]}; OMPL state spaces from ${OMPL_SRC}"

@@ -53,8 +53,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .stats import (ALPHA, SUCCESS_ONLY, SUMMARY_METRICS, cell_summary, compare, describe, holm, magnitude,
-                    metric_values)
+from .stats import ALPHA, cell_summary, compare, holm, magnitude, metric_values
 
 #: a time ratio within a third of 1 is never a verdict: below what a shared machine keeps stable
 MIN_TIME_EFFECT = math.log(4 / 3)
@@ -229,12 +228,6 @@ def judged_values(rows_a: List[Dict[str, Any]], rows_b: List[Dict[str, Any]],
     return va, vb, short
 
 
-#: the per-cell statistics described over :func:`compared_rows`: every one that
-#: exists only for solved trials (path length, its ratios, times, first
-#: solution); iterations stay over every trial that ran
-COMPARED_METRICS = tuple(m for m in SUMMARY_METRICS if m in SUCCESS_ONLY)
-
-
 #: Worlds with more cells than this get no all-pairs comparison table (40 cells
 #: are 780 pairs); the cells' own statistics and the claims are still there.
 #: Comparisons one cares about in a larger sweep are stated as claims.
@@ -255,8 +248,7 @@ def summarize(rows: List[Dict[str, Any]], time: str = "cpu") -> Dict[str, Any]:
             first = members[0]
             cells.append({"world": world, "group": group, "cell_id": first["cell_id"], "planner": first["planner"],
                           "sampler": first["sampler"], "swept": dict(first.get("swept") or {}),
-                          **cell_summary(members),
-                          **{m: describe(metric_values(compared[group], m)) for m in COMPARED_METRICS},
+                          **cell_summary(members, compared[group]),
                           **failures(members),
                           "warmup_s": sum(r.get("warmup_s") or 0.0 for r in members),
                           "params_used": next((r["params_used"] for r in members if r.get("params_used")), {}),

@@ -67,13 +67,19 @@ SUMMARY_METRICS = ("cost", "time", "cpu_s", "wall_s", "time_s", "iterations", "f
                    "vs_optimum", "vs_theta")
 
 
-def cell_summary(rows: List[Dict[str, Any]]) -> Dict[str, Any]:
-    """Success rate and descriptions of cost, times and iterations for one cell."""
+def cell_summary(rows: List[Dict[str, Any]], compared: Optional[List[Dict[str, Any]]] = None) -> Dict[str, Any]:
+    """Success rate and descriptions of cost, times and iterations for one cell.
+
+    ``compared``: the rows the metrics that exist only for solved trials
+    (:data:`SUCCESS_ONLY`) are described over, when not all of ``rows``' solved
+    ones (on map experiments, the queries every cell solved:
+    :func:`navlab.bench.analysis.compared_rows`); the counts and iterations are
+    always over ``rows``."""
     ran = sum(r.get("status") != "ERROR" for r in rows)
     ok = sum(bool(r.get("success")) for r in rows)
     return {"trials": len(rows), "errors": len(rows) - ran, "successes": ok,
             "success_rate": ok / ran if ran else None,
-            **{m: describe(metric_values(rows, m))
+            **{m: describe(metric_values(rows if compared is None or m not in SUCCESS_ONLY else compared, m))
                for m in SUMMARY_METRICS}}
 
 

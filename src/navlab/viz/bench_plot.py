@@ -5,7 +5,7 @@ sampler and swept values. Every figure is saved through
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Sequence, Tuple
+from typing import Any, Dict, List, Sequence, Tuple
 
 import numpy as np
 
@@ -23,20 +23,17 @@ def _save(fig, out: str, dpi: int) -> None:
     save_figure(fig, out, dpi=dpi, pil_kwargs=PNG)
 
 
-def box_plots(world: str, groups: Dict[str, Rows], out: str, time_label: str = "time [s]",
-              compared: Optional[Dict[str, Rows]] = None,
-              scope: str = "cost and time of the trials that reached the goal") -> None:
+def box_plots(world: str, groups: Dict[str, Rows], out: str, compared: Dict[str, Rows], scope: str,
+              time_label: str = "time [s]") -> None:
     """Cost and time (``row["time"]``, else the planner's ``time_s``) per group,
     over ``compared[group]``: the rows the verdicts compare
-    (:func:`navlab.bench.analysis.compared_rows`; on map experiments the
-    queries every cell solved), by default each group's solved trials.
-    ``scope`` says which in the title. Each box is labelled with its group's
+    (:func:`navlab.bench.analysis.compared_rows`: each group's solved trials,
+    on map experiments only the queries every cell solved), which ``scope``
+    says in the title (:func:`navlab.bench.analysis.scope_text`). Each box is labelled with its group's
     solved/ran count over all its trials, and a group that solved nothing is
     marked "no path in any trial" where its box would stand."""
     plt = _pyplot()
     names = list(groups)
-    if compared is None:
-        compared = {g: [r for r in groups[g] if r.get("success")] for g in names}
     time_key = "time" if any("time" in r for g in groups.values() for r in g) else "time_s"
     fig, axes = plt.subplots(1, 2, figsize=(4 + 1.3 * len(names), 4.4))
     solved = [sum(bool(r.get("success")) for r in groups[g]) for g in names]

@@ -493,7 +493,6 @@ def _median(values, scale=1.0, digits=1) -> str:
 
 def _smac_drivers(driver, blocked, query, inscribed):
     """The map's Smac processes, one per (pair, variant), each having answered ``query`` once untimed."""
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     from smac.compare import INFLATION_RADIUS, COST_SCALING_FACTOR, SmacDriver, binary_costs, inflated_costs
 
     costs = {"binary": binary_costs(blocked), "inflated": inflated_costs(blocked, SMAC_RES, inscribed)}
@@ -521,7 +520,6 @@ def smac_side_by_side(driver: Path, seed: int = SMAC_SEED) -> None:
     """
     import shapely  # noqa: F401  (fail early: the overlap check needs it)
 
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     from smac.compare import INFLATION_RADIUS, COST_SCALING_FACTOR, BlockedCells, densified
 
     maps = smac_maps(seed)

@@ -15,18 +15,12 @@ and a box per cell).
 
 from __future__ import annotations
 
-import math
 from typing import Optional, Tuple
 
 import numpy as np
 from numba import njit
 
-from ..world.footprint_collision import polygon_rect_touch
-from ..world.geometry import point_rect_dist2
-
-#: [cells] every cell's square is widened by this fraction of a cell on each side, so rounding in the
-#: test can only report an overlap that is not there (within 1e-9 cells), never miss one
-SLACK = 1e-9
+from ..world.footprint_collision import pose_grid_overlap
 
 
 def first_overlap_exact(blocked: np.ndarray, res: float, vertices: np.ndarray, disc: float, poses: np.ndarray,
@@ -49,39 +43,11 @@ def first_overlap_exact(blocked: np.ndarray, res: float, vertices: np.ndarray, d
 @njit(cache=True)
 def _first_overlap(blocked, res, vertices, disc, poses, grow):
     """:func:`first_overlap_exact`'s loop: (found, x, y)."""
-    h, w = blocked.shape
-    k = vertices.shape[0]
-    outline = np.empty((k, 2))
+    outline = np.empty((vertices.shape[0], 2))
     box = np.empty((4, 2))  # polygon_rect_touch's scratch
-    slack = SLACK * res
     for p in range(poses.shape[0]):
-        x, y = poses[p, 0], poses[p, 1]
-        if k:
-            c, s = math.cos(poses[p, 2]), math.sin(poses[p, 2])
-            for i in range(k):
-                outline[i, 0] = x + c * vertices[i, 0] - s * vertices[i, 1]
-                outline[i, 1] = y + s * vertices[i, 0] + c * vertices[i, 1]
-            x0, x1 = outline[:, 0].min(), outline[:, 0].max()
-            y0, y1 = outline[:, 1].min(), outline[:, 1].max()
-        else:
-            x0, x1, y0, y1 = x - disc, x + disc, y - disc, y + disc
-        # cell i's grown square [i·res − grow, (i+1)·res + grow] can meet [x0, x1] only for
-        # (x0 − grow)/res − 1 ≤ i ≤ (x1 + grow)/res; one more cell each way, tested exactly, costs nothing
-        lo_x = max(-1, int(math.floor((x0 - grow) / res)) - 1)
-        hi_x = min(w, int(math.floor((x1 + grow) / res)) + 1)
-        lo_y = max(-1, int(math.floor((y0 - grow) / res)) - 1)
-        hi_y = min(h, int(math.floor((y1 + grow) / res)) + 1)
-        for cy in range(lo_y, hi_y + 1):
-            for cx in range(lo_x, hi_x + 1):
-                if 0 <= cx < w and 0 <= cy < h and not blocked[cy, cx]:
-                    continue
-                bx0, by0 = cx * res - grow - slack, cy * res - grow - slack
-                bx1, by1 = (cx + 1) * res + grow + slack, (cy + 1) * res + grow + slack
-                if polygon_rect_touch(outline, bx0, by0, bx1, by1, box) if k else \
-                        point_rect_dist2(x, y, bx0, by0, bx1, by1) <= disc * disc:
-                    return True, cx, cy
-        # none of the ring's squares met: the footprint leaves the map only by lying wholly beyond
-        # them (the map is a rectangle, so the outline's extremes tell); name the nearest ring cell
-        if x0 <= grow + slack or y0 <= grow + slack or x1 >= w * res - grow - slack or y1 >= h * res - grow - slack:
-            return True, min(max(int(math.floor(x / res)), -1), w), min(max(int(math.floor(y / res)), -1), h)
+        found, cx, cy = pose_grid_overlap(blocked, res, vertices, disc, poses[p, 0], poses[p, 1], poses[p, 2],
+                                          grow, outline, box)
+        if found:
+            return True, cx, cy
     return False, 0, 0

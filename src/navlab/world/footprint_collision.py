@@ -27,7 +27,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .geometry import point_in_polygon, point_segment_dist2, segments_intersect
+from .geometry import point_in_polygon, point_rect_dist2, point_segment_dist2, segments_intersect
 
 #: [m] largest displacement of any footprint point between two tested samples of a step
 SWEEP_SPACING = 1e-3
@@ -222,6 +222,70 @@ def sweep_first_hit_grid(body, pose, twist, dt, first, n, blocked, origin, resol
                 if blocked[iy, ix] and polygon_rect_touch(fp, ix, iy, ix + 1.0, iy + 1.0, box):
                     return KIND_CELL, iy * w + ix, k
     return KIND_NONE, -1, -1
+
+
+#: [cells] :func:`pose_grid_overlap` widens every cell's square by this fraction of a cell on each side, so
+#: rounding in the test can only report an overlap that is not there (within 1e-9 cells), never miss one
+GRID_SLACK = 1e-9
+
+
+@njit(cache=True)
+def pose_grid_overlap(blocked, res, vertices, disc, x, y, theta, grow, outline, box):
+    """Whether a footprint at pose (x, y, θ) in a grid's frame (metres from the corner of cell (0, 0))
+    overlaps a blocked cell's square grown by ``grow`` [m] on every side, or leaves the map, and the
+    first such cell (row by row; off the map, the ring cell just beyond the edge): (found, x, y).
+
+    ``vertices`` (K, 2) the outline in body coordinates [m], or none and ``disc`` [m] a disc's radius
+    (0: a point); ``outline`` (K, 2) and ``box`` (4, 2) are scratch. Exact up to :data:`GRID_SLACK`,
+    which only ever reports an overlap that is not there."""
+    h, w = blocked.shape
+    k = vertices.shape[0]
+    slack = GRID_SLACK * res
+    reach2 = disc * disc  # the outline lies within sqrt(reach2) of (x, y)
+    if k:
+        c, s = math.cos(theta), math.sin(theta)
+        for i in range(k):
+            outline[i, 0] = x + c * vertices[i, 0] - s * vertices[i, 1]
+            outline[i, 1] = y + s * vertices[i, 0] + c * vertices[i, 1]
+            reach2 = max(reach2, vertices[i, 0] * vertices[i, 0] + vertices[i, 1] * vertices[i, 1])
+        x0, x1 = outline[:, 0].min(), outline[:, 0].max()
+        y0, y1 = outline[:, 1].min(), outline[:, 1].max()
+    else:
+        x0, x1, y0, y1 = x - disc, x + disc, y - disc, y + disc
+    reach2 *= 1.0 + 1e-9  # rounding may only keep a square for the exact test
+    # cell i's grown square [i·res − grow, (i+1)·res + grow] can meet [x0, x1] only for
+    # (x0 − grow)/res − 1 ≤ i ≤ (x1 + grow)/res; one more cell each way, tested exactly, costs nothing
+    lo_x = max(-1, int(math.floor((x0 - grow) / res)) - 1)
+    hi_x = min(w, int(math.floor((x1 + grow) / res)) + 1)
+    lo_y = max(-1, int(math.floor((y0 - grow) / res)) - 1)
+    hi_y = min(h, int(math.floor((y1 + grow) / res)) + 1)
+    for cy in range(lo_y, hi_y + 1):
+        for cx in range(lo_x, hi_x + 1):
+            if 0 <= cx < w and 0 <= cy < h and not blocked[cy, cx]:
+                continue
+            bx0, by0 = cx * res - grow - slack, cy * res - grow - slack
+            bx1, by1 = (cx + 1) * res + grow + slack, (cy + 1) * res + grow + slack
+            # squares beyond the outline's bounding box or its circle about (x, y) cannot meet it: passed
+            # over before the exact test, which near a wall would otherwise run on every wall cell around
+            if bx1 < x0 or bx0 > x1 or by1 < y0 or by0 > y1 or point_rect_dist2(x, y, bx0, by0, bx1, by1) > reach2:
+                continue
+            if polygon_rect_touch(outline, bx0, by0, bx1, by1, box) if k else \
+                    point_rect_dist2(x, y, bx0, by0, bx1, by1) <= disc * disc:
+                return True, cx, cy
+    # none of the ring's squares met: the footprint leaves the map only by lying wholly beyond
+    # them (the map is a rectangle, so the outline's extremes tell); name the nearest ring cell
+    if x0 <= grow + slack or y0 <= grow + slack or x1 >= w * res - grow - slack or y1 >= h * res - grow - slack:
+        return True, min(max(int(math.floor(x / res)), -1), w), min(max(int(math.floor(y / res)), -1), h)
+    return False, 0, 0
+
+
+@njit(cache=True)
+def pose_grid_clear(blocked, res, vertices, disc, x, y, theta, grow) -> bool:
+    """Whether the footprint at pose (x, y, θ) stays on the map and off every blocked cell's square
+    grown by ``grow`` [m] (:func:`pose_grid_overlap` without the cell)."""
+    outline = np.empty((vertices.shape[0], 2))
+    box = np.empty((4, 2))
+    return not pose_grid_overlap(blocked, res, vertices, disc, x, y, theta, grow, outline, box)[0]
 
 
 def twist_between(a, b, dt: float = 1.0):

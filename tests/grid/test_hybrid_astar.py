@@ -177,8 +177,12 @@ def test_the_map_tables_are_cached_by_content_not_by_the_array():
     query = ((1.2, 1.55, 0.0), (4.05, 4.6, math.pi / 2), 0.5)
     before = plan_hybrid(grid, *query, footprint=ROBOT)
     assert before.success
-    # a block at the aisle's side under the first path's footprint: the second must go round it
-    blocked[20:26, 60:64] = True
+    # a block from the aisle's nearer side to just under the first path's footprint (half width 0.31 m, heading
+    # near 0 there): the second path must go round it, through the 1.1 m aisle's other side
+    x, y = before.path[np.argmin(np.abs(before.path[:, 0] - 3.1)), :2]
+    assert 1.0 + 0.31 < y < 2.1 - 0.31 and abs(x - 3.1) < 0.1
+    rows = slice(int((y + 0.26) / RES), 42) if y > 1.55 else slice(20, int((y - 0.26) / RES) + 1)
+    blocked[rows, 60:64] = True
     grid = OccupancyGrid(blocked, resolution=RES)
     with pytest.raises(AssertionError):
         assert_clear(grid, retrace(before, query[0])[1], ROBOT)
@@ -252,3 +256,36 @@ def test_max_expansions_may_be_written_as_a_float():
                        max_expansions=1e300).params["max_expansions"] == 2 ** 62
     with pytest.raises(ValueError, match="max_expansions"):
         plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, max_expansions=1.5)
+
+
+@pytest.mark.parametrize("motion", ["reeds_shepp", "dubins"])
+def test_a_gap_the_swept_cells_wall_off_is_driven_through_after_the_exact_retry(motion):
+    """A straight passage 0.70 m wide for the 0.62 m wide robot: 4 cm each side, so the wall cells' centres
+    lie 6.5 cm from the outline, inside the swept cells' margin (sqrt(2)·res + res/4 = 8.3 cm), and the
+    walls beyond the exact re-check's (res/2 = 2.5 cm). The first search exhausts its space; the retry
+    drives through, clear of the walls under shapely at 1 mm."""
+    grid = carve(8, 3, (0.5, 7.5, 1.0, 1.7))
+    start, goal = (1.2, 1.35, 0.0), (6.8, 1.35, 0.0)
+    result = plan_hybrid(grid, start, goal, 1.0, motion=motion, footprint=ROBOT)
+    assert result.status == Status.EXACT, result.reason
+    assert result.stats["exact_retry"]
+    assert_clear(grid, retrace(result, start)[1], ROBOT)
+    assert result.cost == pytest.approx(5.6, abs=1e-9)  # the straight line
+
+
+def test_a_gap_narrower_than_the_robot_plus_the_exact_margin_still_fails_after_the_retry():
+    """0.65 m for the 0.62 m robot: 1.5 cm each side, under the exact re-check's 2.5 cm margin. Both
+    searches exhaust their space, and the reason says so."""
+    blocked = np.ones((60, 160), bool)
+    blocked[21:34, 10:150] = False  # 13 cells: 0.65 m, 1.5 cm each side
+    grid = OccupancyGrid(blocked, resolution=RES)
+    result = plan_hybrid(grid, (1.2, 1.375, 0.0), (6.8, 1.375, 0.0), 1.0, footprint=ROBOT)
+    assert result.status == Status.FAILED and result.stats["exact_retry"]
+    assert "exhausted" in result.reason
+
+
+def test_a_query_the_swept_cells_solve_runs_once():
+    """The retry is only for an exhausted search: an open query never pays for it."""
+    grid = carve(8, 3, (0.5, 7.5, 0.5, 2.5))
+    result = plan_hybrid(grid, (1.2, 1.5, 0.0), (6.8, 1.5, 0.0), 1.0, footprint=ROBOT)
+    assert result.status == Status.EXACT and not result.stats["exact_retry"]

@@ -100,8 +100,9 @@ def test_the_bucket_queue_field_equals_heap_dijkstra_bit_for_bit():
 
 def reference_shortcut(segments, start, r, motion, blocked, clear, lattice, common):
     """The smoother with the public solvers, one Python call per candidate (as before it was compiled),
-    reading every pose's cells (no clearance map: ``clear`` unused)."""
+    reading every pose's cells (no clearance map: ``clear`` unused), poses they reject checked exactly."""
     from navlab.sampling.curves import LETTERS, CurvePath
+    from navlab.grid.hybrid_astar import exact_grow
     from navlab.sampling.footprint_lattice import NO_CLEARANCE, curve_free
 
     solver = reeds_shepp if motion == "reeds_shepp" else dubins
@@ -116,7 +117,8 @@ def reference_shortcut(segments, start, r, motion, blocked, clear, lattice, comm
             if path.length >= acc[j] - acc[i] - 1e-9:
                 continue
             kinds, lengths = path._codes()
-            if curve_free(blocked, common[0], *poses[i], kinds, lengths, r, lattice.ds, *common[1:], *NO_CLEARANCE):
+            if curve_free(blocked, common[0], *poses[i], kinds, lengths, r, lattice.ds, *common[1:], *NO_CLEARANCE,
+                          lattice.vertices, lattice.disc, exact_grow(lattice)):
                 out.extend(zip(kinds.tolist(), lengths.tolist()))
                 i = j
                 break

@@ -120,7 +120,7 @@ def test_the_pruning_bound_never_exceeds_the_exact_length(motion):
 def test_the_clearance_shortcut_gives_the_same_answers_as_reading_every_cell():
     """curve_free with a clearance map answers exactly as without one, on random words over a cluttered
     raster (the shortcut only skips cell reads it can prove would pass)."""
-    from navlab.sampling.footprint_lattice import NO_CLEARANCE, clearance_map, curve_free, lattice_for
+    from navlab.sampling.footprint_lattice import NO_CLEARANCE, NO_EXACT, clearance_map, curve_free, lattice_for
 
     rng = np.random.default_rng(11)
     res = 0.1
@@ -137,8 +137,8 @@ def test_the_clearance_shortcut_gives_the_same_answers_as_reading_every_cell():
         lengths = np.ascontiguousarray(lengths * 1.0)
         args = (blocked, res, x, y, t, kinds, lengths, 1.0, lat.ds, lat.theta0, lat.step, lat.bins, lat.pose_cells,
                 lat.pose_start)
-        plain = curve_free(*args, *NO_CLEARANCE)
-        fast = curve_free(*args, clear, lat.clear_disc)
+        plain = curve_free(*args, *NO_CLEARANCE, *NO_EXACT)
+        fast = curve_free(*args, clear, lat.clear_disc, *NO_EXACT)
         agree += plain == fast
         passed += plain
     assert agree == 600 and 20 < passed < 580  # both answers occur

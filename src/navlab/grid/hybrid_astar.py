@@ -148,8 +148,11 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         ``path`` (N, 3) poses ``(x, y, θ)``, ``direction`` (N,) +1 forward / −1
         reverse, ``cost`` the length driven [m], ``stats`` with ``expansions``,
         ``nodes``, ``cusps``, ``time_s``, ``heuristics_solved`` (exact distances
-        the lazy queue needed) and ``g``, the search's penalised cost of the
-        primitives driven (before the analytic tail and the smoother).
+        the lazy queue needed), ``g``, the search's penalised cost of the
+        primitives driven (before the analytic tail and the smoother), and
+        ``exact_retry``: whether the search, having exhausted its space with
+        the primitives' swept cells, ran again checking them exactly (its
+        expansions count in ``expansions``; see docs/grid.md).
     """
     t0 = time.perf_counter()
     if motion not in MOTIONS:
@@ -204,7 +207,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                           motion == "reeds_shepp", lst)
     blocked = np.ascontiguousarray(grid.blocked | grid.unknown)
     stats: Dict[str, Any] = {"expansions": 0, "nodes": 0, "cusps": 0, "time_s": 0.0, "g": math.inf, "word": "",
-                             "segments": []}
+                             "segments": [], "exact_retry": False}
 
     def finish(status, reason, path=None, direction=None, cost=math.inf):
         stats["time_s"] = time.perf_counter() - t0
@@ -230,10 +233,15 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     gcx, gcy = int(lgx // res), int(lgy // res)
     # settled lazily: as far as the start here, then as far as the search reads (Smac's way; the same values)
     passable |= _cell_mask(blocked.shape, gcx, gcy)
-    field = field_start(passable, gcx, gcy, res)
     scx, scy = int(lsx // res), int(lsy // res)
-    at_start, cells = field_at(*field, grid.width + 2, res, scx, scy)
-    field = (*field[:2], cells, *field[3:])
+
+    def settled_field():
+        """A fresh lazy field, settled as far as the start: (its value there, the field's arrays)."""
+        started = field_start(passable, gcx, gcy, res)
+        value, cells = field_at(*started, grid.width + 2, res, scx, scy)
+        return value, (*started[:2], cells, *started[3:])
+
+    at_start, field = settled_field()
     if not math.isfinite(at_start) and not math.isfinite(field_at(
             *field_start(passable | _cell_mask(blocked.shape, scx, scy), gcx, gcy, res), grid.width + 2, res, scx,
             scy)[0]):
@@ -243,13 +251,29 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         what = f"a disc of the robot's inscribed radius ({inscribed:.3g} m)" if inscribed > 0 else "a point"
         return finish(Status.FAILED, f"no collision-free path: the goal is walled off from the start even for {what}")
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
-    with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
-        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1] = search(
-            blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
-            motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-            *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc, lattice.pose_cells,
-            lattice.pose_start, lattice.ds, *field, penalties, analytic_max, int(max_expansions),
-            bool(analytic_expansion), 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
+
+    def run(field, exact_primitives: bool, budget: int):
+        with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
+            *out, table[0], table[1] = search(
+                blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
+                motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
+                *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc,
+                lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), exact_primitives, *field,
+                penalties, analytic_max, budget, bool(analytic_expansion),
+                0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
+        return out
+
+    found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = run(field, False, max_expansions)
+    if not found and expansions < max_expansions:
+        # The swept cells hold every cell near a primitive from anywhere in a node's cell (up to about
+        # sqrt(2)·res + res/4 beyond the outline), so they can wall off a gap the robot fits through. Checking
+        # every primitive exactly costs several times as much near walls, so an exhausted search is run again
+        # with the exact re-check on the rest of the expansions' budget before it reports no path.
+        before = int(expansions)
+        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = run(
+            settled_field()[1], True, max_expansions - before)
+        expansions += before
+        stats["exact_retry"] = True
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
         if expansions < max_expansions:  # no path at this resolution; forward-only motion may be why
@@ -285,6 +309,14 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
     stats["cusps"] = int(np.count_nonzero(np.diff(np.sign(lengths[lengths != 0])) != 0)) if len(lengths) else 0
     return finish(Status.EXACT, "", world, direction, length)
+
+
+def exact_grow(lattice) -> float:
+    """[m] How far the search's exact re-checks grow the blocked cells' squares: the lattice's δ, the most
+    a footprint point moves between two traced poses. A pose at least δ from every blocked square leaves
+    every pose within δ/2 of travel at least δ/2 from them, which is the final check's margin
+    (``first_overlap_exact(..., 0.5 * lattice.delta)``), however the path is traced again."""
+    return lattice.delta
 
 
 def _merged(segments):
@@ -359,13 +391,14 @@ def _shortcut(segments, start, r, motion, blocked, clear, lattice, common):
     kinds = np.array([k for k, _ in segments], dtype=np.int64)
     lengths = np.array([s for _, s in segments], dtype=float)
     out_kinds, out_lengths = _shortcut_kernel(kinds, lengths, *start, r, motion == "reeds_shepp", blocked, common[0],
-                                              lattice.ds, *common[1:], clear, lattice.clear_disc)
+                                              lattice.ds, *common[1:], clear, lattice.clear_disc, lattice.vertices,
+                                              lattice.disc, exact_grow(lattice))
     return list(zip(out_kinds.tolist(), out_lengths.tolist()))
 
 
 @njit(cache=True)
 def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, blocked, res, ds, theta0, step, bins,
-                     pose_cells, pose_start, clear, clear_disc):
+                     pose_cells, pose_start, clear, clear_disc, vertices, disc, grow):
     """:func:`_shortcut` in one compiled call: the waypoints (the pose after each segment, as
     :meth:`CurvePath.end` computes it), then from each the farthest shortcut
     (:func:`_farthest_shortcut`). Returns the smoothed segments' kinds and lengths [m]."""
@@ -385,7 +418,7 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
     i = 0
     while i < n:
         j, used = _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins,
-                                     pose_cells, pose_start, clear, clear_disc, kinds, lengths)
+                                     pose_cells, pose_start, clear, clear_disc, vertices, disc, grow, kinds, lengths)
         if j > 0:
             out_kinds[used_out:used_out + used] = kinds[:used]
             out_lengths[used_out:used_out + used] = lengths[:used]
@@ -400,7 +433,7 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
 
 @njit(cache=True)
 def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins, pose_cells,
-                       pose_start, clear, clear_disc, kinds, lengths):
+                       pose_start, clear, clear_disc, vertices, disc, grow, kinds, lengths):
     """The farthest waypoint j > i + 1 whose shortest path from waypoint i is
     shorter than the path between them and collision-free, and how many
     segments that path has (written to ``kinds``, ``lengths`` [m], without
@@ -442,6 +475,6 @@ def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, the
         if length >= acc[j] - acc[i] - 1e-9:
             continue
         if curve_free(blocked, res, x0, y0, t0, kinds[:used], lengths[:used], radius, ds, theta0, step, bins,
-                      pose_cells, pose_start, clear, clear_disc):
+                      pose_cells, pose_start, clear, clear_disc, vertices, disc, grow):
             return j, used
     return 0, 0

@@ -168,10 +168,12 @@ def _swept_free(blocked, near2, cx, cy, offsets, lo, hi) -> bool:
 
 @njit(cache=True)
 def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0, step, bins, pose_cells,
-              pose_start, clear, clear_disc, seg, best_kinds, best_lens, akinds, alens) -> bool:
+              pose_start, clear, clear_disc, vertices, disc, exact_grow, seg, best_kinds, best_lens, akinds,
+              alens) -> bool:
     """The exact obstacle-free path from (x, y, θ) to the goal into ``akinds``/``alens`` [m]; whether it is free
     (:func:`~navlab.sampling.footprint_lattice.curve_free` with the clearance map ``clear`` and the lattice's
-    ``clear_disc``: poses far from every blocked cell pass unread, the same answer)."""
+    ``clear_disc``: poses far from every blocked cell pass unread, the same answer; poses its cell lists
+    reject are checked exactly, the outline ``vertices`` or ``disc`` against squares grown by ``exact_grow``)."""
     for i in range(MAX_SEGMENTS):
         akinds[i] = NOP
         alens[i] = 0.0
@@ -191,7 +193,7 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
             akinds[i] = dubins.WORDS[word, i]
         alens[0], alens[1], alens[2] = t * radius, p * radius, q * radius
     return curve_free(blocked, res, x, y, theta, akinds, alens, radius, ds, theta0, step, bins, pose_cells,
-                      pose_start, clear, clear_disc)
+                      pose_start, clear, clear_disc, vertices, disc, exact_grow)
 
 
 # what the expansion loop (:func:`_expand`) hands back to :func:`search`
@@ -204,8 +206,8 @@ _EXHAUSTED, _FOUND, _GROW, _SWEPT, _FIELD = 0, 1, 2, 3, 4
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
-           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, fstate, fdist, fcells, fsize, fcursor,
-           penalties, analytic_max, max_expansions, use_analytic, analytic_ratio):
+           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, exact_grow, exact_primitives, fstate,
+           fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
 
@@ -219,6 +221,10 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     ``sqrt(near2)·res`` (:func:`~navlab.sampling.footprint_lattice.clearance_map`'s values) for the analytic
     expansion's curve checks, with the lattice's ``clear_disc``. ``fstate`` ... ``fcursor`` are the lazy
     holonomic field (:func:`~navlab.grid.hybrid_field.field_start`), settled as far as the lookups need.
+
+    A curve (analytic expansion) pose the cell lists reject is checked again exactly: the outline at the
+    pose against the blocked squares grown by ``exact_grow`` [m] (negative: never). With
+    ``exact_primitives`` so is every pose of a primitive whose swept cells include a blocked one.
 
     The loop itself is :func:`_expand`, which never replaces an array: numba counts the references of
     an array variable that a loop may reassign on every pass, with atomic instructions (12 % of the
@@ -262,7 +268,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     while True:
         event = _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len,
                         pdx, pdy, pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells,
-                        pose_start, ds, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max,
+                        pose_start, ds, vertices, disc, exact_grow, exact_primitives, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max,
                         max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed,
                         block_of, blocks, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, counters, closest)
         if event == _GROW:  # room for every child of the pending node
@@ -293,8 +299,8 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
 
 @njit(cache=True)
 def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len, pdx, pdy,
-            pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, fstate, fdist,
-            fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny,
+            pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, vertices, disc,
+            exact_grow, exact_primitives, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny,
             nb, ng, nparent, nprim_of, closed, block_of, blocks, eg, ex, ey, elazy, hkey, hnode, hentry, akinds,
             alens, counters, closest) -> int:
     """:func:`search`'s loop over its arrays, which it fills but never replaces: pop, expand, push, until
@@ -374,8 +380,8 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                         countdown = desired
                     countdown -= 1
                 if attempt and _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, theta0,
-                                         step, bins, pose_cells, pose_start, clear, clear_disc, seg, best_kinds,
-                                         best_lens, akinds, alens):
+                                         step, bins, pose_cells, pose_start, clear, clear_disc, vertices, disc,
+                                         exact_grow, seg, best_kinds, best_lens, akinds, alens):
                     counters[_GOAL_NODE] = v
                     event = _FOUND
                     break
@@ -387,6 +393,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 break
             first = 0
         x, y, b = nx[v], ny[v], nb[v]
+        theta = theta0 + b * step
         children = nprim - first  # room for each child still to come, first
         if count + children > nx.shape[0] or nblocks + children > blocks.shape[0] or \
                 nentries + children > eg.shape[0]:
@@ -418,7 +425,13 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 first = j
                 event = _SWEPT
                 break
-            if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]):
+            if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]) and (
+                    not exact_primitives or not curve_free(blocked, res, x, y, theta, prim_kind[j:j + 1],
+                                                       prim_len[j:j + 1], radius, ds, theta0, step, bins, pose_cells,
+                                                       pose_start, clear, clear_disc, vertices, disc, exact_grow)):
+                # the swept cells hold every cell near the primitive from anywhere in the node's cell, so
+                # they reject primitives well clear of a wall; with exact_primitives the poses they reject
+                # are checked exactly (several times the cost of an expansion near walls)
                 continue
             fv = (cy2 + 1) * fstride + cx2 + 1
             if fstate[fv] & (PASSABLE | SETTLED) == PASSABLE and fsize[0] + fsize[1] + fsize[2] > fcursor[1] and \

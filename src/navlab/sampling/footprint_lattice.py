@@ -27,6 +27,7 @@ from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..limits import check_length
+from ..world.footprint_collision import pose_grid_clear
 from .curves import NOP, STRAIGHT, advance, trace_word
 
 
@@ -417,6 +418,8 @@ def clearance_map(blocked: np.ndarray, res: float) -> np.ndarray:
 
 #: no clearance map: :func:`curve_free` reads every pose's cells
 NO_CLEARANCE = (np.zeros((0, 0)), np.zeros(3))
+#: :func:`curve_free`'s last three arguments for no exact re-check (the cell lists alone decide)
+NO_EXACT = (np.zeros((0, 2)), 0.0, -1.0)
 
 
 @njit(cache=True)
@@ -438,8 +441,18 @@ COARSE_STRIDE = 16
 
 
 @njit(cache=True)
+def _pose_passes(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear, outline, outline_disc,
+                 exact_grow) -> bool:
+    """:func:`curve_free`'s test of one pose: the cell lists (:func:`_pose_free_near`), then, if they reject
+    it and ``exact_grow`` ≥ 0, the exact test of the outline at the pose."""
+    if _pose_free_near(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear):
+        return True
+    return exact_grow >= 0.0 and pose_grid_clear(blocked, res, outline, outline_disc, x, y, theta, exact_grow)
+
+
+@njit(cache=True)
 def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, step, bins, pose_cells,
-               pose_start, clear, disc) -> bool:
+               pose_start, clear, disc, outline, outline_disc, exact_grow) -> bool:
     """Whether the footprint is free at every pose :func:`trace_word` gives
     along the word at spacing ``ds`` (exactly those poses, computed the same
     way), the last one first, then coarse to fine: every :data:`COARSE_STRIDE`-th
@@ -453,7 +466,15 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     that room (a pose's centre moves at most ``(1 + |c0| / r)`` times the arc
     length between them), and a pose near one reads only its cells farther out
     than the nearest blocked cell (:func:`_pose_free_near`): exactly the same
-    answers, in open space far sooner."""
+    answers, in open space far sooner.
+
+    With ``exact_grow`` ≥ 0, a pose the cell lists reject (they hold every cell
+    within a margin of the outline anywhere in the pose's cell and heading bin,
+    so they reject poses well clear of a wall) is checked again exactly: the
+    outline (``outline`` (K, 2) in body coordinates, or none and the disc radius
+    ``outline_disc``) at the pose itself against the blocked cells' squares grown
+    by ``exact_grow`` [m] (:func:`~navlab.world.footprint_collision.pose_grid_clear`).
+    Negative: the cell lists alone decide."""
     n = kinds.shape[0]
     start = np.empty((n, 3))
     pieces = np.zeros(n, dtype=np.int64)
@@ -465,7 +486,8 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
         pieces[j] = max(1, int(math.ceil(abs(lengths[j]) / ds)))
         cx, cy, ct = advance(cx, cy, ct, kinds[j], lengths[j] * pieces[j] / pieces[j], radius)
     if clear_slack(clear, res, x, y, theta, disc) < 0.0 and \
-            not _pose_free_near(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear):
+            not _pose_passes(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear, outline,
+                             outline_disc, exact_grow):
         return False
     # the end first: a tree's curves mostly end in what they hit (a sample inside an obstacle)
     last = n - 1
@@ -474,7 +496,8 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     if last >= 0:
         ex, ey, et = advance(start[last, 0], start[last, 1], start[last, 2], kinds[last], lengths[last], radius)
         if clear_slack(clear, res, ex, ey, et, disc) < 0.0 and \
-                not _pose_free_near(blocked, res, ex, ey, et, theta0, step, bins, pose_cells, pose_start, clear):
+                not _pose_passes(blocked, res, ex, ey, et, theta0, step, bins, pose_cells, pose_start, clear, outline,
+                                 outline_disc, exact_grow):
             return False
     offset = math.hypot(disc[0], disc[1])
     for fine in range(2):
@@ -497,7 +520,8 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
                     else:
                         p += 1
                     continue
-                if not _pose_free_near(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start, clear):
+                if not _pose_passes(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start, clear, outline,
+                                    outline_disc, exact_grow):
                     return False
                 p += 1
     return True

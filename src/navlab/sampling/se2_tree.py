@@ -235,7 +235,8 @@ def _edge_free(pose, a, x1, y1, t1, kinds, lengths, radius, lat_blocked, lat_res
                lat_bins, lat_cells, lat_start, lat_clear, lat_disc, istate):
     istate[S_EDGE_CHECKS] += 1
     return curve_free(lat_blocked, lat_res, pose[a, 0], pose[a, 1], pose[a, 2], kinds, lengths, radius, lat_ds,
-                      lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc)
+                      lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc, np.empty((0, 2)),
+                      0.0, -1.0)
 
 
 @njit(cache=True)

@@ -55,6 +55,27 @@ def check_length(name: str, value: Any, allow_zero: bool = True) -> float:
     return v
 
 
+#: the largest count (iterations, expansions) navlab's compiled loops take: they count in int64
+MAX_COUNT = 2 ** 62
+
+
+def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX_COUNT) -> int:
+    """``value`` as an int if it is a whole number in [low, high] (``high`` None: no upper bound), else
+    ValueError naming ``name``. A float that is a whole number counts (``1e6`` from a command line or a
+    YAML file); bools, strings and fractions do not."""
+    if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
+        value = int(value)
+    if isinstance(value, np.integer):
+        value = int(value)
+    if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
+        span = f"from {low} to {high:.3g}" if high is not None and high > 1e6 else \
+            f"from {low} to {high}" if high is not None else f"of at least {low}"
+        shown = f"a number of {len(str(abs(value)))} digits" if isinstance(value, int) and abs(value) >= 10 ** 20 \
+            else repr(value)
+        raise ValueError(f"{name} must be a whole number {span}, got {shown}")
+    return value
+
+
 def available_memory() -> Optional[int]:
     """Bytes this process can still allocate, or None when unknown: the
     least of the machine's ``MemAvailable``, the container's cgroup limit

@@ -85,7 +85,7 @@ def test_each_drives_a_jackal_past_the_posts(name, params):
 
 
 @pytest.mark.parametrize("name, params, words", [
-    ("dwa", {"vx_samples": 0}, "vx_samples must be an integer"),
+    ("dwa", {"vx_samples": 0}, "vx_samples must be a whole number"),
     ("dwa", {"max_vel_x": -1}, "max_vel_x must be > 0"),
     ("dwa", {"min_vel_x": 2.0}, "min_vel_x must be"),
     ("mppi", {"temperature": 0}, "temperature must be > 0"),

@@ -85,7 +85,8 @@ from numba import njit
 
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS, RUNNING, STALLED, Command
-from .local import CostmapController, check_count, check_number
+from ..limits import check_count
+from .local import CostmapController, check_number
 from .move_base_navfn import plan_navfn
 
 #: a distance no cell can have: the cell is unreachable from the path or goal (MapGrid's obstacleCosts)

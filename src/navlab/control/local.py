@@ -11,17 +11,11 @@ respect). A new global path may arrive between cycles (:meth:`set_path`).
 from __future__ import annotations
 
 import math
-from typing import Any, Dict
+from typing import Dict
 
 import numpy as np
 
 from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number  # noqa: F401
-
-
-def check_count(name: str, value: Any, low: int = 1, high: int = 1_000_000) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
-        raise ValueError(f"{name} must be an integer from {low} to {high}, got {value!r}")
-    return int(value)
 
 
 class CostmapController(Controller):

@@ -41,7 +41,8 @@ from numba import njit
 
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS
-from .local import CostmapController, check_count, check_number
+from ..limits import check_count
+from .local import CostmapController, check_number
 
 
 @njit(cache=True)

@@ -62,7 +62,7 @@ import numpy as np
 from numba import njit
 from shapely.geometry import Point, Polygon
 
-from ..limits import check_length, finite_number
+from ..limits import MAX_COUNT, check_count, check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_compiled, advance, check_pose,
@@ -174,12 +174,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
                                                                    analytic_expansion_ratio) > 0:
         raise ValueError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
-    if isinstance(max_expansions, (float, np.floating)) and math.isfinite(max_expansions) and \
-            float(max_expansions).is_integer():
-        max_expansions = int(max_expansions)  # 1e6 from a command line or a YAML file is a whole number
-    if isinstance(max_expansions, bool) or not isinstance(max_expansions, (int, np.integer)) or max_expansions < 1:
-        raise ValueError(f"max_expansions must be a positive whole number, got {max_expansions!r}")
-    max_expansions = min(int(max_expansions), 2 ** 62)  # beyond any search's reach; int64 for the kernel
+    # beyond any search's reach, so capped rather than refused; int64 for the kernel
+    max_expansions = min(check_count("max_expansions", max_expansions, 1, None), MAX_COUNT)
     vertices, disc = robot_outline(footprint, robot_radius)
     res = grid.resolution
     spacing = res if waypoint_spacing is None else check_length("waypoint_spacing", waypoint_spacing, allow_zero=False)

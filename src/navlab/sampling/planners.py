@@ -19,7 +19,7 @@ from typing import Any, Dict, Optional, Union
 
 import numpy as np
 
-from ..limits import check_length, check_memory
+from ..limits import MAX_COUNT, check_count, check_length, check_memory
 from ..registry import Registry, parameters_of
 from ..result import Result, Status, Tree
 from . import tree_kernel as K
@@ -35,18 +35,16 @@ INDEXES = ("grid", "scan")
 
 
 #: the largest count or time a planner accepts (int64 counters; ~3e11 years in seconds)
-MAX_COUNT = 2**62
 #: samples drawn and consumed at once; larger batches gain nothing and cost memory
 MAX_BATCH_SIZE = 65536
 
 
-def _check_positive(name: str, value: Any, integer: bool = False, required: bool = False) -> None:
+def _check_positive(name: str, value: Any, required: bool = False) -> None:
     if value is None and not required:
         return
-    kinds = (int,) if integer else (int, float)
-    if isinstance(value, bool) or not isinstance(value, kinds) or not value > 0 or (
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or (
             isinstance(value, float) and not math.isfinite(value)):
-        raise ValueError(f"{name} must be a positive {'integer' if integer else 'number'}, got {value!r}")
+        raise ValueError(f"{name} must be a positive number, got {value!r}")
     if value > MAX_COUNT:  # the compiled loops count in int64
         shown = f"{value:.3g}" if value < 1e300 else f"a number of {len(str(int(value)))} digits"
         raise ValueError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown}")
@@ -113,9 +111,10 @@ class TreePlanner:
     def _validate(self) -> None:
         if self.expand_dis is not None:
             check_length("expand_dis", self.expand_dis, allow_zero=False)  # a positive length within [1e-9, 1e7] m
-        _check_positive("max_iter", self.max_iter, integer=True)
+        if self.max_iter is not None:  # 1e4 from a command line or a YAML file is a whole number
+            self.max_iter = check_count("max_iter", self.max_iter)
         _check_positive("max_time", self.max_time)
-        _check_positive("batch_size", self.batch_size, integer=True, required=True)
+        self.batch_size = check_count("batch_size", self.batch_size)
         if self.batch_size > MAX_BATCH_SIZE:
             raise ValueError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
                              f"got {self.batch_size}")

@@ -20,7 +20,7 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
-from ..limits import check_length
+from ..limits import check_count, check_length
 from ..registry import Registry, check_params, parameters_of, suggest
 from .regions import BoxRegion
 
@@ -47,15 +47,6 @@ def _length(name: str, value: Any) -> Optional[float]:
     if isinstance(value, np.generic):
         value = value.item()
     return check_length(name, value, allow_zero=False)
-
-
-def _count(name: str, value: Any, most: int) -> int:
-    """A whole number in [1, most]."""
-    if isinstance(value, np.integer):
-        value = int(value)
-    if isinstance(value, bool) or not isinstance(value, int) or not (1 <= value <= most):
-        raise ValueError(f"{name} must be a whole number from 1 to {most}, got {value!r}")
-    return value
 
 
 def _expired(deadline: Optional[float]) -> bool:
@@ -201,7 +192,7 @@ class GaussianSampler(Sampler):
 
     def __init__(self, sigma: Optional[float] = None, max_rounds: int = 50) -> None:
         self.sigma = _length("sigma", sigma)
-        self.max_rounds = _count("max_rounds", max_rounds, MAX_ROUNDS)
+        self.max_rounds = check_count("max_rounds", max_rounds, 1, MAX_ROUNDS)
 
     def resolved_params(self, world) -> Dict[str, Any]:
         return {**self.get_params(), "sigma": self.sigma_on(world)}
@@ -261,9 +252,9 @@ class BoundarySampler(Sampler):
     """
 
     def __init__(self, directions: int = 8, tolerance: Optional[float] = None, max_rounds: int = 50) -> None:
-        self.directions = _count("directions", directions, MAX_DIRECTIONS)
+        self.directions = check_count("directions", directions, 1, MAX_DIRECTIONS)
         self.tolerance = _length("tolerance", tolerance)
-        self.max_rounds = _count("max_rounds", max_rounds, MAX_ROUNDS)
+        self.max_rounds = check_count("max_rounds", max_rounds, 1, MAX_ROUNDS)
 
     def resolved_params(self, world) -> Dict[str, Any]:
         return {**self.get_params(), "tolerance": self.tolerance_on(world)}

@@ -18,6 +18,7 @@ from typing import Any, Dict
 
 import numpy as np
 
+from ..limits import check_count
 from ..result import Result, Status, Tree
 from . import se2_tree as K
 from .curves import MAX_SEGMENTS, NOP
@@ -96,9 +97,10 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
     diagonal = math.hypot(b.xmax - b.xmin, b.ymax - b.ymin)
     eta = float(settings.get("expand_dis") or min(0.2 * diagonal, 2.0 * turning_radius))
     gamma = float(settings.get("connect_circle_dist") or se2_gamma(b))
-    max_iter = int(settings.get("max_iter") or DEFAULT_MAX_ITER[planner])
+    max_iter = DEFAULT_MAX_ITER[planner] if settings.get("max_iter") is None else \
+        check_count("max_iter", settings["max_iter"])
     max_time = settings.get("max_time")
-    batch = int(settings.get("batch_size") or 64)
+    batch = 64 if settings.get("batch_size") is None else check_count("batch_size", settings["batch_size"])
     params = {"expand_dis": eta, "connect_circle_dist": gamma, "max_iter": max_iter, "max_time": max_time,
               "batch_size": batch, "keep_tree": bool(settings.get("keep_tree", False))}
     # arrays grown by doubling from a few thousand nodes: a tree often keeps far fewer nodes than it

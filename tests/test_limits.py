@@ -1,0 +1,44 @@
+"""limits.check_count: one rule for every count a user gives (iterations, expansions, samples)."""
+
+import math
+
+import numpy as np
+import pytest
+
+import navlab
+from navlab.limits import MAX_COUNT, check_count
+
+
+@pytest.mark.parametrize("value, expected", [(1, 1), (np.int64(7), 7), (1e3, 1000), (np.float64(5.0), 5),
+                                             (2 ** 62, 2 ** 62)])
+def test_whole_numbers_are_counts_whatever_their_type(value, expected):
+    out = check_count("n", value)
+    assert out == expected and type(out) is int
+
+
+@pytest.mark.parametrize("value, shown", [(1.5, "1.5"), (math.nan, "nan"), (math.inf, "inf"), (True, "True"),
+                                          ("10", "'10'"), (None, "None"), (0, "0"), (-3, "-3"),
+                                          (2 ** 62 + 1, repr(2 ** 62 + 1)), (10 ** 400, "a number of 401 digits")])
+def test_anything_else_is_one_line_naming_the_field_and_the_range(value, shown):
+    with pytest.raises(ValueError) as info:
+        check_count("max_iter", value)
+    assert str(info.value) == f"max_iter must be a whole number from 1 to {MAX_COUNT:.3g}, got {shown}"
+
+
+def test_bounds_are_the_callers():
+    assert check_count("k", 3.0, 2, 3) == 3 and check_count("k", 10 ** 30, 1, None) == 10 ** 30
+    with pytest.raises(ValueError, match="k must be a whole number from 2 to 3, got 4"):
+        check_count("k", 4, 2, 3)
+    with pytest.raises(ValueError, match="k must be a whole number of at least 1, got 0"):
+        check_count("k", 0, 1, None)
+
+
+@pytest.mark.parametrize("scene, extra", [("clutter", {}), ("trap_car", {"motion": "reeds_shepp"})])
+def test_max_iter_written_as_a_float_plans_as_the_whole_number(scene, extra):
+    """1e3 from a command line or a YAML file plans as 1000 iterations, for 2D and SE(2) trees alike."""
+    a = navlab.plan(scene, planner="rrt", max_iter=1e3, seed=1, **extra)
+    b = navlab.plan(scene, planner="rrt", max_iter=1000, seed=1, **extra)
+    assert a.params["max_iter"] == 1000 and type(a.params["max_iter"]) is int
+    assert a.status == b.status and a.cost == b.cost
+    with pytest.raises(ValueError, match="max_iter must be a whole number"):
+        navlab.plan(scene, planner="rrt", max_iter=2.5, **extra)

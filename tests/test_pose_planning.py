@@ -156,7 +156,9 @@ def test_the_command_line_takes_a_pose(tmp_path):
     bad = CliRunner().invoke(main, ["plan", "trap", "--start", "6", "--goal", "1", "2"])
     assert bad.exit_code == 2 and "'--start'" in bad.output and "Traceback" not in bad.output
     bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "hybrid_astar", "--param", "motion=sideways"])
-    assert bad.exit_code == 2 and "motion must be one of" in bad.output
+    assert bad.exit_code == 2 and "motion must be one of dubins, reeds_shepp, got 'sideways'" in bad.output
+    bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "motion=sideways"])  # a tree: all three
+    assert bad.exit_code == 2 and "motion must be one of holonomic, dubins, reeds_shepp, got 'sideways'" in bad.output
 
 
 def test_the_summary_counts_in_words_and_a_failure_has_no_cusps():

@@ -41,10 +41,11 @@ HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_u
 VERIFY_SPACING = 0.001
 
 
-def check_motion(value: Any) -> str:
-    if value not in MOTIONS:
-        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {value!r}."
-                         + suggest(str(value), list(MOTIONS)))
+def check_motion(value: Any, allowed: Tuple[str, ...] = MOTIONS) -> str:
+    """``value`` if it is one of ``allowed`` motions, else ValueError listing them (and the nearest)."""
+    if value not in allowed:
+        raise ValueError(f"motion must be one of {', '.join(allowed)}, got {value!r}."
+                         + suggest(str(value), list(allowed)))
     return value
 
 
@@ -55,6 +56,8 @@ def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
     ``motion`` is dubins or reeds_shepp; any other planner asked for it is an
     error naming the planners that can."""
     motion = params.get("motion", "holonomic" if planner not in POSE_PLANNERS else "reeds_shepp")
+    if motion not in MOTIONS and planner in POSE_PLANNERS:  # list only what this planner takes
+        check_motion(motion, tuple(m for m in MOTIONS if m != "holonomic"))
     check_motion(motion)
     if planner in POSE_PLANNERS:
         if motion == "holonomic":

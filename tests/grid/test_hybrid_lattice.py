@@ -217,3 +217,14 @@ def test_the_near_pose_check_answers_as_reading_every_cell():
                 args = (blocked, res, *a, kinds, lengths, radius, lattice.ds, *common)
                 assert curve_free(*args, clear, lattice.clear_disc, *NO_EXACT) == curve_free(*args, *NO_CLEARANCE, *NO_EXACT)
         assert free > 100 and blocked_poses > 100  # both answers are tested
+
+
+def test_outermost_first_is_a_stable_sort_by_distance():
+    """The cells farthest from the origin's cell first, ties in their given order (numpy's stable sort)."""
+    from navlab.sampling.footprint_lattice import _outermost_first
+
+    rng = np.random.default_rng(5)
+    for n in [0, 1, 2, *rng.integers(3, 400, 60)]:
+        cells = rng.integers(-20, 21, (n, 2)).astype(np.int64)
+        expected = cells[np.argsort(-(cells[:, 0] ** 2 + cells[:, 1] ** 2), kind="stable")]
+        assert np.array_equal(_outermost_first(cells), expected)

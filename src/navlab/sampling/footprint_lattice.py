@@ -201,8 +201,22 @@ def _outermost_first(cells: np.ndarray) -> np.ndarray:
     """Cell offsets sorted by distance from the origin's cell, farthest first (ties in their order):
     a check can stop at the first offset nearer than the nearest blocked cell (Hybrid A*'s search),
     and a blocked cell is usually met near the outline, so a failing check ends sooner."""
-    order = np.argsort(-(cells[:, 0] * cells[:, 0] + cells[:, 1] * cells[:, 1]), kind="mergesort")
-    return cells[order]
+    # a stable counting sort on the whole squared lengths, farthest first: numba's mergesort took 11 us
+    # of a swept group's 30 for 180 cells
+    n = cells.shape[0]
+    key = cells[:, 0] * cells[:, 0] + cells[:, 1] * cells[:, 1]
+    top = key.max() if n else 0
+    start = np.zeros(top + 2, dtype=np.int64)  # start[top - k + 1]: where squared length k goes
+    for i in range(n):
+        start[top - key[i] + 1] += 1
+    for k in range(1, top + 2):
+        start[k] += start[k - 1]
+    out = np.empty_like(cells)
+    for i in range(n):
+        slot = start[top - key[i]]
+        start[top - key[i]] += 1
+        out[slot, 0], out[slot, 1] = cells[i, 0], cells[i, 1]
+    return out
 
 
 @njit(cache=True)

@@ -62,8 +62,9 @@ def median_time(fn, repeat: int) -> float:
     return statistics.median(samples)
 
 
-def irsim_env(folder: str, obstacle_map: str | None, moving: bool = False):
-    """A headless ir-sim environment of one scene, from a YAML world file written into ``folder``."""
+def irsim_env(folder: str, obstacle_map: str | None, start, goal, moving: bool = False):
+    """A headless ir-sim environment of one scene, from a YAML world file written into ``folder``; its
+    robot starts at ``start`` (x, y, θ) and dashes to ``goal`` (x, y), navlab's own query."""
     import irsim
 
     lines = ["world:", "  height: 10", "  width: 10", "  step_time: 0.05", "  sample_time: 0.05",
@@ -71,9 +72,9 @@ def irsim_env(folder: str, obstacle_map: str | None, moving: bool = False):
     if obstacle_map:
         lines += [f"  obstacle_map: '{obstacle_map}'", "  height: 9.15", "  width: 10.95"]
         lines = [ln for ln in lines if ln not in ("  height: 10", "  width: 10")]
-    start = "[0.4, 0.4, 0]" if obstacle_map else "[5.0, 0.6, 0]"
     lines += ["robot:", "  - kinematics: {name: 'omni'}", "    shape: {name: 'circle', radius: 0.16}",
-              f"    state: {start}", "    goal: [9, 9, 0]", "    vel_max: [0.3, 0.3]",
+              f"    state: [{start[0]}, {start[1]}, {start[2]}]", f"    goal: [{goal[0]}, {goal[1]}, 0]",
+              "    vel_max: [0.3, 0.3]",
               "    behavior: {name: 'dash'}",
               "    sensors:", "      - type: 'lidar2d'", "        range_min: 0.15", "        range_max: 12",
               "        angle_range: 6.283185307179586", "        number: 360", "        noise: False"]
@@ -189,13 +190,13 @@ def irsim_envs(scenes, folder: str) -> list:
     from PIL import Image
 
     envs = []
-    for _, _, _, _, grid, moving in scenes:
+    for _, _, start, goal, grid, moving in scenes:
         png = None
         if grid is not None:
             png = os.path.join(folder, "maze.png")
             Image.fromarray(np.where(grid.blocked[::-1], 0, 255).astype(np.uint8)).save(png)
         try:
-            envs.append(irsim_env(folder, png, moving))
+            envs.append(irsim_env(folder, png, start, goal, moving))
         except ImportError:
             print("ir-sim not installed (pip install -e '.[irsim]'): navlab figures only")
             return [None] * len(scenes)

@@ -36,7 +36,7 @@ DEFAULT_TURNING_RADIUS = 0.4
 HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
                  "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
-                 "waypoint_spacing")
+                 "waypoint_spacing", "exact_retry")
 #: [m] spacing of the poses at which a returned path's footprint is re-checked against the exact world
 VERIFY_SPACING = 0.001
 

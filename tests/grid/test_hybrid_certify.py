@@ -136,3 +136,36 @@ def test_a_start_pose_off_the_map_is_an_invalid_start():
     result = plan_hybrid(grid, (-5.0, 10.0, 0.0), (15.0, 10.0, 0.0), turning_radius=2.0)
     assert result.status == Status.INVALID_START, result.reason
     assert "leaves the map" in result.reason
+
+
+@pytest.mark.parametrize("grow", [0.0, 0.0125, 0.025])
+def test_the_pose_test_agrees_with_shapely_on_squares_at_its_box_and_circle(grow):
+    """world.footprint_collision.pose_grid_overlap, which the search's exact re-check shares with this module,
+    passes over squares beyond the outline's bounding box or its circle about the pose before the exact
+    test: one blocked cell at a time, placed so that its grown square lies just inside or just outside
+    those bounds (and the outline's edges), it answers as shapely does."""
+    import shapely
+
+    from navlab.world.footprint_collision import pose_grid_overlap
+
+    res = 0.05
+    rng = np.random.default_rng(11)
+    outline = np.array([[-0.25, -0.2], [0.25, -0.2], [0.25, 0.2], [-0.25, 0.2]])
+    placed, box = np.empty((4, 2)), np.empty((4, 2))
+    agree = hits = 0
+    for _ in range(400):
+        x, y, theta = rng.uniform(0.9, 1.1), rng.uniform(0.9, 1.1), rng.uniform(-math.pi, math.pi)
+        c, s = math.cos(theta), math.sin(theta)
+        world = np.column_stack([x + c * outline[:, 0] - s * outline[:, 1], y + s * outline[:, 0] + c * outline[:, 1]])
+        shape = shapely.Polygon(world)
+        # a cell whose grown square's nearest point is about `gap` from the outline's box, circle or edge
+        cx = int(math.floor((world[:, 0].max() + grow + rng.uniform(-0.02, 0.02)) / res))
+        cy = int(math.floor((y + rng.uniform(-0.35, 0.35)) / res))
+        blocked = np.zeros((40, 40), bool)
+        blocked[cy, cx] = True
+        found, _, _ = pose_grid_overlap(blocked, res, outline, 0.0, x, y, theta, grow, placed, box)
+        square = shapely.box(cx * res - grow, cy * res - grow, (cx + 1) * res + grow, (cy + 1) * res + grow)
+        expected = shape.intersects(square)
+        agree += found == expected
+        hits += expected
+    assert agree == 400 and 40 < hits < 360  # both answers are tested

@@ -45,6 +45,15 @@ default). Analytic and smoothed segments use per-bin footprints grown also by
 heading within the bin. The footprint's cells and checks live in
 :mod:`navlab.sampling.footprint_lattice`, shared with the SE(2) trees.
 
+Those lists hold every cell near the footprint from anywhere in the pose's cell (and bin), so they
+also reject poses well clear of a wall. An analytic or smoothed pose they reject is checked again
+exactly: the outline at the pose itself against the blocked squares grown by δ
+(:func:`~navlab.world.footprint_collision.pose_grid_overlap`); such a pose leaves every pose within
+δ/2 of travel at least δ/2 from them, the final check's margin below. Primitives are checked that way
+only after the search has exhausted its space on the swept cells (``exact_retry``): the nodes that had
+one rejected are opened again and the search goes on, in the same budget, checking those exactly (near
+walls an exact check costs several expansions' time, so it waits until the lists have failed).
+
 Every returned path is checked once more, independently of those cell lists
 (:mod:`navlab.grid.hybrid_certify`): the outline placed at poses traced along
 the final path, no footprint point moving more than δ between two, against
@@ -101,7 +110,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                 analytic_expansion_max_length: Optional[float] = DEFAULTS["analytic_expansion_max_length"],
                 analytic_expansion_ratio: Optional[float] = None,
                 max_expansions: int = DEFAULTS["max_expansions"], smooth: bool = True,
-                waypoint_spacing: Optional[float] = None) -> Result:
+                waypoint_spacing: Optional[float] = None, exact_retry: bool = True) -> Result:
     """Plan a car-like robot's path between poses on an occupancy grid (Hybrid A*).
 
     Parameters
@@ -141,6 +150,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         Shorten the path with collision-free Dubins/Reeds–Shepp shortcuts.
     waypoint_spacing : float, optional
         Spacing of the returned poses [m]; the grid's resolution by default.
+    exact_retry : bool
+        When the search exhausts its space on the primitives' swept cells
+        (which can wall off a gap the robot clears by more than res/2 on each
+        side), open again the nodes that had a primitive rejected and go on,
+        within ``max_expansions``, checking those exactly (docs/grid.md).
+        False: report the exhausted space at once.
 
     Returns
     -------
@@ -150,9 +165,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         ``nodes``, ``cusps``, ``time_s``, ``heuristics_solved`` (exact distances
         the lazy queue needed), ``g``, the search's penalised cost of the
         primitives driven (before the analytic tail and the smoother), and
-        ``exact_retry``: whether the search, having exhausted its space with
-        the primitives' swept cells, ran again checking them exactly (its
-        expansions count in ``expansions``; see docs/grid.md).
+        ``exact_retry``: whether the search exhausted its space on the swept
+        cells and went on checking the rejected primitives exactly (the
+        nodes it opened again count again in ``expansions``).
     """
     t0 = time.perf_counter()
     if motion not in MOTIONS:
@@ -166,7 +181,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                              ("change_penalty", change_penalty, 0.0)):
         if finite_number(name, value) < low:
             raise ValueError(f"{name} must be at least {low:g}, got {value!r}")
-    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth)):
+    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry)):
         if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
             raise ValueError(f"{name} must be true or false, got {value!r}")
     analytic_max = max(ANALYTIC_MIN_LENGTH, ANALYTIC_RADII * r) if analytic_expansion_max_length is None else \
@@ -187,7 +202,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                               "analytic_expansion_max_length": analytic_max,
                               "analytic_expansion_ratio": None if analytic_expansion_ratio is None
                               else float(analytic_expansion_ratio), "max_expansions": int(max_expansions),
-                              "smooth": bool(smooth), "resolution": res}
+                              "smooth": bool(smooth), "exact_retry": bool(exact_retry), "resolution": res}
     # the search runs in the grid's own frame: metres from the corner of cell (0, 0), along its axes
     yaw = grid.origin[2]
     c, s = math.cos(yaw), math.sin(yaw)
@@ -229,15 +244,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     gcx, gcy = int(lgx // res), int(lgy // res)
     # settled lazily: as far as the start here, then as far as the search reads (Smac's way; the same values)
     passable |= _cell_mask(blocked.shape, gcx, gcy)
+    field = field_start(passable, gcx, gcy, res)
     scx, scy = int(lsx // res), int(lsy // res)
-
-    def settled_field():
-        """A fresh lazy field, settled as far as the start: (its value there, the field's arrays)."""
-        started = field_start(passable, gcx, gcy, res)
-        value, cells = field_at(*started, grid.width + 2, res, scx, scy)
-        return value, (*started[:2], cells, *started[3:])
-
-    at_start, field = settled_field()
+    at_start, cells = field_at(*field, grid.width + 2, res, scx, scy)
+    field = (*field[:2], cells, *field[3:])
     if not math.isfinite(at_start) and not math.isfinite(field_at(
             *field_start(passable | _cell_mask(blocked.shape, scx, scy), gcx, gcy, res), grid.width + 2, res, scx,
             scy)[0]):
@@ -248,34 +258,26 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         return finish(Status.FAILED, f"no collision-free path: the goal is walled off from the start even for {what}")
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
 
-    def run(field, exact_primitives: bool, budget: int):
-        with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
-            *out, table[0], table[1] = search(
+    with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
+        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1], \
+            stats["exact_retry"] = search(
                 blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
                 motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
                 *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc,
-                lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), exact_primitives, *field,
-                penalties, analytic_max, budget, bool(analytic_expansion),
+                lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), bool(exact_retry), *field,
+                penalties, analytic_max, int(max_expansions), bool(analytic_expansion),
                 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
-        return out
-
-    found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = run(field, False, max_expansions)
-    if not found and expansions < max_expansions:
-        # The swept cells hold every cell near a primitive from anywhere in a node's cell (up to about
-        # sqrt(2)·res + res/4 beyond the outline), so they can wall off a gap the robot fits through. Checking
-        # every primitive exactly costs several times as much near walls, so an exhausted search is run again
-        # with the exact re-check on the rest of the expansions' budget before it reports no path.
-        before = int(expansions)
-        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved = run(
-            settled_field()[1], True, max_expansions - before)
-        expansions += before
-        stats["exact_retry"] = True
+    stats["exact_retry"] = bool(stats["exact_retry"])
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
+        forward_only = " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')" \
+            if motion == "dubins" else ""
         if expansions < max_expansions:  # no path at this resolution; forward-only motion may be why
-            why = "the search space is exhausted" + (
-                " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')"
-                if motion == "dubins" else "")
+            why = "the search space is exhausted" + forward_only
+        elif stats["exact_retry"]:  # the first finding stands; the rest is what the budget left undecided
+            why = (f"the search space is exhausted on the primitives' swept cells{forward_only}, and checking the "
+                   f"rejected ones exactly reached max_expansions ({max_expansions}) before the goal "
+                   "(raise max_expansions)")
         else:
             why = f"max_expansions ({max_expansions}) reached before the goal (raise max_expansions)"
         return finish(Status.FAILED, f"no collision-free path: {why}")
@@ -309,9 +311,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
 
 def exact_grow(lattice) -> float:
     """[m] How far the search's exact re-checks grow the blocked cells' squares: the lattice's δ, the most
-    a footprint point moves between two traced poses. A pose at least δ from every blocked square leaves
-    every pose within δ/2 of travel at least δ/2 from them, which is the final check's margin
-    (``first_overlap_exact(..., 0.5 * lattice.delta)``), however the path is traced again."""
+    a footprint point moves between two traced poses. A pose the exact test accepts, at least δ from every
+    blocked square, leaves every pose within δ/2 of travel at least δ/2 from them, which is the final
+    check's margin (``first_overlap_exact(..., 0.5 * lattice.delta)``) wherever the path is traced again
+    (poses the cell lists accept keep the lists' own margin)."""
     return lattice.delta
 
 

@@ -3,7 +3,11 @@ against the blocked cells' squares, exactly, compiled.
 
 The search's own checks read precomputed cell lists (:mod:`navlab.sampling.footprint_lattice`:
 footprints grown by margins, quarter-turned, read through distance maps). This check shares
-none of that: it places the outline at each pose and tests it against every blocked cell (and
+none of that, but it shares its per-pose test
+(:func:`~navlab.world.footprint_collision.pose_grid_overlap`) with the search's exact re-check of
+the poses those lists reject, at half that re-check's margin: a fault in that test would pass
+both, which is why the tests hold it to shapely on its own as well as here. It places the outline
+at each pose and tests it against every blocked cell (and
 the ring of cells just outside the map) whose square can reach it, with the world's exact
 polygon–rectangle and point–rectangle tests (:mod:`navlab.world.footprint_collision`, which the
 simulator's footprint checks use: an edge of one meets an edge of the other, or one holds a

@@ -148,6 +148,18 @@ def _pop(hkey, hnode, hentry, size):
 
 
 @njit(cache=True)
+def _open(hkey, hnode, hentry, size, eg, ex, ey, elazy, entry, node, g, x, y, theta, field, reverse, gx, gy, gtheta,
+          radius) -> None:
+    """Queue ``node`` (pose x, y, θ at cost g; ``field`` the holonomic heuristic at its cell) as ``entry``: keyed
+    on the field alone when Reeds–Shepp (the exact distance is solved when it comes up), on the larger of
+    it and the Dubins distance otherwise (a Dubins solve costs little more than the queue's bookkeeping
+    for putting it off)."""
+    eg[entry], ex[entry], ey[entry], elazy[entry] = g, x, y, reverse
+    key = g + field if reverse else g + max(field, _forward(x, y, theta, gx, gy, gtheta, radius))
+    _push(hkey, hnode, hentry, size, key, node, entry)
+
+
+@njit(cache=True)
 def _grow(a, cap):
     out = np.empty((cap,) + a.shape[1:], dtype=a.dtype)
     out[:a.shape[0]] = a
@@ -200,13 +212,13 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 _EXHAUSTED, _FOUND, _GROW, _SWEPT, _FIELD = 0, 1, 2, 3, 4
 # the loop's counters, kept in one int64 array between its calls
 (_COUNT, _NBLOCKS, _NENTRIES, _HSIZE, _EXPANSIONS, _SOLVED, _COUNTDOWN, _PENDING, _PENDING_CHILD,
- _GOAL_NODE, _COUNTERS) = range(11)
+ _GOAL_NODE, _EXACT, _COUNTERS) = range(12)
 
 
 @njit(cache=True)
 def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
-           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, exact_grow, exact_primitives, fstate,
+           swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, exact_grow, exact_retry, fstate,
            fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
@@ -223,8 +235,11 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     holonomic field (:func:`~navlab.grid.hybrid_field.field_start`), settled as far as the lookups need.
 
     A curve (analytic expansion) pose the cell lists reject is checked again exactly: the outline at the
-    pose against the blocked squares grown by ``exact_grow`` [m] (negative: never). With
-    ``exact_primitives`` so is every pose of a primitive whose swept cells include a blocked one.
+    pose against the blocked squares grown by ``exact_grow`` [m] (negative: never). A primitive is
+    checked that way only once the search has exhausted its space on the swept cells, and only with
+    ``exact_retry``: then the nodes that had a primitive rejected are opened again, and the search goes
+    on (the same queue, field and budget) checking every rejected primitive exactly. Returns, last,
+    whether it did.
 
     The loop itself is :func:`_expand`, which never replaces an array: numba counts the references of
     an array variable that a loop may reassign on every pass, with atomic instructions (12 % of the
@@ -240,6 +255,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     nparent = np.empty(cap, dtype=np.int64)
     nprim_of = np.empty(cap, dtype=np.int64)
     closed = np.zeros(cap, dtype=np.bool_)
+    rejected = np.zeros(cap, dtype=np.bool_)  # a primitive from the node was rejected on its swept cells
     # discrete state -> node: a block of `bins` node numbers per cell reached
     block_of = np.full(h * w, -1, dtype=np.int32)  # int32: half what the field takes a cell
     blocks = np.full((64, bins), -1, dtype=np.int32)
@@ -256,6 +272,8 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     alens = np.zeros(MAX_SEGMENTS)
     counters = np.zeros(_COUNTERS, dtype=np.int64)
     closest = np.full(1, math.inf)  # the schedule's least heuristic so far [cells]
+    one_kind = np.empty(1, dtype=np.int64)  # one primitive as a word, for its exact check
+    one_len = np.empty(1)
 
     nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
     block_of[int(floor_div(sy, res)) * w + int(floor_div(sx, res))] = 0
@@ -268,15 +286,17 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     while True:
         event = _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len,
                         pdx, pdy, pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells,
-                        pose_start, ds, vertices, disc, exact_grow, exact_primitives, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max,
-                        max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed,
-                        block_of, blocks, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, counters, closest)
+                        pose_start, ds, vertices, disc, exact_grow, fstate, fdist, fcells, fsize, fcursor,
+                        penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng,
+                        nparent, nprim_of, closed, rejected, block_of, blocks, eg, ex, ey, elazy, hkey, hnode,
+                        hentry, akinds, alens, one_kind, one_len, counters, closest)
         if event == _GROW:  # room for every child of the pending node
             count, nentries = counters[_COUNT], counters[_NENTRIES]
             if count + nprim > cap:
                 cap = max(2 * cap, count + nprim)
                 nx, ny, nb, ng = _grow(nx, cap), _grow(ny, cap), _grow(nb, cap), _grow(ng, cap)
                 nparent, nprim_of, closed = _grow(nparent, cap), _grow(nprim_of, cap), _grow(closed, cap)
+                rejected = _grow(rejected, cap)
             if counters[_NBLOCKS] + nprim > blocks.shape[0]:
                 blocks = _grow(blocks, 2 * blocks.shape[0])
                 blocks[counters[_NBLOCKS]:] = -1
@@ -290,19 +310,37 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                                             prim_kind, prim_len, radius, ds, swept_margin, res)
         elif event == _FIELD:  # the wave paused for room
             fcells = field_cells_grown(fcells)
+        elif event == _EXHAUSTED and exact_retry and counters[_EXACT] == 0 and \
+                counters[_EXPANSIONS] < max_expansions and rejected[:counters[_COUNT]].any():
+            # the space is exhausted on the swept cells, which can wall off a gap the robot fits through:
+            # open again the nodes that had a primitive rejected, and go on checking those exactly
+            count, nentries = counters[_COUNT], counters[_NENTRIES]
+            again = np.nonzero(rejected[:count])[0]
+            if nentries + again.shape[0] > ecap:
+                ecap = max(2 * ecap, nentries + again.shape[0])
+                eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
+                hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
+            for u in again:
+                closed[u] = False
+                fv = (int(floor_div(ny[u], res)) + 1) * (w + 2) + int(floor_div(nx[u], res)) + 1
+                _open(hkey, hnode, hentry, counters[_HSIZE], eg, ex, ey, elazy, counters[_NENTRIES], u, ng[u],
+                      nx[u], ny[u], theta0 + nb[u] * step, fdist[fv], reverse, gx, gy, gtheta, radius)
+                counters[_HSIZE] += 1
+                counters[_NENTRIES] += 1
+            counters[_EXACT] = 1
         else:
             count = counters[_COUNT]
             return event == _FOUND, nx[:count], ny[:count], nb[:count], ng[:count], nparent[:count], \
                 nprim_of[:count], counters[_GOAL_NODE], akinds, alens, counters[_EXPANSIONS], counters[_SOLVED], \
-                swept, swept_used
+                swept, swept_used, counters[_EXACT] == 1
 
 
 @njit(cache=True)
 def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len, pdx, pdy,
             pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, vertices, disc,
-            exact_grow, exact_primitives, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny,
-            nb, ng, nparent, nprim_of, closed, block_of, blocks, eg, ex, ey, elazy, hkey, hnode, hentry, akinds,
-            alens, counters, closest) -> int:
+            exact_grow, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic,
+            analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, eg, ex, ey, elazy,
+            hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest) -> int:
     """:func:`search`'s loop over its arrays, which it fills but never replaces: pop, expand, push, until
     the goal is reached (``_FOUND``, the node in ``counters[_GOAL_NODE]``) or nothing is left to expand
     (``_EXHAUSTED``), or an array must grow first: ``_GROW`` (room for a node's children), ``_SWEPT`` (a
@@ -319,6 +357,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
     count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
     expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
     v, first = counters[_PENDING], counters[_PENDING_CHILD]
+    exact = counters[_EXACT] == 1  # primitives the swept cells reject are checked exactly
     goal_cx, goal_cy, goal_bin = floor_div(gx, res), floor_div(gy, res), int(round((gtheta - theta0) / step))
     event = _EXHAUSTED
     while v >= 0 or hsize > 0:
@@ -425,14 +464,17 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 first = j
                 event = _SWEPT
                 break
-            if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]) and (
-                    not exact_primitives or not curve_free(blocked, res, x, y, theta, prim_kind[j:j + 1],
-                                                       prim_len[j:j + 1], radius, ds, theta0, step, bins, pose_cells,
-                                                       pose_start, clear, clear_disc, vertices, disc, exact_grow)):
+            if not _swept_free(blocked, near2, cx, cy, swept, swept_lo[k], swept_hi[k]):
                 # the swept cells hold every cell near the primitive from anywhere in the node's cell, so
-                # they reject primitives well clear of a wall; with exact_primitives the poses they reject
-                # are checked exactly (several times the cost of an expansion near walls)
-                continue
+                # they reject primitives well clear of a wall; checking the poses they reject exactly costs
+                # several times an expansion near walls, so that waits for an exhausted search (search)
+                if not exact:
+                    rejected[v] = True
+                    continue
+                one_kind[0], one_len[0] = prim_kind[j], prim_len[j]
+                if not curve_free(blocked, res, x, y, theta, one_kind, one_len, radius, ds, theta0, step, bins,
+                                  pose_cells, pose_start, clear, clear_disc, vertices, disc, exact_grow):
+                    continue
             fv = (cy2 + 1) * fstride + cx2 + 1
             if fstate[fv] & (PASSABLE | SETTLED) == PASSABLE and fsize[0] + fsize[1] + fsize[2] > fcursor[1] and \
                     not field_settle_within(fstate, fdist, fcells, fsize, fcursor, fstride, res, fv):
@@ -450,12 +492,8 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 blocks[blk, b2] = u
                 closed[u] = False
             nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
-            eg[nentries], ex[nentries], ey[nentries], elazy[nentries] = g2, x2, y2, reverse
-            if reverse:
-                _push(hkey, hnode, hentry, hsize, g2 + field, u, nentries)
-            else:  # a Dubins solve costs little more than the queue's bookkeeping for putting it off
-                _push(hkey, hnode, hentry, hsize, g2 + max(field, _forward(x2, y2, theta0 + b2 * step, gx, gy,
-                                                                           gtheta, radius)), u, nentries)
+            _open(hkey, hnode, hentry, hsize, eg, ex, ey, elazy, nentries, u, g2, x2, y2, theta0 + b2 * step, field,
+                  reverse, gx, gy, gtheta, radius)
             hsize += 1
             nentries += 1
         if event != _EXHAUSTED:

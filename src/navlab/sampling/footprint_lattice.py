@@ -27,7 +27,7 @@ from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..limits import check_length
-from ..world.footprint_collision import pose_grid_clear
+from ..world.footprint_collision import pose_grid_overlap
 from .curves import NOP, STRAIGHT, advance, trace_word
 
 
@@ -432,7 +432,8 @@ def clearance_map(blocked: np.ndarray, res: float) -> np.ndarray:
 
 #: no clearance map: :func:`curve_free` reads every pose's cells
 NO_CLEARANCE = (np.zeros((0, 0)), np.zeros(3))
-#: :func:`curve_free`'s last three arguments for no exact re-check (the cell lists alone decide)
+#: :func:`curve_free`'s last three arguments for no exact re-check (the cell lists alone decide; a tuple of
+#: constants that compiled callers unpack without allocating)
 NO_EXACT = (np.zeros((0, 2)), 0.0, -1.0)
 
 
@@ -456,24 +457,26 @@ COARSE_STRIDE = 16
 
 @njit(cache=True)
 def _pose_passes(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear, outline, outline_disc,
-                 exact_grow) -> bool:
+                 exact_grow, placed, box) -> bool:
     """:func:`curve_free`'s test of one pose: the cell lists (:func:`_pose_free_near`), then, if they reject
-    it and ``exact_grow`` ≥ 0, the exact test of the outline at the pose."""
+    it and ``exact_grow`` ≥ 0, the exact test of the outline at the pose (``placed``, ``box``: its scratch)."""
     if _pose_free_near(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear):
         return True
-    return exact_grow >= 0.0 and pose_grid_clear(blocked, res, outline, outline_disc, x, y, theta, exact_grow)
+    return exact_grow >= 0.0 and not pose_grid_overlap(blocked, res, outline, outline_disc, x, y, theta, exact_grow,
+                                                       placed, box)[0]
 
 
 @njit(cache=True)
 def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, step, bins, pose_cells,
-               pose_start, clear, disc, outline, outline_disc, exact_grow) -> bool:
+               pose_start, clear, clear_disc, outline, outline_disc, exact_grow) -> bool:
     """Whether the footprint is free at every pose :func:`trace_word` gives
     along the word at spacing ``ds`` (exactly those poses, computed the same
     way), the last one first, then coarse to fine: every :data:`COARSE_STRIDE`-th
     pose of each segment, then the rest, so a blocked curve is usually rejected
-    after a few poses. Nothing is allocated but the segments' start poses.
+    after a few poses. Nothing is allocated but the segments' start poses (and the
+    exact test's scratch).
 
-    With a clearance map (:func:`clearance_map`, ``disc`` the lattice's
+    With a clearance map (:func:`clearance_map`, ``clear_disc`` the lattice's
     :attr:`~Lattice.clear_disc`; or :data:`NO_CLEARANCE`), a pose whose disc
     is far from every blocked cell passes without reading its cells, and so
     do the following poses while the disc centre cannot have moved out of
@@ -487,8 +490,10 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
     so they reject poses well clear of a wall) is checked again exactly: the
     outline (``outline`` (K, 2) in body coordinates, or none and the disc radius
     ``outline_disc``) at the pose itself against the blocked cells' squares grown
-    by ``exact_grow`` [m] (:func:`~navlab.world.footprint_collision.pose_grid_clear`).
+    by ``exact_grow`` [m] (:func:`~navlab.world.footprint_collision.pose_grid_overlap`).
     Negative: the cell lists alone decide."""
+    placed = np.empty((outline.shape[0], 2))  # the exact test's scratch
+    box = np.empty((4, 2))
     n = kinds.shape[0]
     start = np.empty((n, 3))
     pieces = np.zeros(n, dtype=np.int64)
@@ -499,9 +504,9 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
             continue
         pieces[j] = max(1, int(math.ceil(abs(lengths[j]) / ds)))
         cx, cy, ct = advance(cx, cy, ct, kinds[j], lengths[j] * pieces[j] / pieces[j], radius)
-    if clear_slack(clear, res, x, y, theta, disc) < 0.0 and \
+    if clear_slack(clear, res, x, y, theta, clear_disc) < 0.0 and \
             not _pose_passes(blocked, res, x, y, theta, theta0, step, bins, pose_cells, pose_start, clear, outline,
-                             outline_disc, exact_grow):
+                             outline_disc, exact_grow, placed, box):
         return False
     # the end first: a tree's curves mostly end in what they hit (a sample inside an obstacle)
     last = n - 1
@@ -509,17 +514,17 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
         last -= 1
     if last >= 0:
         ex, ey, et = advance(start[last, 0], start[last, 1], start[last, 2], kinds[last], lengths[last], radius)
-        if clear_slack(clear, res, ex, ey, et, disc) < 0.0 and \
+        if clear_slack(clear, res, ex, ey, et, clear_disc) < 0.0 and \
                 not _pose_passes(blocked, res, ex, ey, et, theta0, step, bins, pose_cells, pose_start, clear, outline,
-                                 outline_disc, exact_grow):
+                                 outline_disc, exact_grow, placed, box):
             return False
-    offset = math.hypot(disc[0], disc[1])
+    offset = math.hypot(clear_disc[0], clear_disc[1])
     for fine in range(2):
         for j in range(n):
             count = pieces[j]
             if count == 0:
                 continue
-            # the most the disc centre moves from one traced pose to the next
+            # the most the clear_disc centre moves from one traced pose to the next
             move = abs(lengths[j]) / count * (1.0 if kinds[j] == STRAIGHT else 1.0 + offset / radius)
             p = 1
             while p <= count:
@@ -527,7 +532,7 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
                     p += 1
                     continue  # coarse pass: multiples of the stride; fine pass: the others
                 px, py, pt = advance(start[j, 0], start[j, 1], start[j, 2], kinds[j], lengths[j] * p / count, radius)
-                room = clear_slack(clear, res, px, py, pt, disc)
+                room = clear_slack(clear, res, px, py, pt, clear_disc)
                 if room >= 0.0:
                     if fine == 1:  # the next poses within the room pass too
                         p += 1 + int(room / move) if move > 0.0 else count
@@ -535,7 +540,7 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
                         p += 1
                     continue
                 if not _pose_passes(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start, clear, outline,
-                                    outline_disc, exact_grow):
+                                    outline_disc, exact_grow, placed, box):
                     return False
                 p += 1
     return True

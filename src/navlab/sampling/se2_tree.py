@@ -34,7 +34,7 @@ from numba import njit
 
 from . import dubins, reeds_shepp, reeds_shepp_length
 from .curves import MAX_SEGMENTS, NOP, advance
-from .footprint_lattice import curve_free
+from .footprint_lattice import NO_EXACT, curve_free
 from .tree_kernel import _remove_child
 
 #: istate fields
@@ -235,8 +235,7 @@ def _edge_free(pose, a, x1, y1, t1, kinds, lengths, radius, lat_blocked, lat_res
                lat_bins, lat_cells, lat_start, lat_clear, lat_disc, istate):
     istate[S_EDGE_CHECKS] += 1
     return curve_free(lat_blocked, lat_res, pose[a, 0], pose[a, 1], pose[a, 2], kinds, lengths, radius, lat_ds,
-                      lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc, np.empty((0, 2)),
-                      0.0, -1.0)
+                      lat_theta0, lat_step, lat_bins, lat_cells, lat_start, lat_clear, lat_disc, *NO_EXACT)
 
 
 @njit(cache=True)

@@ -279,15 +279,6 @@ def pose_grid_overlap(blocked, res, vertices, disc, x, y, theta, grow, outline, 
     return False, 0, 0
 
 
-@njit(cache=True)
-def pose_grid_clear(blocked, res, vertices, disc, x, y, theta, grow) -> bool:
-    """Whether the footprint at pose (x, y, θ) stays on the map and off every blocked cell's square
-    grown by ``grow`` [m] (:func:`pose_grid_overlap` without the cell)."""
-    outline = np.empty((vertices.shape[0], 2))
-    box = np.empty((4, 2))
-    return not pose_grid_overlap(blocked, res, vertices, disc, x, y, theta, grow, outline, box)[0]
-
-
 def twist_between(a, b, dt: float = 1.0):
     """The constant body twist that moves pose ``a`` to pose ``b`` in ``dt`` along an arc
     (the heading change taken the short way round)."""

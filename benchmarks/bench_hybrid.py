@@ -173,9 +173,10 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
         f"PythonRobotics' collision check: the obstacle points within {bubble:.2f} m of the car's centre "
         "(kd-tree bubble), then a pose is rejected if its rectangle contains one; poses 0.1 m apart; the points "
         "are the whole map.",
-        f"navlab's: no overlap with a blocked cell, so {res / 2:g} m around each point (its cell), plus its "
-        f"certified margin up to {margin:.2f} m (sqrt(2) res + res/4 + R sin 2.5 deg): up to "
-        f"{res / 2 + margin:.2f} m more clearance than PythonRobotics.",
+        f"navlab's: no overlap with a blocked cell, so {res / 2:g} m around each point (its cell), plus a "
+        f"margin: up to {margin:.2f} m (sqrt(2) res + res/4 + R sin 2.5 deg) where its cell lists decide, "
+        f"{res / 2:g} m (res/2) where its exact re-check does (analytic and smoothed curves, and the primitives "
+        "of a search that exhausted its space on the lists).",
         f"Search: PythonRobotics {module.XY_GRID_RESOLUTION:g} m / {math.degrees(module.YAW_GRID_RESOLUTION):g} "
         f"deg states, {module.XY_GRID_RESOLUTION * 1.5:g} m arcs, {module.N_STEER + 1} steering values, "
         f"heuristic x{module.H_COST:g}, switch-back cost {module.SB_COST:g};",

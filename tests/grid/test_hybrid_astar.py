@@ -289,3 +289,26 @@ def test_a_query_the_swept_cells_solve_runs_once():
     grid = carve(8, 3, (0.5, 7.5, 0.5, 2.5))
     result = plan_hybrid(grid, (1.2, 1.5, 0.0), (6.8, 1.5, 0.0), 1.0, footprint=ROBOT)
     assert result.status == Status.EXACT and not result.stats["exact_retry"]
+
+
+def test_a_retry_that_runs_out_of_budget_still_reports_the_exhausted_space():
+    """A room behind a gap 1.5 cm narrower than the robot plus the exact margin: the search exhausts the
+    room on the swept cells, then goes on exactly. With the budget ending in that second part, the reason
+    still says the space was exhausted (on the swept cells), not only that max_expansions ran out; without
+    the retry the answer is the plain exhausted space, as before session 13."""
+    blocked = np.ones((60, 120), bool)
+    blocked[10:50, 10:60] = False  # a 2.5 x 2 m room
+    blocked[24:37, 60:80] = False  # a 0.65 m gap (13 cells)
+    blocked[10:50, 80:110] = False  # the goal's room
+    grid = OccupancyGrid(blocked, resolution=RES)
+    query = ((1.2, 1.5, 0.0), (4.8, 1.5, 0.0), 1.0)
+    plain = plan_hybrid(grid, *query, footprint=ROBOT, exact_retry=False)
+    assert plain.status == Status.FAILED and plain.reason.endswith("the search space is exhausted")
+    assert not plain.stats["exact_retry"] and plain.params["exact_retry"] is False
+    spent = plain.stats["expansions"]
+    full = plan_hybrid(grid, *query, footprint=ROBOT, max_expansions=10 * spent)
+    assert full.status == Status.FAILED and full.stats["exact_retry"]
+    assert full.reason.endswith("the search space is exhausted") and spent < full.stats["expansions"] < 10 * spent
+    short = plan_hybrid(grid, *query, footprint=ROBOT, max_expansions=spent + 1)
+    assert short.status == Status.FAILED and short.stats["exact_retry"]
+    assert "exhausted on the primitives' swept cells" in short.reason and "max_expansions" in short.reason

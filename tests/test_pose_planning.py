@@ -157,7 +157,8 @@ def test_the_command_line_takes_a_pose(tmp_path):
     assert bad.exit_code == 2 and "'--start'" in bad.output and "Traceback" not in bad.output
     bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "hybrid_astar", "--param", "motion=sideways"])
     assert bad.exit_code == 2 and "motion must be one of dubins, reeds_shepp, got 'sideways'" in bad.output
-    bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "motion=sideways"])  # a tree: all three
+    # a tree planner takes all three
+    bad = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "motion=sideways"])
     assert bad.exit_code == 2 and "motion must be one of holonomic, dubins, reeds_shepp, got 'sideways'" in bad.output
 
 

@@ -539,8 +539,8 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
                     else:
                         p += 1
                     continue
-                if not _pose_passes(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start, clear, outline,
-                                    outline_disc, exact_grow, placed, box):
+                if not _pose_passes(blocked, res, px, py, pt, theta0, step, bins, pose_cells, pose_start, clear,
+                                    outline, outline_disc, exact_grow, placed, box):
                     return False
                 p += 1
     return True

@@ -167,3 +167,19 @@ def test_the_summary_counts_in_words_and_a_failure_has_no_cusps():
     assert res.exit_code == 1 and ", 1 expansion, planning" in res.output and "cusp" not in res.output
     res = CliRunner().invoke(main, ["plan", "parking", "--planner", "hybrid_astar"])
     assert res.exit_code == 0 and re.search(r"\d+ expansions, 1 cusp, planning", res.output)
+
+
+def test_a_robot_radius_a_footprint_scene_would_drop_is_refused():
+    """narrow_aisle's robot has a footprint, which a pose planner uses: a robot radius given with it was
+    dropped without a word (the path was the footprint's); now one line says how to plan for a disc."""
+    for call in (lambda: navlab.plan("narrow_aisle", planner="hybrid_astar", robot_radius=0.3),
+                 lambda: navlab.plan("narrow_aisle", planner="rrt_star", motion="reeds_shepp", max_iter=10,
+                                     robot_radius=0.3)):
+        with pytest.raises(ValueError, match="robot_radius: narrow_aisle's robot has its own footprint.*footprint=0.3"):
+            call()
+    bad = CliRunner().invoke(main, ["plan", "narrow_aisle", "--planner", "hybrid_astar", "--robot-radius", "0.3"])
+    assert bad.exit_code == 2 and "give footprint=0.3 instead" in bad.output
+    disc = navlab.plan("narrow_aisle", planner="hybrid_astar", footprint=0.3)  # the way to a disc robot
+    assert disc.success
+    point = navlab.plan("narrow_aisle", planner="astar", robot_radius=0.1)  # a point planner takes the radius
+    assert point.success and point.params["robot_radius"] == 0.1

@@ -212,7 +212,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
                robot_radius: Optional[float], params: Dict[str, Any]) -> Result:
     """A planner between poses (see :mod:`navlab.pose_queries`): Hybrid A*,
     or a tree planner (``sampler`` given) with Dubins or Reeds–Shepp steering."""
-    from .pose_queries import hybrid_query, tree_pose_query
+    from .pose_queries import check_radius_not_dropped, hybrid_query, tree_pose_query
     from .world.sources import load_source
 
     goal_tolerance = params.pop("goal_tolerance", None)
@@ -224,6 +224,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
         samp = build_sampler(sampler, to_sampler)
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
                         allow_unknown=params.get("allow_unknown"))
+    check_radius_not_dropped(world, robot_radius, params, planner)
     t0 = time.perf_counter()
     warm_pose_planner(planner if sampler is None else "se2_tree")
     warmup_s = time.perf_counter() - t0

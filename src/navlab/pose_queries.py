@@ -112,6 +112,14 @@ def query_footprint(world, value: Any):
     return Footprint.disc(world.robot_radius) if world.robot_radius > 0 else None
 
 
+def check_radius_not_dropped(world, robot_radius, params: Dict[str, Any], planner: str) -> None:
+    """Refuse a ``robot_radius`` that a pose query would drop: the world's footprint wins over it
+    (:func:`query_footprint`), so a user's radius would otherwise vanish without a word."""
+    if robot_radius is not None and params.get("footprint") is None and world.footprint is not None:
+        raise ValueError(f"robot_radius: {world.name}'s robot has its own footprint, which {planner} plans with; "
+                         f"for a disc of {robot_radius:g} m give footprint={robot_radius:g} instead")
+
+
 def _pose_grid(world, resolution):
     """The cells a heading-aware planner searches: a map's own, or the world's
     shapes rasterised with no inflation (the footprint is checked by the search)."""

@@ -312,3 +312,12 @@ def test_a_retry_that_runs_out_of_budget_still_reports_the_exhausted_space():
     short = plan_hybrid(grid, *query, footprint=ROBOT, max_expansions=spent + 1)
     assert short.status == Status.FAILED and short.stats["exact_retry"]
     assert "exhausted on the primitives' swept cells" in short.reason and "max_expansions" in short.reason
+
+
+def test_a_waypoint_spacing_that_would_not_fit_in_memory_is_one_line_naming_it():
+    """1e-9 m on a 1.5 m path would be 1.5e9 poses: refused naming waypoint_spacing (it raised MemoryError)."""
+    grid = OccupancyGrid(np.zeros((40, 40), bool), resolution=RES)
+    with pytest.raises(ValueError, match=r"waypoint_spacing: 1e-09 m gives 1\.51e\+09 poses along the 1\.512 m path"):
+        plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, waypoint_spacing=1e-9)
+    fine = plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, waypoint_spacing=0.01)
+    assert fine.success and len(fine.path) == 153

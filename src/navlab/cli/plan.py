@@ -57,7 +57,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     before_numba_import()
     with collections_paused():
         from ..planning import is_grid_planner, plan
-        from ..pose_queries import POSE_PLANNERS
+        from ..pose_queries import POSE_PLANNERS, check_radius_not_dropped, is_pose_query
         from ..world.sources import MissingQueryError, load_source
 
         before_first_kernel()  # numba is imported by now (the planners' kernels)
@@ -80,6 +80,8 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
             # one line through the CLI's error handler (exit 2), naming the flag
             raise ValueError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
                              f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
+        if is_pose_query(planner, settings):
+            check_radius_not_dropped(world, robot_radius, settings, planner)
         result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
     if plot:
         from ..viz import plot_plan

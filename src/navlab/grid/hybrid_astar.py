@@ -91,6 +91,8 @@ DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
     "analytic_expansion_max_length": None,  # [m] None: ANALYTIC_MIN_LENGTH or ANALYTIC_RADII turning radii
     "max_expansions": 200_000,
 }
+#: the most poses a returned path holds (``waypoint_spacing``): 240 MB of poses
+MAX_WAYPOINTS = 10 ** 7
 #: [m] the analytic expansion's reach at least (Nav2 Smac's default ``analytic_expansion_max_length``)
 ANALYTIC_MIN_LENGTH = 3.0
 #: ... and at least this many turning radii: a shortest path to a goal within about one radius is
@@ -298,6 +300,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     hit = first_overlap_exact(blocked, res, vertices, disc, traced, 0.5 * lattice.delta)
     if hit is not None:
         return finish(Status.FAILED, f"internal check: the path found overlaps cell {hit}; please report it")
+    waypoints = 1 + sum(max(1, math.ceil(abs(length) / spacing)) for length in lengths.tolist() if length != 0.0)
+    if waypoints > MAX_WAYPOINTS:
+        raise ValueError(f"waypoint_spacing: {spacing:g} m gives {waypoints:.3g} poses along the "
+                         f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")
     poses, direction = trace_word(lsx, lsy, lst, kinds, lengths, r, spacing)
     world = np.column_stack([ox + c * poses[:, 0] - s * poses[:, 1], oy + s * poses[:, 0] + c * poses[:, 1],
                              poses[:, 2] + yaw])

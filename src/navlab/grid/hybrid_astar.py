@@ -282,7 +282,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                    "(raise max_expansions)")
         else:
             why = f"max_expansions ({max_expansions}) reached before the goal (raise max_expansions)"
-        return finish(Status.FAILED, f"no collision-free path: {why}")
+        # resolution-complete only: a path off the lattice (another start heading, finer cells) may exist
+        return finish(Status.FAILED, f"no path on the search's lattice ({int(heading_bins)} headings, "
+                                     f"{res:g} m cells): {why}")
     # the chain of primitives, then the analytic tail, as (kind, signed length) segments from the start
     chain = []
     v = last

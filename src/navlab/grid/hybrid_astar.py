@@ -75,7 +75,7 @@ from ..limits import MAX_COUNT, check_count, check_length, finite_number
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_compiled, advance, check_pose,
-                              check_turning_radius, trace_word)
+                              check_turning_radius, trace_word, word_poses)
 from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattice_for, pose_free, robot_outline
 from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
@@ -262,14 +262,14 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
 
     with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
         found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1], \
-            stats["exact_retry"] = search(
+            retried = search(
                 blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
                 motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
                 *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc,
                 lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), bool(exact_retry), *field,
                 penalties, analytic_max, int(max_expansions), bool(analytic_expansion),
                 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
-    stats["exact_retry"] = bool(stats["exact_retry"])
+    stats["exact_retry"] = bool(retried)
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
         forward_only = " (dubins drives forward only: a goal reachable only in reverse needs motion='reeds_shepp')" \
@@ -302,7 +302,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     hit = first_overlap_exact(blocked, res, vertices, disc, traced, 0.5 * lattice.delta)
     if hit is not None:
         return finish(Status.FAILED, f"internal check: the path found overlaps cell {hit}; please report it")
-    waypoints = 1 + sum(max(1, math.ceil(abs(length) / spacing)) for length in lengths.tolist() if length != 0.0)
+    waypoints = word_poses(kinds, lengths, spacing)
     if waypoints > MAX_WAYPOINTS:
         raise ValueError(f"waypoint_spacing: {spacing:g} m gives {waypoints:.3g} poses along the "
                          f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")

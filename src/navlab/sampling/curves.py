@@ -72,6 +72,17 @@ def advance(x: float, y: float, theta: float, kind: int, s: float, radius: float
 
 
 @njit(cache=True)
+def word_poses(kinds: np.ndarray, lengths: np.ndarray, step: float) -> int:
+    """How many poses :func:`trace_word` gives along the word at ``step`` (the start, then each segment cut
+    into ⌈|length| / step⌉ pieces): what a trace would hold, before tracing it."""
+    count = 1
+    for i in range(kinds.shape[0]):
+        if kinds[i] != NOP and lengths[i] != 0.0:
+            count += max(1, int(math.ceil(abs(lengths[i]) / step)))
+    return count
+
+
+@njit(cache=True)
 def trace_word(x: float, y: float, theta: float, kinds: np.ndarray, lengths: np.ndarray, radius: float,
                step: float) -> Tuple[np.ndarray, np.ndarray]:
     """Poses every ``step`` metres of arc length along a word, segment ends included.
@@ -80,10 +91,7 @@ def trace_word(x: float, y: float, theta: float, kinds: np.ndarray, lengths: np.
     in reverse for the motion *arriving* at each pose (the first pose takes the
     first segment's direction), so cusps show where the sign changes.
     """
-    count = 1
-    for i in range(kinds.shape[0]):
-        if kinds[i] != NOP and lengths[i] != 0.0:
-            count += max(1, int(math.ceil(abs(lengths[i]) / step)))
+    count = word_poses(kinds, lengths, step)
     poses = np.empty((count, 3))
     direction = np.empty(count, dtype=np.int8)
     poses[0, 0], poses[0, 1], poses[0, 2] = x, y, theta

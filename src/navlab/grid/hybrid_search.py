@@ -160,6 +160,19 @@ def _open(hkey, hnode, hentry, size, eg, ex, ey, elazy, entry, node, g, x, y, th
 
 
 @njit(cache=True)
+def _entries_grown(eg, ex, ey, elazy, hkey, hnode, hentry, cap):
+    """The queue's entry arrays (what each key was computed from, and the heap) with room for ``cap``."""
+    return (_grow(eg, cap), _grow(ex, cap), _grow(ey, cap), _grow(elazy, cap), _grow(hkey, cap), _grow(hnode, cap),
+            _grow(hentry, cap))
+
+
+@njit(cache=True, inline="always")
+def _field_index(x, y, res, stride):
+    """The holonomic field's index of the cell holding (x, y) [m] (the field has a one-cell border)."""
+    return (int(floor_div(y, res)) + 1) * stride + int(floor_div(x, res)) + 1
+
+
+@njit(cache=True)
 def _grow(a, cap):
     out = np.empty((cap,) + a.shape[1:], dtype=a.dtype)
     out[:a.shape[0]] = a
@@ -302,8 +315,7 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
                 blocks[counters[_NBLOCKS]:] = -1
             if nentries + nprim > ecap:
                 ecap = max(2 * ecap, nentries + nprim)
-                eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
-                hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
+                eg, ex, ey, elazy, hkey, hnode, hentry = _entries_grown(eg, ex, ey, elazy, hkey, hnode, hentry, ecap)
         elif event == _SWEPT:  # the pending child's primitive, from the pending node's bin
             swept, swept_used = swept_group(swept, swept_used, swept_lo, swept_hi, nb[counters[_PENDING]],
                                             counters[_PENDING_CHILD], vertices, disc, reach, theta0, step, bins,
@@ -318,13 +330,12 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
             again = np.nonzero(rejected[:count])[0]
             if nentries + again.shape[0] > ecap:
                 ecap = max(2 * ecap, nentries + again.shape[0])
-                eg, ex, ey, elazy = _grow(eg, ecap), _grow(ex, ecap), _grow(ey, ecap), _grow(elazy, ecap)
-                hkey, hnode, hentry = _grow(hkey, ecap), _grow(hnode, ecap), _grow(hentry, ecap)
+                eg, ex, ey, elazy, hkey, hnode, hentry = _entries_grown(eg, ex, ey, elazy, hkey, hnode, hentry, ecap)
             for u in again:
                 closed[u] = False
-                fv = (int(floor_div(ny[u], res)) + 1) * (w + 2) + int(floor_div(nx[u], res)) + 1
+                field = fdist[_field_index(nx[u], ny[u], res, w + 2)]  # settled when the node was pushed
                 _open(hkey, hnode, hentry, counters[_HSIZE], eg, ex, ey, elazy, counters[_NENTRIES], u, ng[u],
-                      nx[u], ny[u], theta0 + nb[u] * step, fdist[fv], reverse, gx, gy, gtheta, radius)
+                      nx[u], ny[u], theta0 + nb[u] * step, field, reverse, gx, gy, gtheta, radius)
                 counters[_HSIZE] += 1
                 counters[_NENTRIES] += 1
             counters[_EXACT] = 1
@@ -371,7 +382,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 elazy[e] = False
                 theta = theta0 + nb[v] * step
                 # settled at the push
-                field = fdist[(int(floor_div(ey[e], res)) + 1) * fstride + int(floor_div(ex[e], res)) + 1]
+                field = fdist[_field_index(ex[e], ey[e], res, fstride)]
                 forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
                 # the order needs the key only against the next entry's: an upper bound below it settles that
                 # this entry is first without the Reeds–Shepp solve (the Dubins length bounds it from above)

@@ -26,6 +26,8 @@ from .result import Result, Status
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
 MOTIONS = ("holonomic", "dubins", "reeds_shepp")
+#: the motions of a car-like robot, all that Hybrid A* plans for
+CAR_MOTIONS = MOTIONS[1:]
 #: planners that plan between poses for a curvature-bounded robot
 POSE_PLANNERS = ("hybrid_astar",)
 #: tree planners that also plan between poses when ``motion`` is dubins or reeds_shepp
@@ -56,9 +58,8 @@ def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
     ``motion`` is dubins or reeds_shepp; any other planner asked for it is an
     error naming the planners that can."""
     motion = params.get("motion", "holonomic" if planner not in POSE_PLANNERS else "reeds_shepp")
-    if motion not in MOTIONS and planner in POSE_PLANNERS:  # list only what this planner takes
-        check_motion(motion, tuple(m for m in MOTIONS if m != "holonomic"))
-    check_motion(motion)
+    # an unknown motion is told what this planner takes; holonomic has its own message below
+    check_motion(motion, CAR_MOTIONS if planner in POSE_PLANNERS and motion != "holonomic" else MOTIONS)
     if planner in POSE_PLANNERS:
         if motion == "holonomic":
             raise ValueError(f"motion: {planner} plans for a car-like robot: motion must be dubins or reeds_shepp, "

@@ -524,7 +524,7 @@ def curve_free(blocked, res, x, y, theta, kinds, lengths, radius, ds, theta0, st
             count = pieces[j]
             if count == 0:
                 continue
-            # the most the clear_disc centre moves from one traced pose to the next
+            # the most the disc centre moves from one traced pose to the next
             move = abs(lengths[j]) / count * (1.0 if kinds[j] == STRAIGHT else 1.0 + offset / radius)
             p = 1
             while p <= count:

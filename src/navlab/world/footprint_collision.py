@@ -267,10 +267,12 @@ def pose_grid_overlap(blocked, res, vertices, disc, x, y, theta, grow, outline, 
             bx1, by1 = (cx + 1) * res + grow + slack, (cy + 1) * res + grow + slack
             # squares beyond the outline's bounding box or its circle about (x, y) cannot meet it: passed
             # over before the exact test, which near a wall would otherwise run on every wall cell around
-            if bx1 < x0 or bx0 > x1 or by1 < y0 or by0 > y1 or point_rect_dist2(x, y, bx0, by0, bx1, by1) > reach2:
+            if bx1 < x0 or bx0 > x1 or by1 < y0 or by0 > y1:
                 continue
-            if polygon_rect_touch(outline, bx0, by0, bx1, by1, box) if k else \
-                    point_rect_dist2(x, y, bx0, by0, bx1, by1) <= disc * disc:
+            d2 = point_rect_dist2(x, y, bx0, by0, bx1, by1)
+            if d2 > reach2:
+                continue
+            if polygon_rect_touch(outline, bx0, by0, bx1, by1, box) if k else d2 <= disc * disc:
                 return True, cx, cy
     # none of the ring's squares met: the footprint leaves the map only by lying wholly beyond
     # them (the map is a rectangle, so the outline's extremes tell); name the nearest ring cell

@@ -321,3 +321,19 @@ def test_a_waypoint_spacing_that_would_not_fit_in_memory_is_one_line_naming_it()
         plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, waypoint_spacing=1e-9)
     fine = plan_hybrid(grid, (0.5, 0.5, 0.0), (1.5, 1.5, 0.0), 0.4, robot_radius=0.1, waypoint_spacing=0.01)
     assert fine.success and len(fine.path) == 153
+
+
+def test_a_search_that_goes_on_exactly_is_the_same_every_time():
+    """The exact retry reopens the nodes marked as having had a primitive rejected; a node past the first
+    1024 (the arrays grow uninitialised) once kept whatever the memory held there, so repeated runs of one
+    query expanded different counts (a newcomer saw 131 758 and 144 515). Two runs past that size, with the
+    retry, must agree to the expansion, and with the retry's own count larger than the run without it."""
+    blocked = np.ones((60, 120), bool)
+    blocked[10:50, 10:60] = False  # a 2.5 x 2 m room, the 0.65 m gap and the goal's room (as above)
+    blocked[24:37, 60:80] = False
+    blocked[10:50, 80:110] = False
+    grid = OccupancyGrid(blocked, resolution=RES)
+    query = ((1.2, 1.5, 0.0), (4.8, 1.5, 0.0), 1.0)
+    runs = [plan_hybrid(grid, *query, footprint=ROBOT) for _ in range(3)]
+    assert runs[0].stats["nodes"] > 1024 and all(r.stats["exact_retry"] for r in runs)
+    assert len({(r.status, r.stats["expansions"], r.stats["heuristics_solved"], r.reason) for r in runs}) == 1

@@ -502,6 +502,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 count += 1
                 blocks[blk, b2] = u
                 closed[u] = False
+                rejected[u] = False  # (the node arrays grow uninitialised)
             nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
             _open(hkey, hnode, hentry, hsize, eg, ex, ey, elazy, nentries, u, g2, x2, y2, theta0 + b2 * step, field,
                   reverse, gx, gy, gtheta, radius)

@@ -179,6 +179,10 @@ def test_a_robot_radius_a_footprint_scene_would_drop_is_refused():
             call()
     bad = CliRunner().invoke(main, ["plan", "narrow_aisle", "--planner", "hybrid_astar", "--robot-radius", "0.3"])
     assert bad.exit_code == 2 and "give footprint=0.3 instead" in bad.output
+    with pytest.raises(ValueError, match="robot_radius: give footprint or robot_radius, not both"):
+        navlab.plan("trap", planner="hybrid_astar", robot_radius=0.5, footprint=0.3)  # the radius was dropped
+    with pytest.raises(ValueError, match="footprint.*leave robot_radius out"):  # footprint=0 is no disc
+        navlab.plan("narrow_aisle", planner="hybrid_astar", robot_radius=0)
     disc = navlab.plan("narrow_aisle", planner="hybrid_astar", footprint=0.3)  # the way to a disc robot
     assert disc.success
     point = navlab.plan("narrow_aisle", planner="astar", robot_radius=0.1)  # a point planner takes the radius

@@ -114,11 +114,18 @@ def query_footprint(world, value: Any):
 
 
 def check_radius_not_dropped(world, robot_radius, params: Dict[str, Any], planner: str) -> None:
-    """Refuse a ``robot_radius`` that a pose query would drop: the world's footprint wins over it
-    (:func:`query_footprint`), so a user's radius would otherwise vanish without a word."""
-    if robot_radius is not None and params.get("footprint") is None and world.footprint is not None:
+    """Refuse a ``robot_radius`` that a pose query would drop: a ``footprint`` setting and the world's
+    footprint win over it (:func:`query_footprint`), so a user's radius would otherwise vanish without a word."""
+    if robot_radius is None:
+        return
+    disc = f"for a disc of {robot_radius:g} m give footprint={robot_radius:g} instead" if robot_radius > 0 else \
+        "leave robot_radius out"
+    if params.get("footprint") is not None:  # the setting wins (query_footprint)
+        raise ValueError(f"robot_radius: give footprint or robot_radius, not both ({planner} plans with the "
+                         f"footprint); {disc}")
+    if world.footprint is not None:
         raise ValueError(f"robot_radius: {world.name}'s robot has its own footprint, which {planner} plans with; "
-                         f"for a disc of {robot_radius:g} m give footprint={robot_radius:g} instead")
+                         f"{disc}")
 
 
 def _pose_grid(world, resolution):

@@ -124,6 +124,7 @@ def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
     ({"footprint": [[1, 1], [2, 1], [2, 2]]}, "origin"),
     ({"footprint": [[-1, -1], [1, 1], [1, -1], [-1, 1]]}, "cross"),
     ({"footprint": [[0, 0], [1, float("nan")], [1, 1]]}, "finite"), ({"heading_bins": 3}, "heading_bins"),
+    ({"heading_bins": 72.5}, "heading_bins"), ({"heading_bins": True}, "heading_bins"),
     ({"reverse_penalty": 0.5}, "reverse_penalty"),
     ({"analytic_expansion": "fals"}, "analytic_expansion must be true or false"),  # bool("fals") would be True
     ({"smooth": "maybe"}, "smooth must be true or false"),
@@ -136,6 +137,16 @@ def test_bad_input_is_named(kwargs, field):
     args.update(kwargs)
     with pytest.raises(ValueError, match=field):
         plan_hybrid(**args)
+
+
+def test_heading_bins_given_as_a_whole_float_plans_as_the_int():
+    """72.0 (a YAML file's or --param's number) is the count 72, as every other count is
+    (limits.check_count); it was refused until session 14."""
+    args = {"grid": aisle(), "start": (1.2, 1.55, 0.0), "goal": (4.05, 4.6, 1.5), "turning_radius": 0.5,
+            "footprint": ROBOT}
+    as_float, as_int = plan_hybrid(heading_bins=72.0, **args), plan_hybrid(heading_bins=72, **args)
+    assert as_float.status is as_int.status is Status.EXACT
+    assert as_float.cost == as_int.cost and as_float.params["heading_bins"] == 72
 
 
 def test_smacs_analytic_schedule_tries_at_the_first_expansion_and_ends_no_sooner():

@@ -177,8 +177,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     r = check_turning_radius(turning_radius)
     sx, sy, st = check_pose("start", start)
     gx, gy, gt = check_pose("goal", goal)
-    if isinstance(heading_bins, bool) or not isinstance(heading_bins, (int, np.integer)) or not 4 <= heading_bins <= 1440:
-        raise ValueError(f"heading_bins must be a whole number from 4 to 1440, got {heading_bins!r}")
+    heading_bins = check_count("heading_bins", heading_bins, 4, 1440)  # 72.0 from a YAML file or --param counts
     for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
                              ("change_penalty", change_penalty, 0.0)):
         if finite_number(name, value) < low:

@@ -154,6 +154,9 @@ def test_allow_unknown_lets_the_query_use_unknown_cells():
     ("astar", {"heuristc": "octile"}, "Did you mean 'heuristic'"),
     ("rrt_star", {"resolution": 0.1}, "unknown parameter 'resolution' for planner 'rrt_star'"),
     ("theta_star", {"connectivity": 6}, "connectivity must be 4 or 8"),
+    # a car's settings without a car's motion: told what to add, not "Did you mean 'footprint'?"
+    ("rrt_star", {"footprint": 0.3}, "footprint applies only with motion dubins or reeds_shepp"),
+    ("rrt", {"turning_radius": 1.0}, "turning_radius applies only with motion dubins or reeds_shepp"),
 ])
 def test_unknown_planner_or_parameter_lists_the_valid_names(planner, params, text):
     with pytest.raises(ValueError, match=text.replace("(", r"\(").replace(")", r"\)")):

@@ -71,6 +71,10 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
             to_planner[key] = value
         elif key in sampler_keys or key == "goal_sample_rate":
             to_sampler[key] = value
+        elif key in ("turning_radius", "footprint"):  # a car's settings, here without a car's motion
+            raise UnknownNameError(f"{key} applies only with motion dubins or reeds_shepp (add motion=reeds_shepp "
+                                   f"or motion=dubins); planner '{planner}' plans for a holonomic point robot "
+                                   f"here (its size: robot_radius)")
         else:
             valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
             raise UnknownNameError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "

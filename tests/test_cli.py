@@ -208,3 +208,16 @@ def test_a_group_alone_prints_its_help_whole(args, verbs):
     assert res.exit_code in (0, 2) and lines[0].startswith("Usage:") and len(lines) > 5  # not folded into one line
     listed = [line.split()[0] for line in lines[lines.index("Commands:") + 1:] if line.startswith("  ")]
     assert set(verbs) <= set(listed)
+
+
+def test_a_count_flag_takes_a_whole_float_as_param_does(run):
+    """--max-iter 1e3 is --max-iter 1000 (as --param max_iter=1e3 and experiment files take it);
+    a fraction, zero or a word is one line naming the flag (until session 14 click refused 1e3)."""
+    as_float = json.loads(run("plan", "trap", "--max-iter", "1e3", "--json").output)
+    as_int = json.loads(run("plan", "trap", "--max-iter", "1000", "--json").output)
+    assert as_float["params"]["max_iter"] == 1000 and as_float["cost"] == as_int["cost"]
+    for bad, text in (("1.5", "max_iter must be a whole number"), ("0", "max_iter must be a whole number"),
+                      ("lots", "'lots' is not a whole number")):
+        res = CliRunner().invoke(main, ["plan", "trap", "--max-iter", bad])
+        assert res.exit_code == 2 and "--max-iter" in res.output and text in res.output, res.output
+        assert "Traceback" not in res.output

@@ -12,7 +12,7 @@ import click
 import yaml
 
 from ..bench.suites import suite_help
-from .common import parse_params
+from .common import Count, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
 EXIT_INTERRUPTED = 130
@@ -80,8 +80,8 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--sampler", "samplers", multiple=True, help="Sampler (repeatable).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE", help="Setting for every cell (repeatable).")
 @click.option("--grid", "grid", multiple=True, metavar="KEY=[V1,V2]", help="Parameter grid axis (repeatable).")
-@click.option("--trials", type=click.IntRange(min=1), default=None, help="Trials per cell.")
-@click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iteration budget per trial.")
+@click.option("--trials", type=Count(), default=None, help="Trials per cell.")
+@click.option("--max-iter", type=Count(), default=None, help="Iteration budget per trial.")
 @click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None, help="Time budget per trial [s].")
 @click.option("--seed", type=click.IntRange(min=0), default=None, help="Base seed of the per-trial seeds.")
 @click.option("--executor", type=click.Choice(["process", "serial", "dask"]), default="process", show_default=True,

@@ -56,6 +56,34 @@ class SuggestingChoice(click.Choice):
             self.fail(f"{exc.message} Did you mean {close[0]!r}?", param, ctx)
 
 
+class Count(click.ParamType):
+    """A whole number from ``low`` up, also written as a float (``1e5``, ``2000.0``), as
+    ``--param max_iter=1e5`` and experiment files take it (:func:`navlab.limits.check_count`)."""
+
+    name = "integer"
+
+    def __init__(self, low: int = 1) -> None:
+        self.low = low
+
+    def convert(self, value, param, ctx):
+        from ..limits import check_count
+
+        if isinstance(value, int):
+            number = value
+        else:
+            try:
+                number = int(value)
+            except (TypeError, ValueError):
+                try:
+                    number = float(value)
+                except (TypeError, ValueError):
+                    self.fail(f"{value!r} is not a whole number", param, ctx)
+        try:
+            return check_count(param.name if param is not None else "value", number, self.low)
+        except ValueError as exc:
+            self.fail(str(exc), param, ctx)
+
+
 def before_numba_import() -> None:
     """What a planning verb's process does first: import numba without PyYAML and with
     ``importlib.metadata`` deferred to its first use (``numba_start.import_numba_lean``)."""

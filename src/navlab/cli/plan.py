@@ -7,7 +7,7 @@ import sys
 
 import click
 
-from .common import PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
+from .common import Count, PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -26,7 +26,7 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
               help="Goal in metres (overrides the world's; required for maps); THETA as for --start.")
 @click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
               help="Robot radius in metres (overrides the world's; maps: 0).")
-@click.option("--max-iter", type=click.IntRange(min=1), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
+@click.option("--max-iter", type=Count(), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
 @click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None,
               help="Time limit in seconds (starts after warm-up).")
 @click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Random seed (same seed, same result).")

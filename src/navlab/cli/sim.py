@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from .common import PointOrPoseOption, check_output_file, parse_params
+from .common import Count, PointOrPoseOption, check_output_file, parse_params
 
 #: experiment names the CLI offers (the registry is filled when sim.experiments is imported; listed here so
 #: that `navlab --help` does not import the simulator)
@@ -59,7 +59,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
               help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
                    "(seed002), sensor-latency (seed004-latency: seed 004 with its measured topic delays and a "
                    "crossing obstacle), hybrid-vs-field (random-clutter).")
-@click.option("--runs", type=click.IntRange(min=1), default=None, help="Runs per setting (experiments).")
+@click.option("--runs", type=Count(), default=None, help="Runs per setting (experiments).")
 @click.option("--plot-dir", type=click.Path(file_okay=False), default=None,
               help="Experiments: write a PNG per run here (seed002 default: sim-results/seed002).")
 @click.option("--json", "as_json", is_flag=True, help="JSON output (one object per run for experiments).")

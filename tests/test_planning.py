@@ -227,3 +227,15 @@ def test_a_misspelt_query_setting_is_suggested_and_listed(typo, meant):
 def test_a_misspelt_goal_tolerance_is_suggested_for_hybrid_astar_too():
     with pytest.raises(UnknownNameError, match="Did you mean 'goal_tolerance'"):
         navlab.plan("parking", "hybrid_astar", goal_tolerence=1)
+
+
+@pytest.mark.parametrize("settings", [{"planner": "astar"}, {"planner": "jps"}, {"planner": "theta_star"},
+                                      {"planner": "astar", "costmap": True}])
+def test_a_grid_query_whose_ends_share_a_cell_is_the_straight_leg(settings):
+    """start == goal costs 0 with one point, and a goal in the start's cell is reached straight, not
+    through the cell's centre (until session 14: 0.099 m and 3 points for start == goal on trap)."""
+    same = navlab.plan("trap", start=(1.0, 1.0), goal=(1.0, 1.0), **settings)
+    assert same.status is Status.EXACT and same.cost == 0.0 and len(same.path) == 1
+    near = navlab.plan("trap", start=(1.0, 1.0), goal=(1.01, 1.02), **settings)
+    assert near.status is Status.EXACT
+    assert near.cost == pytest.approx(math.hypot(0.01, 0.02), rel=1e-9) and len(near.path) == 2

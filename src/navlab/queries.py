@@ -28,6 +28,8 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
 
 #: settings of the query rather than of a planner, which every tree planner's --param takes
 #: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
+#: [m] consecutive path points closer than this are one point (a cell centre computed two ways)
+_SAME_POINT = 1e-9
 QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance")
 QUERY_PARAMS_HELP = ("motion (holonomic, dubins or reeds_shepp; the last two with turning_radius and footprint), "
                      "goal_tolerance")
@@ -150,10 +152,14 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
         stats["time_s"] = time.perf_counter() - t0
         return Result(status=Status.FAILED, params=out_params, stats=stats, reason=r.reason, cells=r.cells)
     stats["cost_cells"] = float(r.stats.get("cost_cells", r.cost))
-    path = np.vstack((world.start, r.path, world.goal))
-    keep = np.ones(len(path), dtype=bool)
-    keep[1:] = np.any(np.diff(path, axis=0) != 0, axis=1)  # a point that is its cell's centre
-    path = path[keep]
+    ends = np.array([world.start, world.goal], dtype=float)
+    if cells["start"] == cells["goal"] and checker.segments_free(ends[:1], ends[1:])[0]:
+        # both ends join the same cell centre: the straight leg between them, not a detour through
+        # that centre (start == goal costs 0)
+        path = ends
+    else:
+        path = np.vstack((world.start, r.path, world.goal))
+    path = _without_repeats(path)
     # The raster is conservative, so the cell-to-cell legs are free by
     # construction (and attach() checked the two end legs against the map's
     # squares); one exact check of the whole path guards that promise.
@@ -168,6 +174,18 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     cost = path_length(path)
     tree = (r.tree or Tree()).with_raster(grid)
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
+
+
+def _without_repeats(path: np.ndarray) -> np.ndarray:
+    """``path`` without a point on the one before (an end that is its cell's centre, up to the
+    centre's rounding), keeping the exact start and goal: a centre on the goal gives way to it."""
+    keep = np.ones(len(path), dtype=bool)
+    keep[1:] = np.hypot(*np.diff(path, axis=0).T) > _SAME_POINT
+    if len(path) > 1 and not keep[-1]:
+        keep[-1] = not np.array_equal(path[0], path[-1]) or len(path) > 2
+        if len(path) > 2:
+            keep[-2] = False
+    return path[keep]
 
 
 def costmap_query(world, algorithm: str, params: dict) -> Result:

@@ -162,6 +162,8 @@ def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = 
     centres = costmap.cell_to_world(np.column_stack((flat % w, flat // w)))
     path = np.vstack([np.asarray(start_xy[:2], float), centres[1:-1], np.asarray(goal_xy[:2], float)]) \
         if len(centres) > 2 else np.array([start_xy[:2], goal_xy[:2]], float)
+    if len(path) == 2 and np.array_equal(path[0], path[1]):  # start == goal: one point, no zero-length leg
+        path = path[:1]
     return path, total * costmap.resolution, ""
 
 

@@ -171,6 +171,13 @@ def test_bad_parameters(kwargs, field):
         plan(OccupancyGrid(np.zeros((3, 3), dtype=bool)), (0, 0), (2, 2), **kwargs)
 
 
+@pytest.mark.parametrize("start", [(True, 1), (1, np.bool_(False)), (1.5, 1), (float("nan"), 1), (1,), "a1"])
+def test_a_cell_that_is_not_two_integers_is_named(start):
+    # a bool is no coordinate: True was taken as cell 1 until session 14 (newcomer check)
+    with pytest.raises(ValueError, match="start must be an integer cell"):
+        plan(OccupancyGrid(np.zeros((3, 3), dtype=bool)), start, (2, 2))
+
+
 def test_world_variant_and_frames():
     grid = OccupancyGrid(np.zeros((10, 20), dtype=bool), resolution=0.5, origin=(-2.0, 1.0, 0.0))
     r = plan_world(grid, (-1.9, 1.1), (7.9, 5.9))

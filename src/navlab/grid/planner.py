@@ -227,7 +227,9 @@ def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
 def _cell(value, what: str) -> Tuple[int, int]:
     try:
         x, y = value
-        if int(x) == x and int(y) == y:
+        # a bool is no coordinate (True would be cell 1)
+        if not isinstance(x, (bool, np.bool_)) and not isinstance(y, (bool, np.bool_)) \
+                and int(x) == x and int(y) == y:
             return int(x), int(y)
     except (TypeError, ValueError, OverflowError):  # not a pair, NaN, inf
         pass

@@ -146,7 +146,9 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
 def scen_report(s) -> str:
     """The summary of ``navlab grid scen`` as text: counts, times, the worst five."""
     fmt = lambda v: "-" if v is None else f"{v:.8g}"  # noqa: E731
-    lines = [f"{s['map']}: {s['scenarios']} scenarios, {s['algorithm']} ({s['heuristic']}), "
+    # Dijkstra uses no heuristic (the setting is ignored), so it is not named beside it
+    searched = s["algorithm"] if s["algorithm"] == "dijkstra" else f"{s['algorithm']} ({s['heuristic']})"
+    lines = [f"{s['map']}: {s['scenarios']} scenarios, {searched}, "
              f"length {s['comparison']}: {s['matches']} match, {s['mismatches']} do not"
              + (f", {s['invalid']} invalid (start or goal blocked or outside the map)" if s["invalid"] else "")]
     lines.append("  statuses: " + ", ".join(f"{k} {v}" for k, v in sorted(s["statuses"].items())))

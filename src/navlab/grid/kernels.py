@@ -625,8 +625,9 @@ _SIDES_Y = 0b0011  # moving along y: east (bit 0) and west (bit 1)
 # move itself and, on a side blocked beside the cell before, the side move and
 # the diagonal ahead; after a diagonal, it and its straight parts. (Until
 # session 14 every straight arrival also tried both perpendicular moves and
-# both diagonals ahead: the same paths, 2.81 instead of 2.31 million jump
-# points on random4096 and 0.76x the time without them.)
+# both diagonals ahead: the same costs (the paths may be others of that cost),
+# 2.81 instead of 2.31 million jump points on random4096, 0.76x the time
+# without them.)
 # Helpers that take arrays are plain njit functions (LLVM inlines them), not numba's
 # inline="always", and JPS records rows itself instead of calling a helper: numba leaves an
 # atomic NRT_incref/NRT_decref of each array argument around such calls (inlined at its own

@@ -423,8 +423,10 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
     used_out = 0
     i = 0
     while i < n:
-        j, used = _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins,
-                                     pose_cells, pose_start, clear, clear_disc, vertices, disc, grow, kinds, lengths)
+        before = _direction(out_lengths[used_out - 1]) if used_out > 0 else 0
+        j, used = _farthest_shortcut(waypoints, acc, seg_lengths, before, i, radius, reverse, blocked, res, ds,
+                                     theta0, step, bins, pose_cells, pose_start, clear, clear_disc, vertices, disc,
+                                     grow, kinds, lengths)
         if j > 0:
             out_kinds[used_out:used_out + used] = kinds[:used]
             out_lengths[used_out:used_out + used] = lengths[:used]
@@ -437,11 +439,37 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
     return out_kinds[:used_out], out_lengths[:used_out]
 
 
+@njit(cache=True, inline="always")
+def _direction(length) -> int:
+    """+1 forward, -1 reverse (a segment's signed length), 0 for none."""
+    return 1 if length > 0.0 else -1 if length < 0.0 else 0
+
+
 @njit(cache=True)
-def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, theta0, step, bins, pose_cells,
-                       pose_start, clear, clear_disc, vertices, disc, grow, kinds, lengths):
+def _cusps(before, lengths, after) -> int:
+    """The changes of direction along segments ``lengths`` [m] (signed) between a segment going
+    ``before`` and one going ``after`` (+1, -1, or 0 for none)."""
+    count = 0
+    last = before
+    for k in range(lengths.shape[0]):
+        d = _direction(lengths[k])
+        if d != 0:
+            if last != 0 and d != last:
+                count += 1
+            last = d
+    if after != 0 and last != 0 and after != last:
+        count += 1
+    return count
+
+
+@njit(cache=True)
+def _farthest_shortcut(waypoints, acc, seg_lengths, before, i, radius, reverse, blocked, res, ds, theta0, step,
+                       bins, pose_cells, pose_start, clear, clear_disc, vertices, disc, grow, kinds, lengths):
     """The farthest waypoint j > i + 1 whose shortest path from waypoint i is
-    shorter than the path between them and collision-free, and how many
+    shorter than the path between them, changes direction no more often (``seg_lengths``: the
+    original path's signed segment lengths, ``before``: the direction of the segment the smoothed
+    path has just before waypoint i; a Reeds–Shepp shortcut would otherwise put a reversing jog of a
+    few centimetres into a forward run to save less), and is collision-free, and how many
     segments that path has (written to ``kinds``, ``lengths`` [m], without
     padding and without segments of no length, as :meth:`CurvePath.of_word`
     drops them); (0, 0) when there is none. The same paths and lengths as
@@ -479,6 +507,9 @@ def _farthest_shortcut(waypoints, acc, i, radius, reverse, blocked, res, ds, the
                 length += abs(word_lens[k])
                 used += 1
         if length >= acc[j] - acc[i] - 1e-9:
+            continue
+        after = _direction(seg_lengths[j]) if j < seg_lengths.shape[0] else 0
+        if reverse and _cusps(before, lengths[:used], after) > _cusps(before, seg_lengths[i:j], after):
             continue
         if curve_free(blocked, res, x0, y0, t0, kinds[:used], lengths[:used], radius, ds, theta0, step, bins,
                       pose_cells, pose_start, clear, clear_disc, vertices, disc, grow):

@@ -111,3 +111,20 @@ def test_a_bad_turning_radius_is_named(solver, radius, field):
 def test_a_bad_pose_is_named(solver, goal, field):
     with pytest.raises(ValueError, match=field):
         solver.shortest((0, 0, 0), goal, 1.0)
+
+
+def test_the_dubins_length_alone_is_the_full_solve_bit_for_bit():
+    """dubins.length skips words that cannot be shorter than the best found (Hybrid A*'s heuristic,
+    SE(2) nearest neighbours); it must return solve's t + p + q exactly, on random inputs and on
+    the edge cases: zero distance, zero and full-turn headings, the CCC range."""
+    from navlab.sampling import dubins
+
+    rng = np.random.default_rng(5)
+    d = np.concatenate([rng.uniform(0, 0.1, 3000), rng.uniform(0, 4, 3000), rng.uniform(0, 40, 3000),
+                        np.zeros(200), np.full(200, 2.0), np.full(200, 4.0)])
+    alpha = rng.uniform(0, 2 * np.pi, d.size)
+    beta = rng.uniform(0, 2 * np.pi, d.size)
+    alpha[::7], beta[::11], beta[::13] = 0.0, 0.0, np.pi
+    for i in range(d.size):
+        _, t, p, q = dubins.solve(d[i], alpha[i], beta[i])
+        assert dubins.length(d[i], alpha[i], beta[i]) == t + p + q, (d[i], alpha[i], beta[i])

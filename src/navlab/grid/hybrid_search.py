@@ -56,8 +56,7 @@ GATE_MARGIN = 1e-9
 def _forward(x, y, theta, gx, gy, gtheta, radius) -> float:
     """The Dubins length [m] from pose (x, y, θ) to the goal."""
     d, a, b = dubins._normalised(x, y, theta, gx, gy, gtheta, radius)
-    _, t, p, q = dubins.solve(d, a, b)
-    return (t + p + q) * radius
+    return dubins.length(d, a, b) * radius  # solve's t + p + q bit for bit, 0.8x its time
 
 
 @njit(cache=True, inline="always")

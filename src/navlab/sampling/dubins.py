@@ -100,6 +100,49 @@ def solve(d: float, alpha: float, beta: float) -> Tuple[int, float, float, float
 
 
 @njit(cache=True)
+def length(d: float, alpha: float, beta: float) -> float:
+    """The shortest word's length (scaled by the turning radius) for ``d``, ``alpha``, ``beta``:
+    :func:`solve`'s ``t + p + q`` bit for bit, sooner. A word's ``t + p + q`` is never below its
+    ``p`` (rounding to nearest is monotone and t, q >= 0), so a word whose straight part alone
+    (CSC) or whose middle arc, at least π (CCC), is no shorter than the best found is not
+    finished: its atan2 and acos calls, most of a solve, are skipped. The minimum does not depend
+    on the order the words are tried in (Hybrid A*'s heuristic, where only the length is wanted)."""
+    sa, ca, sb, cb = math.sin(alpha), math.cos(alpha), math.sin(beta), math.cos(beta)
+    cab = math.cos(alpha - beta)
+    best = math.inf
+    sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)  # LSL
+    if sq >= 0.0 and math.sqrt(sq) < best:
+        theta = math.atan2(cb - ca, d + sa - sb)
+        best = min(best, _mod2pi(theta - alpha) + math.sqrt(sq) + _mod2pi(beta - theta))
+    sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)  # RSR
+    if sq >= 0.0 and math.sqrt(sq) < best:
+        theta = math.atan2(ca - cb, d - sa + sb)
+        best = min(best, _mod2pi(alpha - theta) + math.sqrt(sq) + _mod2pi(theta - beta))
+    sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)  # LSR
+    if sq >= 0.0 and math.sqrt(sq) < best:
+        p = math.sqrt(sq)
+        theta = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
+        best = min(best, _mod2pi(theta - alpha) + p + _mod2pi(theta - beta))
+    sq = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)  # RSL
+    if sq >= 0.0 and math.sqrt(sq) < best:
+        p = math.sqrt(sq)
+        theta = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
+        best = min(best, _mod2pi(alpha - theta) + p + _mod2pi(beta - theta))
+    if best > math.pi:  # a CCC word's middle arc is 2π - acos(c) >= π
+        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0  # RLR
+        if abs(c) <= 1.0:
+            p = TWO_PI - math.acos(c)
+            t = _mod2pi(alpha - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
+            best = min(best, t + p + _mod2pi(alpha - beta - t + p))
+        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
+        if abs(c) <= 1.0:
+            p = TWO_PI - math.acos(c)
+            t = _mod2pi(-alpha + math.atan2(cb - ca, d + sa - sb) + 0.5 * p)
+            best = min(best, t + p + _mod2pi(beta - alpha - t + p))
+    return best
+
+
+@njit(cache=True)
 def _normalised(x0: float, y0: float, th0: float, x1: float, y1: float, th1: float,
                 radius: float) -> Tuple[float, float, float]:
     dx, dy = x1 - x0, y1 - y0

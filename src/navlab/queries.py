@@ -26,10 +26,10 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
                   "allow_unknown")
 
 
-#: settings of the query rather than of a planner, which every tree planner's --param takes
-#: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
 #: [m] consecutive path points closer than this are one point (a cell centre computed two ways)
 _SAME_POINT = 1e-9
+#: settings of the query rather than of a planner, which every tree planner's --param takes
+#: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
 QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance")
 QUERY_PARAMS_HELP = ("motion (holonomic, dubins or reeds_shepp; the last two with turning_radius and footprint), "
                      "goal_tolerance")

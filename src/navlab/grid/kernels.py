@@ -556,7 +556,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                     size += 1
             if status == OVERFLOW:
                 break
-
         return status, expanded
 
     return astar

@@ -128,8 +128,8 @@ def test_parse_params_bad_items_are_usage_errors(item):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["plan", "trap", "--max-iter", "-5"], "Error: Invalid value for '--max-iter': -5 is not in the range x>=1. "
-                                           "(see 'navlab plan --help')"),
+    (["plan", "trap", "--max-iter", "-5"], "Error: Invalid value for '--max-iter': max_iter must be a whole number "
+                                           "from 1 to 4.61e+18, got -5 (see 'navlab plan --help')"),
     (["plan"], "Error: Missing argument 'SOURCE'. (see 'navlab plan --help')"),
     (["plan", "trap", "--seed", "-1"], "Error: Invalid value for '--seed': -1 is not in the range x>=0."),
     (["grid", "maze", "--cells", "0", "10"], "(see 'navlab grid maze --help')"),

@@ -156,7 +156,8 @@ def test_allow_unknown_lets_the_query_use_unknown_cells():
     ("theta_star", {"connectivity": 6}, "connectivity must be 4 or 8"),
     # a car's settings without a car's motion: told what to add, not "Did you mean 'footprint'?"
     ("rrt_star", {"footprint": 0.3}, "footprint applies only with motion dubins or reeds_shepp"),
-    ("rrt", {"turning_radius": 1.0}, "turning_radius applies only with motion dubins or reeds_shepp"),
+    ("rrt", {"turning_radius": 1.0}, "turning_radius applies only with motion dubins or reeds_shepp (add motion"),
+    ("growth_ratio_rrt", {"turning_radius": 1.0}, "which planner 'growth_ratio_rrt' does not plan for"),
 ])
 def test_unknown_planner_or_parameter_lists_the_valid_names(planner, params, text):
     with pytest.raises(ValueError, match=text.replace("(", r"\(").replace(")", r"\)")):
@@ -239,3 +240,40 @@ def test_a_grid_query_whose_ends_share_a_cell_is_the_straight_leg(settings):
     near = navlab.plan("trap", start=(1.0, 1.0), goal=(1.01, 1.02), **settings)
     assert near.status is Status.EXACT
     assert near.cost == pytest.approx(math.hypot(0.01, 0.02), rel=1e-9) and len(near.path) == 2
+
+
+@pytest.mark.parametrize("planner", ["astar", "jps", "theta_star"])
+def test_an_end_on_a_cell_corner_does_not_double_back(planner):
+    """A point on a cell corner joins the lower-left of its four cells, whichever way the goal lies:
+    the leg goes straight past that centre when that is free (until session 14: (0.1, 0.1) to (0, 0)
+    went through (0.05, 0.05) and (-0.05, -0.05), twice the straight line; attack check)."""
+    grid = OccupancyGrid(np.zeros((30, 30), dtype=bool), 0.1, (-1.0, -1.0, 0.0), name="open")
+    r = navlab.plan(grid, planner=planner, start=(0.1, 0.1), goal=(0.0, 0.0))
+    assert r.status is Status.EXACT and len(r.path) == 2
+    assert r.cost == pytest.approx(math.hypot(0.1, 0.1), rel=1e-12)
+
+
+def test_ends_in_one_cell_that_the_raster_blocks_take_the_straight_leg():
+    """The conservative raster blocks a cell within the robot radius of the block; two points in that
+    cell, free in the exact world, are joined by the straight leg (it was a 0.36 m detour through
+    other cell centres for these 0.07 m, or "no path" where those centres were not connected;
+    attack check)."""
+    start, goal = (1.053, 0.175), (1.04, 0.107)  # cell (20, 11), diagonal to the block's corner (1.0, 0.2)
+    same = navlab.plan(small_map(), planner="astar", start=start, goal=goal, robot_radius=0.05)
+    assert same.status is Status.EXACT and len(same.path) == 2
+    assert same.cost == pytest.approx(math.dist(start, goal), rel=1e-12)
+
+
+def test_start_equal_to_goal_needs_no_free_cell_centre_on_a_map():
+    """start == goal in a 0.1 m gap whose cells the robot radius blocks in the raster is the start
+    alone, not INVALID_START with advice to change a map's resolution (attack check)."""
+    blocked = np.zeros((30, 30), dtype=bool)
+    blocked[12:18, 10:20] = True
+    blocked[12:18, 21] = True  # a gap of one cell, x in [1.0, 1.1)
+    grid = OccupancyGrid(blocked, 0.1, (-1.0, -1.0, 0.0), name="gap")
+    point = (1.048, 0.499)
+    r = navlab.plan(grid, planner="astar", start=point, goal=point, robot_radius=0.04)
+    assert r.status is Status.EXACT and r.cost == 0.0 and len(r.path) == 1
+    elsewhere = navlab.plan(grid, planner="astar", start=point, goal=(0.5, -0.5), robot_radius=0.04)
+    assert elsewhere.status is Status.INVALID_START and "finer resolution" not in elsewhere.reason
+    assert "a smaller robot radius or a tree planner" in elsewhere.reason

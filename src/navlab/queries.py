@@ -74,9 +74,16 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
         elif key in sampler_keys or key == "goal_sample_rate":
             to_sampler[key] = value
         elif key in ("turning_radius", "footprint"):  # a car's settings, here without a car's motion
-            raise UnknownNameError(f"{key} applies only with motion dubins or reeds_shepp (add motion=reeds_shepp "
-                                   f"or motion=dubins); planner '{planner}' plans for a holonomic point robot "
-                                   f"here (its size: robot_radius)")
+            from .pose_queries import POSE_PLANNERS, TREE_POSE_PLANNERS
+
+            if planner in TREE_POSE_PLANNERS:
+                raise UnknownNameError(f"{key} applies only with motion dubins or reeds_shepp (add motion=reeds_shepp "
+                                       f"or motion=dubins); planner '{planner}' plans for a holonomic point robot "
+                                       "here (its size: robot_radius)")
+            raise UnknownNameError(f"{key} applies only with motion dubins or reeds_shepp, which planner '{planner}' "
+                                   f"does not plan for (the planners that do: "
+                                   f"{', '.join(POSE_PLANNERS + TREE_POSE_PLANNERS)}); it plans for a holonomic "
+                                   "point robot (its size: robot_radius)")
         else:
             valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
             raise UnknownNameError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
@@ -134,16 +141,28 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     checker = world.checker()
     out_params = {"algorithm": algorithm, "resolution": grid.resolution, **settings}
     stats: Dict[str, Any] = {"grid": f"{grid.width}x{grid.height}", "rasterize_s": rasterize_s}
+    ends = np.array([world.start, world.goal], dtype=float)
+    own = [tuple(int(v) for v in c) for c in grid.world_to_cell(ends)]
+    if own[0] == own[1] and checker.segments_free(ends[:1], ends[1:])[0]:
+        # both ends in one cell, the straight leg between them free: that leg is the path (start == goal:
+        # the start alone), whether or not the conservative raster leaves the cell a free centre
+        path = _without_repeats(ends)
+        stats.update({"expanded": 0, "cost_cells": 0.0, "collision_checks": checker.checks,
+                      "time_s": time.perf_counter() - t0})
+        return Result(status=Status.EXACT, path=path, cost=path_length(path), stats=stats, params=out_params,
+                      tree=Tree().with_raster(grid))
     cells = {}
-    for label, point, status in (("start", world.start, Status.INVALID_START), ("goal", world.goal, Status.INVALID_GOAL)):
+    for (label, point, status), cell in zip((("start", world.start, Status.INVALID_START),
+                                             ("goal", world.goal, Status.INVALID_GOAL)), own):
         cells[label] = attach(world, grid, passable, point, checker)
         if cells[label] is None:
-            own = tuple(int(v) for v in grid.world_to_cell(np.asarray(point, float)))
             stats["time_s"] = time.perf_counter() - t0
+            remedy = ("a map is planned on its own cells: a smaller robot radius or a tree planner may reach it"
+                      if world.occupancy is not None else "try a finer resolution")
             return Result(status=status, params=out_params, stats=stats,
-                          reason=f"{label} ({point[0]:g}, {point[1]:g}) in cell {own} is free but reaches no free grid "
+                          reason=f"{label} ({point[0]:g}, {point[1]:g}) in cell {cell} is free but reaches no free grid "
                                  f"cell centre nearby in a straight line at resolution {grid.resolution:g} m "
-                                 "(cells within the robot radius of an obstacle are blocked); try a finer resolution")
+                                 f"(cells within the robot radius of an obstacle are blocked); {remedy}")
     r = grid_plan(grid, cells["start"], cells["goal"], algorithm=algorithm, smooth_method="supercover", **settings)
     stats.update(r.stats)
     stats.pop("length_m", None)  # the centre-to-centre part only; cost is the whole path's length
@@ -152,13 +171,11 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
         stats["time_s"] = time.perf_counter() - t0
         return Result(status=Status.FAILED, params=out_params, stats=stats, reason=r.reason, cells=r.cells)
     stats["cost_cells"] = float(r.stats.get("cost_cells", r.cost))
-    ends = np.array([world.start, world.goal], dtype=float)
     if cells["start"] == cells["goal"] and checker.segments_free(ends[:1], ends[1:])[0]:
-        # both ends join the same cell centre: the straight leg between them, not a detour through
-        # that centre (start == goal costs 0)
+        # both ends join the same cell centre: the straight leg between them, not a detour through it
         path = ends
     else:
-        path = np.vstack((world.start, r.path, world.goal))
+        path = _trimmed_ends(np.vstack((world.start, r.path, world.goal)), checker)
     path = _without_repeats(path)
     # The raster is conservative, so the cell-to-cell legs are free by
     # construction (and attach() checked the two end legs against the map's
@@ -174,6 +191,18 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     cost = path_length(path)
     tree = (r.tree or Tree()).with_raster(grid)
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
+
+
+def _trimmed_ends(path: np.ndarray, checker) -> np.ndarray:
+    """``path`` (start, cell centres, goal) without the centre the start or the goal was joined to
+    when the straight leg past it is free: joining an end to its nearest free centre can lead away
+    from the other end (a point on a cell corner joins the lower-left cell whichever way the goal
+    lies), and the leg past that centre is then shorter."""
+    if len(path) >= 3 and checker.segments_free(path[:1], path[2:3])[0]:
+        path = np.delete(path, 1, axis=0)
+    if len(path) >= 3 and checker.segments_free(path[-3:-2], path[-1:])[0]:
+        path = np.delete(path, -2, axis=0)
+    return path
 
 
 def _without_repeats(path: np.ndarray) -> np.ndarray:

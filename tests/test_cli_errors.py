@@ -142,6 +142,9 @@ def test_parse_params_bad_items_are_usage_errors(item):
     (["plan", "trap", "--max-iter", "20", "--plot", "x.txt"], "x.txt: cannot write the figure: Format 'txt'"),
     (["plan", "trap", "--max-iter", "100", "--param", "max_iter=200"],
      "Error: --max-iter 100 and --param max_iter=200 disagree: give one"),
+    # --runs is for experiments, and bounded (1e15 started an endless run until session 14)
+    (["sim", "trap", "--runs", "3"], "Error: --runs applies to --experiment"),
+    (["sim", "--experiment", "seed004", "--runs", "1e15"], "runs must be a whole number from 1 to 10000"),
 ])
 def test_usage_errors_are_one_line_naming_the_flag(args, message):
     """click prints usage, a hint and the error on three lines; navlab prints one."""

@@ -6,7 +6,7 @@ import math
 
 import os
 import re
-from typing import Any, Dict, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import click
 
@@ -62,8 +62,9 @@ class Count(click.ParamType):
 
     name = "integer"
 
-    def __init__(self, low: int = 1) -> None:
+    def __init__(self, low: int = 1, high: Optional[int] = None) -> None:
         self.low = low
+        self.high = high  # None: the count rule's own bound
 
     def convert(self, value, param, ctx):
         from ..limits import check_count
@@ -79,7 +80,10 @@ class Count(click.ParamType):
                 except (TypeError, ValueError):
                     self.fail(f"{value!r} is not a whole number", param, ctx)
         try:
-            return check_count(param.name if param is not None else "value", number, self.low)
+            name = param.name if param is not None else "value"
+            if self.high is None:
+                return check_count(name, number, self.low)
+            return check_count(name, number, self.low, self.high)
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
 

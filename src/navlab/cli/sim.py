@@ -11,6 +11,9 @@ import click
 
 from .common import Count, PointOrPoseOption, check_output_file, parse_params
 
+#: runs per setting an experiment takes (each is a whole simulation: 10 000 of the shortest take minutes)
+MAX_EXPERIMENT_RUNS = 10_000
+
 #: experiment names the CLI offers (the registry is filled when sim.experiments is imported; listed here so
 #: that `navlab --help` does not import the simulator)
 EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", "sensor-latency", "seed004-latency",
@@ -59,7 +62,8 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
               help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
                    "(seed002), sensor-latency (seed004-latency: seed 004 with its measured topic delays and a "
                    "crossing obstacle), hybrid-vs-field (random-clutter).")
-@click.option("--runs", type=Count(), default=None, help="Runs per setting (experiments).")
+@click.option("--runs", type=Count(high=MAX_EXPERIMENT_RUNS), default=None,
+              help=f"Runs per setting (with --experiment; at most {MAX_EXPERIMENT_RUNS}).")
 @click.option("--plot-dir", type=click.Path(file_okay=False), default=None,
               help="Experiments: write a PNG per run here (seed002 default: sim-results/seed002).")
 @click.option("--json", "as_json", is_flag=True, help="JSON output (one object per run for experiments).")
@@ -97,6 +101,8 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
             raise click.UsageError("--experiment takes no WORLD")
         _experiment(experiment, runs, seed, plot_dir, as_json)
         return
+    if runs is not None:
+        raise click.UsageError("--runs applies to --experiment (a single simulation runs once)")
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
     for flag, name in (("--trajectory", trajectory), ("--plot", plot), ("--gif", gif)):

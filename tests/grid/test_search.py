@@ -163,6 +163,13 @@ def test_unreachable_fails_and_unknown_cells():
     assert plan(grid, (0, 0), (5, 5), allow_unknown=True).success
 
 
+@pytest.mark.parametrize("weight", [2, 2.0, np.int64(2), np.float32(2.0)])
+def test_weight_takes_any_real_number(weight):
+    # numpy's numbers are numbers (np.int64(2) was refused until session 14; attack check)
+    r = plan(OccupancyGrid(np.zeros((3, 3), dtype=bool)), (0, 0), (2, 2), weight=weight)
+    assert r.success and r.params["weight"] == 2.0
+
+
 @pytest.mark.parametrize("kwargs, field", [({"algorithm": "astr"}, "astar"), ({"heuristic": "manhatan"}, "manhattan"),
                                            ({"connectivity": 6}, "connectivity"), ({"weight": 0.5}, "weight"),
                                            ({"algorithm": "jps", "connectivity": 4}, "jps")])
@@ -171,7 +178,8 @@ def test_bad_parameters(kwargs, field):
         plan(OccupancyGrid(np.zeros((3, 3), dtype=bool)), (0, 0), (2, 2), **kwargs)
 
 
-@pytest.mark.parametrize("start", [(True, 1), (1, np.bool_(False)), (1.5, 1), (float("nan"), 1), (1,), "a1"])
+@pytest.mark.parametrize("start", [(True, 1), (1, np.bool_(False)), (1.5, 1), (float("nan"), 1), (1,), "a1",
+                                   {1, 2}, {1: 0, 2: 0}])
 def test_a_cell_that_is_not_two_integers_is_named(start):
     # a bool is no coordinate: True was taken as cell 1 until session 14 (newcomer check)
     with pytest.raises(ValueError, match="start must be an integer cell"):

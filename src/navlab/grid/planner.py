@@ -27,6 +27,7 @@ from __future__ import annotations
 import contextlib
 import functools
 import math
+import numbers
 import threading
 import time
 from typing import Any, Dict, Iterator, Optional, Tuple
@@ -226,9 +227,11 @@ def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
 
 def _cell(value, what: str) -> Tuple[int, int]:
     try:
+        if not isinstance(value, (tuple, list, np.ndarray)):  # a set or a dict would unpack too
+            raise TypeError
         x, y = value
-        # a bool is no coordinate (True would be cell 1)
-        if not isinstance(x, (bool, np.bool_)) and not isinstance(y, (bool, np.bool_)) \
+        # a number, and a bool is none (True would be cell 1)
+        if all(isinstance(c, numbers.Real) and not isinstance(c, (bool, np.bool_)) for c in (x, y)) \
                 and int(x) == x and int(y) == y:
             return int(x), int(y)
     except (TypeError, ValueError, OverflowError):  # not a pair, NaN, inf
@@ -363,8 +366,10 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
                smooth: bool, weight: float, allow_unknown: bool, smooth_method: str, warmup_s: float) -> Result:
     """:func:`plan` once its kernels are warm: the checks, the search and the path, timed (``time_s``)."""
     t0 = time.perf_counter()
-    if isinstance(weight, bool) or not isinstance(weight, (int, float)) or not weight >= 1 or not math.isfinite(weight):
+    if isinstance(weight, (bool, np.bool_)) or not isinstance(weight, numbers.Real) or not weight >= 1 \
+            or not math.isfinite(weight):
         raise ValueError(f"weight must be a number >= 1, got {weight!r}")
+    weight = float(weight)  # np.float32, np.int64 and Fraction as well
     for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"{flag} must be true or false, got {value!r}")

@@ -188,6 +188,9 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
                                      param_hint=flag) from None
         except RecursionError:
             raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint=flag) from None
+        except ValueError as exc:  # PyYAML's int(): a number of more than 4 300 digits
+            raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
+                                     param_hint=flag) from None
     return out
 
 

@@ -1,0 +1,122 @@
+"""Paired in-process A/B of two versions of navlab's grid kernels (``grid/kernels.py``).
+
+    git show abd3c7c:src/navlab/grid/kernels.py > /tmp/old_kernels.py
+    python benchmarks/ab_kernels.py /tmp/old_kernels.py src/navlab/grid/kernels.py --queries 21
+    python benchmarks/ab_kernels.py OLD NEW --algorithm jps --loose   # a change that alters expansions
+
+Both files are loaded into one process (numba's disk cache off, so neither
+reuses the other's compiled code) and run the same corner-to-corner query on
+issue 22's maps (4096 x 4096, 20 % random obstacles; a 1001 x 1001 maze),
+alternating query by query, old first in every other pair. Each version keeps
+its own search state, so every timed query after the first is a repeat query
+(the state cleared of what the previous one wrote). Printed: each version's
+median CPU time and the median and quartiles of the per-pair ratios new/old.
+On this 2-core shared VM two copies of one file measure 1.00 with quartiles
+0.998-1.005, where medians from separate processes moved by 20 % in a day.
+
+Before timing, the two versions' answers are compared: the same status and
+expansions and the same search state bit for bit, or with ``--loose`` only
+the same goal cost (for changes that expand other nodes).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import os
+import statistics
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+
+def load_kernels(path: str, name: str):
+    """The kernels module at ``path``, imported as ``name`` with numba's caching off."""
+    source = open(path).read().replace("cache=True", "cache=False")
+    copy = os.path.join(tempfile.mkdtemp(), name + ".py")
+    with open(copy, "w") as f:
+        f.write(source)
+    spec = importlib.util.spec_from_file_location(name, copy)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def issue22_maps():
+    from navlab.grid.maze import make_maze
+
+    rng = np.random.default_rng(0)
+    blocked = rng.random((4096, 4096)) < 0.2
+    blocked[0, 0] = blocked[-1, -1] = False
+    yield "random4096", blocked
+    yield "maze1001", make_maze(100, 100, seed=1, cell_size=0.5, wall=0.05, resolution=0.05).blocked
+
+
+def searcher_call(module, algorithm: str):
+    """``call(searcher, start, goal)``: one search with ``module``'s kernel on a searcher's arrays,
+    returning (status, expanded). A* is compiled once here (each make_astar call makes a new kernel)."""
+    if algorithm == "jps":
+        return lambda g, start, goal: module.jps(g.moves, g.stride, start, goal, g.g, g.lo, g.hi, g.extent, g.key,
+                                                 g.cell, g.next, g.head, g.stack)
+    kernel = module.make_astar(8, 4 if algorithm == "astar" else 0, False)
+    return lambda g, start, goal: kernel(g.grid.no_free, g.moves, g.stride, start, goal, 1.0, g.g, g.parent, g.lo,
+                                         g.hi, g.extent, g.key, g.cell, g.next, g.head, g.stack)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("old", help="the kernels.py to compare against")
+    ap.add_argument("new", help="the kernels.py being measured")
+    ap.add_argument("--queries", type=int, default=21, help="timed pairs per map (default 21)")
+    ap.add_argument("--algorithm", choices=("astar", "dijkstra", "jps"), default="astar")
+    ap.add_argument("--loose", action="store_true", help="compare only the goal cost, not expansions and state")
+    args = ap.parse_args()
+    if args.queries < 1:
+        ap.error("--queries must be at least 1")
+    for path in (args.old, args.new):
+        if not os.path.isfile(path):
+            ap.error(f"{path}: no such file")
+
+    from navlab.grid.planner import GridSearcher, PaddedGrid
+
+    versions = {"old": load_kernels(args.old, "kernels_old"), "new": load_kernels(args.new, "kernels_new")}
+    calls = {tag: searcher_call(module, args.algorithm) for tag, module in versions.items()}
+    for name, blocked in issue22_maps():
+        free = np.argwhere(~blocked)
+        grid = PaddedGrid(blocked)
+        start, goal = grid.index(*free[0][::-1]), grid.index(*free[-1][::-1])
+        searchers, answers = {}, {}
+        for tag, module in versions.items():
+            searchers[tag] = GridSearcher(grid)
+            answer = calls[tag](searchers[tag], start, goal)
+            while answer[0] == module.OVERFLOW:
+                searchers[tag].grow()
+                answer = calls[tag](searchers[tag], start, goal)
+            answers[tag] = answer
+        costs = {tag: abs(float(s.g[goal])) - 1.0 for tag, s in searchers.items()}
+        if args.loose:
+            if answers["old"][0] != answers["new"][0] or abs(costs["old"] - costs["new"]) > 1e-9 * max(1.0, costs["old"]):
+                sys.exit(f"{name}: the versions disagree: {answers} costs {costs}")
+        elif answers["old"] != answers["new"] or not np.array_equal(searchers["old"].g, searchers["new"].g):
+            sys.exit(f"{name}: the versions disagree (status, expanded: {answers}); rerun with --loose if meant")
+        times = {"old": [], "new": []}
+        ratios = []
+        for k in range(args.queries):
+            took = {}
+            for tag in (("old", "new") if k % 2 == 0 else ("new", "old")):
+                t0 = time.thread_time()
+                calls[tag](searchers[tag], start, goal)
+                took[tag] = time.thread_time() - t0
+                times[tag].append(took[tag])
+            ratios.append(took["new"] / took["old"])
+        q1, q3 = np.percentile(ratios, [25, 75])
+        print(f"{args.algorithm} {name}: old {1e3 * statistics.median(times['old']):.1f} ms, "
+              f"new {1e3 * statistics.median(times['new']):.1f} ms CPU; new/old {statistics.median(ratios):.3f} "
+              f"(quartiles {q1:.3f}-{q3:.3f}, {args.queries} pairs); expanded {answers['old'][1]} -> "
+              f"{answers['new'][1]}, goal cost {costs['new']:.9f}")
+
+
+if __name__ == "__main__":
+    main()

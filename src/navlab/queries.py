@@ -171,12 +171,8 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
         stats["time_s"] = time.perf_counter() - t0
         return Result(status=Status.FAILED, params=out_params, stats=stats, reason=r.reason, cells=r.cells)
     stats["cost_cells"] = float(r.stats.get("cost_cells", r.cost))
-    if cells["start"] == cells["goal"] and checker.segments_free(ends[:1], ends[1:])[0]:
-        # both ends join the same cell centre: the straight leg between them, not a detour through it
-        path = ends
-    else:
-        path = _trimmed_ends(np.vstack((world.start, r.path, world.goal)), checker)
-    path = _without_repeats(path)
+    # (ends joined to one centre: the trim leaves the straight leg between them where it is free)
+    path = _without_repeats(_trimmed_ends(np.vstack((world.start, r.path, world.goal)), checker))
     # The raster is conservative, so the cell-to-cell legs are free by
     # construction (and attach() checked the two end legs against the map's
     # squares); one exact check of the whole path guards that promise.

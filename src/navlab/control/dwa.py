@@ -83,9 +83,9 @@ from typing import Optional
 import numpy as np
 from numba import njit
 
+from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS, RUNNING, STALLED, Command
-from ..limits import check_count
 from .local import CostmapController, check_number
 from .move_base_navfn import plan_navfn
 

@@ -39,9 +39,9 @@ from typing import Any, Optional
 import numpy as np
 from numba import njit
 
+from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS
-from ..limits import check_count
 from .local import CostmapController, check_number
 
 

@@ -34,7 +34,7 @@ RngLike = Union[None, int, np.random.Generator]
 INDEXES = ("grid", "scan")
 
 
-#: the largest count or time a planner accepts (int64 counters; ~3e11 years in seconds)
+# MAX_COUNT (navlab.limits) bounds a planner's counts and its time in seconds too (~3e11 years)
 #: samples drawn and consumed at once; larger batches gain nothing and cost memory
 MAX_BATCH_SIZE = 65536
 

@@ -67,7 +67,7 @@ class Count(click.ParamType):
         self.high = high  # None: the count rule's own bound
 
     def convert(self, value, param, ctx):
-        from ..limits import check_count
+        from ..limits import MAX_COUNT, check_count
 
         if isinstance(value, int):
             number = value
@@ -80,10 +80,8 @@ class Count(click.ParamType):
                 except (TypeError, ValueError):
                     self.fail(f"{value!r} is not a whole number", param, ctx)
         try:
-            name = param.name if param is not None else "value"
-            if self.high is None:
-                return check_count(name, number, self.low)
-            return check_count(name, number, self.low, self.high)
+            return check_count(param.name if param is not None else "value", number, self.low,
+                               MAX_COUNT if self.high is None else self.high)
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
 

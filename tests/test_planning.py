@@ -277,3 +277,13 @@ def test_start_equal_to_goal_needs_no_free_cell_centre_on_a_map():
     elsewhere = navlab.plan(grid, planner="astar", start=point, goal=(0.5, -0.5), robot_radius=0.04)
     assert elsewhere.status is Status.INVALID_START and "finer resolution" not in elsewhere.reason
     assert "a smaller robot radius or a tree planner" in elsewhere.reason
+
+
+def test_costmap_false_is_the_plain_query_and_a_misspelt_costmap_is_suggested():
+    """costmap=false was refused as an unknown parameter, and 'costmapp' got no suggestion (newcomer check)."""
+    plain = navlab.plan("trap", planner="astar")
+    off = navlab.plan("trap", planner="astar", costmap=False)
+    assert off.status is Status.EXACT and off.cost == plain.cost
+    assert navlab.plan("trap", planner="rrt", costmap=False, max_iter=300, seed=1).status is not None
+    with pytest.raises(UnknownNameError, match="Did you mean 'costmap'"):
+        navlab.plan("trap", planner="astar", costmapp=True)

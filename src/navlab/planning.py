@@ -156,6 +156,8 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     on_costs = params.get("costmap", False)
     if not isinstance(on_costs, bool):
         raise ValueError(f"costmap must be true or false, got {on_costs!r}")
+    if not on_costs:
+        params.pop("costmap", None)  # costmap=false: the planner's own query, as when it is left out
     if on_costs and not grid:
         raise ValueError(f"costmap: only the grid planner astar plans on a costmap, not '{planner}'")
     if on_costs:

@@ -100,7 +100,8 @@ def split_grid_params(planner: str, params: dict) -> dict:
     for key in params:
         if key not in GRID_PARAMS:
             raise UnknownNameError(f"unknown parameter '{key}' for grid planner '{planner}'; "
-                             f"valid: {', '.join(GRID_PARAMS)}." + suggest(key, list(GRID_PARAMS)))
+                                   f"valid: {', '.join(GRID_PARAMS)}; and costmap=true for A* on a costmap."
+                                   + suggest(key, list(GRID_PARAMS) + ["costmap"]))
     return check_grid_settings(params)
 
 

@@ -221,3 +221,12 @@ def test_a_count_flag_takes_a_whole_float_as_param_does(run):
         res = CliRunner().invoke(main, ["plan", "trap", "--max-iter", bad])
         assert res.exit_code == 2 and "--max-iter" in res.output and text in res.output, res.output
         assert "Traceback" not in res.output
+
+
+def test_every_count_flag_takes_a_whole_float(run):
+    """--seed 1e3 is seed 1000, as --max-iter 1e3 is 1000 (newcomer check: click's IntRange called it
+    'not a valid integer range'; --cells, --limit, --every, --jobs and --maze-size take the same type)."""
+    seeded = json.loads(run("plan", "trap", "--seed", "1e3", "--max-iter", "300", "--json").output)
+    assert seeded["params"]["seed"] == 1000
+    assert json.loads(run("plan", "trap", "--seed", "1000", "--max-iter", "300", "--json").output)["cost"] == \
+        seeded["cost"]

@@ -131,7 +131,9 @@ def test_parse_params_bad_items_are_usage_errors(item):
     (["plan", "trap", "--max-iter", "-5"], "Error: Invalid value for '--max-iter': max_iter must be a whole number "
                                            "from 1 to 4.61e+18, got -5 (see 'navlab plan --help')"),
     (["plan"], "Error: Missing argument 'SOURCE'. (see 'navlab plan --help')"),
-    (["plan", "trap", "--seed", "-1"], "Error: Invalid value for '--seed': -1 is not in the range x>=0."),
+    (["plan", "trap", "--seed", "-1"], "Error: Invalid value for '--seed': seed must be a whole number from 0 to"),
+    # every count flag takes a whole float as --max-iter does (--seed 1e3 was "not a valid integer range")
+    (["grid", "maze", "--cells", "1.5", "10"], "Error: Invalid value for '--cells': cells must be a whole number"),
     (["grid", "maze", "--cells", "0", "10"], "(see 'navlab grid maze --help')"),
     (["sim", "--robot", "tank"], "Error: Invalid value for '--robot': 'tank' is not one of"),
     (["plan", "trap", "--param", "a\nb"], "Error: Invalid value for --param: expected key=value, got 'a\\nb'"),

@@ -83,10 +83,10 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--trials", type=Count(), default=None, help="Trials per cell.")
 @click.option("--max-iter", type=Count(), default=None, help="Iteration budget per trial.")
 @click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None, help="Time budget per trial [s].")
-@click.option("--seed", type=click.IntRange(min=0), default=None, help="Base seed of the per-trial seeds.")
+@click.option("--seed", type=Count(low=0), default=None, help="Base seed of the per-trial seeds.")
 @click.option("--executor", type=click.Choice(["process", "serial", "dask"]), default="process", show_default=True,
               help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")
-@click.option("--jobs", "-j", type=click.IntRange(1, 256), default=None,
+@click.option("--jobs", "-j", type=Count(1, 256), default=None,
               help="Worker processes, 1 to 256 (default: all cores).")
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
 @click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")

@@ -10,7 +10,7 @@ import sys
 import click
 import numpy as np
 
-from .common import SuggestingGroup, before_first_kernel, before_numba_import
+from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -108,8 +108,8 @@ def fail(message: str) -> None:
               help="The .map file (default: the scenario's map name next to FILE.scen).")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
 @click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True)
-@click.option("--limit", type=click.IntRange(min=1), default=None, help="Only the first N scenarios.")
-@click.option("--every", type=click.IntRange(min=1), default=1, show_default=True, help="Only every k-th scenario.")
+@click.option("--limit", type=Count(), default=None, help="Only the first N scenarios.")
+@click.option("--every", type=Count(), default=1, show_default=True, help="Only every k-th scenario.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary and every scenario as JSON.")
 @click.option("--quiet", is_flag=True, help="No progress bar.")
 def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, quiet) -> None:
@@ -175,9 +175,9 @@ def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0)
 
 
 @grid_group.command("maze")
-@click.option("--cells", nargs=2, type=click.IntRange(min=1), default=(10, 10), show_default=True, metavar="W H",
+@click.option("--cells", nargs=2, type=Count(), default=(10, 10), show_default=True, metavar="W H",
               help="Maze size in cells.")
-@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True)
+@click.option("--seed", type=Count(low=0), default=0, show_default=True)
 @click.option("--cell-size", type=click.FloatRange(min=0, min_open=True), default=0.5, show_default=True,
               help="Distance between cell centres, m.")
 @click.option("--wall", type=click.FloatRange(min=0, min_open=True), default=0.1, show_default=True,

@@ -29,7 +29,7 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 @click.option("--max-iter", type=Count(), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
 @click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None,
               help="Time limit in seconds (starts after warm-up).")
-@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True, help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random numbers).")
+@click.option("--seed", type=Count(low=0), default=0, show_default=True, help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random numbers).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
               help="Planner, sampler or grid setting, e.g. expand_dis=1.0 goal_sample_rate=0.05 "
                    "'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}' resolution=0.05 "

@@ -9,7 +9,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import EXIT_INTERRUPTED, SuggestingGroup, parse_params
+from .common import EXIT_INTERRUPTED, Count, SuggestingGroup, parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -123,7 +123,7 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
 @click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")
 @click.option("--yaw", type=float, default=0.0, show_default=True, help="Start heading (rad).")
 @click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal (m); maps need one.")
-@click.option("--maze-size", type=click.IntRange(min=2), default=8, show_default=True,
+@click.option("--maze-size", type=Count(low=2), default=8, show_default=True,
               help="Cells per side of the generated maze (when no --map is given).")
 @click.option("--real-time-factor", "--rtf", type=click.FloatRange(min=0, min_open=True), default=5.0,
               show_default=True, help="Simulated seconds per wall-clock second.")

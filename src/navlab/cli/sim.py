@@ -57,7 +57,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
                    "every step, no delay).")
 @click.option("--odom-timing", "odom_timing", multiple=True, metavar="KEY=VALUE[,...]",
               help="Odometry rate [Hz], latency [s] and jitter [s], e.g. rate=50,latency=0.08.")
-@click.option("--seed", type=click.IntRange(min=0), default=0, show_default=True)
+@click.option("--seed", type=Count(low=0), default=0, show_default=True)
 @click.option("--experiment", type=click.Choice(EXPERIMENT_NAMES), default=None,
               help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
                    "(seed002), sensor-latency (seed004-latency: seed 004 with its measured topic delays and a "

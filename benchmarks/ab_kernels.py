@@ -77,11 +77,18 @@ def main() -> None:
         ap.error("--queries must be at least 1")
     for path in (args.old, args.new):
         if not os.path.isfile(path):
-            ap.error(f"{path}: no such file")
+            ap.error(f"{path}: not a file")
 
     from navlab.grid.planner import GridSearcher, PaddedGrid
 
-    versions = {"old": load_kernels(args.old, "kernels_old"), "new": load_kernels(args.new, "kernels_new")}
+    versions = {}
+    for tag, path in (("old", args.old), ("new", args.new)):
+        try:
+            versions[tag] = load_kernels(path, f"kernels_{tag}")
+        except Exception as exc:  # noqa: BLE001 - any file that does not import is the same answer
+            ap.error(f"{path}: not a grid kernels file ({type(exc).__name__}: {exc})")
+        if not hasattr(versions[tag], "make_astar") or not hasattr(versions[tag], "jps"):
+            ap.error(f"{path}: not a grid kernels file (no make_astar and jps)")
     calls = {tag: searcher_call(module, args.algorithm) for tag, module in versions.items()}
     for name, blocked in issue22_maps():
         free = np.argwhere(~blocked)

@@ -79,7 +79,7 @@ from ..sampling.curves import (LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, _wrap_com
 from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattice_for, pose_free, robot_outline
 from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
-from .hybrid_search import search
+from .hybrid_search import Scratch, search
 from .occupancy import OccupancyGrid
 
 MOTIONS = ("dubins", "reeds_shepp")
@@ -99,6 +99,8 @@ ANALYTIC_MIN_LENGTH = 3.0
 #: mostly turning, which Smac's 3 m assumes of a robot turning on 0.4 m; a car turning on 4.4 m
 #: (PythonRobotics') would otherwise try it only from poses nearer than its own radius
 ANALYTIC_RADII = 3.0
+#: each thread's search arrays, reused query after query (per thread, so threads never share them)
+_SCRATCH = Scratch()
 
 # ---------------------------------------------------------------------------
 # the planner
@@ -261,13 +263,15 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
 
     with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
         found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1], \
-            retried = search(
+            retried, scratch = search(
                 blocked, res, lsx, lsy, 0, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
                 motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
                 *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc,
                 lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), bool(exact_retry), *field,
                 penalties, analytic_max, int(max_expansions), bool(analytic_expansion),
-                0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio))
+                0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio),
+                _SCRATCH.take(lattice.bins))
+    _SCRATCH.keep(scratch)  # nx ... prim are views into it: read below, before this thread's next search
     stats["exact_retry"] = bool(retried)
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:

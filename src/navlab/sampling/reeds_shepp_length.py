@@ -330,3 +330,47 @@ def lengths(starts: np.ndarray, goals: np.ndarray, radius: float) -> np.ndarray:
         x, y, phi = _local(starts[i, 0], starts[i, 1], starts[i, 2], goals[i, 0], goals[i, 1], goals[i, 2], radius)
         out[i] = length(x, y, phi) * radius
     return out
+
+
+#: the tolerance under which :func:`same_side_above` treats an angle test as undecided
+_UNDECIDED = 1e-9
+
+
+@njit(cache=True)
+def same_side_above(x: float, y: float, phi: float, backwards: bool) -> float:
+    """An upper bound on the shortest path's length to the pose (x, y, φ), seen from the start and
+    scaled by r: the shortest of the words L+S+L+ and R+S+R+ (a Dubins upper bound), and with
+    ``backwards`` also L−S−L− and R−S−R− (a Reeds–Shepp one), each with arcs of any length —
+    without an ``atan2``. Hybrid A*'s search needs its heuristic only against the next queue key,
+    and this bound, at about a tenth of a Dubins solve, usually settles that comparison.
+
+    For L+S+L+ the straight segment joins the two left-turn circles' centres, (0, 1) and
+    (x − sin φ, y + cos φ), so its length is the distance p between them, and the two arcs turn t
+    (the segment's direction, in [0, 2π)) and q = (φ − t) mod 2π, whose sum is m = φ mod 2π
+    when t ≤ m and m + 2π when t > m. Which one is decided from the signs of the vectors' y
+    components (their half-planes) and of their cross product; when either is within
+    :data:`_UNDECIDED` of zero, m + 2π (never less than t + q) is taken. The other words are
+    the same under Reeds and Shepp's symmetries (timeflip (−x, y, −φ), reflect (x, −y, −φ)).
+    The value is computed in floating point: callers lift it by a margin far above its rounding
+    before they rely on it being no shorter than a solver's length (Reeds–Shepp paper: Pacific J.
+    Math. 145(2), 1990; Dubins: Amer. J. Math. 79(3), 1957)."""
+    sp, cp = math.sin(phi), math.cos(phi)
+    best = math.inf
+    for f in range(4 if backwards else 2):
+        flip, reflect = f % 2 == 1 if backwards else False, f >= 2 if backwards else f == 1
+        fx = -x if flip else x
+        fy = -y if reflect else y
+        negate = flip != reflect
+        s = -sp if negate else sp
+        ph = -phi if negate else phi
+        xi, eta = fx - s, fy - 1.0 + cp
+        p = math.sqrt(xi * xi + eta * eta)
+        m = ph - 2.0 * PI * math.floor(ph / (2.0 * PI))
+        turn = m + 2.0 * PI
+        cross = xi * s - eta * cp  # > 0: the goal heading lies counter-clockwise of the segment, by less than π
+        if abs(eta) > _UNDECIDED * p and abs(s) > _UNDECIDED and abs(cross) > _UNDECIDED * p:
+            upper_u, upper_w = eta > 0.0, s > 0.0  # direction in (0, π), not (π, 2π)
+            if (upper_u == upper_w and cross > 0.0) or (upper_u and not upper_w):
+                turn = m  # t < m
+        best = min(best, p + turn)
+    return best

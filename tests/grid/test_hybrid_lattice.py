@@ -113,10 +113,11 @@ def test_the_swept_cells_a_search_builds_are_those_asked_for_later():
                          footprint=vertices)
     assert result.success
     nprim = 6
-    lattice = lattice_for(tuple(map(tuple, vertices)), disc, radius, res, 72, True, 0.3)
+    # (every query of a robot searches the lattice of headings k·2π/72, joined from its start heading by an arc)
+    lattice = lattice_for(tuple(map(tuple, vertices)), disc, radius, res, 72, True, 0.0)
     built = lattice._swept_table[2] >= 0
     assert 0 < built.sum() < 72 * nprim  # the search asked for some groups, not all
-    fresh = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 72, True, 0.3)
+    fresh = Lattice(tuple(map(tuple, vertices)), disc, radius, res, 72, True, 0.0)
     for k in reversed(range(72 * nprim)):
         b, j = divmod(k, nprim)
         assert np.array_equal(lattice.swept(b, j), fresh.swept(b, j)), (b, j)

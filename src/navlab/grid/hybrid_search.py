@@ -281,7 +281,7 @@ _EXHAUSTED, _FOUND, _GROW, _SWEPT, _FIELD = 0, 1, 2, 3, 4
 
 
 @njit(cache=True)
-def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radius, reverse,
+def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, radius, reverse,
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
            swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, exact_grow, exact_retry, fstate,
            fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio,
@@ -292,6 +292,9 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     ``analytic_ratio`` > 0 tries the analytic expansion on Nav2 Smac's schedule (its
     ``analytic_expansion_ratio``): every max(⌊h / ratio⌋, ⌈ratio⌉)-th expansion, h the least heuristic
     seen so far [cells]; 0 tries it at every expansion within ``analytic_max`` of the goal.
+
+    ``sx``, ``sy``, ``sbin``, ``sg`` are the start nodes (poses on the lattice, their heading bins and
+    costs [m], in distinct states; :func:`navlab.grid.hybrid_astar._start_nodes`): nodes 0, 1, ...
 
     The primitives' swept cells (``swept``, ``swept_used``, ``swept_lo``, ``swept_hi``: the lattice's
     table, :func:`~navlab.sampling.footprint_lattice.swept_group`) are built the first time a child
@@ -335,14 +338,24 @@ def search(blocked, res, sx, sy, sbin, gx, gy, gtheta, theta0, step, bins, radiu
     one_kind = np.empty(1, dtype=np.int64)  # one primitive as a word, for its exact check
     one_len = np.empty(1)
 
-    nx[0], ny[0], nb[0], ng[0], nparent[0], nprim_of[0] = sx, sy, sbin, 0.0, -1, -1
-    block_cell[0] = int(floor_div(sy, res)) * w + int(floor_div(sx, res))
-    block_of[block_cell[0]] = 0
-    blocks[0, sbin] = 0
-    closed[0] = rejected[0] = False  # (scratch arrays hold the last query's values)
-    elazy[0] = False
-    hkey[0], hnode[0], hentry[0] = 0.0, 0, 0
-    counters[_COUNT] = counters[_NBLOCKS] = counters[_NENTRIES] = counters[_HSIZE] = 1
+    # the start nodes (in distinct states), queued under their cost alone: the order among themselves is all
+    # it decides, and a single start's key is 0, as the analytic expansion's schedule expects
+    count = nblocks = 0
+    for i in range(sx.shape[0]):
+        cell = int(floor_div(sy[i], res)) * w + int(floor_div(sx[i], res))
+        if block_of[cell] < 0:
+            block_of[cell] = nblocks
+            block_cell[nblocks] = cell
+            nblocks += 1
+        blocks[block_of[cell], sbin[i]] = count
+        nx[count], ny[count], nb[count], ng[count], nparent[count], nprim_of[count] = sx[i], sy[i], sbin[i], sg[i], \
+            -1, -1
+        closed[count] = rejected[count] = False  # (scratch arrays hold the last query's values)
+        elazy[count] = False
+        _push(hkey, hnode, hentry, count, sg[i], count, count)
+        count += 1
+    counters[_COUNT] = counters[_NENTRIES] = counters[_HSIZE] = count
+    counters[_NBLOCKS] = nblocks
     counters[_PENDING] = counters[_GOAL_NODE] = -1
     nprim = prim_kind.shape[0]
     while True:

@@ -272,7 +272,8 @@ class Lattice:
     Built from hashable settings only, so it is cached by content (:func:`lattice_for`).
     The primitives' ends and the per-bin pose cells are computed at once; the swept
     cells of a (bin, primitive) the first time a search needs them (:func:`swept_group`):
-    a query expands a few of the bins, and a new start heading is a new lattice.
+    a query expands a few of the bins. Hybrid A* searches one lattice per robot, with ``theta0`` 0,
+    joining it from any start heading by a short arc (:func:`navlab.grid.hybrid_astar._start_nodes`).
     """
 
     def __init__(self, vertices: Tuple[Tuple[float, float], ...], disc: float, turning_radius: float,

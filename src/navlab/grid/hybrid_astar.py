@@ -275,9 +275,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
         common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
         starts = [(lsx, lsy, 0, 0.0, NOP, 0.0)]
-    for x, y, *_ in starts:  # the field settled as far as each start node's cell
-        cells = field_at(*field, grid.width + 2, res, int(x // res), int(y // res))[1]
-        field = (*field[:2], cells, *field[3:])
+    for x, y, *_ in starts:  # the field settled as far as each start node's cell (the start's already is)
+        if (int(x // res), int(y // res)) != (scx, scy):
+            cells = field_at(*field, grid.width + 2, res, int(x // res), int(y // res))[1]
+            field = (*field[:2], cells, *field[3:])
     start_x, start_y, start_bin, start_g = (np.array([n[i] for n in starts]) for i in range(4))
 
     with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table

@@ -169,10 +169,30 @@ def _open(hkey, hnode, hentry, size, eg, ex, ey, elazy, entry, node, g, x, y, th
     """Queue ``node`` (pose x, y, θ at cost g; ``field`` the holonomic heuristic at its cell) as ``entry``: keyed
     on the field alone when Reeds–Shepp (the exact distance is solved when it comes up), on the larger of
     it and the Dubins distance otherwise (a Dubins solve costs little more than the queue's bookkeeping
-    for putting it off)."""
+    for putting it off; where an upper bound on it is no more than the field, that is the field)."""
     eg[entry], ex[entry], ey[entry], elazy[entry] = g, x, y, reverse
-    key = g + field if reverse else g + max(field, _forward(x, y, theta, gx, gy, gtheta, radius))
+    if reverse or _forward_within(x, y, theta, gx, gy, gtheta, radius, field):
+        key = g + field
+    else:
+        key = g + max(field, _forward(x, y, theta, gx, gy, gtheta, radius))
     _push(hkey, hnode, hentry, size, key, node, entry)
+
+
+#: [turning radii] the Dubins gate's absolute margin: within a thousandth of a radius of the goal the
+#: Dubins closed forms lose digits (up to 3e-5 radii above the forward same-side words' length)
+DUBINS_MARGIN = 1e-4
+
+
+@njit(cache=True)
+def _forward_within(x, y, theta, gx, gy, gtheta, radius, field) -> bool:
+    """Whether the Dubins length [m] from pose (x, y, θ) to the goal is surely no more than ``field``: the
+    forward same-side words' length (:func:`~navlab.sampling.reeds_shepp_length.same_side_above`), an upper
+    bound on it at a tenth of a solve's cost, lifted by :data:`DUBINS_MARGIN` radii, is."""
+    dx, dy = gx - x, gy - y
+    c, s = math.cos(theta), math.sin(theta)
+    bound = reeds_shepp_length.same_side_above((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
+                                               gtheta - theta, False)
+    return (bound * (1.0 + GATE_MARGIN) + DUBINS_MARGIN) * radius <= field
 
 
 @njit(cache=True)

@@ -169,9 +169,9 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
     margin = math.sqrt(2) * res + res / 4 + math.hypot(car.LF, car.W / 2) * math.sin(math.pi / 72)
     notes = (
         f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} run(s) per query, "
-        "interleaved; navlab ms with the robot's footprint lattice kept from its earlier queries (one lattice "
-        "for every start heading), first ms with it cleared (a robot's first query); the map's distance tables "
-        "are cached by content in both; lengths in metres driven (PythonRobotics': the polyline of its x_list, y_list, whose 0.1 m "
+        "interleaved; navlab ms with the robot's footprint lattice kept from its earlier queries (one "
+        "lattice for every start heading), first ms with it cleared (a robot's first query); the map's "
+        "distance tables are cached by content in both; lengths in metres driven (PythonRobotics': the polyline of its x_list, y_list, whose 0.1 m "
         "chords under-measure its arcs a little, so nav<=PyRob allows 1 cm).",
         f"PythonRobotics' collision check: the obstacle points within {bubble:.2f} m of the car's centre "
         "(kd-tree bubble), then a pose is rejected if its rectangle contains one; poses 0.1 m apart; the points "

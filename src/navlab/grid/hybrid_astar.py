@@ -279,12 +279,14 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         if (int(x // res), int(y // res)) != (scx, scy):
             cells = field_at(*field, grid.width + 2, res, int(x // res), int(y // res))[1]
             field = (*field[:2], cells, *field[3:])
-    start_x, start_y, start_bin, start_g = (np.array([n[i] for n in starts]) for i in range(4))
+    start_x, start_y, start_g = (np.array([n[i] for n in starts], dtype=float) for i in (0, 1, 3))
+    start_bin = np.array([n[2] for n in starts], dtype=np.int64)
 
     with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
         found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1], \
             retried, scratch = search(
-                blocked, res, start_x, start_y, start_bin.astype(np.int64), start_g, lgx, lgy, lgt, lattice.theta0, lattice.step, lattice.bins, r,
+                blocked, res, start_x, start_y, start_bin, start_g, lgx, lgy, lgt, lattice.theta0, lattice.step,
+                lattice.bins, r,
                 motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
                 *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc,
                 lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), bool(exact_retry), *field,

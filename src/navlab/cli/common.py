@@ -250,6 +250,6 @@ class PointOrPoseOption(click.Option):
 
             hint = f"{tokens[2]}° would be {math.radians(pose[2]):.4f}" if abs(pose[2]) <= 360.0 else \
                 f"it wraps to {wrap_angle(pose[2]):.4f}"
-            click.echo(f"note: {self.opts[-1]} heading {tokens[2]} is more than 2π: headings are radians ({hint})",
+            click.echo(f"note: {self.opts[-1]} heading {tokens[2]} is beyond ±2π: headings are radians ({hint})",
                        err=True)
         return pose

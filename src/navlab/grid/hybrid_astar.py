@@ -80,6 +80,7 @@ from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..limits import MAX_COUNT, check_count, check_length, finite_number
+from ..registry import suggest
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LEFT, LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, RIGHT, _wrap_compiled, advance,
@@ -136,7 +137,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     motion : {"reeds_shepp", "dubins"}
         Forward and reverse, or forward only.
     footprint : (K, 2) array or Footprint, optional
-        The robot's outline in body coordinates [m]; or ``robot_radius`` for a disc.
+        The robot's outline in body coordinates [m]; or ``robot_radius`` for a disc
+        (with neither, a point robot).
     heading_bins : int
         Heading resolution (72: 5°, Nav2's default).
     reverse_penalty, change_penalty, non_straight_penalty : float
@@ -182,8 +184,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         nodes it opened again count again in ``expansions``).
     """
     t0 = time.perf_counter()
+    if not isinstance(grid, OccupancyGrid):
+        raise ValueError(f"grid must be an OccupancyGrid (navlab.grid.OccupancyGrid(blocked, resolution=...)), "
+                         f"got {type(grid).__name__}")
     if motion not in MOTIONS:
-        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}")
+        hint = suggest(motion, list(MOTIONS)) if isinstance(motion, str) else ""
+        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}.{hint}".rstrip("."))
     r = check_turning_radius(turning_radius)
     sx, sy, st = check_pose("start", start)
     gx, gy, gt = check_pose("goal", goal)
@@ -239,15 +245,17 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                       direction=np.empty(0, np.int8) if direction is None else direction)
 
     common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
-    for label, pose, status in (("start", (lsx, lsy, lst), Status.INVALID_START),
-                                ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL)):
+    for label, pose, status, given in (("start", (lsx, lsy, lst), Status.INVALID_START, (sx, sy, st)),
+                                       ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL, (gx, gy, gt))):
         if pose_free(blocked, *common[:1], *pose, *common[1:]):
             continue  # the lattice's cells for the pose are a superset of what it overlaps: no shapely needed
         hit = first_overlap_exact(blocked, res, vertices, disc, np.array([pose]), 0.0)
         if hit is not None:
             what = "leaves the map at" if hit[0] in (-1, grid.width) or hit[1] in (-1, grid.height) else \
-                "overlaps the blocked or unknown cell"
-            return finish(status, f"the robot's footprint at the {label} pose {what} {hit} (x, y)")
+                "overlaps the blocked or unknown"
+            where = ", ".join(f"{v:g}" for v in given)
+            return finish(status, f"the robot's footprint at the {label} pose ({where}) {what} cell {hit} "
+                                  "(column, row)")
     # holonomic heuristic over the cells the inscribed circle fits in (every cell the centre can cross; its
     # 8-connected distances overstate a straight line by up to 8 % off 45°: not strictly admissible, as Smac's)
     inscribed = _inscribed(tuple(map(tuple, vertices.tolist()))) if len(vertices) else disc

@@ -128,3 +128,24 @@ def test_the_dubins_length_alone_is_the_full_solve_bit_for_bit():
     for i in range(d.size):
         _, t, p, q = dubins.solve(d[i], alpha[i], beta[i])
         assert dubins.length(d[i], alpha[i], beta[i]) == t + p + q, (d[i], alpha[i], beta[i])
+
+
+@pytest.mark.parametrize("radius", [0.5, 1.0, 100.0])
+def test_a_goal_on_the_start_circle_is_one_arc_for_dubins(radius):
+    """A goal on the start's left (right) turning circle, heading along it, is one left (right) arc
+    forward: the LSL (RSR) word's straight part is then rounding noise, whose direction must not turn
+    either arc into a near-full loop (which added 2π·r to Hybrid A*'s paths one arc from the goal)."""
+    rng = np.random.default_rng(int(radius))
+    for turn in np.concatenate([rng.uniform(0.01, 2 * np.pi - 0.01, 200), [0.5, 1.0, np.pi / 2, 3.0]]):
+        for side in (1, -1):
+            start = (rng.uniform(-5, 5), rng.uniform(-5, 5), rng.uniform(-np.pi, np.pi))
+            x, y, th = start
+            # the point `turn` rad along the circle of radius r to the start's left (side 1) or right
+            goal = (x + side * radius * (math.sin(th + side * turn) - math.sin(th)),
+                    y - side * radius * (math.cos(th + side * turn) - math.cos(th)), th + side * turn)
+            path = dubins.shortest(start, goal, radius)
+            # (the straight part, at most 2e-7 radii here, is counted: dubins._centres_apart)
+            assert path.length == pytest.approx(radius * turn, rel=1e-9, abs=1e-6 * radius), (start, turn, side)
+            end = path.sample(radius * 1e-3)[0][-1]
+            assert np.hypot(*(end[:2] - goal[:2])) < 1e-6 * (1 + radius)
+            assert dubins.distance(start, goal, radius) == pytest.approx(radius * turn, rel=1e-9, abs=1e-6 * radius)

@@ -39,6 +39,18 @@ def _mod2pi(a: float) -> float:
     return 0.0 if m < ANGLE_SNAP or m > TWO_PI - ANGLE_SNAP else m
 
 
+@njit(cache=True, inline="always")
+def _centres_apart(d: float) -> float:
+    """The squared distance between a CSC word's two same-side circle centres (LSL, RSR) at or below
+    which their direction is rounding noise: the goal lies on the start's circle, and the word is one
+    arc. The squared distance is a sum of terms up to (1 + d)² whose rounding leaves about 1e-15 of
+    that (a goal exactly on the circle gave 8.9e-16 at d = 1.5), so below (1e-7·(1 + d))² the straight
+    part runs along the start heading (the first arc 0) rather than in the noise's direction, which
+    made either arc a near-full turn (2π·r added to a single arc). The path then ends within 2e-7·(1 + d)
+    turning radii of the goal, its heading exact."""
+    return (1e-7 * (1.0 + d)) ** 2
+
+
 @njit(cache=True)
 def solve(d: float, alpha: float, beta: float) -> Tuple[int, float, float, float]:
     """The shortest of the six words for scaled distance ``d`` and headings
@@ -56,16 +68,16 @@ def solve(d: float, alpha: float, beta: float) -> Tuple[int, float, float, float
         t = p = q = 0.0
         if word == 0:  # LSL
             sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
-            ok = sq >= 0.0
+            ok = sq >= -_centres_apart(d)  # (rounding can take a zero below 0)
             if ok:
-                theta = math.atan2(cb - ca, d + sa - sb)
-                t, p, q = _mod2pi(theta - alpha), math.sqrt(sq), _mod2pi(beta - theta)
+                theta = math.atan2(cb - ca, d + sa - sb) if sq > _centres_apart(d) else alpha
+                t, p, q = _mod2pi(theta - alpha), math.sqrt(max(sq, 0.0)), _mod2pi(beta - theta)
         elif word == 1:  # RSR
             sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
-            ok = sq >= 0.0
+            ok = sq >= -_centres_apart(d)
             if ok:
-                theta = math.atan2(ca - cb, d - sa + sb)
-                t, p, q = _mod2pi(alpha - theta), math.sqrt(sq), _mod2pi(theta - beta)
+                theta = math.atan2(ca - cb, d - sa + sb) if sq > _centres_apart(d) else alpha
+                t, p, q = _mod2pi(alpha - theta), math.sqrt(max(sq, 0.0)), _mod2pi(theta - beta)
         elif word == 2:  # LSR
             sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
             ok = sq >= 0.0
@@ -111,13 +123,13 @@ def length(d: float, alpha: float, beta: float) -> float:
     cab = math.cos(alpha - beta)
     best = math.inf
     sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)  # LSL
-    if sq >= 0.0 and math.sqrt(sq) < best:
-        theta = math.atan2(cb - ca, d + sa - sb)
-        best = min(best, _mod2pi(theta - alpha) + math.sqrt(sq) + _mod2pi(beta - theta))
+    if sq >= -_centres_apart(d) and math.sqrt(max(sq, 0.0)) < best:
+        theta = math.atan2(cb - ca, d + sa - sb) if sq > _centres_apart(d) else alpha
+        best = min(best, _mod2pi(theta - alpha) + math.sqrt(max(sq, 0.0)) + _mod2pi(beta - theta))
     sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)  # RSR
-    if sq >= 0.0 and math.sqrt(sq) < best:
-        theta = math.atan2(ca - cb, d - sa + sb)
-        best = min(best, _mod2pi(alpha - theta) + math.sqrt(sq) + _mod2pi(theta - beta))
+    if sq >= -_centres_apart(d) and math.sqrt(max(sq, 0.0)) < best:
+        theta = math.atan2(ca - cb, d - sa + sb) if sq > _centres_apart(d) else alpha
+        best = min(best, _mod2pi(alpha - theta) + math.sqrt(max(sq, 0.0)) + _mod2pi(theta - beta))
     sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)  # LSR
     if sq >= 0.0 and math.sqrt(sq) < best:
         p = math.sqrt(sq)

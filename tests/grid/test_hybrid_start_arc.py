@@ -74,3 +74,31 @@ def test_without_a_free_arc_the_search_runs_through_the_start_heading(monkeypatc
     assert r.success and np.allclose(r.path[0], start)
     assert asked == [0.0, 0.3]
     assert np.allclose(exact(r, start)[0], start, atol=1e-12)
+
+
+def test_a_start_heading_a_hair_off_the_lattice_still_ends_at_the_goal():
+    """A heading 1e-12..1e-9 rad off a lattice heading joins it by its (tiny) arc: treated as on the
+    lattice, 3 km of straight driving missed the goal by 2.7 µm."""
+    blocked = np.zeros((60, 3000), bool)
+    grid = OccupancyGrid(blocked, resolution=1.0)
+    for heading in (9e-10, -9e-10, 1.1e-9, 5e-13):
+        start, goal = (10.0, 30.0, heading), (2990.0, 30.0, 0.0)
+        r = plan_hybrid(grid, start, goal, 5.0, motion="dubins", robot_radius=0.5, max_expansions=100_000)
+        assert r.success
+        end = exact(r, start)[-1]
+        assert np.hypot(*(end[:2] - goal[:2])) < 1e-8 and abs(end[2]) < 1e-12, heading
+
+
+def test_an_exhausted_shared_lattice_is_searched_again_through_the_start_heading(monkeypatch):
+    """Arcs onto the shared lattice can lead where its poses find no way on (2 of 700 random near-wall
+    queries) while a lattice through the start heading has one: the planner then searches that too."""
+    blocked = np.zeros((100, 140), bool)
+    blocked[70:90, 100:120] = True
+    blocked[72:88, 102:118] = False  # a sealed pocket
+    grid = OccupancyGrid(blocked, resolution=RES)
+    start, goal = (1.0, 1.0, 0.3), (6.0, 1.0, -0.7)
+    pocket = (5.5, 4.0, 0, 0.0, hybrid_astar.LEFT, 0.01)  # an arc "ending" in the pocket: its search is exhausted
+    monkeypatch.setattr(hybrid_astar, "_start_nodes", lambda *args: [pocket])
+    r = plan_hybrid(grid, start, goal, 0.5, footprint=ROBOT)
+    assert r.success and np.allclose(exact(r, start)[0], start, atol=1e-12)
+    assert np.hypot(*(exact(r, start)[-1][:2] - goal[:2])) < 1e-6

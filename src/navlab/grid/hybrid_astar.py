@@ -283,25 +283,41 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
         common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
         starts = [(lsx, lsy, 0, 0.0, NOP, 0.0)]
-    for x, y, *_ in starts:  # the field settled as far as each start node's cell (the start's already is)
-        if (int(x // res), int(y // res)) != (scx, scy):
-            cells = field_at(*field, grid.width + 2, res, int(x // res), int(y // res))[1]
-            field = (*field[:2], cells, *field[3:])
-    start_x, start_y, start_g = (np.array([n[i] for n in starts], dtype=float) for i in (0, 1, 3))
-    start_bin = np.array([n[2] for n in starts], dtype=np.int64)
 
-    with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
-        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, table[0], table[1], \
-            retried, scratch = search(
+    def run(lattice, starts, budget):
+        """The search from ``starts`` on ``lattice`` with ``budget`` expansions: its outputs (search's)."""
+        nonlocal field
+        for x, y, *_ in starts:  # the field settled as far as each start node's cell (the start's already is)
+            if (int(x // res), int(y // res)) != (scx, scy):
+                cells = field_at(*field, grid.width + 2, res, int(x // res), int(y // res))[1]
+                field = (*field[:2], cells, *field[3:])
+        start_x, start_y, start_g = (np.array([n[i] for n in starts], dtype=float) for i in (0, 1, 3))
+        start_bin = np.array([n[2] for n in starts], dtype=np.int64)
+        with lattice.swept_cells() as table:  # the search adds the swept cells it needs to the lattice's table
+            *out, table[0], table[1], retried, scratch = search(
                 blocked, res, start_x, start_y, start_bin, start_g, lgx, lgy, lgt, lattice.theta0, lattice.step,
-                lattice.bins, r,
-                motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx, lattice.dy, lattice.dbin,
-                *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear, lattice.clear_disc,
-                lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice), bool(exact_retry), *field,
-                penalties, analytic_max, int(max_expansions), bool(analytic_expansion),
+                lattice.bins, r, motion == "reeds_shepp", lattice.prim_kind, lattice.prim_len, lattice.dx,
+                lattice.dy, lattice.dbin, *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear,
+                lattice.clear_disc, lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice),
+                bool(exact_retry), *field, penalties, analytic_max, int(budget), bool(analytic_expansion),
                 0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio),
                 _SCRATCH.take(lattice.bins))
-    _SCRATCH.keep(scratch)  # nx ... prim are views into it: read below, before this thread's next search
+        _SCRATCH.keep(scratch)  # the node arrays are views into it: read below, before this thread's next search
+        return (*out, retried)
+
+    found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, retried = \
+        run(lattice, starts, max_expansions)
+    if not found and expansions < max_expansions and lattice.theta0 != lst and starts[0][4] != NOP:
+        # the shared lattice's space is exhausted from the arcs that join it; a lattice through the start
+        # heading itself holds other poses, which may pass where these did not (rare: 2 of 700 random
+        # near-wall queries): search it too, in what is left of the budget
+        lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
+        common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
+        starts = [(lsx, lsy, 0, 0.0, NOP, 0.0)]
+        used, used_solved = expansions, solved
+        found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, retried = \
+            run(lattice, starts, max_expansions - used)
+        expansions, solved = expansions + used, solved + used_solved
     stats["exact_retry"] = bool(retried)
     stats["expansions"], stats["nodes"], stats["heuristics_solved"] = int(expansions), int(len(nx)), int(solved)
     if not found:
@@ -354,7 +370,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
 def _start_nodes(start, r, reverse, penalties, blocked, clear, lattice, grow):
     """The search's start nodes: ``[(x, y, bin, cost [m], kind, length [m])]``, each the pose an arc from
     ``start`` reaches on the lattice's headings (``theta0 + bin·step``) with that arc's penalised cost,
-    kind and signed length (``NOP``, 0: the start itself, when its heading is within 1e-9 rad of one).
+    kind and signed length (``NOP``, 0: the start itself, when its heading is within 1e-12 rad of one).
 
     The arc turns to the nearest heading, at most half a step (2.5° at 72 bins: a 0.19 m arc on a
     4.4 m radius), forward and, for Reeds–Shepp motion, in reverse; an arc is kept if its footprint is
@@ -367,7 +383,7 @@ def _start_nodes(start, r, reverse, penalties, blocked, clear, lattice, grow):
     b = round((theta - lattice.theta0) / step)
     heading = lattice.theta0 + b * step
     turn = heading - theta
-    if abs(turn) <= 1e-9:
+    if abs(turn) <= 1e-12:  # on the lattice: the path then drifts at most 1e-12·L m from the searched one in L m
         return [(x, y, b % lattice.bins, 0.0, NOP, 0.0)]
     out = []
     for kind, length in ((LEFT if turn > 0 else RIGHT, r * abs(turn)), (RIGHT if turn > 0 else LEFT, -r * abs(turn))):

@@ -103,8 +103,13 @@ def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse
         return field
     dx, dy = gx - x, gy - y
     c, s = math.cos(theta), math.sin(theta)
-    return max(field, reeds_shepp_length.length((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
-                                                gtheta - theta) * radius)
+    lx, ly, phi = (c * dx + s * dy) / radius, (-s * dx + c * dy) / radius, gtheta - theta
+    # the Dubins length bounds the shortest word from above: words that cannot beat it are dropped
+    # sooner (the same length, bit for bit; should rounding put the length at the bound, solved in full)
+    length = reeds_shepp_length.length_below(lx, ly, phi, _above(forward, radius) / radius)
+    if length == math.inf:
+        length = reeds_shepp_length.length(lx, ly, phi)
+    return max(field, length * radius)
 
 
 @njit(cache=True)

@@ -363,7 +363,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     stats["g"] = float(ng[last])
     stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
-    stats["cusps"] = int(np.count_nonzero(np.diff(np.sign(lengths[lengths != 0])) != 0)) if len(lengths) else 0
+    forward = [v > 0 for v in stats["segments"] if v != 0]  # (a few segments: plain Python is quicker than numpy)
+    stats["cusps"] = sum(a != b for a, b in zip(forward, forward[1:]))
     return finish(Status.EXACT, "", world, direction, length)
 
 

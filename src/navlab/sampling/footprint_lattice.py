@@ -357,7 +357,16 @@ def check_turning_scale(turning_radius: float, vertices: np.ndarray, disc: float
     """Refuse, naming ``turning_radius``, a radius the map cannot be searched at:
     so small that the footprint would be checked at poses less than
     :data:`FINEST_SPACING` of a cell apart, or so large that one heading step of
-    arc is longer than the map's diagonal ``extent``."""
+    arc is longer than the map's diagonal ``extent``. Cached by the values (every
+    Hybrid A* query asks, mostly with the same robot and map)."""
+    outline = tuple(map(tuple, np.asarray(vertices, float).reshape(-1, 2).tolist()))
+    _turning_scale_checked(float(turning_radius), outline, float(disc), float(resolution), int(bins), float(extent))
+
+
+@functools.lru_cache(maxsize=64)
+def _turning_scale_checked(turning_radius: float, vertices, disc: float, resolution: float, bins: int,
+                           extent: float) -> None:
+    """:func:`check_turning_scale` on hashable values (a refusal is an exception, which is not cached)."""
     reach = max(disc, float(np.hypot(*np.asarray(vertices, float).reshape(-1, 2).T).max()) if len(vertices) else 0.0)
     delta = 0.5 * resolution  # as Lattice spaces poses
     smallest = reach / (delta / (FINEST_SPACING * resolution) - 1.0)

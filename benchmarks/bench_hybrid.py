@@ -623,7 +623,7 @@ def _print_side_by_side(rows, setup, map_names, variants) -> None:
         print(f"\n{label_}: medians over queries, ms (min-max); nav/Smac: median over queries of navlab warm / "
               "Smac binary wall time")
         print(f"{'map':<30} {'ok nav/' + '/'.join(short[v] for v in variants):>24} {'navlab warm':>18} {'CPU':>6} "
-              f"{'new hd':>7} {'Smac bin':>19} {'CPU':>6} {'nav/Smac':>8} {'Smac bin-fullH':>19} "
+              f"{'first':>7} {'Smac bin':>19} {'CPU':>6} {'nav/Smac':>8} {'Smac bin-fullH':>19} "
               f"{'Smac infl':>18} {'nav exp':>8} {'Smac it ' + '/'.join(short[v] for v in variants):>24} "
               f"{'nav m':>6} {'Smac m':>6}")
         for name in map_names + ["all maps"]:

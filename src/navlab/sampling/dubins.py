@@ -52,61 +52,74 @@ def _centres_apart(d: float) -> float:
 
 
 @njit(cache=True)
+def _word(k: int, d: float, alpha: float, beta: float, sa: float, ca: float, sb: float, cb: float, cab: float,
+          best: float) -> Tuple[float, float, float]:
+    """Word ``k``'s (t, p, q) in turning radii (:data:`WORDS` order), or (inf, 0, 0) where it does not
+    exist or cannot be shorter than ``best``: a word's t + p + q is never below its p (rounding to
+    nearest is monotone and t, q >= 0), so a CSC word whose straight part alone, or a CCC word whose
+    middle arc (at least π), is no shorter than ``best`` is not finished (its atan2 and acos calls,
+    most of a solve, are skipped)."""
+    none = (math.inf, 0.0, 0.0)
+    if k < 2:  # LSL, RSR
+        if k == 0:
+            sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
+        else:
+            sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
+        if sq < -_centres_apart(d):  # (rounding can take a zero below 0)
+            return none
+        p = math.sqrt(max(sq, 0.0))
+        if not p < best:
+            return none
+        if k == 0:
+            theta = math.atan2(cb - ca, d + sa - sb) if sq > _centres_apart(d) else alpha
+            return _mod2pi(theta - alpha), p, _mod2pi(beta - theta)
+        theta = math.atan2(ca - cb, d - sa + sb) if sq > _centres_apart(d) else alpha
+        return _mod2pi(alpha - theta), p, _mod2pi(theta - beta)
+    if k < 4:  # LSR, RSL
+        if k == 2:
+            sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
+        else:
+            sq = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
+        if sq < 0.0 or not math.sqrt(sq) < best:
+            return none
+        p = math.sqrt(sq)
+        if k == 2:
+            theta = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
+            return _mod2pi(theta - alpha), p, _mod2pi(theta - beta)
+        theta = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
+        return _mod2pi(alpha - theta), p, _mod2pi(beta - theta)
+    if not best > math.pi:  # a CCC word's middle arc is 2π - acos(c) >= π
+        return none
+    if k == 4:  # RLR
+        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
+        if abs(c) > 1.0:
+            return none
+        p = TWO_PI - math.acos(c)
+        t = _mod2pi(alpha - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
+        return t, p, _mod2pi(alpha - beta - t + p)
+    c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
+    if abs(c) > 1.0:
+        return none
+    p = TWO_PI - math.acos(c)
+    t = _mod2pi(-alpha + math.atan2(cb - ca, d + sa - sb) + 0.5 * p)
+    return t, p, _mod2pi(beta - alpha - t + p)
+
+
+@njit(cache=True)
 def solve(d: float, alpha: float, beta: float) -> Tuple[int, float, float, float]:
     """The shortest of the six words for scaled distance ``d`` and headings
     ``alpha``, ``beta`` (radians, from the start-to-goal line).
 
     Returns ``(word, t, p, q)``: the index into :data:`WORDS` and the three
-    segment lengths in units of the turning radius.
+    segment lengths in units of the turning radius (the first of equally short words).
     """
     sa, ca, sb, cb = math.sin(alpha), math.cos(alpha), math.sin(beta), math.cos(beta)
     cab = math.cos(alpha - beta)
     best, bt, bp, bq = -1, 0.0, 0.0, 0.0
     best_len = math.inf
     for word in range(6):
-        ok = True
-        t = p = q = 0.0
-        if word == 0:  # LSL
-            sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
-            ok = sq >= -_centres_apart(d)  # (rounding can take a zero below 0)
-            if ok:
-                theta = math.atan2(cb - ca, d + sa - sb) if sq > _centres_apart(d) else alpha
-                t, p, q = _mod2pi(theta - alpha), math.sqrt(max(sq, 0.0)), _mod2pi(beta - theta)
-        elif word == 1:  # RSR
-            sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
-            ok = sq >= -_centres_apart(d)
-            if ok:
-                theta = math.atan2(ca - cb, d - sa + sb) if sq > _centres_apart(d) else alpha
-                t, p, q = _mod2pi(alpha - theta), math.sqrt(max(sq, 0.0)), _mod2pi(theta - beta)
-        elif word == 2:  # LSR
-            sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
-            ok = sq >= 0.0
-            if ok:
-                p = math.sqrt(sq)
-                theta = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-                t, q = _mod2pi(theta - alpha), _mod2pi(theta - beta)
-        elif word == 3:  # RSL
-            sq = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)
-            ok = sq >= 0.0
-            if ok:
-                p = math.sqrt(sq)
-                theta = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-                t, q = _mod2pi(alpha - theta), _mod2pi(beta - theta)
-        elif word == 4:  # RLR
-            c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
-            ok = abs(c) <= 1.0
-            if ok:
-                p = TWO_PI - math.acos(c)
-                t = _mod2pi(alpha - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
-                q = _mod2pi(alpha - beta - t + p)
-        else:  # LRL
-            c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0
-            ok = abs(c) <= 1.0
-            if ok:
-                p = TWO_PI - math.acos(c)
-                t = _mod2pi(-alpha + math.atan2(cb - ca, d + sa - sb) + 0.5 * p)
-                q = _mod2pi(beta - alpha - t + p)
-        if ok and t + p + q < best_len:
+        t, p, q = _word(word, d, alpha, beta, sa, ca, sb, cb, cab, best_len)
+        if t + p + q < best_len:
             best, bt, bp, bq, best_len = word, t, p, q, t + p + q
     return best, bt, bp, bq
 
@@ -114,43 +127,14 @@ def solve(d: float, alpha: float, beta: float) -> Tuple[int, float, float, float
 @njit(cache=True)
 def length(d: float, alpha: float, beta: float) -> float:
     """The shortest word's length (scaled by the turning radius) for ``d``, ``alpha``, ``beta``:
-    :func:`solve`'s ``t + p + q`` bit for bit, sooner. A word's ``t + p + q`` is never below its
-    ``p`` (rounding to nearest is monotone and t, q >= 0), so a word whose straight part alone
-    (CSC) or whose middle arc, at least π (CCC), is no shorter than the best found is not
-    finished: its atan2 and acos calls, most of a solve, are skipped. The minimum does not depend
-    on the order the words are tried in (Hybrid A*'s heuristic, where only the length is wanted)."""
+    :func:`solve`'s ``t + p + q`` bit for bit, without choosing the word (Hybrid A*'s heuristic and
+    the SE(2) trees' nearest neighbours want only the length)."""
     sa, ca, sb, cb = math.sin(alpha), math.cos(alpha), math.sin(beta), math.cos(beta)
     cab = math.cos(alpha - beta)
     best = math.inf
-    sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)  # LSL
-    if sq >= -_centres_apart(d) and math.sqrt(max(sq, 0.0)) < best:
-        theta = math.atan2(cb - ca, d + sa - sb) if sq > _centres_apart(d) else alpha
-        best = min(best, _mod2pi(theta - alpha) + math.sqrt(max(sq, 0.0)) + _mod2pi(beta - theta))
-    sq = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)  # RSR
-    if sq >= -_centres_apart(d) and math.sqrt(max(sq, 0.0)) < best:
-        theta = math.atan2(ca - cb, d - sa + sb) if sq > _centres_apart(d) else alpha
-        best = min(best, _mod2pi(alpha - theta) + math.sqrt(max(sq, 0.0)) + _mod2pi(theta - beta))
-    sq = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)  # LSR
-    if sq >= 0.0 and math.sqrt(sq) < best:
-        p = math.sqrt(sq)
-        theta = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
-        best = min(best, _mod2pi(theta - alpha) + p + _mod2pi(theta - beta))
-    sq = -2.0 + d * d + 2.0 * cab - 2.0 * d * (sa + sb)  # RSL
-    if sq >= 0.0 and math.sqrt(sq) < best:
-        p = math.sqrt(sq)
-        theta = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
-        best = min(best, _mod2pi(alpha - theta) + p + _mod2pi(beta - theta))
-    if best > math.pi:  # a CCC word's middle arc is 2π - acos(c) >= π
-        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0  # RLR
-        if abs(c) <= 1.0:
-            p = TWO_PI - math.acos(c)
-            t = _mod2pi(alpha - math.atan2(ca - cb, d - sa + sb) + 0.5 * p)
-            best = min(best, t + p + _mod2pi(alpha - beta - t + p))
-        c = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sb - sa)) / 8.0  # LRL
-        if abs(c) <= 1.0:
-            p = TWO_PI - math.acos(c)
-            t = _mod2pi(-alpha + math.atan2(cb - ca, d + sa - sb) + 0.5 * p)
-            best = min(best, t + p + _mod2pi(beta - alpha - t + p))
+    for word in range(6):
+        t, p, q = _word(word, d, alpha, beta, sa, ca, sb, cb, cab, best)
+        best = min(best, t + p + q)
     return best
 
 

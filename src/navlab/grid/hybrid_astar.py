@@ -277,12 +277,16 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         what = f"a disc of the robot's inscribed radius ({inscribed:.3g} m)" if inscribed > 0 else "a point"
         return finish(Status.FAILED, f"no collision-free path: the goal is walled off from the start even for {what}")
     penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
+    def through_start():
+        """A lattice through the start heading itself, its ``common`` tuple, and the start as its one node."""
+        own = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
+        own_common = (res, own.theta0, own.step, own.bins, own.pose_cells, own.pose_start)
+        return own, own_common, [(lsx, lsy, 0, 0.0, NOP, 0.0)]
+
     starts = _start_nodes((lsx, lsy, lst), r, motion == "reeds_shepp", penalties, blocked, clear, lattice,
                           exact_grow(lattice))
     if not starts:  # no arc onto the shared lattice is free: search a lattice through the start heading itself
-        lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
-        common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
-        starts = [(lsx, lsy, 0, 0.0, NOP, 0.0)]
+        lattice, common, starts = through_start()
 
     def run(lattice, starts, budget):
         """The search from ``starts`` on ``lattice`` with ``budget`` expansions: its outputs (search's)."""
@@ -311,9 +315,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         # the shared lattice's space is exhausted from the arcs that join it; a lattice through the start
         # heading itself holds other poses, which may pass where these did not (rare: 2 of 700 random
         # near-wall queries): search it too, in what is left of the budget
-        lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
-        common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
-        starts = [(lsx, lsy, 0, 0.0, NOP, 0.0)]
+        lattice, common, starts = through_start()
         used, used_solved = expansions, solved
         found, nx, ny, nb, ng, parent, prim, last, akinds, alens, expansions, solved, retried = \
             run(lattice, starts, max_expansions - used)
@@ -363,8 +365,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     stats["g"] = float(ng[last])
     stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
-    forward = [v > 0 for v in stats["segments"] if v != 0]  # (a few segments: plain Python is quicker than numpy)
-    stats["cusps"] = sum(a != b for a, b in zip(forward, forward[1:]))
+    stats["cusps"] = int(_cusps(0, lengths, 0))
     return finish(Status.EXACT, "", world, direction, length)
 
 
@@ -396,11 +397,10 @@ def _start_nodes(start, r, reverse, penalties, blocked, clear, lattice, grow):
                           lattice.pose_start, clear, lattice.clear_disc, lattice.vertices, lattice.disc, grow):
             continue
         cost = abs(length) * penalties[1] * (penalties[2] if length < 0 else 1.0)
-        res = lattice.resolution
-        same = [i for i, n in enumerate(out) if (n[0] // res, n[1] // res) == (x2 // res, y2 // res)]
-        if same and out[same[0]][3] <= cost:
-            continue  # both arcs end in one state (cell and heading): the cheaper one stands
-        out = [n for i, n in enumerate(out) if i not in same] + [(x2, y2, b % lattice.bins, cost, kind, length)]
+        out.append((x2, y2, b % lattice.bins, cost, kind, length))
+    res = lattice.resolution
+    if len(out) == 2 and (out[0][0] // res, out[0][1] // res) == (out[1][0] // res, out[1][1] // res):
+        out = [min(out, key=lambda node: node[3])]  # both arcs end in one state: the cheaper stands (forward on a tie)
     return out
 
 

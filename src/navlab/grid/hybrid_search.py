@@ -49,6 +49,7 @@ from numba import njit
 
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
+from ..sampling.reeds_shepp import _local
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
 from .floor_cells import floor_div
 from .hybrid_field import PASSABLE, SETTLED, field_cells_grown, field_settle_within
@@ -87,10 +88,8 @@ def _same_side_settles(x, y, theta, gx, gy, gtheta, radius, field, room) -> bool
     """Whether an upper bound on the Reeds–Shepp length [m] from pose (x, y, θ) to the goal is no more than
     ``field`` or less than ``room`` (:func:`~navlab.sampling.reeds_shepp_length.same_side_above`, lifted by
     the gate's margin): then ``max(field, length)`` is ``field``, or less than ``room``, unsolved."""
-    dx, dy = gx - x, gy - y
-    c, s = math.cos(theta), math.sin(theta)
-    bound = _above(reeds_shepp_length.same_side_above((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
-                                                      gtheta - theta, True) * radius, radius)
+    bound = _above(reeds_shepp_length.same_side_above(*_local(x, y, theta, gx, gy, gtheta, radius), True) * radius,
+                   radius)
     return bound <= field or bound < room
 
 
@@ -101,9 +100,7 @@ def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse
         return max(field, forward)
     if _above(forward, radius) <= field:
         return field
-    dx, dy = gx - x, gy - y
-    c, s = math.cos(theta), math.sin(theta)
-    lx, ly, phi = (c * dx + s * dy) / radius, (-s * dx + c * dy) / radius, gtheta - theta
+    lx, ly, phi = _local(x, y, theta, gx, gy, gtheta, radius)
     # the Dubins length bounds the shortest word from above: words that cannot beat it are dropped
     # sooner (the same length, bit for bit; should rounding put the length at the bound, solved in full)
     length = reeds_shepp_length.length_below(lx, ly, phi, _above(forward, radius) / radius)
@@ -193,10 +190,7 @@ def _forward_within(x, y, theta, gx, gy, gtheta, radius, field) -> bool:
     """Whether the Dubins length [m] from pose (x, y, θ) to the goal is surely no more than ``field``: the
     forward same-side words' length (:func:`~navlab.sampling.reeds_shepp_length.same_side_above`), an upper
     bound on it at a tenth of a solve's cost, lifted by :data:`DUBINS_MARGIN` radii, is."""
-    dx, dy = gx - x, gy - y
-    c, s = math.cos(theta), math.sin(theta)
-    bound = reeds_shepp_length.same_side_above((c * dx + s * dy) / radius, (-s * dx + c * dy) / radius,
-                                               gtheta - theta, False)
+    bound = reeds_shepp_length.same_side_above(*_local(x, y, theta, gx, gy, gtheta, radius), False)
     return (bound * (1.0 + GATE_MARGIN) + DUBINS_MARGIN) * radius <= field
 
 
@@ -244,11 +238,8 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
         akinds[i] = NOP
         alens[i] = 0.0
     if reverse:
-        dxg, dyg = gx - x, gy - y
-        c, s = math.cos(theta), math.sin(theta)
         # the full solver's word, bit for bit, by branch and bound: a third of its cost
-        reeds_shepp_length.word((c * dxg + s * dyg) / radius, (-s * dxg + c * dyg) / radius, gtheta - theta,
-                                math.inf, seg, best_kinds, best_lens)
+        reeds_shepp_length.word(*_local(x, y, theta, gx, gy, gtheta, radius), math.inf, seg, best_kinds, best_lens)
         for i in range(MAX_SEGMENTS):
             akinds[i] = best_kinds[i]
             alens[i] = best_lens[i] * radius

@@ -143,3 +143,31 @@ def test_ros_parameters_with_a_floor_or_non_finite():
     with pytest.raises(ValueError, match="scan_latency must be a finite number"):
         coerce(Param("scan_latency", 0.0, "", low=0.0), float("nan"))
     assert np.isnan(coerce(Param("x", float("nan"), ""), float("nan")))  # NaN means "unset" where it is the default
+
+
+@pytest.mark.parametrize("call", ["plan", "plan_world", "line_of_sight", "plan_hybrid"])
+@pytest.mark.parametrize("grid", [np.zeros((20, 20), bool), None, [[0, 0], [0, 0]]])
+def test_a_grid_that_is_not_an_occupancy_grid_is_named(call, grid):
+    """An array of cells is the usual mistake: every grid function names ``grid`` (an AttributeError before)."""
+    from navlab.grid import line_of_sight, plan, plan_world
+    from navlab.grid.hybrid_astar import plan_hybrid
+
+    args = {"plan": (plan, ((1, 1), (5, 5))), "plan_world": (plan_world, ((0.3, 0.3), (0.8, 0.8))),
+            "line_of_sight": (line_of_sight, ((1, 1), (5, 5))),
+            "plan_hybrid": (plan_hybrid, ((0.3, 0.3, 0.0), (0.8, 0.8, 0.0), 0.4))}
+    fn, rest = args[call]
+    with pytest.raises(ValueError, match="grid must be an OccupancyGrid"):
+        fn(grid, *rest)
+
+
+@pytest.mark.parametrize("footprint, words", [("abc", "footprint must be 3 or more"),
+                                              ([[np.nan, 0.1], [-0.1, 0.1], [0, -0.1]], "must be finite"),
+                                              ([0, 0, 1, 1, 2, 2], "got shape (6,)")])
+def test_a_footprint_that_is_no_outline_is_named(footprint, words):
+    from navlab.grid.hybrid_astar import plan_hybrid
+    from navlab.grid.occupancy import OccupancyGrid
+
+    with pytest.raises(ValueError) as err:
+        plan_hybrid(OccupancyGrid(np.zeros((20, 20), bool), resolution=0.1), (0.5, 0.5, 0), (1.5, 1.5, 0), 0.4,
+                    footprint=footprint)
+    assert words in str(err.value) and "footprint" in str(err.value)

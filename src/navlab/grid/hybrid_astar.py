@@ -89,7 +89,7 @@ from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattic
 from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search
-from .occupancy import OccupancyGrid
+from .occupancy import OccupancyGrid, check_grid
 
 MOTIONS = ("dubins", "reeds_shepp")
 DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
@@ -184,9 +184,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         nodes it opened again count again in ``expansions``).
     """
     t0 = time.perf_counter()
-    if not isinstance(grid, OccupancyGrid):
-        raise ValueError(f"grid must be an OccupancyGrid (navlab.grid.OccupancyGrid(blocked, resolution=...)), "
-                         f"got {type(grid).__name__}")
+    check_grid(grid)
     if motion not in MOTIONS:
         hint = suggest(motion, list(MOTIONS)) if isinstance(motion, str) else ""
         raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}.{hint}".rstrip("."))

@@ -192,5 +192,14 @@ class OccupancyGrid:
         return self.replace(blocked=dist <= radius + 1e-12, name=f"{self.name} (inflated {radius} m)")
 
 
+def check_grid(grid: Any, name: str = "grid") -> OccupancyGrid:
+    """``grid`` if it is an :class:`OccupancyGrid`, else the error a planner gives for it, naming ``name``
+    (an array of cells is the usual mistake: it has no resolution or origin to plan in)."""
+    if not isinstance(grid, OccupancyGrid):
+        raise ValueError(f"{name} must be an OccupancyGrid (navlab.grid.OccupancyGrid(blocked, resolution=...)), "
+                         f"got {type(grid).__name__}")
+    return grid
+
+
 def _rebuild(blocked, resolution, origin, unknown, name, probability) -> OccupancyGrid:
     return OccupancyGrid(blocked, resolution, origin, unknown, name, probability)

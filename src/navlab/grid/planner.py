@@ -39,7 +39,7 @@ from ..limits import check_coordinate
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
-from .occupancy import OccupancyGrid
+from .occupancy import OccupancyGrid, check_grid
 
 HEURISTICS: Registry[int] = Registry("heuristic")
 for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),
@@ -289,6 +289,7 @@ def line_of_sight(grid: OccupancyGrid, a, b, method: str = "supercover", allow_u
     centres touches; ``"bresenham"`` checks the cells of the Bresenham line
     (and never cuts a blocked corner on a diagonal step).
     """
+    check_grid(grid)
     if method not in ("supercover", "bresenham"):
         raise ValueError(f"method must be 'supercover' or 'bresenham', got {method!r}")
     (ax, ay), (bx, by) = _cell(a, "a"), _cell(b, "b")
@@ -348,6 +349,7 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     A. Nash, K. Daniel, S. Koenig, A. Felner, "Theta*: any-angle path planning
     on grids", AAAI 2007.
     """
+    check_grid(grid)
     GRID_ALGORITHMS.get(algorithm)
     hcode = HEURISTICS.get(heuristic)
     if connectivity not in (4, 8):
@@ -419,6 +421,7 @@ def plan_world(grid: OccupancyGrid, start_xy, goal_xy, **kwargs: Any) -> Result:
     Coordinates must be finite and within ±MAX_COORDINATE (:mod:`navlab.limits`);
     the cells containing them are planned between.
     """
+    check_grid(grid)
     points = []
     for label, xy in (("start", start_xy), ("goal", goal_xy)):
         try:

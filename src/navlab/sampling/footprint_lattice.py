@@ -43,10 +43,16 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
         footprint = footprint.vertices
     if footprint is None:
         return np.empty((0, 2)), check_length("robot_radius", 0.0 if robot_radius is None else robot_radius)
-    vertices = np.asarray(footprint, dtype=float)
-    if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3 or not np.isfinite(vertices).all():
-        raise ValueError("footprint must be 3 or more finite (x, y) vertices in body coordinates, [[x, y], ...], "
+    try:
+        vertices = np.asarray(footprint, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
+                         f"got {footprint!r:.80}") from None
+    if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3:
+        raise ValueError("footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
                          f"got shape {vertices.shape}")
+    if not np.isfinite(vertices).all():
+        raise ValueError(f"footprint vertices must be finite numbers [m], got {vertices.tolist()!r:.80}")
     _check_polygon(tuple(map(tuple, vertices.tolist())))
     return vertices, 0.0
 

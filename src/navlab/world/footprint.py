@@ -46,7 +46,8 @@ class Footprint:
             r = self.radius
             if isinstance(r, bool) or not isinstance(r, (int, float, np.floating, np.integer)) \
                     or not math.isfinite(r) or not 0 < r <= MAX_COORDINATE:
-                raise FootprintError(f"footprint radius must be a positive number of metres, got {r!r}")
+                raise FootprintError(f"footprint radius must be a positive number of metres, at most "
+                                     f"{MAX_COORDINATE:g}, got {r!r}")
             object.__setattr__(self, "radius", float(r))
             return
         object.__setattr__(self, "points", _checked_polygon(self.points))

@@ -45,13 +45,11 @@ def load_kernels(path: str, name: str):
 
 
 def issue22_maps():
-    from navlab.grid.maze import make_maze
+    """(name, blocked cells) of bench_grid.py's --large maps (4096² random 20 %, the 1001² maze)."""
+    from bench_grid import _large_maps
 
-    rng = np.random.default_rng(0)
-    blocked = rng.random((4096, 4096)) < 0.2
-    blocked[0, 0] = blocked[-1, -1] = False
-    yield "random4096", blocked
-    yield "maze1001", make_maze(100, 100, seed=1, cell_size=0.5, wall=0.05, resolution=0.05).blocked
+    for name, make in _large_maps():
+        yield name.split("-")[0], make().blocked
 
 
 def searcher_call(module, algorithm: str):

@@ -287,3 +287,11 @@ def test_costmap_false_is_the_plain_query_and_a_misspelt_costmap_is_suggested():
     assert navlab.plan("trap", planner="rrt", costmap=False, max_iter=300, seed=1).status is not None
     with pytest.raises(UnknownNameError, match="Did you mean 'costmap'"):
         navlab.plan("trap", planner="astar", costmapp=True)
+
+
+def test_a_costmap_query_counts_the_cells_it_expanded():
+    """costmap=true reported 0 cells expanded whatever it searched (session 15's left-alone list):
+    the count is the costmap A*'s, at least the path's cells and at most the costmap's."""
+    r = navlab.plan("trap", planner="astar", costmap=True)
+    cells = int(np.prod([int(v) for v in r.stats["grid"].split("x")]))
+    assert r.status is Status.EXACT and len(r.path) - 1 <= r.stats["expanded"] <= cells

@@ -240,11 +240,13 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     source = world.occupancy if world.occupancy is not None else world
     layers = LayeredCostmap(source, footprint, resolution=params.get("resolution"), **settings)
     costmap = layers.static_costmap()
+    searched: Dict[str, Any] = {}
     path, weighted, reason = plan_on_costmap(costmap, world.start, world.goal, float(multiplier),
-                                             bool(params.get("allow_unknown", False)))
+                                             bool(params.get("allow_unknown", False)), stats=searched)
     out_params = {"algorithm": algorithm, "costmap": True, "resolution": costmap.resolution,
                   "cost_travel_multiplier": float(multiplier), **settings}
-    stats: Dict[str, Any] = {"grid": f"{costmap.shape[1]}x{costmap.shape[0]}", "costmap_cost_m": weighted}
+    stats: Dict[str, Any] = {"grid": f"{costmap.shape[1]}x{costmap.shape[0]}", "costmap_cost_m": weighted,
+                             "expanded": searched.get("expanded", 0)}
     if path is None:
         stats["time_s"] = time.perf_counter() - t0
         return Result(status=Status.FAILED, params=out_params, stats=stats, reason=reason)

@@ -47,8 +47,12 @@ def test_astar_on_costs_equals_scipy_dijkstra(seed):
     for k, s in enumerate(starts):
         for goal in rng.choice(np.flatnonzero(passable.ravel()), 10, replace=False):
             parent = np.full(costs.size, -1, np.int64)
-            got, _ = costmap_astar(costs, passable, int(s), int(goal), multiplier, parent)
+            got, _, expanded = costmap_astar(costs, passable, int(s), int(goal), multiplier, parent)
             assert got == pytest.approx(truth[k, goal], rel=1e-12) or (math.isinf(got) and math.isinf(truth[k, goal]))
+            assert 1 <= expanded <= np.count_nonzero(np.isfinite(truth[k]))
+        # without a goal it expands every cell it can reach, once: scipy's count of finite distances
+        _, g, expanded = costmap_astar(costs, passable, int(s), -1, multiplier, np.full(costs.size, -1, np.int64))
+        assert expanded == np.count_nonzero(np.isfinite(truth[k])) == np.count_nonzero(np.isfinite(g))
 
 
 def test_plan_on_costmap_keeps_away_from_costly_cells():

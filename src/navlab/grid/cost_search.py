@@ -21,6 +21,7 @@ Search state belongs to the call (thread-safe).
 from __future__ import annotations
 
 import math
+from typing import Optional
 
 import numpy as np
 from numba import njit
@@ -74,7 +75,8 @@ def costmap_astar(costs, passable, start, goal, multiplier, parent):
     """Cheapest 8-connected path cost (in cells) from cell ``start`` to ``goal``
     (flat indices ``y·W + x``) over ``passable`` cells, filling ``parent``;
     inf when the goal cannot be reached. ``goal = -1`` searches the whole map
-    (Dijkstra); then ``parent`` and the returned g array hold every cell's."""
+    (Dijkstra); then ``parent`` and the returned g array hold every cell's.
+    Returns (cost, g, cells expanded)."""
     h, w = costs.shape
     n = h * w
     g = np.full(n, np.inf)
@@ -87,13 +89,15 @@ def costmap_astar(costs, passable, start, goal, multiplier, parent):
     size = 0
     _push(heap_f, heap_v, size, 0.0, start)
     size += 1
+    expanded = 0
     while size > 0:
         v, size = _pop(heap_f, heap_v, size)
         if closed[v]:
             continue
         closed[v] = True
+        expanded += 1
         if v == goal:
-            return g[v], g
+            return g[v], g, expanded
         vx, vy = v % w, v // w
         for dy in range(-1, 2):
             for dx in range(-1, 2):
@@ -116,11 +120,11 @@ def costmap_astar(costs, passable, start, goal, multiplier, parent):
                     hval = (max(hx, hy) + (SQRT2 - 1.0) * min(hx, hy)) if goal >= 0 else 0.0
                     _push(heap_f, heap_v, size, cand + hval, u)
                     size += 1
-    return np.inf, g
+    return np.inf, g, expanded
 
 
 def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = DEFAULT_COST_TRAVEL_MULTIPLIER,
-                    allow_unknown: bool = False):
+                    allow_unknown: bool = False, stats: Optional[dict] = None):
     """The cheapest path over a :class:`~navlab.world.costmap.Costmap` between two points.
 
     Returns
@@ -132,6 +136,9 @@ def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = 
         The path's cost in metres (each metre weighted by its cells' costs).
     reason : str
         Why there is no path ('' when there is one).
+
+    ``stats``, if given, receives ``expanded``: the cells the search expanded
+    (0 when it did not run: an end outside the costmap or on a blocked cell).
     """
     from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION
 
@@ -152,7 +159,9 @@ def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = 
                                     "unknown): the robot's body would touch an obstacle there")
     start, goal = int(cells[0, 1] * w + cells[0, 0]), int(cells[1, 1] * w + cells[1, 0])
     parent = np.full(h * w, -1, np.int64)
-    total, _ = costmap_astar(work, passable, start, goal, float(cost_travel_multiplier), parent)
+    total, _, expanded = costmap_astar(work, passable, start, goal, float(cost_travel_multiplier), parent)
+    if stats is not None:
+        stats["expanded"] = int(expanded)
     if not math.isfinite(total):
         return None, math.inf, "no path through cells below INSCRIBED cost"
     chain = [goal]

@@ -113,6 +113,24 @@ def test_a_bad_pose_is_named(solver, goal, field):
         solver.shortest((0, 0, 0), goal, 1.0)
 
 
+@pytest.mark.parametrize("heading", [1e8, -1e16, 7.0, 1e300])
+def test_any_finite_heading_is_the_heading_it_wraps_to(heading):
+    """Headings beyond ±1e7 rad were refused here and by plan_hybrid while navlab.plan and the
+    command line wrapped them (session 15's left-alone list): every one now plans as the heading
+    math.remainder gives, bit for bit, in the solvers and in Hybrid A*."""
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.hybrid_astar import plan_hybrid
+
+    wrapped = math.remainder(heading, 2 * math.pi)
+    assert -math.pi <= wrapped <= math.pi
+    for solver in SOLVERS:
+        assert solver.shortest((0, 0, heading), (3, 1, 0.5), 1.0).length == \
+            solver.shortest((0, 0, wrapped), (3, 1, 0.5), 1.0).length
+    grid = OccupancyGrid(np.zeros((30, 30), dtype=bool), 0.1)
+    far, near = (plan_hybrid(grid, (0.5, 0.5, h), (2.5, 2.0, 1.0), 0.4) for h in (heading, wrapped))
+    assert far.status == near.status and far.cost == near.cost and np.array_equal(far.path, near.path)
+
+
 def test_the_dubins_length_alone_is_the_full_solve_bit_for_bit():
     """dubins.length skips words that cannot be shorter than the best found (Hybrid A*'s heuristic,
     SE(2) nearest neighbours); it must return solve's t + p + q exactly, on random inputs and on

@@ -22,7 +22,7 @@ import numpy as np
 from numba import njit
 
 from ..angles import wrap_angle as _wrap
-from ..limits import check_coordinate, check_length
+from ..limits import check_coordinate, check_length, finite_number
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
 #: a segment code's letter in a word
@@ -32,8 +32,11 @@ NEGLIGIBLE = 1e-12  #: a segment shorter than this many turning radii is roundin
 
 
 def check_pose(name: str, pose) -> Tuple[float, float, float]:
-    """``pose`` as three floats ``(x, y, θ)``; ValueError naming ``name`` if it is
-    not three finite numbers within navlab's coordinate range."""
+    """``pose`` as three floats ``(x, y, θ)``, θ wrapped to [−π, π] (exactly: a heading
+    already there is kept bit for bit); ValueError naming ``name`` if it is not three
+    finite numbers with x and y within navlab's coordinate range. Any finite heading
+    is a heading, as for a ``World``'s start and goal (until session 16 this refused
+    headings beyond ±1e7 rad, which ``navlab.plan`` wrapped)."""
     try:
         values = list(pose)
     except TypeError:
@@ -42,7 +45,7 @@ def check_pose(name: str, pose) -> Tuple[float, float, float]:
         raise ValueError(f"{name} must be a pose (x, y, theta) of 3 numbers, got {len(values)}")
     x = check_coordinate(f"{name} x", values[0])
     y = check_coordinate(f"{name} y", values[1])
-    theta = check_coordinate(f"{name} theta", values[2], unit="rad")
+    theta = math.remainder(finite_number(f"{name} theta", values[2]), 2.0 * math.pi)
     return x, y, theta
 
 

@@ -142,12 +142,13 @@ def test_a_point_planner_in_a_world_with_an_outline_says_what_it_ignored():
 
 def test_a_heading_beyond_two_pi_gets_a_degrees_hint_and_is_still_taken():
     res = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "180", "--json"])
-    assert "--goal heading 180 is beyond ±2π: headings are radians (180° would be 3.1416)" in res.stderr
+    assert res.stderr.count("note: goal theta 180 is beyond ±2π: headings are radians (180° would be 3.1416 rad; "
+                            "it is planned as -2.2124)") == 1
     assert res.exit_code in (0, 1) and json.loads(res.stdout)["status"]
     quiet = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "3.14"])
-    assert "more than 2π" not in quiet.stderr
+    assert "beyond ±2π" not in quiet.stderr
     huge = CliRunner().invoke(main, ["plan", "trap", "--max-iter", "200", "--goal", "16", "6", "1e300", "--json"])
-    assert "--goal heading 1e300 is beyond ±2π: headings are radians (it wraps to " in huge.stderr
+    assert "note: goal theta 1e+300 is beyond ±2π: headings are radians (it is planned as " in huge.stderr
     assert len(huge.stderr.splitlines()[0]) < 120  # not 1e300 degrees in radians, 300 digits long
 
 

@@ -15,3 +15,40 @@ def wrap_angle(angle: float) -> float:
     if a <= 0.0:
         a += 2.0 * math.pi
     return a - math.pi
+
+
+class HeadingWarning(UserWarning):
+    """A start or goal heading beyond ±2π rad: legal (headings wrap), but far more
+    often degrees given where radians belong. ``warnings.filterwarnings("ignore",
+    category=HeadingWarning)`` silences it; the ``navlab`` command prints it as a note."""
+
+
+def warn_beyond_a_turn(what: str, value: float, wrapped: float) -> None:
+    """Warn (:class:`HeadingWarning`) that heading ``what`` = ``value`` [rad], planned as
+    ``wrapped``, lies beyond ±2π, with what it would be were it degrees."""
+    if not abs(value) > 2.0 * math.pi:
+        return
+    import warnings
+
+    degrees = f"{value:g}° would be {math.radians(value):.4f} rad; " if abs(value) <= 360.0 else ""
+    warnings.warn(f"{what} {value:g} is beyond ±2π: headings are radians ({degrees}it is planned as {wrapped:.4f})",
+                  HeadingWarning, stacklevel=_first_caller_outside())
+
+
+def _first_caller_outside() -> int:
+    """The ``stacklevel`` of the innermost caller outside navlab (and the standard library it
+    calls through), so that a warning names the user's line (and Python's default filter shows
+    it once per line of theirs, not once in all)."""
+    import os
+    import sys
+
+    standard = os.path.dirname(os.__file__) + os.sep  # the standard library's (dataclasses.replace, functools, ...)
+
+    def passed_through(frame) -> bool:  # by module name: a dataclass's generated __init__ has no file of its own
+        name = frame.f_globals.get("__name__", "")
+        return name == "navlab" or name.startswith("navlab.") or frame.f_code.co_filename.startswith(standard)
+
+    frame, level = sys._getframe(2), 2  # level 1: warn_beyond_a_turn itself
+    while frame is not None and passed_through(frame):
+        frame, level = frame.f_back, level + 1
+    return level

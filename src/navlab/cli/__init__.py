@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import atexit
+import contextlib
 import gc
 import os
 import sys
@@ -244,7 +245,8 @@ class NavlabGroup(SuggestingGroup):
 
     def invoke(self, ctx):
         try:
-            return super().invoke(ctx)
+            with heading_notes():
+                return super().invoke(ctx)
         except (click.exceptions.ClickException, click.exceptions.Exit, click.exceptions.Abort, SystemExit):
             raise  # click's own messages and exit statuses
         except KeyboardInterrupt:
@@ -260,6 +262,31 @@ class NavlabGroup(SuggestingGroup):
             status, line = describe_error(exc)
             click.echo(line, err=True)
             sys.exit(status)
+
+
+@contextlib.contextmanager
+def heading_notes():
+    """Within it, a heading beyond ±2π (``navlab.angles.HeadingWarning``, from the flags or a world
+    file) prints one ``note: ...`` line on standard error, each distinct one once, instead of
+    Python's two-line warning naming a line of navlab's own code."""
+    import warnings
+
+    from ..angles import HeadingWarning
+
+    said = set()
+    with warnings.catch_warnings():
+        shown = warnings.showwarning
+
+        def show(message, category, filename, lineno, file=None, line=None):
+            if not issubclass(category, HeadingWarning):
+                return shown(message, category, filename, lineno, file, line)
+            if str(message) not in said:
+                said.add(str(message))
+                click.echo(f"note: {message}", err=True)
+
+        warnings.showwarning = show
+        warnings.simplefilter("always", HeadingWarning)
+        yield
 
 
 #: every verb: the module (in navlab.cli) and the command object in it, and the one-line help that

@@ -21,7 +21,7 @@ from typing import Tuple
 import numpy as np
 from numba import njit
 
-from ..angles import wrap_angle as _wrap
+from ..angles import warn_beyond_a_turn, wrap_angle as _wrap
 from ..limits import check_coordinate, check_length, finite_number
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
@@ -36,7 +36,8 @@ def check_pose(name: str, pose) -> Tuple[float, float, float]:
     already there is kept bit for bit); ValueError naming ``name`` if it is not three
     finite numbers with x and y within navlab's coordinate range. Any finite heading
     is a heading, as for a ``World``'s start and goal (until session 16 this refused
-    headings beyond ±1e7 rad, which ``navlab.plan`` wrapped)."""
+    headings beyond ±1e7 rad, which ``navlab.plan`` wrapped); one beyond ±2π warns
+    (``navlab.angles.HeadingWarning``: most often degrees)."""
     try:
         values = list(pose)
     except TypeError:
@@ -45,7 +46,9 @@ def check_pose(name: str, pose) -> Tuple[float, float, float]:
         raise ValueError(f"{name} must be a pose (x, y, theta) of 3 numbers, got {len(values)}")
     x = check_coordinate(f"{name} x", values[0])
     y = check_coordinate(f"{name} y", values[1])
-    theta = math.remainder(finite_number(f"{name} theta", values[2]), 2.0 * math.pi)
+    given = finite_number(f"{name} theta", values[2])
+    theta = math.remainder(given, 2.0 * math.pi)
+    warn_beyond_a_turn(f"{name} theta", given, theta)
     return x, y, theta
 
 

@@ -240,13 +240,15 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     source = world.occupancy if world.occupancy is not None else world
     layers = LayeredCostmap(source, footprint, resolution=params.get("resolution"), **settings)
     costmap = layers.static_costmap()
+    built_s = time.perf_counter() - t0
     searched: Dict[str, Any] = {}
     path, weighted, reason = plan_on_costmap(costmap, world.start, world.goal, float(multiplier),
                                              bool(params.get("allow_unknown", False)), stats=searched)
     out_params = {"algorithm": algorithm, "costmap": True, "resolution": costmap.resolution,
                   "cost_travel_multiplier": float(multiplier), **settings}
+    # rasterize_s: building the costmap (the static layer, rasterised, and its inflation), as a grid query's raster
     stats: Dict[str, Any] = {"grid": f"{costmap.shape[1]}x{costmap.shape[0]}", "costmap_cost_m": weighted,
-                             "expanded": searched.get("expanded", 0)}
+                             "expanded": searched.get("expanded", 0), "rasterize_s": built_s}
     if path is None:
         stats["time_s"] = time.perf_counter() - t0
         return Result(status=Status.FAILED, params=out_params, stats=stats, reason=reason)
@@ -259,6 +261,7 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
         return Result(status=Status.FAILED, params=out_params, stats=stats,
                       reason=f"the costmap path's leg {i} from {tuple(np.round(path[i], 6))} to "
                              f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
+    stats["cost_cells"] = stats["raw_cost_cells"] = path_length(path) / costmap.resolution  # as a grid query's
     return Result(status=Status.EXACT, path=path, cost=path_length(path), stats=stats, params=out_params)
 
 

@@ -16,8 +16,9 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 @click.argument("source", metavar="SOURCE")
 @click.option("--planner", default="rrt_star", show_default=True,
               help="Tree planner or grid algorithm (navlab list): rrt, rrt_star, informed_rrt_star, "
-                   "growth_ratio_rrt, astar, dijkstra, jps, theta_star; hybrid_astar plans between poses for a "
-                   "car-like robot (--param motion=reeds_shepp|dubins turning_radius=R 'footprint=[[x, y], ...]').")
+                   "growth_ratio_rrt, astar, dijkstra, jps, theta_star (astar with --param costmap=true plans on a "
+                   "Nav2-style costmap); hybrid_astar plans between poses for a car-like robot (--param "
+                   "motion=reeds_shepp|dubins --param turning_radius=R --param 'footprint=[[x, y], ...]').")
 @click.option("--sampler", default=None, help="Registered sampler for tree planners (navlab list). [default: uniform]")
 @click.option("--start", cls=PointOrPoseOption, default=None,
               help="Start in metres (overrides the world's; required for maps); THETA, the heading in radians, "
@@ -31,9 +32,12 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
               help="Time limit in seconds (starts after warm-up).")
 @click.option("--seed", type=Count(low=0), default=0, show_default=True, help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random numbers).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
-              help="Planner, sampler or grid setting, e.g. expand_dis=1.0 goal_sample_rate=0.05 "
-                   "'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}' resolution=0.05 "
-                   "heuristic=octile connectivity=8 smooth=true allow_unknown=true. Repeatable.")
+              help="One planner, sampler or grid setting per --param (repeat it for more), e.g. "
+                   "--param expand_dis=1.0 --param goal_sample_rate=0.05 "
+                   "--param 'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}'; grid: "
+                   "resolution=0.05 heuristic=octile connectivity=8 smooth=true allow_unknown=true; astar on a "
+                   "costmap: costmap=true inflation_radius=0.55 cost_scaling_factor=3.0 cost_travel_multiplier=2.0 "
+                   "(resolution: a map's own, else 0.05 m).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print status, cost, path, stats and all parameters as JSON (without the cost trace).")
 @click.option("--trace", is_flag=True, help="With --json: include the per-iteration cost trace.")

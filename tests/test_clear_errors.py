@@ -171,3 +171,32 @@ def test_a_footprint_that_is_no_outline_is_named(footprint, words):
         plan_hybrid(OccupancyGrid(np.zeros((20, 20), bool), resolution=0.1), (0.5, 0.5, 0), (1.5, 1.5, 0), 0.4,
                     footprint=footprint)
     assert words in str(err.value) and "footprint" in str(err.value)
+
+
+@pytest.mark.parametrize("call", ["plan", "plan_hybrid", "dubins"])
+def test_a_heading_too_large_for_a_float_is_named_and_longdouble_is_a_heading(call):
+    """10**400 as a heading was a raw OverflowError from navlab.plan and 'too large (≤ 1e7)' from
+    plan_hybrid and the solvers, and np.longdouble was refused by navlab.plan only (attack check,
+    session 16)."""
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.hybrid_astar import plan_hybrid
+    from navlab.sampling import dubins
+
+    grid = OccupancyGrid(np.zeros((40, 60), bool), 0.1)
+    run = {"plan": lambda h: navlab.plan(grid, "hybrid_astar", start=(1.0, 1.0, h), goal=(4.0, 2.0, 0.0),
+                                         turning_radius=0.5),
+           "plan_hybrid": lambda h: plan_hybrid(grid, (1.0, 1.0, h), (4.0, 2.0, 0.0), 0.5),
+           "dubins": lambda h: dubins.shortest((0, 0, h), (3, 1, 0.5), 1.0)}[call]
+    with pytest.raises(ValueError, match=r"^start theta must be a finite heading in radians, got an integer of 401"):
+        run(10 ** 400)
+    long, plain = run(np.longdouble(1.25)), run(1.25)
+    assert getattr(long, "cost", None) == getattr(plain, "cost", None)
+    assert getattr(long, "length", None) == getattr(plain, "length", None)
+
+
+def test_a_weight_too_large_for_a_float_is_named():
+    """grid.plan(weight=10**400) was a raw OverflowError (attack check, session 16)."""
+    from navlab.grid import OccupancyGrid, plan
+
+    with pytest.raises(ValueError, match="weight must be a finite number >= 1, got an integer of 401 digits"):
+        plan(OccupancyGrid(np.zeros((10, 10), bool)), (1, 1), (8, 8), weight=10 ** 400)

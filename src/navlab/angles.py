@@ -9,12 +9,33 @@ def wrap_angle(angle: float) -> float:
     """``angle`` (rad) moved by whole turns into (−π, π].
 
     ``fmod`` keeps the result exact for angles near ±π (a subtraction of
-    ``round(angle / 2π)`` turns does not), so a heading of π stays π.
+    ``round(angle / 2π)`` turns does not), so a heading of π stays π. For
+    angles far beyond a turn the ``angle + π`` before it rounds (by up to half
+    an ulp of ``angle``: 1e-8 rad at 1e8, all of it at 1e16); the start and goal
+    poses a user gives are wrapped with ``math.remainder`` instead, which is
+    exact at any size (:func:`finite_heading`'s callers).
     """
     a = math.fmod(angle + math.pi, 2.0 * math.pi)
     if a <= 0.0:
         a += 2.0 * math.pi
     return a - math.pi
+
+
+def finite_heading(what: str, value) -> float:
+    """``value`` [rad] as a float if it is a finite real number of any type (Python's, numpy's
+    including ``longdouble``, an int that fits a float), else ValueError naming ``what``."""
+    import numbers
+
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
+    try:
+        heading = float(value)
+    except OverflowError:  # 10**400
+        raise ValueError(f"{what} must be a finite heading in radians, got an integer of "
+                         f"{len(str(abs(int(value))))} digits") from None
+    if not math.isfinite(heading):
+        raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
+    return heading
 
 
 class HeadingWarning(UserWarning):

@@ -368,10 +368,15 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
                smooth: bool, weight: float, allow_unknown: bool, smooth_method: str, warmup_s: float) -> Result:
     """:func:`plan` once its kernels are warm: the checks, the search and the path, timed (``time_s``)."""
     t0 = time.perf_counter()
-    if isinstance(weight, (bool, np.bool_)) or not isinstance(weight, numbers.Real) or not weight >= 1 \
-            or not math.isfinite(weight):
-        raise ValueError(f"weight must be a number >= 1, got {weight!r}")
-    weight = float(weight)  # np.float32, np.int64 and Fraction as well
+    try:
+        as_float = float(weight) if isinstance(weight, numbers.Real) else math.nan  # np.float32, np.int64, Fraction
+    except OverflowError:  # an int past float's range (10**400)
+        as_float = math.inf
+    if isinstance(weight, (bool, np.bool_)) or not as_float >= 1 or not math.isfinite(as_float):
+        shown = f"an integer of {len(str(abs(int(weight))))} digits" if math.isinf(as_float) and \
+            isinstance(weight, numbers.Integral) else repr(weight)
+        raise ValueError(f"weight must be a finite number >= 1, got {shown}")
+    weight = as_float
     for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
         if not isinstance(value, (bool, np.bool_)):
             raise ValueError(f"{flag} must be true or false, got {value!r}")

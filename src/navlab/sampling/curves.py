@@ -21,8 +21,8 @@ from typing import Tuple
 import numpy as np
 from numba import njit
 
-from ..angles import warn_beyond_a_turn, wrap_angle as _wrap
-from ..limits import check_coordinate, check_length, finite_number
+from ..angles import finite_heading, warn_beyond_a_turn, wrap_angle as _wrap
+from ..limits import check_coordinate, check_length
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
 #: a segment code's letter in a word
@@ -46,7 +46,7 @@ def check_pose(name: str, pose) -> Tuple[float, float, float]:
         raise ValueError(f"{name} must be a pose (x, y, theta) of 3 numbers, got {len(values)}")
     x = check_coordinate(f"{name} x", values[0])
     y = check_coordinate(f"{name} y", values[1])
-    given = finite_number(f"{name} theta", values[2])
+    given = finite_heading(f"{name} theta", values[2])
     theta = math.remainder(given, 2.0 * math.pi)
     warn_beyond_a_turn(f"{name} theta", given, theta)
     return x, y, theta

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ..angles import warn_beyond_a_turn
+from ..angles import finite_heading, warn_beyond_a_turn
 from ..limits import check_coordinate, check_length
 from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
@@ -36,11 +36,9 @@ def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[f
 def _heading(what: str, value: Any) -> float:
     """A finite heading in radians, wrapped to [-π, π] (exactly: a heading already there is kept bit for bit);
     one beyond ±2π warns (``navlab.angles.HeadingWarning``: most often degrees)."""
-    value = _plain(value)
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
-    wrapped = math.remainder(float(value), 2.0 * math.pi)
-    warn_beyond_a_turn(what, float(value), wrapped)
+    given = finite_heading(what, value)
+    wrapped = math.remainder(given, 2.0 * math.pi)
+    warn_beyond_a_turn(what, given, wrapped)
     return wrapped
 
 

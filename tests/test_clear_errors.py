@@ -200,3 +200,36 @@ def test_a_weight_too_large_for_a_float_is_named():
 
     with pytest.raises(ValueError, match="weight must be a finite number >= 1, got an integer of 401 digits"):
         plan(OccupancyGrid(np.zeros((10, 10), bool)), (1, 1), (8, 8), weight=10 ** 400)
+
+
+@pytest.mark.parametrize("shape, across", [({"robot_radius": 100.0}, 200),
+                                           ({"footprint": [[-6, -5], [6, -5], [6, 5], [-6, 5]]}, 10)])
+def test_a_robot_wider_than_the_map_is_told_before_any_table(shape, across):
+    """A 100 m disc on a 6 x 8 m map took 19 s and 7.7 GB of footprint tables to be told its start
+    leaves the map (attack check, session 16): told at once that it fits nowhere. A robot that fits
+    one way (10 x 0.4 m: no wider than the map) gets the start's answer as before."""
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.hybrid_astar import plan_hybrid
+
+    grid = OccupancyGrid(np.zeros((60, 80), bool), 0.1)
+    r = plan_hybrid(grid, (1.0, 1.0, 0.0), (5.05, 3.05, 0.0), 0.5, **shape)
+    assert r.status is navlab.Status.INVALID_START
+    assert r.reason == (f"the robot's footprint is {across} m across at its narrowest, wider than the map "
+                        "(8 x 6 m) in every orientation: it fits nowhere on it")
+    thin = plan_hybrid(grid, (1.0, 1.0, 0.0), (5.05, 3.05, 0.0), 0.5,
+                       footprint=[[-5, -0.2], [5, -0.2], [5, 0.2], [-5, 0.2]])
+    assert thin.status is navlab.Status.INVALID_START and "leaves the map" in thin.reason
+
+
+def test_a_footprint_lattice_larger_than_memory_is_refused(monkeypatch):
+    """The lattice's footprint cells grow with (reach / resolution)^2 x bins: refused with the estimate
+    when the machine has less (here: a machine said to have 64 MiB)."""
+    import navlab.limits
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.hybrid_astar import plan_hybrid
+
+    monkeypatch.setattr(navlab.limits, "available_memory", lambda: 64 * 2 ** 20)
+    with pytest.raises(ValueError, match=r"^robot_radius: a robot reaching 3 m on 0.01 m cells with 72 heading bins "
+                                         r"needs about .* more than the 64 MiB"):
+        plan_hybrid(OccupancyGrid(np.zeros((800, 800), bool), 0.01), (4.0, 4.0, 0.0), (5.0, 4.0, 0.0), 0.5,
+                    robot_radius=3.0)

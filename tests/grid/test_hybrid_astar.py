@@ -111,10 +111,10 @@ def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
     grid = aisle()
     result = plan_hybrid(grid, (1.2, 1.2, 0.0), (4.05, 4.6, math.pi / 2), 0.5, footprint=ROBOT)
     assert result.status is Status.INVALID_START and "cell (" in result.reason
-    # a footprint larger than the map leaves it
+    # a footprint larger than the map fits nowhere on it (said before any footprint table is built)
     tiny = OccupancyGrid(np.zeros((10, 10), bool), resolution=RES)
     result = plan_hybrid(tiny, (0.25, 0.25, 0), (0.3, 0.3, 0), 0.5, footprint=ROBOT)
-    assert result.status is Status.INVALID_START and "leaves the map" in result.reason
+    assert result.status is Status.INVALID_START and "wider than the map" in result.reason
 
 
 @pytest.mark.parametrize("kwargs,field", [

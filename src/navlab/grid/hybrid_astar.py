@@ -85,7 +85,8 @@ from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LEFT, LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, RIGHT, _wrap_compiled, advance,
                                check_pose, check_turning_radius, trace_word, word_poses)
-from ..sampling.footprint_lattice import check_turning_scale, curve_free, lattice_for, pose_free, robot_outline
+from ..sampling.footprint_lattice import (check_turning_scale, curve_free, footprint_misfit, lattice_for,
+                                          pose_free, robot_outline)
 from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search
@@ -229,9 +230,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     lsx, lsy, lst = to_local(sx, sy, st)
     lgx, lgy, lgt = to_local(gx, gy, gt)
     check_turning_scale(r, vertices, disc, res, int(heading_bins), math.hypot(grid.width, grid.height) * res)
+    misfit = footprint_misfit(vertices, disc, grid.width * res, grid.height * res, res, int(heading_bins),
+                              "robot_radius" if footprint is None else "footprint")
     outline = tuple(map(tuple, vertices.tolist()))
-    # one lattice of headings k·2π/bins for every query of this robot; the start joins it by a short arc
-    lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", 0.0)
     blocked = np.ascontiguousarray(grid.blocked | grid.unknown)
     stats: Dict[str, Any] = {"expansions": 0, "nodes": 0, "cusps": 0, "time_s": 0.0, "g": math.inf, "word": "",
                              "segments": [], "exact_retry": False}
@@ -242,6 +243,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                       reason=reason, params=params,
                       direction=np.empty(0, np.int8) if direction is None else direction)
 
+    if misfit is not None:  # (before the lattice: its tables for such a robot could take gigabytes)
+        return finish(Status.INVALID_START, misfit)
+    # one lattice of headings k·2π/bins for every query of this robot; the start joins it by a short arc
+    lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", 0.0)
     common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
     for label, pose, status, given in (("start", (lsx, lsy, lst), Status.INVALID_START, (sx, sy, st)),
                                        ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL, (gx, gy, gt))):

@@ -229,7 +229,7 @@ def test_a_footprint_lattice_larger_than_memory_is_refused(monkeypatch):
     from navlab.grid.hybrid_astar import plan_hybrid
 
     monkeypatch.setattr(navlab.limits, "available_memory", lambda: 64 * 2 ** 20)
-    with pytest.raises(ValueError, match=r"^robot_radius: a robot reaching 3 m on 0.01 m cells with 72 heading bins "
-                                         r"needs about .* more than the 64 MiB"):
+    with pytest.raises(ValueError, match=r"^robot_radius: a robot of 28.7 m² \(with a margin of two cells\) on 0.01 m "
+                                         r"cells with 72 heading bins needs about .* more than the 64 MiB"):
         plan_hybrid(OccupancyGrid(np.zeros((800, 800), bool), 0.01), (4.0, 4.0, 0.0), (5.0, 4.0, 0.0), 0.5,
                     robot_radius=3.0)

@@ -401,15 +401,16 @@ def footprint_misfit(vertices: np.ndarray, disc: float, width: float, height: fl
         normals /= np.hypot(*normals.T)[:, None]
         spans = points @ normals.T
         narrowest = float((spans.max(axis=0) - spans.min(axis=0)).min())
-        reach = float(np.hypot(*points.T).max())
+        area = Polygon(points).buffer(2.0 * resolution).area  # what a pose's cells cover, with their margin
     else:
-        narrowest, reach = 2.0 * disc, disc
+        narrowest = 2.0 * disc
+        area = math.pi * (disc + 2.0 * resolution) ** 2
     if narrowest > max(width, height):
         return (f"the robot's footprint is {narrowest:.3g} m across at its narrowest, wider than the map "
                 f"({width:.3g} x {height:.3g} m) in every orientation: it fits nowhere on it")
-    cells = math.pi * (reach / resolution + 2.0) ** 2  # cells a pose's outline can touch, at most
-    check_memory(int(3 * 16 * bins * cells), f"{field}: a robot reaching {reach:g} m on {resolution:g} m cells with "
-                                             f"{bins} heading bins")
+    check_memory(int(3 * 16 * bins * area / resolution ** 2),
+                 f"{field}: a robot of {area:.3g} m² (with a margin of two cells) on {resolution:g} m cells with "
+                 f"{bins} heading bins")
     return None
 
 

@@ -124,10 +124,9 @@ def test_any_finite_heading_is_the_heading_it_wraps_to(heading):
 
     wrapped = math.remainder(heading, 2 * math.pi)
     assert -math.pi <= wrapped <= math.pi
-    for solver in SOLVERS:
-        with pytest.warns(HeadingWarning, match="start theta .* is beyond ±2π"):
-            far = solver.shortest((0, 0, heading), (3, 1, 0.5), 1.0)
-        assert far.length == solver.shortest((0, 0, wrapped), (3, 1, 0.5), 1.0).length
+    for solver in SOLVERS:  # (no warning: the solvers' callers pass θ + s/r on purpose)
+        assert solver.shortest((0, 0, heading), (3, 1, 0.5), 1.0).length == \
+            solver.shortest((0, 0, wrapped), (3, 1, 0.5), 1.0).length
     grid = OccupancyGrid(np.zeros((30, 30), dtype=bool), 0.1)
     with pytest.warns(HeadingWarning):
         far = plan_hybrid(grid, (0.5, 0.5, heading), (2.5, 2.0, 1.0), 0.4)
@@ -137,7 +136,7 @@ def test_any_finite_heading_is_the_heading_it_wraps_to(heading):
 
 def test_a_heading_in_degrees_is_warned_about_at_the_callers_line():
     """Headings beyond ±2π were planned silently through the API (the CLI printed a note; session 15's
-    left-alone list): HeadingWarning names the caller's line, with the degrees reading, once per value."""
+    left-alone list): a planner's HeadingWarning names the caller's line, with the degrees reading."""
     import warnings
 
     import navlab
@@ -145,7 +144,7 @@ def test_a_heading_in_degrees_is_warned_about_at_the_callers_line():
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         navlab.plan("trap", "rrt", max_iter=50, seed=1, goal=(16.0, 6.0, 90))
-        dubins.shortest((0, 0, 3.0), (2, 1, -3.0), 1.0)  # within ±2π: nothing
+        dubins.shortest((0, 0, 3.0), (2, 1, 9.0), 1.0)  # a solver: θ + s/r beyond a turn is no mistake
     (one,) = [w for w in caught if issubclass(w.category, HeadingWarning)]
     assert str(one.message) == ("goal theta 90 is beyond ±2π: headings are radians (90° would be 1.5708 rad; "
                                 f"it is planned as {math.remainder(90, 2 * math.pi):.4f})")

@@ -193,8 +193,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         hint = suggest(motion, list(MOTIONS)) if isinstance(motion, str) else ""
         raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}.{hint}".rstrip("."))
     r = check_turning_radius(turning_radius)
-    sx, sy, st = check_pose("start", start)
-    gx, gy, gt = check_pose("goal", goal)
+    sx, sy, st = check_pose("start", start, degrees_hint=True)
+    gx, gy, gt = check_pose("goal", goal, degrees_hint=True)
     heading_bins = check_count("heading_bins", heading_bins, 4, 1440)  # 72.0 from a YAML file or --param counts
     for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
                              ("change_penalty", change_penalty, 0.0)):

@@ -31,13 +31,15 @@ MAX_SEGMENTS = 5  #: the longest Reeds–Shepp word (CCSCC)
 NEGLIGIBLE = 1e-12  #: a segment shorter than this many turning radii is rounding, not motion
 
 
-def check_pose(name: str, pose) -> Tuple[float, float, float]:
+def check_pose(name: str, pose, degrees_hint: bool = False) -> Tuple[float, float, float]:
     """``pose`` as three floats ``(x, y, θ)``, θ wrapped to [−π, π] (exactly: a heading
     already there is kept bit for bit); ValueError naming ``name`` if it is not three
     finite numbers with x and y within navlab's coordinate range. Any finite heading
     is a heading, as for a ``World``'s start and goal (until session 16 this refused
-    headings beyond ±1e7 rad, which ``navlab.plan`` wrapped); one beyond ±2π warns
-    (``navlab.angles.HeadingWarning``: most often degrees)."""
+    headings beyond ±1e7 rad, which ``navlab.plan`` wrapped). With ``degrees_hint`` (a
+    planner's start and goal), one beyond ±2π warns (``navlab.angles.HeadingWarning``: most
+    often degrees); the solvers' own callers pass headings such as θ + s/r, beyond a turn by
+    design, and get no warning."""
     try:
         values = list(pose)
     except TypeError:
@@ -48,7 +50,8 @@ def check_pose(name: str, pose) -> Tuple[float, float, float]:
     y = check_coordinate(f"{name} y", values[1])
     given = finite_heading(f"{name} theta", values[2])
     theta = math.remainder(given, 2.0 * math.pi)
-    warn_beyond_a_turn(f"{name} theta", given, theta)
+    if degrees_hint:
+        warn_beyond_a_turn(f"{name} theta", given, theta)
     return x, y, theta
 
 

@@ -38,6 +38,26 @@ def test_a_single_trial_reruns_alone_identically():
     assert stable([a]) == stable([b]) and a["status"] != "ERROR"
 
 
+def test_a_trial_does_not_repeat_a_heading_warning_even_as_an_error():
+    """A world heading beyond ±2π is noted once when the experiment is read; inside a trial (a Dask
+    worker printed it raw, and PYTHONWARNINGS=error made every trial an ERROR row) it is ignored."""
+    import warnings
+
+    import navlab
+    from navlab.angles import HeadingWarning
+
+    spec = load_experiment(TINY).trial_specs()[4]
+
+    def runner(_spec):
+        return navlab.plan("trap", "rrt", max_iter=20, seed=1, goal=(16.0, 6.0, 400.0))
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("error")
+        row = run_trial(spec, runner=runner, warm=lambda _spec: 0.0)
+    assert row["status"] != "ERROR", row.get("error")
+    assert not [w for w in caught if issubclass(w.category, HeadingWarning)]
+
+
 def test_serial_and_process_pool_give_identical_rows(tmp_path):
     exp = load_experiment(TINY)
     serial = run_experiment(exp, tmp_path / "s", executor="serial", progress=False, plots=False)

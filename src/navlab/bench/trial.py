@@ -17,10 +17,12 @@ import platform
 import socket
 import time
 import traceback
+import warnings
 from typing import Any, Callable, Dict, Optional
 
 import numpy as np
 
+from ..angles import HeadingWarning
 from ..result import Result, _jsonable
 from .experiment import OMPL_PREFIX
 
@@ -170,9 +172,13 @@ def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] =
     ``"tree"`` (numpy arrays: for the example plot, not for results.jsonl)."""
     row = identity_fields(spec)
     try:
-        row["warmup_s"] = warm(spec)
-        wall0, cpu0 = time.perf_counter(), time.thread_time()
-        result = runner(spec)
+        with warnings.catch_warnings():
+            # a heading beyond ±2π was noted once when the experiment was read; a trial (in a worker, where a
+            # Dask worker printed it raw and PYTHONWARNINGS=error made every trial an ERROR) does not repeat it
+            warnings.simplefilter("ignore", HeadingWarning)
+            row["warmup_s"] = warm(spec)
+            wall0, cpu0 = time.perf_counter(), time.thread_time()
+            result = runner(spec)
         row["cpu_s"], row["wall_s"] = time.thread_time() - cpu0, time.perf_counter() - wall0
         row["clocks"] = CLOCKS
         row.update(result_fields(result))

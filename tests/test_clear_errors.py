@@ -2,6 +2,7 @@
 the file and the field, from Python (the project's ValueError) and from the
 command line (exit 2, no traceback)."""
 
+import re
 import subprocess
 import sys
 
@@ -214,11 +215,24 @@ def test_a_robot_wider_than_the_map_is_told_before_any_table(shape, across):
     grid = OccupancyGrid(np.zeros((60, 80), bool), 0.1)
     r = plan_hybrid(grid, (1.0, 1.0, 0.0), (5.05, 3.05, 0.0), 0.5, **shape)
     assert r.status is navlab.Status.INVALID_START
-    assert r.reason == (f"the robot's footprint is {across} m across at its narrowest, wider than the map "
-                        "(8 x 6 m) in every orientation: it fits nowhere on it")
+    assert r.reason == (f"the robot's footprint is {across} m across at its narrowest, {across - 8} m wider than the "
+                        "map's longer side (8 x 6 m): it fits nowhere on it")
     thin = plan_hybrid(grid, (1.0, 1.0, 0.0), (5.05, 3.05, 0.0), 0.5,
                        footprint=[[-5, -0.2], [5, -0.2], [5, 0.2], [-5, 0.2]])
     assert thin.status is navlab.Status.INVALID_START and "leaves the map" in thin.reason
+
+
+def test_a_robot_that_fits_nowhere_is_told_so_whatever_its_turning_radius():
+    """A 1e6 m disc was told its turning radius of 0.5 m was too small (the scale check ran first), and
+    a disc 0.2 µm wider than a 1 m map read '1 m across ..., wider than the map (1 x 1 m)' (attack check)."""
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.hybrid_astar import plan_hybrid
+
+    square = OccupancyGrid(np.zeros((10, 10), bool), 0.1)
+    huge = plan_hybrid(square, (0.5, 0.5, 0.0), (0.5, 0.5, 1.0), 0.5, robot_radius=1e6)
+    assert huge.status is navlab.Status.INVALID_START and "fits nowhere" in huge.reason
+    hair = plan_hybrid(square, (0.5, 0.5, 0.0), (0.5, 0.5, 1.0), 0.5, robot_radius=0.5000001)
+    assert "1 m across at its narrowest, 2e-07 m wider than the map's longer side (1 x 1 m)" in hair.reason
 
 
 def test_a_footprint_lattice_larger_than_memory_is_refused(monkeypatch):
@@ -233,3 +247,19 @@ def test_a_footprint_lattice_larger_than_memory_is_refused(monkeypatch):
                                          r"cells with 72 heading bins needs about .* more than the 64 MiB"):
         plan_hybrid(OccupancyGrid(np.zeros((800, 800), bool), 0.01), (4.0, 4.0, 0.0), (5.0, 4.0, 0.0), 0.5,
                     robot_radius=3.0)
+
+
+@pytest.mark.parametrize("heading, planned", [("1e8", 1.9427), ("400", -2.1239)])
+def test_a_world_file_takes_any_finite_heading_as_the_api_does(tmp_path, heading, planned):
+    """A world file's start heading of 1e8 was refused as 'out of range (≤ 1e+07 m)' while the API and
+    the flags took it (attack check, session 16): wrapped, with the HeadingWarning."""
+    from navlab.angles import HeadingWarning
+
+    path = tmp_path / "w.yaml"
+    path.write_text(f"bounds: {{x: [0, 10], y: [0, 10]}}\nstart: [1, 1, {heading}]\ngoal: [9, 9]\n")
+    with pytest.warns(HeadingWarning, match=re.escape(f"start theta {float(heading):g} is beyond")):
+        world = navlab.load_world(path)
+    assert world.start_heading == pytest.approx(planned, abs=1e-4)
+    path.write_text("bounds: {x: [0, 10], y: [0, 10]}\nstart: [1, 1, .nan]\ngoal: [9, 9]\n")
+    with pytest.raises(ValueError, match=r"field 'start\[2\]': start\[2\] must be a finite heading in radians"):
+        navlab.load_world(path)

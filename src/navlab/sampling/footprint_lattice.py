@@ -406,8 +406,8 @@ def footprint_misfit(vertices: np.ndarray, disc: float, width: float, height: fl
         narrowest = 2.0 * disc
         area = math.pi * (disc + 2.0 * resolution) ** 2
     if narrowest > max(width, height):
-        return (f"the robot's footprint is {narrowest:.3g} m across at its narrowest, wider than the map "
-                f"({width:.3g} x {height:.3g} m) in every orientation: it fits nowhere on it")
+        return (f"the robot's footprint is {narrowest:.4g} m across at its narrowest, {narrowest - max(width, height):.3g}"
+                f" m wider than the map's longer side ({width:.4g} x {height:.4g} m): it fits nowhere on it")
     check_memory(int(3 * 16 * bins * area / resolution ** 2),
                  f"{field}: a robot of {area:.3g} m² (with a margin of two cells) on {resolution:g} m cells with "
                  f"{bins} heading bins")

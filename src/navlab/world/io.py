@@ -28,6 +28,7 @@ import re
 from pathlib import Path
 from typing import Any, Callable, Dict, Tuple, Union
 
+from ..angles import finite_heading
 from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length
 from ..registry import suggest
@@ -62,6 +63,17 @@ def _number(field: str, value: Any) -> float:
         value = float(value.replace("_", ""))  # may be inf: check_coordinate says "must be finite"
     try:
         return check_coordinate(field, value)
+    except ValueError as exc:
+        raise _FieldError(field, _short(exc)) from None
+
+
+def _heading(field: str, value: Any) -> float:
+    """A finite heading [rad] of any size (the World wraps it, and warns beyond ±2π), not a coordinate:
+    a file's 1e8 was refused as 'out of range (≤ 1e+07 m)' where the API and the flags take it."""
+    if isinstance(value, str) and _NUMBER_TEXT.fullmatch(value.strip()):
+        value = float(value.replace("_", ""))
+    try:
+        return finite_heading(field, value)
     except ValueError as exc:
         raise _FieldError(field, _short(exc)) from None
 
@@ -180,7 +192,7 @@ _TOP_FIELDS = {"name": False, "bounds": True, "start": True, "goal": True, "robo
 def _point_or_pose(field: str, value: Any) -> Tuple[float, ...]:
     """``[x, y]`` or a pose ``[x, y, theta]`` (theta in radians)."""
     if isinstance(value, (list, tuple)) and len(value) == 3:
-        return _pair(field, value[:2]) + (_number(f"{field}[2]", value[2]),)
+        return _pair(field, value[:2]) + (_heading(f"{field}[2]", value[2]),)
     if isinstance(value, (str, bytes, dict)) or not isinstance(value, (list, tuple)) or len(value) != 2:
         raise _FieldError(field, f"expected [x, y] or a pose [x, y, theta] of numbers, got {_show(value)}")
     return _pair(field, value)

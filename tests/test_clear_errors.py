@@ -263,3 +263,16 @@ def test_a_world_file_takes_any_finite_heading_as_the_api_does(tmp_path, heading
     path.write_text("bounds: {x: [0, 10], y: [0, 10]}\nstart: [1, 1, .nan]\ngoal: [9, 9]\n")
     with pytest.raises(ValueError, match=r"field 'start\[2\]': start\[2\] must be a finite heading in radians"):
         navlab.load_world(path)
+
+
+def test_a_heading_beyond_floats_range_is_named_as_such():
+    """np.longdouble('1e4000') was 'must be a finite heading' though finite, and Fraction(10**400, 3)
+    'an integer of 400 digits' (attack check, session 16)."""
+    from fractions import Fraction
+
+    from navlab.angles import finite_heading
+
+    for value in (np.longdouble("1e4000"), Fraction(10 ** 400, 3)):
+        with pytest.raises(ValueError, match="^goal theta must be a finite heading in radians, got a number beyond "
+                                             "float's range$"):
+            finite_heading("goal theta", value)

@@ -30,9 +30,12 @@ def finite_heading(what: str, value) -> float:
         raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
     try:
         heading = float(value)
-    except OverflowError:  # 10**400
-        raise ValueError(f"{what} must be a finite heading in radians, got an integer of "
-                         f"{len(str(abs(int(value))))} digits") from None
+    except OverflowError:  # 10**400, Fraction(10**400, 3)
+        heading = math.inf
+    if math.isinf(heading) and abs(value) != math.inf:  # finite in its own type: np.longdouble('1e4000') too
+        shown = f"an integer of {len(str(abs(value)))} digits" if isinstance(value, numbers.Integral) else \
+            "a number beyond float's range"
+        raise ValueError(f"{what} must be a finite heading in radians, got {shown}")
     if not math.isfinite(heading):
         raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
     return heading
@@ -51,8 +54,10 @@ def warn_beyond_a_turn(what: str, value: float, wrapped: float) -> None:
         return
     import warnings
 
-    degrees = f"{value:g}° would be {math.radians(value):.4f} rad; " if abs(value) <= 360.0 else ""
-    warnings.warn(f"{what} {value:g} is beyond ±2π: headings are radians ({degrees}it is planned as {wrapped:.4f})",
+    # all the digits just past 2π, whose six (6.28319) would read as 2π itself
+    shown = repr(float(value)) if abs(value) < 2.0 * math.pi * (1.0 + 1e-4) else f"{value:g}"
+    degrees = f"{shown}° would be {math.radians(value):.4f} rad; " if abs(value) <= 360.0 else ""
+    warnings.warn(f"{what} {shown} is beyond ±2π: headings are radians ({degrees}it is planned as {wrapped:.4f})",
                   HeadingWarning, stacklevel=_first_caller_outside())
 
 

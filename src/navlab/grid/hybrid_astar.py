@@ -148,7 +148,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         Try the exact Dubins/Reeds–Shepp path to the goal from nodes within
         ``analytic_expansion_max_length`` of it [m]. Without it the search ends
         in the goal's cell at a heading less than one arc's turn from the goal's:
-        an arc turns k bins (k = ⌈√2·res / (r·2π/bins)⌉), so only every k-th
+        an arc turns k bins (k = ⌈√2·res / (2r·sin(π/bins))⌉), so only every k-th
         heading is reached, and the search ends within k − 1 bins of the goal's
         (the path then ends there, not at the goal).
     analytic_expansion_max_length : float, optional

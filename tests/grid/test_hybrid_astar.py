@@ -341,7 +341,8 @@ def test_a_retry_that_runs_out_of_budget_still_reports_the_exhausted_space():
     spent = plain.stats["expansions"]
     full = plan_hybrid(grid, *query, footprint=ROBOT, max_expansions=10 * spent)
     assert full.status == Status.FAILED and full.stats["exact_retry"]
-    assert full.reason.endswith("the search space is exhausted") and spent < full.stats["expansions"] < 10 * spent
+    assert "the search space is exhausted; the exact checks keep the footprint 0.025 m" in full.reason
+    assert spent < full.stats["expansions"] < 10 * spent
     short = plan_hybrid(grid, *query, footprint=ROBOT, max_expansions=spent + 1)
     assert short.status == Status.FAILED and short.stats["exact_retry"]
     assert "exhausted on the primitives' swept cells" in short.reason and "max_expansions" in short.reason
@@ -397,3 +398,17 @@ def test_smoothing_adds_no_reversing_jog():
     assert raw.status is smoothed.status is Status.EXACT
     assert smoothed.cost <= raw.cost + 1e-9
     assert _direction_changes(smoothed.direction) <= _direction_changes(raw.direction) == 1
+
+
+def test_a_corridor_one_cell_wide_says_the_exact_margin_closed_it():
+    """A point robot in a one-cell row (0.05 m from the map's edge on both sides) cannot pass the
+    exact check's half-cell margin; the reason said only 'the search space is exhausted' on an empty
+    map (attack check, session 16), and now says why."""
+    grid = OccupancyGrid(np.zeros((1, 50), bool), resolution=0.1)
+    result = plan_hybrid(grid, (0.55, 0.05, 0.0), (1.05, 0.05, 0.0), 0.5)
+    assert result.status is Status.FAILED
+    assert result.reason.endswith("the exact checks keep the footprint 0.05 m (half a cell) clear of blocked cells "
+                                  "and the map's edge, so a gap that leaves less on a side is closed")
+    wider = plan_hybrid(OccupancyGrid(np.zeros((3, 50), bool), resolution=0.1), (0.55, 0.15, 0.0),
+                        (1.05, 0.15, 0.0), 0.5)
+    assert wider.status is Status.EXACT

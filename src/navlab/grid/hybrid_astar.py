@@ -334,6 +334,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
             if motion == "dubins" else ""
         if expansions < max_expansions:  # no path at this resolution; forward-only motion may be why
             why = "the search space is exhausted" + forward_only
+            if stats["exact_retry"]:  # the exact checks refused what the cell lists did: their margin may be why
+                why += (f"; the exact checks keep the footprint {exact_grow(lattice):g} m (half a cell) clear of "
+                        "blocked cells and the map's edge, so a gap that leaves less on a side is closed")
         elif stats["exact_retry"]:  # the first finding stands; the rest is what the budget left undecided
             why = (f"the search space is exhausted on the primitives' swept cells{forward_only}, and checking the "
                    f"rejected ones exactly reached max_expansions ({max_expansions}) before the goal "

@@ -41,6 +41,17 @@ def finite_heading(what: str, value) -> float:
     return heading
 
 
+def planned_heading(what: str, value, degrees_hint: bool = True) -> float:
+    """A heading given by a user, as planning takes it: :func:`finite_heading`, wrapped to [−π, π]
+    by ``math.remainder`` (exact at any size; a heading already there is kept bit for bit), and with
+    ``degrees_hint`` a :class:`HeadingWarning` when it lies beyond ±2π."""
+    given = finite_heading(what, value)
+    wrapped = math.remainder(given, 2.0 * math.pi)
+    if degrees_hint:
+        warn_beyond_a_turn(what, given, wrapped)
+    return wrapped
+
+
 class HeadingWarning(UserWarning):
     """A start or goal heading beyond ±2π rad: legal (headings wrap), but far more
     often degrees given where radians belong. ``warnings.filterwarnings("ignore",

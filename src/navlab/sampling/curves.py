@@ -21,7 +21,7 @@ from typing import Tuple
 import numpy as np
 from numba import njit
 
-from ..angles import finite_heading, warn_beyond_a_turn, wrap_angle as _wrap
+from ..angles import planned_heading, wrap_angle as _wrap
 from ..limits import check_coordinate, check_length
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
@@ -48,11 +48,7 @@ def check_pose(name: str, pose, degrees_hint: bool = False) -> Tuple[float, floa
         raise ValueError(f"{name} must be a pose (x, y, theta) of 3 numbers, got {len(values)}")
     x = check_coordinate(f"{name} x", values[0])
     y = check_coordinate(f"{name} y", values[1])
-    given = finite_heading(f"{name} theta", values[2])
-    theta = math.remainder(given, 2.0 * math.pi)
-    if degrees_hint:
-        warn_beyond_a_turn(f"{name} theta", given, theta)
-    return x, y, theta
+    return x, y, planned_heading(f"{name} theta", values[2], degrees_hint)
 
 
 def check_turning_radius(value) -> float:

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 
 import numpy as np
 
-from ..angles import finite_heading, warn_beyond_a_turn
+from ..angles import planned_heading
 from ..limits import check_coordinate, check_length
 from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
@@ -36,10 +36,7 @@ def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[f
 def _heading(what: str, value: Any) -> float:
     """A finite heading in radians, wrapped to [-π, π] (exactly: a heading already there is kept bit for bit);
     one beyond ±2π warns (``navlab.angles.HeadingWarning``: most often degrees)."""
-    given = finite_heading(what, value)
-    wrapped = math.remainder(given, 2.0 * math.pi)
-    warn_beyond_a_turn(what, given, wrapped)
-    return wrapped
+    return planned_heading(what, value)
 
 
 def _check_obstacle(k: int, obstacle: Any) -> None:

@@ -231,3 +231,20 @@ def test_every_count_flag_takes_a_whole_float(run):
     assert seeded["params"]["seed"] == 1000
     assert json.loads(run("plan", "trap", "--seed", "1000", "--max-iter", "300", "--json").output)["cost"] == \
         seeded["cost"]
+
+
+def test_a_file_heading_that_the_query_replaces_gets_no_note(tmp_path):
+    """A world file's start heading of 90 (degrees by mistake) was noted, 'planned as 2.0354', when
+    --start replaced it, and '--start 2 2 nan' printed that note above its one-line error (newcomer
+    check, session 16). The note is for a heading that is planned: the file's when it is kept."""
+    world = tmp_path / "w90.yaml"
+    world.write_text("bounds: {x: [0, 20], y: [0, 12]}\nstart: [2, 2, 90]\ngoal: [16, 8, 0]\n")
+    args = ["plan", str(world), "--planner", "hybrid_astar"]
+    replaced = CliRunner().invoke(main, args + ["--start", "2", "2", "0"])
+    assert replaced.exit_code == 0 and "note:" not in replaced.stderr
+    bad = CliRunner().invoke(main, args + ["--start", "2", "2", "nan"])
+    assert bad.exit_code == 2 and bad.stderr.splitlines() == ["Error: start theta must be a finite heading in "
+                                                              "radians, got nan"]
+    kept = CliRunner().invoke(main, args + ["--start", "2", "2", "--goal", "16", "8", "-270"])
+    notes = [line for line in kept.stderr.splitlines() if line.startswith("note:")]
+    assert kept.exit_code == 0 and len(notes) == 2 and "start theta 90 " in notes[1] and "goal theta -270 " in notes[0]

@@ -13,12 +13,14 @@ Maps carry no start or goal: a query on a map must supply both.
 from __future__ import annotations
 
 import os
+import warnings
 from dataclasses import replace
 from pathlib import Path
 from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from ..angles import HeadingWarning
 from ..limits import check_coordinate, check_length
 from .io import WorldFormatError, load_world, read_yaml_document
 from .world import World
@@ -135,8 +137,15 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
         changes["allow_unknown"] = allow_unknown
 
     kind = source_kind(source)
+    superseded = []  # the source's own heading warnings, said only for the headings the query keeps
     if kind in ("world", "scene", "world_file"):
-        world = source if kind == "world" else load_world(source)
+        if kind == "world" or (start is None and goal is None):
+            world = source if kind == "world" else load_world(source)
+        else:
+            with warnings.catch_warnings(record=True) as superseded:
+                warnings.simplefilter("always")
+                world = load_world(source)
+        loaded = world
     else:
         if kind == "occupancy":
             grid, label = source, f"grid '{source.name}'"
@@ -151,5 +160,11 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
         world = World.from_grid(grid, start, goal)
     if start is not None or goal is not None:
         world = world.with_query(start, goal)
+    for caught in superseded:  # (a query that failed above says only why: one line, not a note about the file)
+        end = str(caught.message).split(" ")[0].split("_")[0]  # "start theta 90 ..." or "goal_heading 400 ..."
+        if issubclass(caught.category, HeadingWarning) and end in ("start", "goal") and \
+                getattr(world, f"{end}_heading") != getattr(loaded, f"{end}_heading"):
+            continue  # the file's heading, replaced by the query's: warning of it would name a heading not planned
+        warnings.warn_explicit(caught.message, caught.category, caught.filename, caught.lineno)
     return replace(world, **changes) if changes else world
 

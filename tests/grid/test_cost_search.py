@@ -9,7 +9,7 @@ from scipy.sparse.csgraph import dijkstra
 
 import navlab
 from navlab.grid.cost_search import costmap_astar, plan_on_costmap
-from navlab.world.costmap import Costmap
+from navlab.world.costmap import NO_INFORMATION, Costmap
 
 
 def _scipy_costs(costs, passable, multiplier):
@@ -87,3 +87,16 @@ def test_navlab_plan_with_a_costmap_keeps_clear_and_is_verified():
         navlab.plan("clutter", planner="rrt_star", costmap=True)
     with pytest.raises(ValueError, match="costmap must be true or false"):
         navlab.plan("clutter", planner="astar", costmap="yes")
+
+
+def test_a_failure_on_unknown_cells_says_allow_unknown_opens_them():
+    """A band of unknown cells across the map failed with 'no path through cells below INSCRIBED cost'
+    alone (newcomer check, session 16): the reason counts them and names allow_unknown."""
+    costs = np.zeros((10, 20), np.uint8)
+    costs[:, 9:11] = NO_INFORMATION
+    cm = Costmap(costs, 0.1)
+    none, _, reason = plan_on_costmap(cm, (0.25, 0.55), (1.75, 0.55))
+    assert none is None and reason.endswith("the costmap's 20 unknown cells were closed to it (allow_unknown=true "
+                                            "opens them)")
+    path, _, reason = plan_on_costmap(cm, (0.25, 0.55), (1.75, 0.55), allow_unknown=True)
+    assert path is not None and reason == ""

@@ -33,11 +33,12 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 @click.option("--seed", type=Count(low=0), default=0, show_default=True, help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random numbers).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
               help="One planner, sampler or grid setting per --param (repeat it for more), e.g. "
-                   "--param expand_dis=1.0 --param goal_sample_rate=0.05 "
-                   "--param 'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, boundary: 0.3}'; grid: "
-                   "resolution=0.05 heuristic=octile connectivity=8 smooth=true allow_unknown=true; astar on a "
-                   "costmap: costmap=true inflation_radius=0.55 cost_scaling_factor=3.0 cost_travel_multiplier=2.0 "
-                   "(resolution: a map's own, else 0.05 m).")
+                   "--param expand_dis=1.0 --param goal_sample_rate=0.05 (navlab list shows each part's); "
+                   "the integration sampler: --param 'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, "
+                   "boundary: 0.3}'; grid: resolution=0.05 heuristic=octile connectivity=8 smooth=true "
+                   "allow_unknown=true; astar on a costmap: costmap=true inflation_radius=0.55 "
+                   "cost_scaling_factor=3.0 cost_travel_multiplier=2.0 allow_unknown=true (resolution: a geometric "
+                   "world's cell size, default 0.05 m; a map keeps its own).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print status, cost, path, stats and all parameters as JSON (without the cost trace).")
 @click.option("--trace", is_flag=True, help="With --json: include the per-iteration cost trace.")

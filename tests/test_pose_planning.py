@@ -187,3 +187,15 @@ def test_a_robot_radius_a_footprint_scene_would_drop_is_refused():
     assert disc.success
     point = navlab.plan("narrow_aisle", planner="astar", robot_radius=0.1)  # a point planner takes the radius
     assert point.success and point.params["robot_radius"] == 0.1
+
+
+def test_the_command_says_when_a_path_ends_near_the_goal_pose_not_at_it(tmp_path):
+    """Without the analytic expansion the path ends in the goal's cell within k - 1 heading bins, and the
+    output said only EXACT (newcomer check, session 16): it says how far from the goal pose it ends."""
+    world = tmp_path / "e.yaml"
+    world.write_text("bounds: {x: [0, 8], y: [0, 6]}\nstart: [1, 1, 0]\ngoal: [5.05, 3.05, 0.0873]\n")
+    args = ["plan", str(world), "--planner", "hybrid_astar", "--param", "turning_radius=0.5"]
+    near = CliRunner().invoke(main, args + ["--param", "analytic_expansion=false"])
+    assert near.exit_code == 0 and re.search(r"\n  ends 0\.0\d\d m and \d+\.\d° from the goal pose", near.output)
+    at = CliRunner().invoke(main, args)
+    assert at.exit_code == 0 and "from the goal pose" not in at.output

@@ -278,6 +278,10 @@ def test_without_the_analytic_expansion_every_goal_heading_is_reached_to_within_
         end = result.path[-1]
         assert (int(end[0] // res), int(end[1] // res)) == (50, 30)
         assert abs(math.remainder(end[2] - goal[2], 2 * math.pi)) <= (k - 1) * 2 * math.pi / 72 + 1e-9
+        # and says so (the command prints it): the offsets from the goal pose
+        assert result.stats["goal_offset_m"] == pytest.approx(math.hypot(end[0] - goal[0], end[1] - goal[1]))
+        assert result.stats["goal_heading_offset_rad"] == pytest.approx(abs(math.remainder(end[2] - goal[2],
+                                                                                            2 * math.pi)))
 
 
 def test_max_expansions_may_be_written_as_a_float():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 import click
@@ -137,6 +138,10 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
         cusps_said = f"{cusps} cusp{'' if cusps == 1 else 's'}, " if len(result.path) else ""
         click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {n} expansion"
                    f"{'' if n == 1 else 's'}, {cusps_said}planning {s['time_s'] * 1000:.1f} ms")
+        off, turn = s.get("goal_offset_m", 0.0), s.get("goal_heading_offset_rad", 0.0)
+        if len(result.path) and (off > 1e-6 or turn > 1e-6):  # analytic_expansion=false: near the goal, not at it
+            click.echo(f"  ends {off:.3f} m and {math.degrees(turn):.1f}° from the goal pose (without the analytic "
+                       "expansion the search ends in the goal's cell, its heading within one arc's turn)")
     elif "time_s" in s and s.get("grid"):  # a grid planner that searched (not one refused at its start)
         line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:

@@ -181,7 +181,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         ``path`` (N, 3) poses ``(x, y, θ)``, ``direction`` (N,) +1 forward / −1
         reverse, ``cost`` the length driven [m], ``stats`` with ``expansions``,
         ``nodes``, ``cusps``, ``time_s``, ``heuristics_solved`` (exact distances
-        the lazy queue needed), ``g``, the search's penalised cost of the
+        the lazy queue needed), ``goal_offset_m`` and ``goal_heading_offset_rad``
+        (how far the path's last pose is from the goal: rounding with the
+        analytic expansion, up to a cell and k − 1 bins without), ``g``, the search's penalised cost of the
         primitives driven (before the analytic tail and the smoother), and
         ``exact_retry``: whether the search exhausted its space on the swept
         cells and went on checking the rejected primitives exactly (the
@@ -239,7 +241,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     outline = tuple(map(tuple, vertices.tolist()))
     blocked = np.ascontiguousarray(grid.blocked | grid.unknown)
     stats: Dict[str, Any] = {"expansions": 0, "nodes": 0, "cusps": 0, "time_s": 0.0, "g": math.inf, "word": "",
-                             "segments": [], "exact_retry": False}
+                             "segments": [], "exact_retry": False, "goal_offset_m": math.inf,
+                             "goal_heading_offset_rad": math.inf}
 
     def finish(status, reason, path=None, direction=None, cost=math.inf):
         stats["time_s"] = time.perf_counter() - t0
@@ -376,6 +379,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
     stats["cusps"] = int(_cusps(0, lengths, 0))
+    # where the path ends against the goal pose: 0 with the analytic expansion; without it, in the goal's cell
+    # at a heading within k - 1 bins (analytic_expansion), which a caller should be able to see
+    stats["goal_offset_m"] = float(math.hypot(world[-1, 0] - gx, world[-1, 1] - gy))
+    stats["goal_heading_offset_rad"] = float(abs(math.remainder(world[-1, 2] - gt, 2.0 * math.pi)))
     return finish(Status.EXACT, "", world, direction, length)
 
 

@@ -234,11 +234,11 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
 
     lsx, lsy, lst = to_local(sx, sy, st)
     lgx, lgy, lgt = to_local(gx, gy, gt)
-    misfit = footprint_misfit(vertices, disc, grid.width * res, grid.height * res, res, int(heading_bins),
+    outline = tuple(map(tuple, vertices.tolist()))
+    misfit = footprint_misfit(outline, float(disc), grid.width * res, grid.height * res, res, int(heading_bins),
                               "robot_radius" if footprint is None else "footprint")
     if misfit is None:  # (a robot that fits nowhere is told so, not that its turning radius is too small)
         check_turning_scale(r, vertices, disc, res, int(heading_bins), math.hypot(grid.width, grid.height) * res)
-    outline = tuple(map(tuple, vertices.tolist()))
     blocked = np.ascontiguousarray(grid.blocked | grid.unknown)
     stats: Dict[str, Any] = {"expansions": 0, "nodes": 0, "cusps": 0, "time_s": 0.0, "g": math.inf, "word": "",
                              "segments": [], "exact_retry": False, "goal_offset_m": math.inf,

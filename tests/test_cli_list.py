@@ -78,6 +78,18 @@ def test_heuristics_listed():
     assert all(h in listing("grid") for h in HEURISTICS)
 
 
+def test_the_costmap_settings_are_listed_with_the_defaults_a_query_uses():
+    """astar's costmap=true was in no listing (newcomer check, session 16); the defaults shown are the ones
+    a costmap query reports it used."""
+    import navlab
+
+    used = navlab.plan("trap", planner="astar", costmap=True).params
+    text = " ".join(listing("grid").split())
+    assert "(costmap) astar with costmap=true plans on a Nav2-style costmap" in text
+    for key in ("inflation_radius", "cost_scaling_factor", "cost_travel_multiplier"):
+        assert f"{key}={used[key]!r}" in text
+
+
 def test_first_paragraph():
     assert first_paragraph("One\n    two.\n\n    Later.") == "One two."
     assert first_paragraph(None) == "" and first_paragraph("\n\n  Only.") == "Only."

@@ -75,6 +75,9 @@ def _grid_planners() -> Iterator[str]:
     for name in GRID_ALGORITHMS:
         yield from _entry(name, first_paragraph(GRID_ALGORITHMS.get(name)), shared)
     yield from _entry("(heuristics)", f"for astar's heuristic=: {', '.join(HEURISTICS)}")
+    yield from _entry("(costmap)", "astar with costmap=true plans on a Nav2-style costmap (docs/grid.md), with "
+                                   "inflation_radius=0.55, cost_scaling_factor=3.0, cost_travel_multiplier=2.0, "
+                                   "allow_unknown=false and resolution (a geometric world's, default 0.05 m)")
 
 
 def _pose_planners() -> Iterator[str]:

@@ -484,20 +484,16 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 if hsize > 0 and not _same_side_settles(ex[e], ey[e], theta, gx, gy, gtheta, radius, field,
                                                         hkey[0] - eg[e]):
                     forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
-                    if eg[e] + max(field, _above(forward, radius)) < hkey[0]:
-                        pass
-                    elif eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta,
-                                                               radius)) > hkey[0]:
-                        # a better lower bound already puts it after the next entry: back in the queue, still
-                        # unsolved (entries that never come back to the top are never solved)
-                        elazy[e] = True
-                        _push(hkey, hnode, hentry, hsize,
-                              eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius)),
-                              v, e)
-                        hsize += 1
-                        v = -1
-                        continue
-                    else:
+                    if not eg[e] + max(field, _above(forward, radius)) < hkey[0]:
+                        below = eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius))
+                        if below > hkey[0]:
+                            # a better lower bound already puts it after the next entry: back in the queue,
+                            # still unsolved (entries that never come back to the top are never solved)
+                            elazy[e] = True
+                            _push(hkey, hnode, hentry, hsize, below, v, e)
+                            hsize += 1
+                            v = -1
+                            continue
                         solved += 1
                         f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius,
                                                     reverse, seg, best_kinds, best_lens)

@@ -254,7 +254,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         return finish(Status.INVALID_START, misfit)
     # one lattice of headings k·2π/bins for every query of this robot; the start joins it by a short arc
     lattice = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", 0.0)
-    common = (res, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
+    common = _pose_args(lattice)
     for label, pose, status, given in (("start", (lsx, lsy, lst), Status.INVALID_START, (sx, sy, st)),
                                        ("goal", (lgx, lgy, lgt), Status.INVALID_GOAL, (gx, gy, gt))):
         if pose_free(blocked, *common[:1], *pose, *common[1:]):
@@ -268,7 +268,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                                   "(column, row)")
     # holonomic heuristic over the cells the inscribed circle fits in (every cell the centre can cross; its
     # 8-connected distances overstate a straight line by up to 8 % off 45°: not strictly admissible, as Smac's)
-    inscribed = _inscribed(tuple(map(tuple, vertices.tolist()))) if len(vertices) else disc
+    inscribed = _inscribed(outline) if len(vertices) else disc
     cells_clear, near2, clear = _map_tables(blocked.shape, res, np.packbits(blocked).tobytes())
     passable = cells_clear * res > max(0.0, inscribed - math.sqrt(2.0) * res)
     gcx, gcy = int(lgx // res), int(lgy // res)
@@ -290,8 +290,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     def through_start():
         """A lattice through the start heading itself, its ``common`` tuple, and the start as its one node."""
         own = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
-        own_common = (res, own.theta0, own.step, own.bins, own.pose_cells, own.pose_start)
-        return own, own_common, [(lsx, lsy, 0, 0.0, NOP, 0.0)]
+        return own, _pose_args(own), [(lsx, lsy, 0, 0.0, NOP, 0.0)]
 
     starts = _start_nodes((lsx, lsy, lst), r, motion == "reeds_shepp", penalties, blocked, clear, lattice,
                           exact_grow(lattice))
@@ -384,6 +383,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     stats["goal_offset_m"] = float(math.hypot(world[-1, 0] - gx, world[-1, 1] - gy))
     stats["goal_heading_offset_rad"] = float(abs(math.remainder(world[-1, 2] - gt, 2.0 * math.pi)))
     return finish(Status.EXACT, "", world, direction, length)
+
+
+def _pose_args(lattice) -> tuple:
+    """What :func:`~navlab.sampling.footprint_lattice.pose_free` and the smoother take of a lattice after the
+    pose: (resolution, theta0, step, bins, pose cells, their start per bin)."""
+    return (lattice.resolution, lattice.theta0, lattice.step, lattice.bins, lattice.pose_cells, lattice.pose_start)
 
 
 def _start_nodes(start, r, reverse, penalties, blocked, clear, lattice, grow):

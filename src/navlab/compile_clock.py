@@ -117,6 +117,14 @@ def _listener_class():
     return OutermostCompiles
 
 
+def first_call_seconds(warm, *args) -> float:
+    """The seconds ``warm(*args)`` returns (an ``functools.lru_cache``'d warm-up that times itself) the
+    first time in this process with these arguments, 0.0 afterwards (a cache hit compiled nothing)."""
+    hits = warm.cache_info().hits
+    seconds = warm(*args)
+    return 0.0 if warm.cache_info().hits > hits else seconds
+
+
 @functools.lru_cache(maxsize=1)
 def hold_interrupts_while_compiling() -> None:
     """Register, once per process, the listener that holds a Ctrl-C until the compile (or anything

@@ -26,7 +26,7 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
-from .compile_clock import compile_clock, hold_interrupts_while_compiling
+from .compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from .limits import check_seed
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
@@ -89,13 +89,6 @@ def _warm_costmap_kernels() -> float:
     trap = SCENES.get("trap")()
     costmap_query(trap, "astar", {"resolution": trap.bounds.diagonal / 20})
     return time.perf_counter() - t0
-
-
-def _costmap_warmup() -> float:
-    """:func:`_warm_costmap_kernels`' seconds the first time in this process, 0.0 afterwards."""
-    hits = _warm_costmap_kernels.cache_info().hits
-    seconds = _warm_costmap_kernels()
-    return 0.0 if _warm_costmap_kernels.cache_info().hits > hits else seconds
 
 
 def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "uniform", start=None, goal=None,
@@ -215,7 +208,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
                              common, world)
 
     if on_costs:
-        warmup_s = _costmap_warmup()
+        warmup_s = first_call_seconds(_warm_costmap_kernels)
         with compile_clock() as compiled:  # a signature the warm-up did not compile: warm-up too
             result = costmap_query(world, planner, settings)
         result.stats = {**_stats_skeleton(grid), **result.stats, "warmup_s": warmup_s}

@@ -34,7 +34,7 @@ from typing import Any, Dict, Iterator, Optional, Tuple
 
 import numpy as np
 
-from ..compile_clock import compile_clock, hold_interrupts_while_compiling
+from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from ..limits import check_coordinate
 from ..registry import Registry
 from ..result import Result, Status, Tree
@@ -265,9 +265,7 @@ def warm_kernels(algorithm: str, connectivity: int, hcode: int, smooth: bool) ->
     """Seconds spent compiling or loading this variant's kernels: on a tiny grid,
     the first time in this process; 0.0 afterwards."""
     hold_interrupts_while_compiling()  # a Ctrl-C during the compile is not lost (navlab.compile_clock)
-    before = _warmed.cache_info().hits
-    seconds = _warmed(algorithm, connectivity, hcode, smooth)
-    return 0.0 if _warmed.cache_info().hits > before else seconds
+    return first_call_seconds(_warmed, algorithm, connectivity, hcode, smooth)
 
 
 def _stats(t0: float, expanded: int = 0, cost_cells: float = math.inf, raw_cost_cells: float = math.inf,

@@ -108,3 +108,30 @@ def test_bad_settings_name_the_field(kwargs, words):
     settings = {"inflation_radius": 0.5, **kwargs}
     with pytest.raises(CostmapError, match=words):
         LayeredCostmap(world, JACKAL, **settings)
+
+
+def test_a_steep_cost_scaling_factor_raises_no_numpy_warning_and_keeps_the_costs():
+    """cost_scaling_factor=5000 overflowed exp inside the inscribed radius: a RuntimeWarning on stderr
+    (newcomer check, session 16). Those cells are INSCRIBED whatever the exponential says."""
+    import warnings
+
+    from navlab.world.costmap import inflation_costs
+
+    lethal = np.zeros((40, 40), bool)
+    lethal[20, 20] = True
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        steep = inflation_costs(lethal, 0.05, 0.3, 0.6, 5000.0)
+    d = np.hypot(*np.meshgrid(np.arange(40) - 20, np.arange(40) - 20)) * 0.05
+    assert (steep[(d <= 0.3) & ~lethal] == INSCRIBED_INFLATED_OBSTACLE).all()
+    assert (steep[(d > 0.31) & (d <= 0.6)] == 0).all()  # exp(-5000 · 0.01 m or more) is 0
+
+
+@pytest.mark.parametrize("setting, value", [("resolution", 2e7), ("resolution", 1e-10), ("inflation_radius", 2e7)])
+def test_costmap_lengths_keep_navlabs_range(setting, value):
+    """resolution=2e7 built a 1 x 1 costmap and inflation_radius=2e7 was taken, where every other length
+    is refused beyond ±1e7 m (newcomer check, session 16)."""
+    import navlab
+
+    with pytest.raises(ValueError, match=f"^{setting} = "):
+        navlab.plan("trap", planner="astar", costmap=True, **{setting: value})

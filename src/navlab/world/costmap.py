@@ -39,6 +39,8 @@ from typing import Any, Optional, Tuple
 import numpy as np
 from numba import njit
 
+from ..limits import check_length
+
 FREE_SPACE = 0
 INSCRIBED_INFLATED_OBSTACLE = 253
 LETHAL_OBSTACLE = 254
@@ -226,7 +228,9 @@ def inflation_costs(lethal: np.ndarray, resolution: float, inscribed_radius: flo
     d = distance_transform_edt(~lethal) * resolution
     out = np.zeros(lethal.shape, np.uint8)
     near = d <= inflation_radius
-    scaled = np.floor(MAX_NON_OBSTACLE * np.exp(-cost_scaling_factor * (d[near] - inscribed_radius)))
+    # (the exponent capped at 0: the cells within the inscribed radius are INSCRIBED below, and a large
+    # cost_scaling_factor overflowed exp there, a RuntimeWarning on the user's screen; the same costs)
+    scaled = np.floor(MAX_NON_OBSTACLE * np.exp(np.minimum(0.0, -cost_scaling_factor * (d[near] - inscribed_radius))))
     out[near] = np.minimum(scaled, MAX_NON_OBSTACLE).astype(np.uint8)
     out[d <= inscribed_radius] = INSCRIBED_INFLATED_OBSTACLE
     out[lethal] = LETHAL_OBSTACLE
@@ -238,6 +242,16 @@ def _positive(name: str, value: Any, allow_zero: bool = False) -> float:
             or not math.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
         raise CostmapError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, got {value!r}")
     return float(value)
+
+
+def _length(name: str, value: Any, allow_zero: bool = False) -> float:
+    """:func:`_positive`, within navlab's length range (:func:`navlab.limits.check_length`): a 2e7 m
+    resolution built a 1 x 1 costmap that no query could use."""
+    v = _positive(name, value, allow_zero)
+    try:
+        return check_length(name, v, allow_zero)
+    except ValueError as exc:
+        raise CostmapError(str(exc)) from None
 
 
 class LayeredCostmap:
@@ -268,14 +282,14 @@ class LayeredCostmap:
                  static: bool = True) -> None:
         self.footprint = footprint
         self.inscribed = footprint.inscribed_radius
-        self.inflation_radius = _positive("inflation_radius", inflation_radius, allow_zero=True)
+        self.inflation_radius = _length("inflation_radius", inflation_radius, allow_zero=True)
         if self.inflation_radius < self.inscribed:
             raise CostmapError(f"inflation_radius = {inflation_radius:g} m is below the footprint's inscribed radius "
                                f"{self.inscribed:g} m (footprint_padding included): cells the robot's body reaches "
                                "would cost nothing")
         self.cost_scaling_factor = _positive("cost_scaling_factor", cost_scaling_factor, allow_zero=True)
-        self.obstacle_range = _positive("obstacle_range", obstacle_range)
-        self.raytrace_range = _positive("raytrace_range", raytrace_range)
+        self.obstacle_range = _length("obstacle_range", obstacle_range)
+        self.raytrace_range = _length("raytrace_range", raytrace_range)
         self.lethal_static, self.unknown, self.resolution, self.origin = _static_layer(source, resolution, static)
         self.marked = np.zeros_like(self.lethal_static)
         self._static_costs: Optional[Costmap] = None
@@ -359,7 +373,7 @@ def _static_layer(source, resolution: Optional[float], static: bool):
         lethal = np.array(source.blocked, bool) if static else np.zeros(source.blocked.shape, bool)
         unknown = np.array(source.unknown, bool) if static else np.zeros(source.blocked.shape, bool)
         return lethal, unknown & ~lethal, float(source.resolution), (float(source.origin[0]), float(source.origin[1]))
-    res = _positive("resolution", 0.05 if resolution is None else resolution)
+    res = _length("resolution", 0.05 if resolution is None else resolution)
     b = source.bounds
     nx, ny = int(math.ceil((b.xmax - b.xmin) / res - 1e-9)), int(math.ceil((b.ymax - b.ymin) / res - 1e-9))
     if nx * ny > MAX_COSTMAP_CELLS:

@@ -36,13 +36,12 @@ def finite_number(name: str, value: Any) -> float:
     return v
 
 
-def check_coordinate(name: str, value: Any) -> float:
-    """``value`` as a float if it is a finite number within ±MAX_COORDINATE metres, else ValueError
-    naming ``name``. (Headings are not coordinates: any finite one is taken and wrapped,
-    :func:`navlab.angles.planned_heading`.)"""
+def check_coordinate(name: str, value: Any, unit: str = "m") -> float:
+    """``value`` as a float if it is a finite number within ±MAX_COORDINATE
+    (in ``unit``: an angle in radians has the same bound), else ValueError naming ``name``."""
     v = finite_number(name, value)
     if abs(v) > MAX_COORDINATE:
-        raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
+        raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} {unit})")
     return v
 
 

@@ -37,8 +37,9 @@ def finite_number(name: str, value: Any) -> float:
 
 
 def check_coordinate(name: str, value: Any, unit: str = "m") -> float:
-    """``value`` as a float if it is a finite number within ±MAX_COORDINATE
-    (in ``unit``: an angle in radians has the same bound), else ValueError naming ``name``."""
+    """``value`` as a float if it is a finite number within ±MAX_COORDINATE (in ``unit``; the
+    simulator's start and goal θ are checked against the same bound in radians, while planners
+    take any finite heading, :func:`navlab.angles.planned_heading`), else ValueError naming ``name``."""
     v = finite_number(name, value)
     if abs(v) > MAX_COORDINATE:
         raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} {unit})")

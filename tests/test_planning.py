@@ -311,3 +311,12 @@ def test_a_costmap_query_times_its_warm_up_apart_and_fills_the_grid_stats():
         assert r.status is Status.EXACT and r.cost == again.cost
         assert 0 < r.stats["rasterize_s"] < r.stats["time_s"]
         assert r.stats["cost_cells"] == pytest.approx(r.cost / r.params["resolution"], rel=1e-12)
+
+
+@pytest.mark.parametrize("given", [None, False, True])
+def test_a_costmap_query_reports_its_allow_unknown(given):
+    """`--json` with costmap=true left allow_unknown out of the params it ran with (session 16's
+    left-alone list): the params now say whether unknown cells were passable, default off."""
+    extra = {} if given is None else {"allow_unknown": given}
+    r = navlab.plan("trap", planner="astar", costmap=True, **extra)
+    assert r.status is Status.EXACT and r.params["allow_unknown"] is bool(given)

@@ -242,10 +242,11 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     costmap = layers.static_costmap()
     built_s = time.perf_counter() - t0
     searched: Dict[str, Any] = {}
-    path, weighted, reason = plan_on_costmap(costmap, world.start, world.goal, float(multiplier),
-                                             bool(params.get("allow_unknown", False)), stats=searched)
+    allow_unknown = bool(params.get("allow_unknown", False))
+    path, weighted, reason = plan_on_costmap(costmap, world.start, world.goal, float(multiplier), allow_unknown,
+                                             stats=searched)
     out_params = {"algorithm": algorithm, "costmap": True, "resolution": costmap.resolution,
-                  "cost_travel_multiplier": float(multiplier), **settings}
+                  "cost_travel_multiplier": float(multiplier), "allow_unknown": allow_unknown, **settings}
     # rasterize_s: building the costmap (the static layer, rasterised, and its inflation), as a grid query's raster
     stats: Dict[str, Any] = {"grid": f"{costmap.shape[1]}x{costmap.shape[0]}", "costmap_cost_m": weighted,
                              "expanded": searched.get("expanded", 0), "rasterize_s": built_s}

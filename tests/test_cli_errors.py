@@ -148,6 +148,11 @@ def test_parse_params_bad_items_are_usage_errors(item):
     # --runs is for experiments, and bounded (1e15 started an endless run until session 14)
     (["sim", "trap", "--runs", "3"], "Error: --runs applies to --experiment"),
     (["sim", "--experiment", "seed004", "--runs", "1e15"], "runs must be a whole number from 1 to 10000"),
+    # a mistyped heading was "Got unexpected extra argument (1.5x)" until session 17
+    (["plan", "trap", "--start", "3", "9", "1.5x"], "Invalid value for '--start': expected X Y or X Y THETA "
+                                                    "(numbers), got '3 9 1.5x'"),
+    (["plan", "parking", "--goal", "3", "9", "90deg", "--planner", "hybrid_astar"], "got '3 9 90deg'"),
+    (["sim", "clutter", "--start", "1", "1", "90°"], "Invalid value for '--start'"),
 ])
 def test_usage_errors_are_one_line_naming_the_flag(args, message):
     """click prints usage, a hint and the error on three lines; navlab prints one."""
@@ -164,3 +169,12 @@ def test_numbers_in_exponent_notation_are_numbers():
         "expand_dis": 1e-3, "w": [100.0, 0.2, "x"], "name": "e5", "n": 5}
     result = CliRunner().invoke(main, ["plan", "trap", "--param", "expand_dis=1e-12"], prog_name="navlab")
     assert result.exit_code == 2 and "expand_dis = 1e-12 is below the smallest supported length" in result.output
+
+
+def test_a_source_after_a_point_is_still_the_source():
+    """The mistyped-heading rule takes only a number with letters after it: a scene or a file named
+    after --start X Y is still the source."""
+    result = CliRunner().invoke(main, ["plan", "--start", "1", "1", "trap", "--max-iter", "50"], prog_name="navlab")
+    assert result.output.startswith("trap: ") and "Error" not in result.output, result.output
+    result = CliRunner().invoke(main, ["plan", "--start", "1", "1", "2d_map.yaml"], prog_name="navlab")
+    assert result.exit_code == 2 and "2d_map.yaml" in result.output and "THETA" not in result.output, result.output

@@ -211,6 +211,15 @@ def _is_number(token: str) -> bool:
     return True
 
 
+#: a number with letters after it ("1.5x", "90deg", "90°"): what a mistyped heading looks like, and
+#: no source's name (scenes are words, files have an extension or a path)
+_MISTYPED_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?[A-Za-z°]{1,4}")
+
+
+def _mistyped_number(token: str) -> bool:
+    return _MISTYPED_NUMBER.fullmatch(token) is not None
+
+
 class PointOrPoseOption(click.Option):
     """An option taking ``X Y`` or a pose ``X Y THETA`` (metres, radians):
     click's options take a fixed number of values, so the parser is told to
@@ -229,7 +238,10 @@ class PointOrPoseOption(click.Option):
 
             def process(value: str, state: Any, take=take) -> None:
                 values = [value]
-                while len(values) < 3 and state.rargs and _is_number(state.rargs[0]):
+                while len(values) < 3 and state.rargs and (_is_number(state.rargs[0]) or
+                                                           len(values) == 2 and _mistyped_number(state.rargs[0])):
+                    # (a mistyped heading, "1.5x" or "90deg", is taken too, so the error names the pose: left
+                    # behind it was "unexpected extra argument")
                     values.append(state.rargs.pop(0))
                 take(" ".join(values), state)
 

@@ -36,13 +36,13 @@ def finite_number(name: str, value: Any) -> float:
     return v
 
 
-def check_coordinate(name: str, value: Any, unit: str = "m") -> float:
-    """``value`` as a float if it is a finite number within ±MAX_COORDINATE (in ``unit``; the
-    simulator's start and goal θ are checked against the same bound in radians, while planners
-    take any finite heading, :func:`navlab.angles.planned_heading`), else ValueError naming ``name``."""
+def check_coordinate(name: str, value: Any) -> float:
+    """``value`` as a float if it is a finite number within ±MAX_COORDINATE [m], else ValueError
+    naming ``name`` (headings are not coordinates: any finite one is taken and wrapped,
+    :func:`navlab.angles.planned_heading`)."""
     v = finite_number(name, value)
     if abs(v) > MAX_COORDINATE:
-        raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} {unit})")
+        raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
     return v
 
 

@@ -54,7 +54,7 @@ def test_disk_full_while_writing_a_gif_is_one_line_and_leaves_no_file(tmp_path, 
 
 
 @pytest.mark.parametrize("args, words", [
-    (["clutter", "--start", "1", "1", "inf"], "start θ must be finite"),
+    (["clutter", "--start", "1", "1", "inf"], "start θ must be a finite heading in radians"),
     (["clutter", "--goal", "nan", "2"], "goal x must be finite"),
     (["one_obstacle", "--lidar-timing", "latency=-0.5"], "lidar: field 'latency'"),
     (["one_obstacle", "--odom-timing", "rate=0"], "odometry: field 'rate'"),
@@ -80,3 +80,27 @@ def test_latency_on_the_command_line_still_reaches():
     res = CliRunner().invoke(main, ["sim", "one_obstacle", "--controller", "potential_field", "--lidar-timing",
                                     "rate=10,latency=0.5", "--odom-timing", "rate=50", "--odom-timing", "latency=0.08"])
     assert res.exit_code == 0 and res.output.startswith("REACHED")
+
+
+def test_the_simulator_takes_any_finite_heading_as_the_planners_do():
+    """The simulator refused a start θ beyond ±1e7 rad ("out of range") where the planners take any
+    finite heading, wrapped (session 16's left-alone list): the same run either way, and a note
+    beyond ±2π, since that is most often degrees."""
+    import math
+    import warnings
+
+    import numpy as np
+
+    from navlab.angles import HeadingWarning
+    from navlab.sim.runner import simulate
+
+    far = 1e8
+    with pytest.warns(HeadingWarning, match="start θ 1e\\+08 is beyond ±2π"):
+        a, _, _ = simulate("one_obstacle", robot="diff", start=(1.0, 1.0, far), seed=2, max_time=5.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        b, _, _ = simulate("one_obstacle", robot="diff", start=(1.0, 1.0, math.remainder(far, 2 * math.pi)), seed=2,
+                           max_time=5.0)
+    assert a.status == b.status and np.array_equal(a.true_poses, b.true_poses)
+    res = CliRunner().invoke(main, ["sim", "one_obstacle", "--start", "1", "1", "1e300"])
+    assert "Error" not in res.output and "note: start θ 1e+300 is beyond ±2π" in res.output, res.output

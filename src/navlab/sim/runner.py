@@ -82,15 +82,20 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     """
     from .pose_path import CAR_FOLLOWER, POSE_FOLLOWERS, plan_pose_path, scene_robot_params, wants_pose_path
 
+    from ..angles import planned_heading
     from ..limits import check_coordinate, check_seed
 
+    checked = {}
     for name, values in (("start", start), ("goal", goal)):
         if values is None:
             continue
         if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__len__") or len(values) not in (2, 3):
             raise ValueError(f"{name} must be (x, y) or (x, y, θ), got {values!r}")
-        for axis, v in zip("xyθ", values):
-            check_coordinate(f"{name} {axis}", v, "rad" if axis == "θ" else "m")
+        for axis, v in zip("xy", values):
+            check_coordinate(f"{name} {axis}", v)
+        # any finite heading, wrapped (and a note beyond ±2π, most often degrees), as the planners take it
+        checked[name] = tuple(values[:2]) + ((planned_heading(f"{name} θ", values[2]),) if len(values) == 3 else ())
+    start, goal = checked.get("start", start), checked.get("goal", goal)
     for name, value in (("robot_params", robot_params), ("controller_params", controller_params),
                         ("plan_params", plan_params)):
         if value is not None and not isinstance(value, dict):

@@ -249,3 +249,20 @@ def test_a_search_stopped_by_unknown_cells_says_so():
     assert plan(grid, (1, 1), (8, 8), allow_unknown=True).status == Status.EXACT
     walled = plan(OccupancyGrid(unknown), (1, 1), (8, 8))  # the same column blocked: no hint
     assert walled.status == Status.FAILED and "unknown" not in walled.reason
+
+
+@pytest.mark.parametrize("algorithm, own", [("dijkstra", "none"), ("jps", "octile"), ("theta_star", "euclidean")])
+def test_the_params_name_the_heuristic_and_weight_the_search_used(algorithm, own):
+    """Dijkstra, JPS and Theta* search with their own heuristic and no weight; their params said
+    'manhattan' and 3.0 when given those (session 16's left-alone list). The answer is the one
+    they give without them."""
+    blocked = np.zeros((12, 12), dtype=bool)
+    blocked[2:10, 5] = True
+    grid = OccupancyGrid(blocked)
+    given = plan(grid, (1, 6), (10, 6), algorithm=algorithm, heuristic="manhattan", weight=3.0)
+    plain = plan(grid, (1, 6), (10, 6), algorithm=algorithm)
+    assert given.params["heuristic"] == plain.params["heuristic"] == own
+    assert given.params["weight"] == plain.params["weight"] == 1.0
+    assert given.cost == plain.cost and np.array_equal(given.cells, plain.cells)
+    astar = plan(grid, (1, 6), (10, 6), heuristic="manhattan", weight=3.0)
+    assert astar.params["heuristic"] == "manhattan" and astar.params["weight"] == 3.0

@@ -47,11 +47,16 @@ for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),
     HEURISTICS.register(_name)(_code)
 
 GRID_ALGORITHMS: Registry[str] = Registry("grid algorithm")
-for _name, _doc in (("dijkstra", "uniform-cost search (no heuristic)"),
+for _name, _doc in (("dijkstra", "uniform-cost search (no heuristic: heuristic and weight do not apply)"),
                     ("astar", "A*; weighted A* with weight > 1"),
-                    ("jps", "Jump Point Search (8-connected, optimal, no corner cutting)"),
-                    ("theta_star", "Theta*: any-angle A* with line of sight")):
+                    ("jps", "Jump Point Search (8-connected, optimal, no corner cutting; always octile, "
+                            "weight does not apply)"),
+                    ("theta_star", "Theta*: any-angle A* with line of sight (always Euclidean, weight does not "
+                                   "apply)")):
     GRID_ALGORITHMS.register(_name)(_doc)
+
+#: the heuristic each algorithm but A* searches with, whatever ``heuristic`` says (its params report this one)
+OWN_HEURISTIC = {"dijkstra": "none", "jps": "octile", "theta_star": "euclidean"}
 
 
 class PaddedGrid:
@@ -243,13 +248,18 @@ def _cell(value, what: str) -> Tuple[int, int]:
 STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells", "warmup_s")
 
 
+def search_heuristic(algorithm: str, hcode: int) -> int:
+    """The heuristic code ``algorithm``'s kernel searches with, given ``hcode`` for A* (:data:`OWN_HEURISTIC`)."""
+    return {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
+
+
 @functools.lru_cache(maxsize=None)
 def _warmed(algorithm: str, connectivity: int, hcode: int, smooth: bool) -> float:
     t0 = time.perf_counter()
     blocked = np.zeros((4, 4), dtype=bool)
     blocked[1:3, 2] = True
     pool = pool_for(OccupancyGrid(blocked), False)
-    code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
+    code = search_heuristic(algorithm, hcode)
     with pool.lease() as s:
         a, b = pool.grid.index(0, 1), pool.grid.index(3, 2)
         s.search(algorithm, a, b, connectivity, code, 1.0)
@@ -315,13 +325,14 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         Cells as (x, y) = (column, row).
     algorithm : {"astar", "dijkstra", "jps", "theta_star"}
     heuristic : {"octile", "euclidean", "chebyshev", "manhattan"}
-        For ``astar`` (JPS uses octile, Theta* Euclidean, Dijkstra none).
+        For ``astar`` (JPS uses octile, Theta* Euclidean, Dijkstra none, whatever this says; the
+        result's ``params`` name the one used, :data:`OWN_HEURISTIC`).
     connectivity : {4, 8}
         8 allows diagonal moves only when both orthogonal neighbours are free.
     smooth : bool
         Shortcut the path along lines of sight (seed 002's Bresenham smoothing).
     weight : float
-        Weighted A* (≥ 1); cost ≤ weight × optimum.
+        Weighted A* (≥ 1); cost ≤ weight × optimum. For ``astar`` only (the others report 1.0).
     allow_unknown : bool
         Let the search enter cells of unknown occupancy.
     smooth_method : {"bresenham", "supercover"}
@@ -382,8 +393,11 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
         raise ValueError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
     if algorithm == "jps" and connectivity != 8:
         raise ValueError("jps needs connectivity 8")
-    params: Dict[str, Any] = {"algorithm": algorithm, "heuristic": heuristic, "connectivity": connectivity,
-                              "smooth": smooth, "weight": weight, "allow_unknown": allow_unknown}
+    # the heuristic and weight the search used: Dijkstra, JPS and Theta* have their own and no weight (the
+    # params said 'manhattan' and 3.0 for a Dijkstra search given them, which used neither)
+    params: Dict[str, Any] = {"algorithm": algorithm, "heuristic": OWN_HEURISTIC.get(algorithm, heuristic),
+                              "connectivity": connectivity, "smooth": smooth,
+                              "weight": weight if algorithm == "astar" else 1.0, "allow_unknown": allow_unknown}
     s_cell, g_cell = _cell(start, "start"), _cell(goal, "goal")
     pool = pool_for(grid, allow_unknown)
     for label, cell, status in (("start", s_cell, Status.INVALID_START), ("goal", g_cell, Status.INVALID_GOAL)):
@@ -395,7 +409,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
                 if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
-    code = {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
+    code = search_heuristic(algorithm, hcode)
     a, b = pool.grid.index(*s_cell), pool.grid.index(*g_cell)
     with pool.lease() as s:  # the search state belongs to this call until the path is read out
         status, expanded = s.search(algorithm, a, b, connectivity, code,

@@ -16,6 +16,7 @@ from navlab.control.base import make_controller
 from navlab.grid import load_map, read_scen
 from navlab.grid.mapio import MapFormatError
 from navlab.robots import make_robot
+from navlab.sim.runner import simulate
 
 
 def cli(*args, cwd=None):
@@ -276,3 +277,45 @@ def test_a_heading_beyond_floats_range_is_named_as_such():
         with pytest.raises(ValueError, match="^goal theta must be a finite heading in radians, got a number beyond "
                                              "float's range$"):
             finite_heading("goal theta", value)
+
+
+HUGE = 10 ** 400  # an int past float's range: math.isfinite raises OverflowError on it
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: navlab.plan("clutter", planner="astar", weight=HUGE), "weight must be a finite number, got an integer "
+                                                                   "of 401 digits"),
+    (lambda: navlab.plan("clutter", planner="jps", resolution=HUGE), "resolution must be a finite number"),
+    (lambda: navlab.plan("clutter", planner="astar", costmap=True, cost_scaling_factor=HUGE), "cost_scaling_factor"),
+    (lambda: simulate("one_obstacle", robot_params={"max_speed": HUGE}), "max_speed must be a positive"),
+    (lambda: simulate("one_obstacle", dt=HUGE), "time step dt must be a positive number of seconds, got an "
+                                                       "integer of 401 digits"),
+    (lambda: simulate("one_obstacle", max_time=HUGE), "max_time must be a positive"),
+    # a length past navlab's range overflowed squaring it in the collision check
+    (lambda: simulate("one_obstacle", robot_params={"radius": 1e300}), "radius = 1e\\+300 is out of range"),
+    (lambda: simulate("one_obstacle", robot="car", robot_params={"wheelbase": HUGE}), "wheelbase"),
+    (lambda: simulate("one_obstacle", lidar=3), "lidar must be 'none', 'exact' or a noise model's name"),
+])
+def test_settings_past_floats_range_or_of_the_wrong_kind_are_named(call, words):
+    """An OverflowError ('int too large to convert to float', no field named) from four settings'
+    checks, an OverflowError from a 1e300 m robot radius and an AttributeError from lidar=3 (an
+    attack on the API, session 17): each is a ValueError naming the setting."""
+    with pytest.raises(ValueError, match=words):
+        call()
+
+
+def test_a_setting_past_floats_range_is_a_usage_error_on_the_command_line():
+    """The same reached the command as 'internal error: OverflowError' with exit 1."""
+    for args in (["plan", "clutter", "--planner", "astar", "--param", f"weight={HUGE}"],
+                 ["sim", "one_obstacle", "--robot-param", f"max_speed={HUGE}"],
+                 ["sim", "one_obstacle", "--robot-param", "radius=1e300"]):
+        res = cli(*args)
+        assert res.returncode == 2 and "internal error" not in res.stderr and len(res.stderr.splitlines()) == 1, \
+            res.stderr
+
+
+def test_a_lidar_noise_that_is_no_model_is_named():
+    from navlab.sensors.lidar import Lidar
+
+    with pytest.raises(ValueError, match="lidar noise must be a model's name"):
+        Lidar(noise=3)

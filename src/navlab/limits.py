@@ -36,6 +36,25 @@ def finite_number(name: str, value: Any) -> float:
     return v
 
 
+def is_finite_real(value: Any) -> bool:
+    """Whether ``value`` is a finite real number (Python or numpy, not a bool) that fits a float:
+    ``math.isfinite`` raises OverflowError on an int past float's range (10**400), which
+    reached the command as an internal error from four settings' checks."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        return False
+    try:
+        return math.isfinite(value)
+    except OverflowError:
+        return False
+
+
+def shown(value: Any) -> str:
+    """``repr(value)`` for a message, but an integer too long to read as its number of digits."""
+    if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and abs(int(value)) >= 10 ** 20:
+        return f"an integer of {len(str(abs(int(value))))} digits"
+    return repr(value)
+
+
 def check_coordinate(name: str, value: Any) -> float:
     """``value`` as a float if it is a finite number within ±MAX_COORDINATE [m], else ValueError
     naming ``name`` (headings are not coordinates: any finite one is taken and wrapped,

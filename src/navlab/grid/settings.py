@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from typing import Any, Dict
 
-from ..limits import MAX_COORDINATE, MIN_LENGTH
+from ..limits import MAX_COORDINATE, MIN_LENGTH, is_finite_real, shown
 
 
 def _name(key: str, value: Any, valid) -> str:
@@ -28,8 +28,8 @@ def _flag(key: str, value: Any) -> bool:
 
 
 def _number(key: str, value: Any) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{key} must be a finite number, got {value!r}")
+    if not isinstance(value, (int, float)) or not is_finite_real(value):
+        raise ValueError(f"{key} must be a finite number, got {shown(value)}")
     return float(value)
 
 

@@ -16,6 +16,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..angles import wrap_angle as _wrap
+from ..limits import check_length, is_finite_real, shown
 from ..registry import Registry
 from ..world.footprint import Footprint
 
@@ -53,9 +54,16 @@ def integrate_pose(pose: np.ndarray, vx: float, vy: float, omega: float, dt: flo
     return np.array((x + dx, y + dy, _wrap(th + dth)))
 
 
+#: the robots' settings that are lengths [m]: positive and within navlab's length range (a 1e300 m
+#: radius passed as a positive number and overflowed squaring it in the simulator's collision check)
+LENGTHS = ("radius", "wheel_radius", "track", "base_radius", "wheelbase")
+
+
 def _positive(name: str, value: float) -> None:
-    if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a positive number, got {value!r}")
+    if not (isinstance(value, (int, float)) and is_finite_real(value) and value > 0):
+        raise ValueError(f"{name} must be a positive number, got {shown(value)}")
+    if name in LENGTHS:
+        check_length(name, value, allow_zero=False)
 
 
 def accelerate(previous, command, dt: float, max_accel: Optional[float], max_angular_accel: Optional[float]):

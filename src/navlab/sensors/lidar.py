@@ -105,6 +105,9 @@ class Lidar:
             raise ValueError(f"need 0 ≤ range_min < range_max, got {self.range_min}, {self.range_max}")
         if isinstance(self.noise, str):
             self.noise = NOISE_MODELS.get(self.noise)()
+        elif self.noise is not None and not isinstance(self.noise, NoiseModel):  # (lidar=3 was an AttributeError)
+            raise ValueError(f"lidar noise must be a model's name ({', '.join(NOISE_MODELS.names())}) or a "
+                             f"NoiseModel, got {self.noise!r}")
         full = abs(self.fov - 2 * math.pi) < 1e-12
         start = self.angle_min if self.angle_min is not None else (0.0 if full else -self.fov / 2)
         increment = self.fov / self.beams if full else self.fov / max(self.beams - 1, 1)

@@ -101,6 +101,11 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         if value is not None and not isinstance(value, dict):
             raise ValueError(f"{name} must be a mapping of name: value, got {value!r}")
     check_seed(seed)
+    if lidar is not None and not isinstance(lidar, str):  # (lidar=3 was an AttributeError deep in a scan)
+        from ..sensors.lidar import NOISE_MODELS
+
+        raise ValueError(f"lidar must be 'none', 'exact' or a noise model's name ({', '.join(NOISE_MODELS.names())}), "
+                         f"got {lidar!r}")
     scene_world = load_scene_world(world)
     plan_params = dict(plan_params or {})
     poses = wants_pose_path(scene_world, robot, planner, goal, plan_params)

@@ -39,7 +39,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 from numba import njit
 
-from ..limits import check_length
+from ..limits import check_length, is_finite_real, shown
 
 FREE_SPACE = 0
 INSCRIBED_INFLATED_OBSTACLE = 253
@@ -238,9 +238,9 @@ def inflation_costs(lethal: np.ndarray, resolution: float, inscribed_radius: flo
 
 
 def _positive(name: str, value: Any, allow_zero: bool = False) -> float:
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
-            or not math.isfinite(value) or value < 0 or (value == 0 and not allow_zero):
-        raise CostmapError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, got {value!r}")
+    if not is_finite_real(value) or value < 0 or (value == 0 and not allow_zero):
+        raise CostmapError(f"{name} must be a {'non-negative' if allow_zero else 'positive'} number, "
+                           f"got {shown(value)}")
     return float(value)
 
 

@@ -70,3 +70,25 @@ def test_derived_grids_are_read_only_too(make):
     derived = make(grid)
     assert not derived.blocked.flags.writeable and not derived.unknown.flags.writeable
     assert derived._cache == {} or derived is grid
+
+
+@pytest.mark.parametrize("field", ["blocked", "unknown"])
+@pytest.mark.parametrize("cells, words", [
+    (np.full((2, 2), 0.5), "got 0.5 at index \\(0, 0\\)"),
+    (np.array([[0.0, np.nan]]), "got nan at index \\(0, 1\\)"),
+    (np.array([["False", "0"]]), "got dtype <U5"),
+    (np.array([[1j, 0]]), "got dtype complex128"),
+    (np.array([[0, 2]]), "got 2 at index \\(0, 1\\)"),
+])
+def test_a_mask_that_is_not_true_or_false_is_refused(field, cells, words):
+    """numpy casts any non-zero to True: 0.5, NaN, 2 and the string '0' were silently blocked (or
+    unknown) cells (an attack on the API, session 17). Booleans and 0/1 numbers are masks."""
+    given = {"blocked": np.zeros(cells.shape, dtype=bool), field: cells}
+    with pytest.raises(ValueError, match=f"{field} must be (an array of )?true/false .*{words}"):
+        OccupancyGrid(**given)
+
+
+def test_zero_one_numbers_are_a_mask():
+    grid = OccupancyGrid(np.array([[0, 1], [1, 0]], dtype=np.uint8), unknown=np.array([[0.0, 0.0], [0.0, 1.0]]))
+    assert grid.blocked.dtype == bool and grid.blocked.tolist() == [[False, True], [True, False]]
+    assert grid.unknown.tolist() == [[False, False], [False, True]]

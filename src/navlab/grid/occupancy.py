@@ -37,6 +37,24 @@ def _read_only(values: Any, dtype, name: str) -> np.ndarray:
     return out.view()  # a view of a read-only base can never be made writeable again
 
 
+def _mask(values: Any, name: str) -> np.ndarray:
+    """:func:`_read_only` of a true/false array: booleans, or numbers that are all 0 or 1 (numpy
+    casts any non-zero to True: 0.5, NaN and the string '0' were silently blocked cells)."""
+    try:
+        given = np.asarray(values)
+    except (TypeError, ValueError) as exc:
+        raise ValueError(f"{name} must be an array of bool: {exc}") from None
+    if given.dtype != bool:
+        if given.dtype.kind not in "iuf":
+            raise ValueError(f"{name} must be an array of true/false (or 0/1) per cell, got dtype {given.dtype}")
+        odd = np.flatnonzero((given != 0) & (given != 1)) if given.ndim else np.array([] if given in (0, 1) else [0])
+        if odd.size:
+            at = np.unravel_index(int(odd[0]), given.shape) if given.ndim else ()
+            raise ValueError(f"{name} must be true/false (or 0/1) per cell, got {given[at].item()!r} at index "
+                             f"{tuple(int(i) for i in at)}")
+    return _read_only(given, bool, name)
+
+
 @dataclass(frozen=True, eq=False)
 class OccupancyGrid:
     """A 2D occupancy grid (immutable).
@@ -78,7 +96,7 @@ class OccupancyGrid:
 
     def __post_init__(self) -> None:
         put = object.__setattr__  # frozen: fields are set once, here
-        blocked = _read_only(self.blocked, bool, "blocked")
+        blocked = _mask(self.blocked, "blocked")
         if blocked.ndim != 2 or 0 in blocked.shape:
             raise ValueError(f"blocked must be a non-empty 2D array, got shape {blocked.shape}")
         if blocked.size > MAX_CELLS:
@@ -102,7 +120,7 @@ class OccupancyGrid:
         yaw = finite_number("origin yaw", origin[2])
         put(self, "origin", (x, y, yaw))
         unknown = np.zeros(blocked.shape, bool) if self.unknown is None else self.unknown
-        unknown = _read_only(unknown, bool, "unknown")
+        unknown = _mask(unknown, "unknown")
         if unknown.shape != blocked.shape:
             raise ValueError(f"unknown has shape {unknown.shape}, blocked {blocked.shape}")
         put(self, "unknown", unknown)

@@ -416,3 +416,19 @@ def test_a_corridor_one_cell_wide_says_the_exact_margin_closed_it():
     wider = plan_hybrid(OccupancyGrid(np.zeros((3, 50), bool), resolution=0.1), (0.55, 0.15, 0.0),
                         (1.05, 0.15, 0.0), 0.5)
     assert wider.status is Status.EXACT
+
+
+def test_an_exhausted_search_without_the_analytic_expansion_says_the_goal_state_may_be_out_of_reach():
+    """narrow_aisle with analytic_expansion=false exhausted 51 725 states at its 0.03 m cells, where
+    an arc turns one bin, and blamed only the exact checks' margin (newcomer run, session 17): the
+    search found a path with the analytic expansion, so the aisle was open; what it could not reach
+    was the goal's own cell and bin. The reason now says so, and coarser cells end near the goal."""
+    import navlab
+
+    failed = navlab.plan("narrow_aisle", planner="hybrid_astar", analytic_expansion=False)
+    assert failed.status is Status.FAILED
+    assert "without the analytic expansion it must end in the goal's 0.03 m cell in the goal's heading bin" \
+        in failed.reason
+    assert navlab.plan("narrow_aisle", planner="hybrid_astar").status is Status.EXACT
+    coarser = navlab.plan("narrow_aisle", planner="hybrid_astar", analytic_expansion=False, resolution=0.05)
+    assert coarser.status is Status.EXACT and coarser.stats["goal_offset_m"] < 0.05 * math.sqrt(2)

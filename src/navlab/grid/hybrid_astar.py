@@ -336,6 +336,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
             if motion == "dubins" else ""
         if expansions < max_expansions:  # no path at this resolution; forward-only motion may be why
             why = "the search space is exhausted" + forward_only
+            if not analytic_expansion:  # the goal is one cell and a few bins: the lattice may never land in it
+                heading = "in the goal's heading bin" if lattice.k == 1 else \
+                    f"at a heading within {lattice.k - 1} bin{'' if lattice.k == 2 else 's'} of the goal's"
+                why += (f"; without the analytic expansion it must end in the goal's {lattice.resolution:g} m cell "
+                        f"{heading}, which the primitives may never reach (coarser cells or the analytic expansion "
+                        "may)")
             if stats["exact_retry"]:  # the exact checks refused what the cell lists did: their margin may be why
                 why += (f"; the exact checks keep the footprint {exact_grow(lattice):g} m (half a cell) clear of "
                         "blocked cells and the map's edge, so a gap that leaves less on a side is closed")

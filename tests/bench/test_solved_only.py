@@ -125,3 +125,27 @@ def test_the_trial_limit_is_what_fits_in_two_gigabytes(tmp_path):
         load_experiment(path)
     path.write_text("name: t\nworlds: [trap]\nplanners: [rrt]\ntrials: 100000\n")
     assert load_experiment(path).trials == 100_000
+
+
+def _verdict(world, verdict, higher="integration", solved=("20/20", "20/20"), why=""):
+    return {"claim": TIME["text"], "world": world, "verdict": verdict, "lower": "boundary", "higher": higher,
+            "solved": list(solved), "why": why}
+
+
+def test_the_overall_line_names_each_world_once_and_says_what_every_world_showed():
+    """The samplers study printed "contradicted in squarefield" and nothing of clutter and trap,
+    and "too few solved trials to judge in trap (...), trap (...)" for a claim of two comparisons
+    (newcomer run, session 17)."""
+    few = f"needs {MIN_SOLVED} solved trials on each side"
+    line = overall_verdicts([_verdict("clutter", "not shown"), _verdict("squarefield", "contradicted"),
+                             _verdict("trap", "not shown")])[TIME["text"]]
+    assert line == "contradicted in squarefield (20/20 vs 20/20 solved); not shown in clutter, trap"
+    both = [_verdict(w, "contradicted", h, (n, "20/20")) for w, n in (("clutter", "18/20"), ("squarefield", "9/20"))
+            for h in ("integration", "gaussian")]
+    both += [_verdict("trap", "not shown", h, ("0/20", "20/20"), few) for h in ("integration", "gaussian")]
+    line = overall_verdicts(both)[TIME["text"]]
+    assert line == ("contradicted in clutter (18/20 vs 20/20 solved), squarefield (9/20 vs 20/20 solved); too few "
+                    "solved trials to judge in trap (boundary solved 0/20, integration 20/20; boundary solved 0/20, "
+                    "gaussian 20/20)")
+    line = overall_verdicts([_verdict("clutter", "confirmed"), _verdict("trap", "not shown")])[TIME["text"]]
+    assert line == "confirmed in clutter (20/20 vs 20/20 solved) only; not shown in trap"

@@ -376,7 +376,10 @@ def _partner(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]
 
 
 def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
-    """One line per claim over all worlds: confirmed everywhere, nowhere, or where."""
+    """One line per claim over all worlds: confirmed everywhere, nowhere, or where, naming every
+    world once (a claim with two comparisons, "faster than integration and Gaussian", named a world
+    twice) and saying of each world what it showed: confirmed, contradicted, not shown, or too few
+    solved trials to judge (a line said "contradicted in squarefield" and nothing of the others)."""
     out: Dict[str, List[Dict[str, Any]]] = defaultdict(list)
     for v in verdicts:
         out[v["claim"]].append(v)
@@ -384,26 +387,40 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
     for claim, vs in out.items():
         confirmed = _where(vs, "confirmed")
         contradicted = _where(vs, "contradicted")
-        unsolved = [f"{v['world']} ({v['lower']} solved {v['solved'][0]}, {v['higher']} {v['solved'][1]})"
-                    for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)]
-        worlds = sorted({v["world"] for v in vs})
+        unsolved = _by_world((v["world"], f"{v['lower']} solved {v['solved'][0]}, {v['higher']} {v['solved'][1]}")
+                             for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v))
+        judged = {v["world"] for v in vs if v["verdict"] in ("confirmed", "contradicted")}
+        too_few = {v["world"] for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)}
+        rest = sorted({v["world"] for v in vs} - judged - too_few)
         if all(v["verdict"] == "confirmed" for v in vs):
             line = f"confirmed in every world: {confirmed}"
         elif contradicted:
             line = f"contradicted in {contradicted}" + (f"; confirmed in {confirmed}" if confirmed else "")
         elif confirmed:
-            line = f"confirmed in {confirmed} only; not shown elsewhere"
+            line = f"confirmed in {confirmed} only"
         else:
-            line = f"not shown in any of {', '.join(worlds)}"
+            line = f"not shown in any of {', '.join(sorted({v['world'] for v in vs}))}"
+        if judged and rest:
+            line += f"; not shown in {', '.join(rest)}"
         if unsolved:
-            line += f"; too few solved trials to judge in {', '.join(unsolved)}"
+            line += f"; too few solved trials to judge in {unsolved}"
         lines[claim] = line
     return lines
 
 
+def _by_world(items) -> str:
+    """``world (detail; detail), ...`` from (world, detail) pairs, each world once, in first-seen order."""
+    details: Dict[str, List[str]] = {}
+    for world, detail in items:
+        seen = details.setdefault(world, [])
+        if detail not in seen:  # two comparisons with the same counts say them once
+            seen.append(detail)
+    return ", ".join(f"{world} ({'; '.join(d)})" if any(d) else world for world, d in details.items())
+
+
 def _where(verdicts: List[Dict[str, Any]], verdict: str) -> str:
-    """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``."""
-    return ", ".join(f"{v['world']} ({v['solved'][0]} vs {v['solved'][1]} solved)" if v.get("solved") else v["world"]
+    """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``, each world once."""
+    return _by_world((v["world"], f"{v['solved'][0]} vs {v['solved'][1]} solved" if v.get("solved") else "")
                      for v in verdicts if v["verdict"] == verdict)
 
 

@@ -206,7 +206,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     repeats = run.breakdown.get("repeats", 0)
     ran = f"{run.ran - repeats} run now, {run.errors} errors" + (f"; {repeats} noise repeats besides" if repeats
                                                                  else "")
-    click.echo(f"{len(run.rows)} trials ({ran}) in {run.elapsed_s:.1f} s; times are {summary['time_label']}")
+    # (the elapsed time is the run's wall time, warm-up included; the times per cell below are each trial's own:
+    # "in 74.7 s; times are thread CPU time" read as 74.7 s of CPU for trials that took 25.9, newcomer run)
+    click.echo(f"{len(run.rows)} trials ({ran}) in {run.elapsed_s:.1f} s of wall time; each trial's time below is "
+               f"its {summary['time_label']}")
     if run.ran:  # this run's workers' warm-up: a resumed run's earlier rows hold an earlier run's
         click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
                    f"{run.breakdown.get('warmup_s', 0.0):.1f} s in all, not counted in any trial")
@@ -221,7 +224,8 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         cost = cell["cost"]
         ran = cell["trials"] - cell["errors"]
         line = (f"  {cell['world']:<14} {cell['group']:<{width}} success {cell['successes']}/{ran}"
-                f"  cost mean {_f(cost['mean'])} min {_f(cost['min'])}  time median {_f(cell['time']['median'], 4)} s")
+                f"  cost mean {_f(cost['mean'])} min {_f(cost['min'])}  time median {_f(cell['time']['median'], 4)}"
+                + (" s" if cell["time"]["median"] is not None else ""))  # (a cell that solved nothing: "-", not "- s")
         if cell["successes"] < cell["trials"] and cell["reasons"]:
             line += f"  [{cell['reasons'][0][0]}]"
         click.echo(line)

@@ -232,6 +232,23 @@ def _run(cmd: Command, cwd: Path, env: Dict[str, str]) -> subprocess.CompletedPr
         return subprocess.CompletedProcess(args, status, "".join(lines), "")
 
 
+def _suite_on_missing_data(text: str) -> bool:
+    """Whether ``text`` runs a ``navlab bench`` suite whose data is not here (grid-vs-rrt-maps reads
+    the Moving AI maps in ../shared without naming the folder: a newcomer's clone failed on it)."""
+    from navlab.bench.errors import ExperimentError
+    from navlab.bench.suites import find_suite
+
+    named = re.search(r"--suite\s+(\S+)", text)
+    suite = find_suite(named.group(1)) if named else None
+    if suite is None:
+        return False
+    try:
+        suite()
+    except ExperimentError:
+        return True
+    return False
+
+
 def _has_module(name: str) -> bool:
     return importlib.util.find_spec(name) is not None
 
@@ -254,7 +271,7 @@ def run_document(document: Path, tmp_path: Path) -> Tuple[List[str], List[str], 
                 failures.append(f"{cmd}: a skipped command must say why")
             skipped.append(f"{cmd} ({cmd.argument})")
             continue
-        if "../shared" in cmd.text and not has_shared:
+        if not has_shared and ("../shared" in cmd.text or _suite_on_missing_data(cmd.text)):
             skipped.append(f"{cmd} (no ../shared beside the repository)")
             continue
         if cmd.action in ("ros", "ros-script", "serve") and not _has_module("rclpy"):

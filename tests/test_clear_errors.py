@@ -319,3 +319,19 @@ def test_a_lidar_noise_that_is_no_model_is_named():
 
     with pytest.raises(ValueError, match="lidar noise must be a model's name"):
         Lidar(noise=3)
+
+
+@pytest.mark.parametrize("planner", ["rrt", "rrt_star", "informed_rrt_star", "growth_ratio_rrt"])
+@pytest.mark.parametrize("value", ["yes", 2, None])
+def test_keep_tree_must_be_true_or_false(planner, value):
+    """keep_tree='yes' and 2 were taken as true, where the grid planners refuse smooth='yes'
+    (an attack on the API, session 17)."""
+    with pytest.raises(ValueError, match="keep_tree must be true or false"):
+        navlab.plan("trap", planner=planner, keep_tree=value, max_iter=20)
+
+
+def test_a_goal_bias_base_that_is_no_sampler_names_the_field():
+    from navlab.registry import UnknownNameError
+
+    with pytest.raises(UnknownNameError, match="^base: unknown sampler 'bogus'"):
+        navlab.plan("trap", sampler="goal_bias", base="bogus", max_iter=20)

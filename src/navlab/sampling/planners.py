@@ -120,6 +120,8 @@ class TreePlanner:
                              f"got {self.batch_size}")
         if self.index not in INDEXES:
             raise ValueError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
+        if not isinstance(self.keep_tree, (bool, np.bool_)):  # 'yes' and 2 were taken as true
+            raise ValueError(f"keep_tree must be true or false, got {self.keep_tree!r}")
 
     def check_fits(self, max_iter: Optional[int] = None) -> None:
         """Refuse (ValueError naming max_iter) a budget whose tree could not fit in

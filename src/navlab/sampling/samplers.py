@@ -21,7 +21,7 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from ..limits import check_count, check_length
-from ..registry import Registry, check_params, parameters_of, suggest
+from ..registry import Registry, UnknownNameError, check_params, parameters_of, suggest
 from .regions import BoxRegion
 
 #: most rounds a sampler may be asked to try (each round is one batch of checks)
@@ -125,7 +125,10 @@ class GoalBiasSampler(Sampler):
     def __init__(self, goal_sample_rate: float = 0.05, base: Any = "uniform") -> None:
         self.goal_sample_rate = _probability("goal_sample_rate", goal_sample_rate)
         if isinstance(base, str):
-            self._base = make_sampler(base)
+            try:
+                self._base = make_sampler(base)
+            except UnknownNameError as exc:  # name the field: "unknown sampler 'bogus'" left the reader guessing
+                raise UnknownNameError(f"base: {exc.args[0]}") from None
         elif isinstance(base, Sampler):
             self._base = base
         else:

@@ -194,3 +194,8 @@ def test_move_base_gives_up_after_its_patience():
                 break
         assert statuses[-1][1] == STALLED and statuses[-1][0] == pytest.approx(expected)
         assert all(s == RUNNING and vx == 0.0 and w == 0.0 for _, s, vx, w in statuses[:-1])
+        # the run's reason says which patience ran out (it said "a local minimum?" for every controller)
+        what = "no global path for 5 s" if planner_patience == 5.0 else "no valid command for 15 s"
+        assert dwa.why_stalled() == f"move_base would abort: {what}"
+        dwa.reset((5.0, 0.0), np.array(((0.0, 0.0), (5.0, 0.0))))
+        assert dwa.why_stalled() == "no progress along its path (blocked, or a path the robot cannot follow)"

@@ -124,6 +124,8 @@ def _note_ignored_shape(world, result) -> None:
 def _print_summary(world, result, planner, sampler, seed, plot) -> None:
     s = result.stats
     what = planner if sampler is None else f"{planner} + {sampler}, seed {seed}"
+    if result.params.get("costmap"):  # the header said "astar" alone whether or not it planned on a costmap
+        what += " (costmap)"
     click.echo(f"{world.name}: {what}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
     if len(result.path):
         click.echo(f"  cost {result.cost:.4f} m, {len(result.path)} waypoints")

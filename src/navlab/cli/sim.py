@@ -147,7 +147,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
             click.echo(f"  set-up before the run {setup_s:.1f} s (the world, the plan, compiling or loading kernels: "
                        "a first use compiles them once)")
         click.echo(f"  final true pose ({result.final_true[0]:.3f}, {result.final_true[1]:.3f}) m, "
-                   f"{1000 * result.error_true:.1f} mm from the goal; odometry says "
+                   f"{_distance(result.error_true)} from the goal; odometry says "
                    f"({result.final_odom[0]:.3f}, {result.final_odom[1]:.3f}), travelled {result.distance:.2f} m")
         if "goal_heading" in result.meta:
             click.echo(f"  final heading {result.final_true[2]:.3f} rad, {result.meta['heading_error_rad']:.3f} rad "
@@ -200,3 +200,8 @@ def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:
     simulated = sum(r.get("time_s", 0.0) for r in rows)
     click.echo(f"{len(rows)} runs, {simulated:.0f} s simulated in {wall:.2f} s of compute "
                f"(real-time factor {simulated / max(wall, 1e-9):.0f}x)" + (f"; pictures in {plot_dir}" if plot_dir else ""))
+
+
+def _distance(metres: float) -> str:
+    """A distance to the goal as a reader takes it in: mm near the goal, m beyond a metre ("8733.4 mm")."""
+    return f"{1000 * metres:.1f} mm" if metres < 1.0 else f"{metres:.3f} m"

@@ -38,9 +38,20 @@ class Controller:
     #: the setting that is the controller's top forward speed (m/s), if it has one: the simulator refuses a
     #: value above the robot's ``max_speed`` (the robot would cut the speed and not the turn rate)
     speed_setting: Optional[str] = None
+    #: why its last STALLED command stalled, where the controller knows more than :meth:`why_stalled` says
+    stall_reason: Optional[str] = None
 
     def reset(self, goal, path=None) -> None:
         raise NotImplementedError
+
+    def why_stalled(self) -> str:
+        """Why a STALLED run stalled, as the simulator reports it: a path follower's progress is along its
+        path, where "a local minimum?" (a field's trouble) misled (newcomer run, session 17)."""
+        if self.stall_reason:
+            return self.stall_reason
+        if self.needs_path:
+            return "no progress along its path (blocked, or a path the robot cannot follow)"
+        return "no progress towards the goal (a local minimum?)"
 
     def command(self, t: float, pose, points=None) -> Command:
         raise NotImplementedError

@@ -303,6 +303,7 @@ class DWA(CostmapController):
 
     def reset(self, goal, path=None) -> None:
         super().reset(goal, path)
+        self.stall_reason = None  # a new run has not stalled
         self._prev: Optional[np.ndarray] = None  #: where the robot last turned in place (prev_x_, prev_y_)
         self._rotating = {1: False, -1: False}  #: rotating_left, rotating_right
         self._stuck = {1: False, -1: False}  #: stuck_left, stuck_right
@@ -331,10 +332,11 @@ class DWA(CostmapController):
         cmd = super().command(t, pose, points)
         if cmd.status != RUNNING or cmd.vx != 0.0 or cmd.omega != 0.0:
             return cmd
-        for since, patience in ((self._failing_since, self.controller_patience),
-                                (self._no_plan_since, self.planner_patience)):
+        for since, patience, what in ((self._failing_since, self.controller_patience, "no valid command"),
+                                      (self._no_plan_since, self.planner_patience, "no global path")):
             if since is not None and t - since >= patience:
                 self.velocity = np.zeros(3)
+                self.stall_reason = f"move_base would abort: {what} for {patience:g} s"
                 return Command(0.0, 0.0, 0.0, STALLED)
         return cmd
 

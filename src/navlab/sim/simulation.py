@@ -289,7 +289,7 @@ class Simulation:
                         f"(more than {GOAL_TOLERANCE:g} m: odometry drift, or a time step too long to stop in)")
                 break
             if command.status == STALLED:
-                status, reason = SimStatus.STALLED, "no progress towards the goal (a local minimum?)"
+                status, reason = SimStatus.STALLED, self.controller.why_stalled()
                 break
             collided = plant.step(command.vx, command.vy, command.omega, dt, rng, t)
             cmds[n - 1] = plant.last_twist

@@ -155,3 +155,14 @@ def test_seed004_with_its_measured_delays_reaches_but_a_crossing_obstacle_hits_i
     assert crossing_now.run(1).status is SimStatus.REACHED
     r = _simulation(target, "crossing", MEASURED).run(1)
     assert r.status is SimStatus.COLLIDED and "hit the robot" in r.reason
+
+
+def test_the_latency_table_shows_a_dash_where_no_run_reached():
+    """The sensor-latency table printed 'nan' for the time of a setting no run reached, where
+    docs/navigation.md shows '–' (newcomer run, session 17)."""
+    from navlab.sim.latency import latency_table
+
+    row = {"part": "table", "obstacle": "crossing", "delays": "measured", "max_speed": 0.3, "status": "COLLIDED",
+           "error_true_mm": 1747.3, "time_s": 5.0, "min_clearance_mm": 0.0}
+    line = latency_table([row]).splitlines()[1]
+    assert "nan" not in line and line.split("|")[3].strip() == "–"

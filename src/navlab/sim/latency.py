@@ -108,10 +108,11 @@ def latency_table(rows: List[Dict[str, Any]]) -> str:
             close = sum(r["status"] == "REACHED" and r["error_true_mm"] <= REACH_MM for r in g)
             collided = sum(r["status"] == "COLLIDED" for r in g)
             err = [r["error_true_mm"] for r in g]
-            time = np.mean([r["time_s"] for r in reached]) if reached else float("nan")
+            # no run reached: "–", as docs/navigation.md's table shows it (it printed nan)
+            time = f"{np.mean([r['time_s'] for r in reached]):>6.1f}" if reached else f"{'–':>6}"
             clearance = min(r["min_clearance_mm"] for r in g)
             lines.append(f"{obstacle:>9} {delays:>9} {speed:>7.2f} | {len(reached):>3}/{len(g):<3} {close:>6} "
-                         f"{collided:>8} | {np.mean(err):>8.1f}/{np.max(err):<8.1f} | {time:>6.1f} | "
+                         f"{collided:>8} | {np.mean(err):>8.1f}/{np.max(err):<8.1f} | {time} | "
                          f"{clearance:>16.0f}")
 
     block("table", lambda r: (r["obstacle"], r["delays"], r["max_speed"]))

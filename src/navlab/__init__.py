@@ -52,7 +52,7 @@ def lazy_attributes(package: str, table: dict):
 _LAZY = {
     "plan": "planning", "planner_names": "planning", "Result": "result", "Status": "result", "Tree": "result",
     "make_planner": "sampling", "make_sampler": "sampling", "World": "world", "load_world": "world",
-    "load_source": "world.sources",
+    "load_source": "world.sources", "NavlabError": "errors", "ParameterError": "errors",
 }
 
 __all__ = sorted(_LAZY) + ["__version__"]

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+from .errors import ParameterError
 
 
 def wrap_angle(angle: float) -> float:
@@ -27,7 +28,7 @@ def finite_heading(what: str, value) -> float:
     import numbers
 
     if isinstance(value, bool) or not isinstance(value, numbers.Real):
-        raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
+        raise ParameterError(f"{what} must be a finite heading in radians, got {value!r}")
     try:
         heading = float(value)
     except OverflowError:  # 10**400, Fraction(10**400, 3)
@@ -35,9 +36,9 @@ def finite_heading(what: str, value) -> float:
     if math.isinf(heading) and abs(value) != math.inf:  # finite in its own type: np.longdouble('1e4000') too
         shown = f"an integer of {len(str(abs(value)))} digits" if isinstance(value, numbers.Integral) else \
             "a number beyond float's range"
-        raise ValueError(f"{what} must be a finite heading in radians, got {shown}")
+        raise ParameterError(f"{what} must be a finite heading in radians, got {shown}")
     if not math.isfinite(heading):
-        raise ValueError(f"{what} must be a finite heading in radians, got {value!r}")
+        raise ParameterError(f"{what} must be a finite heading in radians, got {value!r}")
     return heading
 
 

@@ -17,6 +17,7 @@ import os
 from typing import Any, Optional
 
 import numpy as np
+from .errors import ParameterError
 
 MAX_COORDINATE = 1.0e7  #: [m] largest |x| or |y| of any point, and largest length
 MIN_LENGTH = 1.0e-9  #: [m] smallest positive length (radius, resolution, tolerance)
@@ -26,13 +27,13 @@ def finite_number(name: str, value: Any) -> float:
     """``value`` as a float if it is a finite real number (Python or numpy;
     not a bool, not a string), else ValueError naming ``name``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ValueError(f"{name} must be a number, got {value!r}")
+        raise ParameterError(f"{name} must be a number, got {value!r}")
     try:
         v = float(value)
     except OverflowError:
-        raise ValueError(f"{name} is too large (|{name}| ≤ {MAX_COORDINATE:g})") from None
+        raise ParameterError(f"{name} is too large (|{name}| ≤ {MAX_COORDINATE:g})") from None
     if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
+        raise ParameterError(f"{name} must be finite, got {value!r}")
     return v
 
 
@@ -61,7 +62,7 @@ def check_coordinate(name: str, value: Any) -> float:
     :func:`navlab.angles.planned_heading`)."""
     v = finite_number(name, value)
     if abs(v) > MAX_COORDINATE:
-        raise ValueError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
+        raise ParameterError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
     return v
 
 
@@ -69,9 +70,9 @@ def check_length(name: str, value: Any, allow_zero: bool = True) -> float:
     """A non-negative (or positive) length within [MIN_LENGTH, MAX_COORDINATE], else ValueError naming ``name``."""
     v = check_coordinate(name, value)
     if v < 0 or (v == 0 and not allow_zero):
-        raise ValueError(f"{name} must be {'non-negative' if allow_zero else 'positive'}, got {value!r}")
+        raise ParameterError(f"{name} must be {'non-negative' if allow_zero else 'positive'}, got {value!r}")
     if 0 < v < MIN_LENGTH:
-        raise ValueError(f"{name} = {v:g} is below the smallest supported length {MIN_LENGTH:g} m")
+        raise ParameterError(f"{name} = {v:g} is below the smallest supported length {MIN_LENGTH:g} m")
     return v
 
 
@@ -92,7 +93,7 @@ def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX
             f"from {low} to {high}" if high is not None else f"of at least {low}"
         shown = f"a number of {len(str(abs(value)))} digits" if isinstance(value, int) and abs(value) >= 10 ** 20 \
             else repr(value)
-        raise ValueError(f"{name} must be a whole number {span}, got {shown}")
+        raise ParameterError(f"{name} must be a whole number {span}, got {shown}")
     return value
 
 
@@ -153,7 +154,7 @@ def check_memory(need: int, what: str) -> None:
     and should name the field (``"max_iter=10**12 could grow a tree that"``)."""
     have = available_memory()
     if have is not None and need > have:
-        raise ValueError(f"{what} needs about {_bytes(need)}, more than the {_bytes(have)} this machine has available")
+        raise ParameterError(f"{what} needs about {_bytes(need)}, more than the {_bytes(have)} this machine has available")
 
 
 def _bytes(n: int) -> str:
@@ -169,4 +170,4 @@ def check_seed(seed: Any) -> None:
     if seed is None or isinstance(seed, np.random.Generator):
         return
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
-        raise ValueError(f"seed must be a non-negative whole number or a numpy Generator, got {seed!r}")
+        raise ParameterError(f"seed must be a non-negative whole number or a numpy Generator, got {seed!r}")

@@ -34,6 +34,7 @@ from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_
 from .result import Result, Status
 from .registry import parameters_of
 from .sampling.samplers import SAMPLERS
+from .errors import ParameterError
 
 
 def _warm(planner: str, sampler: Optional[str], grid_settings: Optional[dict], on_map: bool) -> float:
@@ -159,13 +160,13 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     preload_cython_blas()  # before the first kernel loads: numba's BLAS check then skips scipy.linalg
     hold_interrupts_while_compiling()  # a Ctrl-C during a first use's compile is not lost (navlab.compile_clock)
     if not isinstance(planner, str):
-        raise ValueError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
+        raise ParameterError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     check_seed(seed)
     params = dict(params)
     grid = planner not in POSE_PLANNERS and is_grid_planner(planner)  # unknown names: "did you mean"
     if is_pose_query(planner, params):  # a bad motion is named before any file is read
         if planner in POSE_PLANNERS and sampler not in (None, "uniform"):
-            raise ValueError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
+            raise ParameterError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
         tree_sampler = None if planner in POSE_PLANNERS else sampler or "uniform"
         return _pose_plan(source, planner, tree_sampler, start, goal, seed, robot_radius, params)
     params.pop("motion", None)  # holonomic: what every other planner does
@@ -173,19 +174,19 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
     on_costs = params.get("costmap", False)
     if not isinstance(on_costs, bool):
-        raise ValueError(f"costmap must be true or false, got {on_costs!r}")
+        raise ParameterError(f"costmap must be true or false, got {on_costs!r}")
     if not on_costs:
         params.pop("costmap", None)  # costmap=false: the planner's own query, as when it is left out
     if on_costs and not grid:
-        raise ValueError(f"costmap: only the grid planner astar plans on a costmap, not '{planner}'")
+        raise ParameterError(f"costmap: only the grid planner astar plans on a costmap, not '{planner}'")
     if on_costs:
         if sampler not in (None, "uniform"):
-            raise ValueError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out")
+            raise ParameterError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out")
         settings = dict(params)
     elif grid:
         if sampler not in (None, "uniform"):
             SAMPLERS.get(sampler)
-            raise ValueError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out "
+            raise ParameterError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out "
                              f"(got '{sampler}')")
         settings = split_grid_params(planner, params)
     else:
@@ -195,7 +196,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, goal_tolerance=goal_tolerance,
                         allow_unknown=allow_unknown)
     if allow_unknown is not None and world.occupancy is None and not grid:
-        raise ValueError("allow_unknown applies to maps; this source is a geometric world")
+        raise ParameterError("allow_unknown applies to maps; this source is a geometric world")
     common = {"planner": planner, "sampler": None if grid else sampler,
               "seed": seed if isinstance(seed, int) else None, "world": world.name,
               "robot_radius": world.robot_radius}
@@ -239,7 +240,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
 
     goal_tolerance = params.pop("goal_tolerance", None)
     if goal_tolerance not in (None, 0, 0.0):
-        raise ValueError(f"goal_tolerance: {planner} ends exactly at the goal pose; leave goal_tolerance out")
+        raise ParameterError(f"goal_tolerance: {planner} ends exactly at the goal pose; leave goal_tolerance out")
     if sampler is not None:
         sampler_keys = set(parameters_of(SAMPLERS.get(sampler))) | {"goal_sample_rate"}
         to_sampler = {k: params.pop(k) for k in list(params) if k in sampler_keys}

@@ -22,6 +22,7 @@ import numpy as np
 
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
+from .errors import ParameterError
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
@@ -46,7 +47,7 @@ VERIFY_SPACING = 0.001
 def check_motion(value: Any, allowed: Tuple[str, ...] = MOTIONS) -> str:
     """``value`` if it is one of ``allowed`` motions, else ValueError listing them (and the nearest)."""
     if value not in allowed:
-        raise ValueError(f"motion must be one of {', '.join(allowed)}, got {value!r}."
+        raise ParameterError(f"motion must be one of {', '.join(allowed)}, got {value!r}."
                          + suggest(str(value), list(allowed)))
     return value
 
@@ -62,14 +63,14 @@ def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
     check_motion(motion, CAR_MOTIONS if planner in POSE_PLANNERS and motion != "holonomic" else MOTIONS)
     if planner in POSE_PLANNERS:
         if motion == "holonomic":
-            raise ValueError(f"motion: {planner} plans for a car-like robot: motion must be dubins or reeds_shepp, "
+            raise ParameterError(f"motion: {planner} plans for a car-like robot: motion must be dubins or reeds_shepp, "
                              "got 'holonomic'")
         return True
     if motion == "holonomic":
         return False
     if planner in TREE_POSE_PLANNERS:
         return True
-    raise ValueError(f"motion '{motion}': planner '{planner}' plans for a robot that can move in any direction; "
+    raise ParameterError(f"motion '{motion}': planner '{planner}' plans for a robot that can move in any direction; "
                      f"the planners for {motion} motion: {', '.join(POSE_PLANNERS + TREE_POSE_PLANNERS)}")
 
 
@@ -121,10 +122,10 @@ def check_radius_not_dropped(world, robot_radius, params: Dict[str, Any], planne
     disc = f"for a disc of {robot_radius:g} m give footprint={robot_radius:g} instead" if robot_radius > 0 else \
         "leave robot_radius out"
     if params.get("footprint") is not None:  # the setting wins (query_footprint)
-        raise ValueError(f"robot_radius: give footprint or robot_radius, not both ({planner} plans with the "
+        raise ParameterError(f"robot_radius: give footprint or robot_radius, not both ({planner} plans with the "
                          f"footprint); {disc}")
     if world.footprint is not None:
-        raise ValueError(f"robot_radius: {world.name}'s robot has its own footprint, which {planner} plans with; "
+        raise ParameterError(f"robot_radius: {world.name}'s robot has its own footprint, which {planner} plans with; "
                          f"{disc}")
 
 
@@ -135,7 +136,7 @@ def _pose_grid(world, resolution):
 
     if world.occupancy is not None:
         if resolution is not None:
-            raise ValueError("resolution: a map is searched on its own cells; leave resolution out")
+            raise ParameterError("resolution: a map is searched on its own cells; leave resolution out")
         grid = world.occupancy
         return replace(grid, unknown=np.zeros_like(grid.unknown)) if world.allow_unknown else grid
     return rasterize(replace(world, robot_radius=0.0), resolution)
@@ -230,7 +231,7 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
     common, settings = _query(world, planner, params, valid)
     bins = settings.pop("heading_bins", 72)
     if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or not 4 <= bins <= 1440:
-        raise ValueError(f"heading_bins must be a whole number from 4 to 1440, got {bins!r}")
+        raise ParameterError(f"heading_bins must be a whole number from 4 to 1440, got {bins!r}")
     t0 = time.perf_counter()
     grid = _pose_grid(world, common["resolution"])
     start, goal = query_poses(world)

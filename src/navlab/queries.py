@@ -18,6 +18,7 @@ from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
 from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
+from .errors import ParameterError
 
 #: settings of the grid algorithms, routed by name like sampler settings
 GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
@@ -225,7 +226,7 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     from .world.footprint import Footprint
 
     if algorithm != "astar":
-        raise ValueError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
+        raise ParameterError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
     unknown = sorted(set(params) - set(COSTMAP_PARAMS))
     if unknown:
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
@@ -235,7 +236,7 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
                 "cost_scaling_factor": params.get("cost_scaling_factor", 3.0)}
     multiplier = params.get("cost_travel_multiplier", DEFAULT_COST_TRAVEL_MULTIPLIER)
     if isinstance(multiplier, bool) or not isinstance(multiplier, (int, float)):
-        raise ValueError(f"cost_travel_multiplier must be a number ≥ 0, got {multiplier!r}")
+        raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {multiplier!r}")
     footprint = Footprint.disc(max(world.robot_radius, MIN_LENGTH))
     source = world.occupancy if world.occupancy is not None else world
     layers = LayeredCostmap(source, footprint, resolution=params.get("resolution"), **settings)

@@ -10,11 +10,12 @@ from __future__ import annotations
 import difflib
 import inspect
 from typing import Any, Callable, Dict, Generic, Iterator, TypeVar
+from .errors import NavlabError, ParameterError
 
 T = TypeVar("T")
 
 
-class UnknownNameError(KeyError, ValueError):
+class UnknownNameError(KeyError, NavlabError):
     """Raised for a name no registry entry has; the message lists valid names."""
 
     def __str__(self) -> str:  # KeyError would quote the message
@@ -47,7 +48,7 @@ class Registry(Generic[T]):
 
         def decorate(obj: T) -> T:
             if name in self._entries:
-                raise ValueError(f"{self.kind} '{name}' is registered twice")
+                raise ParameterError(f"{self.kind} '{name}' is registered twice")
             self._entries[name] = obj
             try:
                 obj.registered_name = name  # type: ignore[attr-defined]
@@ -95,7 +96,7 @@ def check_params(factory: Callable[..., Any], params: Dict[str, Any], what: str)
     valid = list(parameters_of(factory))
     for key in params:
         if key not in valid:
-            raise ValueError(
+            raise ParameterError(
                 f"unknown parameter '{key}' for {what}; valid: {', '.join(valid) or 'none'}."
                 + suggest(key, valid)
             )
@@ -125,4 +126,4 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
 
     for key, value in params.items():
         if bad(value):
-            raise ValueError(f"{what}: {key} must be finite, got {value!r}")
+            raise ParameterError(f"{what}: {key} must be finite, got {value!r}")

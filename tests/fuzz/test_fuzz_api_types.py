@@ -5,7 +5,9 @@ An outside attack found 33 of 167 wrong-type calls answered with a raw
 "unhashable type"). Each call here gets one argument replaced by something a
 script or a YAML file could hand over (None, lists, dicts, strings, bools,
 NaN, inf, huge and negative numbers): the call must either work or raise the
-project's ``ValueError`` (or a subclass) — never another exception type.
+project's own error, ``navlab.NavlabError`` (a ``ValueError``) — never another
+exception type, and not a bare ``ValueError`` either (until session 17, 79 % of
+an attack's 1 102 bad-input calls were plain ``ValueError``s).
 """
 
 import math
@@ -16,6 +18,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import navlab
+from navlab import NavlabError
 from navlab.grid import OccupancyGrid, make_maze
 from navlab.grid import plan as grid_plan
 
@@ -68,8 +71,8 @@ CALLS = {
 def _acceptable(call, argument, value):
     try:
         call(**{argument: value})
-    except ValueError:
-        pass  # navlab's errors are ValueError subclasses, with a message naming the field
+    except NavlabError:
+        pass  # navlab's errors, with a message naming the field
     except Exception as exc:  # anything else is the defect this test is for
         raise AssertionError(f"{argument}={value!r} raised {type(exc).__name__}: {exc}") from None
 
@@ -92,5 +95,5 @@ def test_wrong_types_are_a_value_error_or_work(name, data):
 ])
 def test_known_wrong_type_calls(name, argument, value):
     call, _ = CALLS[name]
-    with pytest.raises(ValueError):
+    with pytest.raises(NavlabError):
         call(**{argument: value})

@@ -2,7 +2,7 @@
 
 A file gives an OccupancyGrid in the supported range or one MapFormatError naming
 the file; a query gives a Result that a plain cell check (scipy's Dijkstra for the
-optimum) accepts, or a ValueError naming start or goal.
+optimum) accepts, or navlab's error (a ValueError) naming start or goal.
 """
 
 import io
@@ -15,6 +15,7 @@ from hypothesis import assume, example, given
 from hypothesis import strategies as st
 from PIL import Image
 
+from navlab.errors import NavlabError
 from navlab.grid.mapio import MapFormatError, load_map
 from navlab.grid.occupancy import OccupancyGrid
 from navlab.grid.planner import plan, plan_world
@@ -72,7 +73,7 @@ def test_grid_query_with_any_number_names_the_cell(blocked, start, algorithm):
     grid = OccupancyGrid(blocked)
     try:
         result = plan(grid, start, (0, 0), algorithm=algorithm)
-    except ValueError as exc:
+    except NavlabError as exc:
         assert "start" in str(exc)
     else:
         check_grid_result(grid.passable(), (int(start[0]), int(start[1])), (0, 0), result, algorithm)
@@ -87,7 +88,7 @@ def test_grid_query_in_metres_with_any_float(start_xy):
         warnings.simplefilter("error")  # a RuntimeWarning is the symptom of an unchecked NaN
         try:
             result = plan_world(grid, start_xy, (1.0, 1.0))
-        except ValueError as exc:
+        except NavlabError as exc:
             assert "start" in str(exc)
             return
     assert "-9223372036854775808" not in result.reason

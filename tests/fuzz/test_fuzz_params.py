@@ -1,6 +1,6 @@
 """Fuzzing planner and sampler parameters, and simulation start poses.
 
-Each call returns a Result (checked with shapely) or raises a ValueError whose
+Each call returns a Result (checked with shapely) or raises navlab's error (NavlabError, a ValueError) whose
 message names the parameter. Values that could allocate gigabytes before a
 size check are left to test_fuzz_memory.py, which runs them under a memory limit.
 """
@@ -13,6 +13,7 @@ from hypothesis import example, given
 from hypothesis import strategies as st
 
 import navlab
+from navlab import NavlabError
 from navlab.registry import UnknownNameError, parameters_of
 from navlab.sampling import PLANNERS, SAMPLERS
 from navlab.world import world_from_dict
@@ -51,7 +52,7 @@ def run_and_check(planner, sampler, params):
         params = {"max_iter": 3000, **params}
     try:
         result = navlab.plan(WORLD, planner=planner, sampler=sampler, seed=0, **{**BASE, **params})
-    except ValueError as exc:
+    except NavlabError as exc:
         (key,) = params.keys() - {"max_iter"} or params.keys()
         named = key in str(exc) or (key == "base" and isinstance(exc, UnknownNameError))  # "unknown sampler 'x'"
         assert named, f"{key}={params[key]!r}: {exc}"
@@ -118,7 +119,7 @@ def simulate(start):
         with warnings.catch_warnings():  # any finite heading is one, noted beyond ±2π (its own test)
             warnings.simplefilter("ignore", HeadingWarning)
             result, _, _ = run("one_obstacle", robot="omni3", start=start, max_time=0.5)
-    except ValueError as exc:
+    except NavlabError as exc:
         assert "start" in str(exc), f"start {start}: {exc}"
         return None
     assert np.isfinite(result.final_true).all() and np.isfinite(result.final_odom).all(), (start, result.final_true)

@@ -27,6 +27,7 @@ import numpy as np
 from ..registry import UnknownNameError, suggest
 from ..result import Result, Status
 from ..sampling.planners import _check_query
+from ..errors import ParameterError
 
 #: OMPL geometric planners offered by name (``ompl:RRTstar``, ...).
 OMPL_NAMES = ("RRT", "RRTConnect", "RRTstar", "InformedRRTstar", "PRMstar", "BITstar")
@@ -68,7 +69,7 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
         raise ImportError("OMPL is not installed: pip install 'navlab[ompl]'") from None
     ou.setLogLevel(ou.LOG_ERROR)
     if max_iter is None and max_time is None:
-        raise ValueError("an OMPL run needs max_iter or max_time")
+        raise ParameterError("an OMPL run needs max_iter or max_time")
     t0 = time.perf_counter()
     checker = world.checker()
     invalid = _check_query(world, checker)
@@ -102,7 +103,7 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     if "expand_dis" in params and hasattr(planner, "setRange"):
         planner.setRange(float(params.pop("expand_dis")))
     if params:
-        raise ValueError(f"unknown parameter(s) {', '.join(sorted(params))} for ompl:{name}; valid: expand_dis")
+        raise ParameterError(f"unknown parameter(s) {', '.join(sorted(params))} for ompl:{name}; valid: expand_dis")
     planner.setProblemDefinition(pdef)
     planner.setup()
     counts = hasattr(planner, "numIterations")
@@ -113,7 +114,7 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
         return counts and max_iter is not None and planner.numIterations() >= max_iter
 
     if not counts and max_time is None:
-        raise ValueError(f"ompl:{name} does not count iterations; give it max_time")
+        raise ParameterError(f"ompl:{name} does not count iterations; give it max_time")
     t_solve = time.perf_counter()
     planner.solve(ob.PlannerTerminationCondition(done))
     elapsed = time.perf_counter() - t0

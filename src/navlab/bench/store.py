@@ -25,6 +25,7 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
 from .experiment import DESCRIPTIVE, Experiment, ExperimentError
+from ..errors import ParameterError
 
 EXPERIMENT_FILE = "experiment.json"
 RESULTS_FILE = "results.jsonl"
@@ -223,7 +224,7 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
         try:
             old = json.loads(meta_path.read_text(encoding="utf-8"))
             if not isinstance(old, dict) or not isinstance(old.get("experiment", {}), dict):
-                raise ValueError("not an object with 'fingerprint' and 'experiment'")
+                raise ParameterError("not an object with 'fingerprint' and 'experiment'")
         except (ValueError, UnicodeDecodeError, OSError) as exc:
             raise ExperimentError(f"'{meta_path}' is damaged ({str(exc).splitlines()[0][:120]}), so the results "
                                   "beside it cannot be matched to this experiment: restore it, use another --out, "

@@ -11,6 +11,7 @@ import click
 import numpy as np
 
 from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import
+from ..errors import ParameterError
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -52,13 +53,13 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
 
     for label, v in (("--start", start), ("--goal", goal)):
         if not all(math.isfinite(c) for c in v):
-            raise ValueError(f"{label} must be finite numbers, got {v[0]:g} {v[1]:g}")
+            raise ParameterError(f"{label} must be finite numbers, got {v[0]:g} {v[1]:g}")
         if not in_world and any(c != int(c) for c in v):
-            raise ValueError(f"{label}: cells are integers; use --world for metres, got {v[0]:g} {v[1]:g}")
+            raise ParameterError(f"{label}: cells are integers; use --world for metres, got {v[0]:g} {v[1]:g}")
     from ..world.sources import source_kind
 
     if source_kind(map_path) == "world_file":
-        raise ValueError(f"{map_path}: this is a world file (shapes, start and goal), not a map: use "
+        raise ParameterError(f"{map_path}: this is a world file (shapes, start and goal), not a map: use "
                          f"navlab plan {map_path} --planner {algorithm}")
     grid = load_map(map_path, rule=map_rule)
     if inflate:

@@ -9,6 +9,7 @@ import sys
 import click
 
 from .common import Count, PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
+from ..errors import ParameterError
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -84,7 +85,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
                                 allow_unknown=settings.get("allow_unknown"))
         except MissingQueryError as exc:
             # one line through the CLI's error handler (exit 2), naming the flag
-            raise ValueError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
+            raise ParameterError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
                              f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
         if is_pose_query(planner, settings):
             check_radius_not_dropped(world, robot_radius, settings, planner)

@@ -9,6 +9,7 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from ..registry import Registry
+from ..errors import ParameterError
 
 CONTROLLERS: Registry[Callable[..., "Controller"]] = Registry("controller")
 
@@ -62,11 +63,11 @@ def check_number(name: str, value: Any, low: float = 0.0, allow_low: bool = Fals
     """``value`` as a float in (low, high] (or [low, high] with ``allow_low``), else ValueError naming it."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
             or not math.isfinite(value):
-        raise ValueError(f"{name} must be a finite number, got {value!r}")
+        raise ParameterError(f"{name} must be a finite number, got {value!r}")
     value = float(value)
     if value < low or (value == low and not allow_low) or value > high:
         bound = f"{'≥' if allow_low else '>'} {low:g}" + (f" and ≤ {high:g}" if math.isfinite(high) else "")
-        raise ValueError(f"{name} must be {bound}, got {value!r}")
+        raise ParameterError(f"{name} must be {bound}, got {value!r}")
     return value
 
 
@@ -91,7 +92,7 @@ class StallDetector:
 
     def __init__(self, window: float = 4.0, progress: float = 0.03) -> None:
         if window <= 0 or progress <= 0:
-            raise ValueError("stall window and progress must be positive")
+            raise ParameterError("stall window and progress must be positive")
         self.window, self.progress = window, progress
         self._t0: Optional[float] = None
         self._best = float("inf")

@@ -11,6 +11,7 @@ import numpy as np
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 from .path_tracking import split_at_cusps
+from ..errors import ParameterError
 
 
 class _Follower(Controller):
@@ -27,10 +28,10 @@ class _Follower(Controller):
     def __init__(self, stall_window: float = 8.0, stall_progress: float = 0.02, replan: bool = False,
                  replan_interval: float = 1.0, check_ahead: float = 1.0) -> None:
         if not isinstance(replan, bool):
-            raise ValueError(f"replan must be true or false, got {replan!r}")
+            raise ParameterError(f"replan must be true or false, got {replan!r}")
         for name, value in (("replan_interval", replan_interval), ("check_ahead", check_ahead)):
             if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise ValueError(f"{name} must be a positive number, got {value!r}")
+                raise ParameterError(f"{name} must be a positive number, got {value!r}")
         self.stall = StallDetector(stall_window, stall_progress)
         self.path = np.zeros((1, 2))
         self.index = 0
@@ -87,7 +88,7 @@ class _Follower(Controller):
     def reset(self, goal, path=None) -> None:
         pts = np.asarray(path if path is not None else [goal], float)[:, :2]
         if len(pts) == 0:
-            raise ValueError("a path follower needs at least one waypoint")
+            raise ParameterError("a path follower needs at least one waypoint")
         self.path = pts
         self.index = 1 if len(pts) > 1 else 0
         self.stall.reset()
@@ -204,7 +205,7 @@ class PurePursuit(_Follower):
         if direction is None:
             return
         if self.replan:
-            raise ValueError("pure_pursuit cannot replan a path with headings and reverse stretches; leave replan off")
+            raise ParameterError("pure_pursuit cannot replan a path with headings and reverse stretches; leave replan off")
         self._stretches = split_at_cusps(self.path, direction)[::-1]  # popped from the end
         self._next_stretch()
 

@@ -16,6 +16,7 @@ from typing import Dict
 import numpy as np
 
 from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number  # noqa: F401
+from ..errors import ParameterError
 
 
 class CostmapController(Controller):
@@ -58,7 +59,7 @@ class CostmapController(Controller):
         self.costmap_resolution = check_number("costmap_resolution", costmap_resolution, high=100.0)
         self.footprint_padding = check_number("footprint_padding", footprint_padding, allow_low=True, high=10.0)
         if layers not in self.LAYERS:
-            raise ValueError(f"layers must be one of {', '.join(self.LAYERS)}, got {layers!r}")
+            raise ParameterError(f"layers must be one of {', '.join(self.LAYERS)}, got {layers!r}")
         self.layers = layers
         self.needs_scan = "sensor" in layers
         self.replan_interval = check_number("replan_interval", replan_interval)

@@ -43,6 +43,7 @@ from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS
 from .local import CostmapController, check_number
+from ..errors import ParameterError
 
 
 @njit(cache=True)
@@ -223,7 +224,7 @@ class MPPI(CostmapController):
         super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
                          layers, replan_interval, footprint_padding, costmap_resolution)
         if motion_model not in ("diff", "omni"):
-            raise ValueError(f"motion_model must be diff or omni, got {motion_model!r}")
+            raise ParameterError(f"motion_model must be diff or omni, got {motion_model!r}")
         self.motion_model = motion_model
         self.holonomic = motion_model == "omni"
         self.batch_size = check_count("batch_size", batch_size, 1, 100_000)

@@ -41,6 +41,7 @@ import numpy as np
 
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+from ..errors import ParameterError
 
 
 #: [m] how far along the stretch the nearest point is looked for each step: a path that passes
@@ -58,7 +59,7 @@ def split_at_cusps(path, direction) -> List[Tuple[np.ndarray, float]]:
     path = np.asarray(path, float)
     signs = np.where(np.asarray(direction, float) < 0, -1.0, 1.0)
     if len(signs) != len(path):
-        raise ValueError(f"a path of {len(path)} poses needs as many directions, got {len(signs)}")
+        raise ParameterError(f"a path of {len(path)} poses needs as many directions, got {len(signs)}")
     cuts = [0, *(i for i in range(1, len(signs) - 1) if signs[i + 1] != signs[i]), len(signs) - 1]
     return [(path[a:b + 1], float(signs[min(a + 1, b)])) for a, b in zip(cuts, cuts[1:]) if b > a]
 
@@ -124,9 +125,9 @@ class RearWheelFeedback(Controller):
                             ("goal_radius", goal_radius), ("cusp_radius", cusp_radius),
                             ("stall_window", stall_window)):
             if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise ValueError(f"rear_wheel_feedback {name} must be a positive number, got {value!r}")
+                raise ParameterError(f"rear_wheel_feedback {name} must be a positive number, got {value!r}")
         if creep_speed > speed:
-            raise ValueError(f"rear_wheel_feedback creep_speed ({creep_speed:g}) must not exceed speed ({speed:g})")
+            raise ParameterError(f"rear_wheel_feedback creep_speed ({creep_speed:g}) must not exceed speed ({speed:g})")
         self.speed, self.creep_speed = float(speed), float(creep_speed)
         self.k_heading, self.k_offset = 2.0 / settling_distance, 1.0 / settling_distance ** 2
         self.approach_dist, self.goal_radius, self.cusp_radius = approach_dist, goal_radius, cusp_radius
@@ -138,7 +139,7 @@ class RearWheelFeedback(Controller):
     def reset(self, goal, path=None, direction=None) -> None:
         poses = np.asarray(path if path is not None else [goal], float)
         if poses.ndim != 2 or len(poses) == 0:
-            raise ValueError("rear_wheel_feedback needs a path of at least one pose")
+            raise ParameterError("rear_wheel_feedback needs a path of at least one pose")
         signs = np.ones(len(poses)) if direction is None else direction
         self._stretches = [_Stretch(p, s) for p, s in reversed(split_at_cusps(poses, signs))]
         self.stall.reset()

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..robots.kinematics import _wrap, world_to_body
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+from ..errors import ParameterError
 
 
 def attractive(dx: float, dy: float, alpha: float, r: float, s: float) -> np.ndarray:
@@ -85,16 +86,16 @@ class PotentialField(Controller):
                  stall_progress: float = 0.03) -> None:
         for name, value in (("alpha", alpha), ("s", s), ("obstacle_s", obstacle_s), ("max_speed", max_speed)):
             if not value > 0:
-                raise ValueError(f"potential field {name} must be positive, got {value!r}")
+                raise ParameterError(f"potential field {name} must be positive, got {value!r}")
         for name, value in (("beta", beta), ("delta", delta), ("r", r), ("obstacle_r", obstacle_r),
                             ("heading_gain", heading_gain)):
             if not value >= 0:
-                raise ValueError(f"potential field {name} must be ≥ 0, got {value!r}")
+                raise ParameterError(f"potential field {name} must be ≥ 0, got {value!r}")
         self.alpha, self.beta, self.delta, self.r, self.s = alpha, beta, delta, r, s
         self.obstacle_r, self.obstacle_s = obstacle_r, obstacle_s
         self.max_speed, self.heading_gain = max_speed, heading_gain
         if not min_speed >= 0:
-            raise ValueError(f"potential field min_speed must be ≥ 0, got {min_speed!r}")
+            raise ParameterError(f"potential field min_speed must be ≥ 0, got {min_speed!r}")
         self.min_speed = min_speed
         self.stall = StallDetector(stall_window, stall_progress)
         self.goal = np.zeros(2)

@@ -63,6 +63,7 @@ import numpy as np
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, MAX_NON_OBSTACLE
 from .base import CONTROLLERS
 from .local import CostmapController, arc_rollouts, check_number
+from ..errors import ParameterError
 
 
 def carrot_on_path(path: np.ndarray, pose, lookahead: float) -> np.ndarray:
@@ -159,13 +160,13 @@ class RegulatedPurePursuit(CostmapController):
                            ("creep_when_blocked", creep_when_blocked),
                            ("plan_poses", plan_poses)):
             if not isinstance(flag, bool):
-                raise ValueError(f"{name} must be true or false, got {flag!r}")
+                raise ParameterError(f"{name} must be true or false, got {flag!r}")
         self.desired_linear_vel = check_number("desired_linear_vel", desired_linear_vel)
         self.lookahead_dist = check_number("lookahead_dist", lookahead_dist)
         self.min_lookahead_dist = check_number("min_lookahead_dist", min_lookahead_dist)
         self.max_lookahead_dist = check_number("max_lookahead_dist", max_lookahead_dist)
         if self.max_lookahead_dist < self.min_lookahead_dist:
-            raise ValueError(f"max_lookahead_dist ({max_lookahead_dist}) must be ≥ min_lookahead_dist "
+            raise ParameterError(f"max_lookahead_dist ({max_lookahead_dist}) must be ≥ min_lookahead_dist "
                              f"({min_lookahead_dist})")
         self.lookahead_time = check_number("lookahead_time", lookahead_time)
         self.scaled_lookahead = use_velocity_scaled_lookahead_dist

@@ -25,6 +25,7 @@ from typing import Optional
 
 import numpy as np
 from numba import njit
+from ..errors import ParameterError
 
 SQRT2 = math.sqrt(2.0)
 #: Nav2 Smac 2D's default
@@ -143,7 +144,7 @@ def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = 
     from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION
 
     if not (math.isfinite(cost_travel_multiplier) and cost_travel_multiplier >= 0):
-        raise ValueError(f"cost_travel_multiplier must be ≥ 0, got {cost_travel_multiplier!r}")
+        raise ParameterError(f"cost_travel_multiplier must be ≥ 0, got {cost_travel_multiplier!r}")
     costs = costmap.costs
     h, w = costs.shape
     passable = costs < INSCRIBED_INFLATED_OBSTACLE

@@ -91,6 +91,7 @@ from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search
 from .occupancy import OccupancyGrid, check_grid
+from ..errors import ParameterError
 
 MOTIONS = ("dubins", "reeds_shepp")
 DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
@@ -193,7 +194,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     check_grid(grid)
     if motion not in MOTIONS:
         hint = suggest(motion, list(MOTIONS)) if isinstance(motion, str) else ""
-        raise ValueError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}.{hint}".rstrip("."))
+        raise ParameterError(f"motion must be one of {', '.join(MOTIONS)}, got {motion!r}.{hint}".rstrip("."))
     r = check_turning_radius(turning_radius)
     sx, sy, st = check_pose("start", start, degrees_hint=True)
     gx, gy, gt = check_pose("goal", goal, degrees_hint=True)
@@ -201,15 +202,15 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
                              ("change_penalty", change_penalty, 0.0)):
         if finite_number(name, value) < low:
-            raise ValueError(f"{name} must be at least {low:g}, got {value!r}")
+            raise ParameterError(f"{name} must be at least {low:g}, got {value!r}")
     for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry)):
         if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
-            raise ValueError(f"{name} must be true or false, got {value!r}")
+            raise ParameterError(f"{name} must be true or false, got {value!r}")
     analytic_max = max(ANALYTIC_MIN_LENGTH, ANALYTIC_RADII * r) if analytic_expansion_max_length is None else \
         check_length("analytic_expansion_max_length", analytic_expansion_max_length)
     if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
                                                                    analytic_expansion_ratio) > 0:
-        raise ValueError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
+        raise ParameterError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
     # beyond any search's reach, so capped rather than refused; int64 for the kernel
     max_expansions = min(check_count("max_expansions", max_expansions, 1, None), MAX_COUNT)
     vertices, disc = robot_outline(footprint, robot_radius)
@@ -374,7 +375,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         return finish(Status.FAILED, f"internal check: the path found overlaps cell {hit}; please report it")
     waypoints = word_poses(kinds, lengths, spacing)
     if waypoints > MAX_WAYPOINTS:
-        raise ValueError(f"waypoint_spacing: {spacing:g} m gives {waypoints:.3g} poses along the "
+        raise ParameterError(f"waypoint_spacing: {spacing:g} m gives {waypoints:.3g} poses along the "
                          f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")
     poses, direction = trace_word(lsx, lsy, lst, kinds, lengths, r, spacing)
     world = np.column_stack([ox + c * poses[:, 0] - s * poses[:, 1], oy + s * poses[:, 0] + c * poses[:, 1],

@@ -27,11 +27,12 @@ from ..atomic import atomic_path
 from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number
 from ..yamlio import read_yaml, regular_file
 from .occupancy import MAX_CELLS, OccupancyGrid
+from ..errors import NavlabError, ParameterError
 
 PathLike = Union[str, os.PathLike]
 
 
-class MapFormatError(ValueError):
+class MapFormatError(NavlabError):
     """A map file is malformed; the message names the file and the problem."""
 
 
@@ -343,7 +344,7 @@ def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
         header, before it is decoded).
     """
     if rule not in MAP_RULES:
-        raise ValueError(f"rule must be one of {', '.join(MAP_RULES)}, got {rule!r}")
+        raise ParameterError(f"rule must be one of {', '.join(MAP_RULES)}, got {rule!r}")
     src = Path(yaml_path)
     # a map YAML is a dozen fields: a megabyte is generous (a 200 MB one took 105 s to refuse)
     meta = read_yaml(src, MapFormatError, MAX_MAP_YAML_BYTES, what="map YAML file")

@@ -8,6 +8,7 @@ import numpy as np
 
 from ..limits import MAX_COORDINATE, available_memory, check_length
 from .occupancy import MAX_CELLS, OccupancyGrid
+from ..errors import ParameterError
 
 #: Bytes a maze cell costs while it is carved: three bool arrays and, at
 #: worst, one (x, y) tuple on the Python stack (~120 B measured).
@@ -25,27 +26,27 @@ def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolut
     cell_size, wall, resolution = (check_length(name, v, allow_zero=False) for name, v in
                                    (("cell_size", cell_size), ("wall", wall), ("resolution", resolution)))
     if wall >= cell_size:
-        raise ValueError(f"wall ({wall:g} m) must be thinner than cell_size ({cell_size:g} m)")
+        raise ParameterError(f"wall ({wall:g} m) must be thinner than cell_size ({cell_size:g} m)")
     extent = max(cells_x, cells_y) * cell_size + wall
     if extent > MAX_COORDINATE:
-        raise ValueError(f"a {cells_x}x{cells_y}-cell maze of {cell_size:g} m cells is {extent:.3g} m across, more "
+        raise ParameterError(f"a {cells_x}x{cells_y}-cell maze of {cell_size:g} m cells is {extent:.3g} m across, more "
                          f"than the {MAX_COORDINATE:g} m navlab supports")
     if wall < resolution:
-        raise ValueError(f"resolution {resolution:g} m is coarser than the {wall:g} m wall: walls would vanish "
+        raise ParameterError(f"resolution {resolution:g} m is coarser than the {wall:g} m wall: walls would vanish "
                          f"from the map; use a resolution of at most {wall:g} m")
     if cell_size - wall < resolution:
-        raise ValueError(f"resolution {resolution:g} m is coarser than the {cell_size - wall:g} m corridor "
+        raise ParameterError(f"resolution {resolution:g} m is coarser than the {cell_size - wall:g} m corridor "
                          f"(cell_size - wall): corridors would vanish; use a resolution of at most "
                          f"{cell_size - wall:g} m")
     nx = int(round((cells_x * cell_size + wall) / resolution))
     ny = int(round((cells_y * cell_size + wall) / resolution))
     if nx * ny > MAX_CELLS:
-        raise ValueError(f"a {cells_x}x{cells_y}-cell maze at {resolution:g} m is a {nx:.3g}x{ny:.3g}-pixel map, more than "
+        raise ParameterError(f"a {cells_x}x{cells_y}-cell maze at {resolution:g} m is a {nx:.3g}x{ny:.3g}-pixel map, more than "
                          f"the {MAX_CELLS:.0e} cells navlab supports; use fewer cells or a coarser resolution")
     need = cells_x * cells_y * BYTES_PER_MAZE_CELL + nx * ny * BYTES_PER_PIXEL
     have = available_memory()
     if have is not None and need > have:
-        raise ValueError(f"a {cells_x}x{cells_y}-cell maze ({nx}x{ny} pixels) needs about {need / 2**30:.1f} GiB, "
+        raise ParameterError(f"a {cells_x}x{cells_y}-cell maze ({nx}x{ny} pixels) needs about {need / 2**30:.1f} GiB, "
                          f"more than the {have / 2**30:.1f} GiB available")
     return nx, ny
 
@@ -125,9 +126,9 @@ def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0
     """
     for name, v in (("cells_x", cells_x), ("cells_y", cells_y)):
         if isinstance(v, bool) or not isinstance(v, int) or v < 1:
-            raise ValueError(f"{name} must be a positive integer, got {v!r}")
+            raise ParameterError(f"{name} must be a positive integer, got {v!r}")
     if cells_x * cells_y > MAX_CELLS:
-        raise ValueError(f"a {cells_x}x{cells_y}-cell maze has more than the {MAX_CELLS:.0e} cells navlab supports")
+        raise ParameterError(f"a {cells_x}x{cells_y}-cell maze has more than the {MAX_CELLS:.0e} cells navlab supports")
     nx, ny = maze_size(cells_x, cells_y, cell_size, wall, resolution)
     rng = np.random.default_rng(seed)
     east, north = maze_walls(cells_x, cells_y, rng, progress)

@@ -17,6 +17,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number
+from ..errors import ParameterError
 
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
@@ -32,7 +33,7 @@ def _read_only(values: Any, dtype, name: str) -> np.ndarray:
     try:
         out = np.array(values, dtype=dtype, order="C", copy=True)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be an array of {np.dtype(dtype).name}: {exc}") from None
+        raise ParameterError(f"{name} must be an array of {np.dtype(dtype).name}: {exc}") from None
     out.flags.writeable = False
     return out.view()  # a view of a read-only base can never be made writeable again
 
@@ -43,14 +44,14 @@ def _mask(values: Any, name: str) -> np.ndarray:
     try:
         given = np.asarray(values)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"{name} must be an array of bool: {exc}") from None
+        raise ParameterError(f"{name} must be an array of bool: {exc}") from None
     if given.dtype != bool:
         if given.dtype.kind not in "iuf":
-            raise ValueError(f"{name} must be an array of true/false (or 0/1) per cell, got dtype {given.dtype}")
+            raise ParameterError(f"{name} must be an array of true/false (or 0/1) per cell, got dtype {given.dtype}")
         odd = np.flatnonzero((given != 0) & (given != 1)) if given.ndim else np.array([] if given in (0, 1) else [0])
         if odd.size:
             at = np.unravel_index(int(odd[0]), given.shape) if given.ndim else ()
-            raise ValueError(f"{name} must be true/false (or 0/1) per cell, got {given[at].item()!r} at index "
+            raise ParameterError(f"{name} must be true/false (or 0/1) per cell, got {given[at].item()!r} at index "
                              f"{tuple(int(i) for i in at)}")
     return _read_only(given, bool, name)
 
@@ -98,23 +99,23 @@ class OccupancyGrid:
         put = object.__setattr__  # frozen: fields are set once, here
         blocked = _mask(self.blocked, "blocked")
         if blocked.ndim != 2 or 0 in blocked.shape:
-            raise ValueError(f"blocked must be a non-empty 2D array, got shape {blocked.shape}")
+            raise ParameterError(f"blocked must be a non-empty 2D array, got shape {blocked.shape}")
         if blocked.size > MAX_CELLS:
-            raise ValueError(f"blocked has {blocked.size} cells, more than the {MAX_CELLS:.0e} navlab supports")
+            raise ParameterError(f"blocked has {blocked.size} cells, more than the {MAX_CELLS:.0e} navlab supports")
         put(self, "blocked", blocked)
         resolution = finite_number("resolution", self.resolution)
         if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
-            raise ValueError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
+            raise ParameterError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
                              f"got {self.resolution!r}")
         put(self, "resolution", resolution)
         try:
             origin = tuple(self.origin)
         except TypeError:
-            raise ValueError(f"origin must be (x, y, yaw), got {self.origin!r}") from None
+            raise ParameterError(f"origin must be (x, y, yaw), got {self.origin!r}") from None
         if len(origin) == 2:
             origin = origin + (0.0,)
         if len(origin) != 3:
-            raise ValueError(f"origin must be (x, y, yaw), got {self.origin!r}")
+            raise ParameterError(f"origin must be (x, y, yaw), got {self.origin!r}")
         x = check_coordinate("origin x", origin[0])
         y = check_coordinate("origin y", origin[1])
         yaw = finite_number("origin yaw", origin[2])
@@ -122,14 +123,14 @@ class OccupancyGrid:
         unknown = np.zeros(blocked.shape, bool) if self.unknown is None else self.unknown
         unknown = _mask(unknown, "unknown")
         if unknown.shape != blocked.shape:
-            raise ValueError(f"unknown has shape {unknown.shape}, blocked {blocked.shape}")
+            raise ParameterError(f"unknown has shape {unknown.shape}, blocked {blocked.shape}")
         put(self, "unknown", unknown)
         if self.probability is not None:
             prob = _read_only(self.probability, np.float32, "probability")
             if prob.shape != blocked.shape:
-                raise ValueError(f"probability has shape {prob.shape}, blocked {blocked.shape}")
+                raise ParameterError(f"probability has shape {prob.shape}, blocked {blocked.shape}")
             if np.any((prob < 0) | (prob > 1)):
-                raise ValueError("probability must lie in [0, 1] (NaN for unknown)")
+                raise ParameterError("probability must lie in [0, 1] (NaN for unknown)")
             put(self, "probability", prob)
         put(self, "name", str(self.name))
 
@@ -190,7 +191,7 @@ class OccupancyGrid:
         """
         p = np.asarray(xy, dtype=float)
         if not np.all(np.isfinite(p)):
-            raise ValueError(f"world points must be finite, got {p.tolist()}")
+            raise ParameterError(f"world points must be finite, got {p.tolist()}")
         local = (p - np.asarray(self.origin[:2])) @ self._rotation()
         return np.floor(local / self.resolution).astype(np.int64)
 
@@ -214,7 +215,7 @@ def check_grid(grid: Any, name: str = "grid") -> OccupancyGrid:
     """``grid`` if it is an :class:`OccupancyGrid`, else the error a planner gives for it, naming ``name``
     (an array of cells is the usual mistake: it has no resolution or origin to plan in)."""
     if not isinstance(grid, OccupancyGrid):
-        raise ValueError(f"{name} must be an OccupancyGrid (navlab.grid.OccupancyGrid(blocked, resolution=...)), "
+        raise ParameterError(f"{name} must be an OccupancyGrid (navlab.grid.OccupancyGrid(blocked, resolution=...)), "
                          f"got {type(grid).__name__}")
     return grid
 

@@ -40,6 +40,7 @@ from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
 from .occupancy import OccupancyGrid, check_grid
+from ..errors import ParameterError
 
 HEURISTICS: Registry[int] = Registry("heuristic")
 for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),
@@ -241,7 +242,7 @@ def _cell(value, what: str) -> Tuple[int, int]:
             return int(x), int(y)
     except (TypeError, ValueError, OverflowError):  # not a pair, NaN, inf
         pass
-    raise ValueError(f"{what} must be an integer cell (x, y), got {value!r}")
+    raise ParameterError(f"{what} must be an integer cell (x, y), got {value!r}")
 
 
 #: The stats every grid Result carries, whatever its status (inf where there is no path).
@@ -299,7 +300,7 @@ def line_of_sight(grid: OccupancyGrid, a, b, method: str = "supercover", allow_u
     """
     check_grid(grid)
     if method not in ("supercover", "bresenham"):
-        raise ValueError(f"method must be 'supercover' or 'bresenham', got {method!r}")
+        raise ParameterError(f"method must be 'supercover' or 'bresenham', got {method!r}")
     (ax, ay), (bx, by) = _cell(a, "a"), _cell(b, "b")
     if not (grid.contains([[ax, ay]])[0] and grid.contains([[bx, by]])[0]):
         return False
@@ -362,7 +363,7 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     GRID_ALGORITHMS.get(algorithm)
     hcode = HEURISTICS.get(heuristic)
     if connectivity not in (4, 8):
-        raise ValueError(f"connectivity must be 4 or 8, got {connectivity!r}")
+        raise ParameterError(f"connectivity must be 4 or 8, got {connectivity!r}")
     # compiling or loading this variant's kernels is timed apart (stats["warmup_s"]), as navlab.plan does:
     # it was 240–440 ms of a 0.7 ms search on a first call
     warmup_s = warm_kernels(algorithm, connectivity, hcode, bool(smooth))
@@ -384,15 +385,15 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
     if isinstance(weight, (bool, np.bool_)) or not as_float >= 1 or not math.isfinite(as_float):
         shown = f"an integer of {len(str(abs(int(weight))))} digits" if math.isinf(as_float) and \
             isinstance(weight, numbers.Integral) else repr(weight)
-        raise ValueError(f"weight must be a finite number >= 1, got {shown}")
+        raise ParameterError(f"weight must be a finite number >= 1, got {shown}")
     weight = as_float
     for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
         if not isinstance(value, (bool, np.bool_)):
-            raise ValueError(f"{flag} must be true or false, got {value!r}")
+            raise ParameterError(f"{flag} must be true or false, got {value!r}")
     if smooth_method not in ("bresenham", "supercover"):
-        raise ValueError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
+        raise ParameterError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
     if algorithm == "jps" and connectivity != 8:
-        raise ValueError("jps needs connectivity 8")
+        raise ParameterError("jps needs connectivity 8")
     # the heuristic and weight the search used: Dijkstra, JPS and Theta* have their own and no weight (the
     # params said 'manhattan' and 3.0 for a Dijkstra search given them, which used neither)
     params: Dict[str, Any] = {"algorithm": algorithm, "heuristic": OWN_HEURISTIC.get(algorithm, heuristic),
@@ -444,7 +445,7 @@ def plan_world(grid: OccupancyGrid, start_xy, goal_xy, **kwargs: Any) -> Result:
         try:
             x, y = xy
         except (TypeError, ValueError):
-            raise ValueError(f"{label} must be a point (x, y) in metres, got {xy!r}") from None
+            raise ParameterError(f"{label} must be a point (x, y) in metres, got {xy!r}") from None
         points.append((check_coordinate(f"{label} x", x), check_coordinate(f"{label} y", y)))
     cells = grid.world_to_cell(np.array(points, dtype=float))
     return plan(grid, tuple(cells[0]), tuple(cells[1]), **kwargs)

@@ -28,6 +28,7 @@ import numpy as np
 
 from ..world.raster import block_obstacles  # noqa: F401  (re-exported: the grid's rasteriser uses it)
 from .occupancy import MAX_CELLS, OccupancyGrid  # MAX_CELLS: the largest grid navlab makes or reads
+from ..errors import ParameterError
 
 DEFAULT_CELLS_ALONG_LONGER_SIDE = 200  #: default resolution = longer side of the bounds / this
 
@@ -46,17 +47,17 @@ def grid_shape(bounds, resolution: float) -> tuple[int, int]:
     """
     if isinstance(resolution, bool) or not isinstance(resolution, (int, float)) or not math.isfinite(resolution) \
             or resolution <= 0:
-        raise ValueError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
+        raise ParameterError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
     sx, sy = bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin
     # a hair of slack so that 10 m / 0.05 m counts 200 cells, not 199
     fx, fy = sx / resolution * (1 + 1e-12), sy / resolution * (1 + 1e-12)
     if not fx * fy <= MAX_CELLS:  # counted in floats: 1e-300 m cells are more than an int can format
-        raise ValueError(f"resolution {resolution:g} m would rasterise the {sx:g} m x {sy:g} m bounds to "
+        raise ParameterError(f"resolution {resolution:g} m would rasterise the {sx:g} m x {sy:g} m bounds to "
                          f"{fx:.3g} x {fy:.3g} = {fx * fy:.3g} cells (more than {MAX_CELLS:.0e}); "
                          "use a coarser resolution")
     nx, ny = math.floor(fx), math.floor(fy)
     if nx < 1 or ny < 1:
-        raise ValueError(f"resolution {resolution:g} m is larger than the {sx:g} m x {sy:g} m bounds")
+        raise ParameterError(f"resolution {resolution:g} m is larger than the {sx:g} m x {sy:g} m bounds")
     return nx, ny
 
 
@@ -109,7 +110,7 @@ def rasterize(world, resolution: Optional[float] = None) -> OccupancyGrid:
     grid = world.occupancy
     if grid is not None:
         if resolution is not None:
-            raise ValueError(f"resolution: a map is planned on its own cells ({grid.resolution:g} m); "
+            raise ParameterError(f"resolution: a map is planned on its own cells ({grid.resolution:g} m); "
                              "leave resolution out")
         # Many queries on one map (a benchmark, a ROS node) share its raster and
         # so its search buffers. A grid is immutable (read-only arrays, frozen
@@ -122,7 +123,7 @@ def rasterize(world, resolution: Optional[float] = None) -> OccupancyGrid:
         blocked = inflate_cells(blocked, grid.resolution, r, margin)
         if world.obstacles:
             if grid.origin[2] != 0.0:
-                raise ValueError("obstacles on a rotated map (origin yaw != 0) cannot be rasterised onto its cells")
+                raise ParameterError("obstacles on a rotated map (origin yaw != 0) cannot be rasterised onto its cells")
             block_obstacles(blocked, grid.origin[:2], grid.resolution, world.obstacles, r, margin)
         raster = OccupancyGrid(blocked, grid.resolution, grid.origin, name=grid.name)
         if isinstance(cache, dict):

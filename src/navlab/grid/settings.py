@@ -13,23 +13,24 @@ import math
 from typing import Any, Dict
 
 from ..limits import MAX_COORDINATE, MIN_LENGTH, is_finite_real, shown
+from ..errors import ParameterError
 
 
 def _name(key: str, value: Any, valid) -> str:
     if not isinstance(value, str) or value not in valid:
-        raise ValueError(f"{key} must be one of {', '.join(valid)}; got {value!r}")
+        raise ParameterError(f"{key} must be one of {', '.join(valid)}; got {value!r}")
     return value
 
 
 def _flag(key: str, value: Any) -> bool:
     if not isinstance(value, bool):
-        raise ValueError(f"{key} must be true or false, got {value!r}")
+        raise ParameterError(f"{key} must be true or false, got {value!r}")
     return value
 
 
 def _number(key: str, value: Any) -> float:
     if not isinstance(value, (int, float)) or not is_finite_real(value):
-        raise ValueError(f"{key} must be a finite number, got {shown(value)}")
+        raise ParameterError(f"{key} must be a finite number, got {shown(value)}")
     return float(value)
 
 
@@ -47,17 +48,17 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     if "connectivity" in out:
         value = out["connectivity"]
         if isinstance(value, bool) or not isinstance(value, (int, float)) or value not in (4, 8):
-            raise ValueError(f"connectivity must be 4 or 8, got {value!r}")
+            raise ParameterError(f"connectivity must be 4 or 8, got {value!r}")
         out["connectivity"] = int(value)
     for key in ("smooth", "allow_unknown"):
         if key in out:
             _flag(key, out[key])
     if "weight" in out and not _number("weight", out["weight"]) >= 1:
-        raise ValueError(f"weight must be a number >= 1, got {out['weight']!r}")
+        raise ParameterError(f"weight must be a number >= 1, got {out['weight']!r}")
     if "resolution" in out and out["resolution"] is not None:
         r = _number("resolution", out["resolution"])
         if not MIN_LENGTH <= r <= MAX_COORDINATE:
-            raise ValueError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
+            raise ParameterError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
                              f"got {out['resolution']!r}")
     if "smooth_method" in out:
         _name("smooth_method", out["smooth_method"], ["bresenham", "supercover"])

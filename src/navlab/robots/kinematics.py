@@ -19,6 +19,7 @@ from ..angles import wrap_angle as _wrap
 from ..limits import check_length, is_finite_real, shown
 from ..registry import Registry
 from ..world.footprint import Footprint
+from ..errors import ParameterError
 
 ROBOTS: Registry[type] = Registry("robot")
 
@@ -61,7 +62,7 @@ LENGTHS = ("radius", "wheel_radius", "track", "base_radius", "wheelbase")
 
 def _positive(name: str, value: float) -> None:
     if not (isinstance(value, (int, float)) and is_finite_real(value) and value > 0):
-        raise ValueError(f"{name} must be a positive number, got {shown(value)}")
+        raise ParameterError(f"{name} must be a positive number, got {shown(value)}")
     if name in LENGTHS:
         check_length(name, value, allow_zero=False)
 
@@ -243,7 +244,7 @@ class Car(DiffDrive):
         _positive("wheelbase", self.wheelbase)
         _positive("max_steer", self.max_steer)
         if not self.max_steer < 0.5 * math.pi:
-            raise ValueError(f"max_steer must be below π/2 rad (90°), got {self.max_steer!r}")
+            raise ParameterError(f"max_steer must be below π/2 rad (90°), got {self.max_steer!r}")
 
     @property
     def turning_radius(self) -> float:
@@ -312,11 +313,11 @@ class Omni3(_Shaped):
             _positive(name, getattr(self, name))
         self._check_shape()
         if len(self.wheel_angles_deg) != 3:
-            raise ValueError("Omni3 needs exactly three wheel angles")
+            raise ParameterError("Omni3 needs exactly three wheel angles")
         drive = np.radians(self.wheel_angles_deg) + np.pi / 2
         self._J = np.column_stack((np.cos(drive), np.sin(drive), np.full(3, self.base_radius)))
         if abs(np.linalg.det(self._J)) < 1e-9:
-            raise ValueError(f"wheel angles {self.wheel_angles_deg} cannot drive every body twist")
+            raise ParameterError(f"wheel angles {self.wheel_angles_deg} cannot drive every body twist")
         self._Jinv = np.linalg.inv(self._J)
 
     @property

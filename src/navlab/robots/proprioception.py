@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from typing import Optional
 
 import numpy as np
+from ..errors import ParameterError
 
 
 @dataclass
@@ -34,9 +35,9 @@ class WheelEncoders:
 
     def __post_init__(self) -> None:
         if not isinstance(self.ticks_per_rev, int) or self.ticks_per_rev < 1:
-            raise ValueError(f"ticks_per_rev must be a positive integer, got {self.ticks_per_rev!r}")
+            raise ParameterError(f"ticks_per_rev must be a positive integer, got {self.ticks_per_rev!r}")
         if not 0 <= self.noise < 1 or not 0 <= self.slip < 1:
-            raise ValueError("encoder noise and slip are fractions in [0, 1)")
+            raise ParameterError("encoder noise and slip are fractions in [0, 1)")
 
     def actual_speeds(self, commanded: np.ndarray, rng: Optional[np.random.Generator]) -> np.ndarray:
         """Wheel angular speeds the motors really achieve."""
@@ -86,7 +87,7 @@ class Compass:
 
     def __post_init__(self) -> None:
         if self.noise_deg < 0:
-            raise ValueError(f"compass noise must be ≥ 0, got {self.noise_deg}")
+            raise ParameterError(f"compass noise must be ≥ 0, got {self.noise_deg}")
 
     def read(self, true_heading: float, rng: Optional[np.random.Generator] = None) -> float:
         noise = self.noise_deg * rng.standard_normal() if (rng is not None and self.noise_deg) else 0.0

@@ -20,6 +20,7 @@ from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profi
 
 from ..registry import UnknownNameError, suggest
 from .convert import stamp_seconds
+from ..errors import ParameterError
 
 #: /map is latched: late subscribers get the last map (as nav2's map_server).
 MAP_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE)
@@ -60,13 +61,13 @@ def coerce(param: Param, value: Any) -> Any:
     if kind is float and isinstance(value, int) and not isinstance(value, bool):
         return float(value)
     if not isinstance(value, kind) or (kind is int and isinstance(value, bool)):
-        raise ValueError(f"parameter {param.name} must be {kind.__name__}, got {value!r}")
+        raise ParameterError(f"parameter {param.name} must be {kind.__name__}, got {value!r}")
     if kind is float and not math.isfinite(value) and math.isfinite(param.default):
-        raise ValueError(f"parameter {param.name} must be a finite number, got {value!r}")
+        raise ParameterError(f"parameter {param.name} must be a finite number, got {value!r}")
     if param.low is not None and value < param.low:
-        raise ValueError(f"parameter {param.name} must be at least {param.low:g}, got {value!r}")
+        raise ParameterError(f"parameter {param.name} must be at least {param.low:g}, got {value!r}")
     if param.name == "seed" and value < 0:  # numpy's generators take non-negative seeds only
-        raise ValueError(f"parameter seed must be a non-negative integer, got {value!r}")
+        raise ParameterError(f"parameter seed must be a non-negative integer, got {value!r}")
     return value
 
 

@@ -16,6 +16,7 @@ from typing import Optional, Tuple
 import numpy as np
 
 from ..grid.occupancy import OccupancyGrid
+from ..errors import ParameterError
 
 
 def yaw_to_quaternion(yaw: float) -> Tuple[float, float, float, float]:
@@ -86,10 +87,10 @@ def grid_from_msg(msg, occupied_threshold: int = 65, free_threshold: int = 25, n
     """
     w, h = int(msg.info.width), int(msg.info.height)
     if w == 0 or h == 0 or not msg.info.resolution > 0:
-        raise ValueError(f"empty map or bad resolution: {w}x{h} cells at {msg.info.resolution} m")
+        raise ParameterError(f"empty map or bad resolution: {w}x{h} cells at {msg.info.resolution} m")
     data = np.asarray(msg.data, dtype=np.int16)
     if data.size != w * h:
-        raise ValueError(f"map data has {data.size} cells, expected {w}x{h} = {w * h}")
+        raise ParameterError(f"map data has {data.size} cells, expected {w}x{h} = {w * h}")
     values = data.reshape(h, w)
     blocked = values >= occupied_threshold
     unknown = (values < 0) | ((values > free_threshold) & ~blocked)
@@ -192,7 +193,7 @@ def scan_from_msg(msg) -> Tuple[np.ndarray, np.ndarray]:
     range_max] and NaNs become ±inf as in REP 117."""
     ranges = np.asarray(msg.ranges, dtype=float)
     if ranges.size == 0:
-        raise ValueError("empty LaserScan")
+        raise ParameterError("empty LaserScan")
     angles = msg.angle_min + msg.angle_increment * np.arange(ranges.size)
     ranges = np.where(np.isnan(ranges), np.inf, ranges)
     ranges = np.where(ranges > msg.range_max, np.inf, ranges)
@@ -265,7 +266,7 @@ def twist_msg(vx: float, vy: float, omega: float):
 def twist_from_msg(msg) -> Tuple[float, float, float]:
     values = (msg.linear.x, msg.linear.y, msg.angular.z)
     if not all(math.isfinite(v) for v in values):
-        raise ValueError(f"non-finite velocity command {values}")
+        raise ParameterError(f"non-finite velocity command {values}")
     return values
 
 

@@ -20,6 +20,7 @@ from ..planning import is_grid_planner, plan
 from ..pose_queries import POSE_PLANNERS, is_pose_query
 from ..result import Result
 from ..world.world import World
+from ..errors import ParameterError
 
 Log = Callable[[str, str], None]
 Twist = Tuple[float, float, float]
@@ -101,7 +102,7 @@ class GoalPlanner:
                  inflation_radius: float = 0.175, allow_unknown: bool = False,
                  on_tree: Optional[Callable[[np.ndarray, np.ndarray], None]] = None, **params: Any) -> None:
         if not (inflation_radius >= 0 and math.isfinite(inflation_radius)):
-            raise ValueError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
+            raise ParameterError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
         hybrid = algorithm in POSE_PLANNERS
         self.tree_planner = not hybrid and not is_grid_planner(algorithm)  # unknown names: "did you mean"
         #: plans between poses (hybrid_astar, or a tree planner with motion dubins / reeds_shepp): the goal's and
@@ -109,10 +110,10 @@ class GoalPlanner:
         self.poses = is_pose_query(algorithm, params)
         if hybrid:
             if sampler != "uniform":
-                raise ValueError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
+                raise ParameterError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
         elif not self.tree_planner:
             if sampler != "uniform":
-                raise ValueError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
+                raise ParameterError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
             params = {**GRID_DEFAULTS, **params}
         elif on_tree is not None:
             params["keep_tree"] = True
@@ -138,7 +139,7 @@ class GoalPlanner:
         try:
             plan_on_map(empty, (0.5, 0.5), (1.5, 1.5), robot_radius=0.0, params=params, **q)
         except (TypeError, OverflowError) as exc:  # a parameter of the wrong kind (ROS parameters are typed loosely)
-            raise ValueError(f"bad setting for {q['algorithm']}: {exc}") from None
+            raise ParameterError(f"bad setting for {q['algorithm']}: {exc}") from None
 
     def set_map(self, grid: OccupancyGrid) -> Optional[np.ndarray]:
         self.grid, self.inflated = grid, grid.inflate(self.inflation_radius)
@@ -226,7 +227,7 @@ class Drive:
 
     def __init__(self, controller: Controller, log: Log, odom_timeout: float = 0.5) -> None:
         if not (odom_timeout > 0 and math.isfinite(odom_timeout)):
-            raise ValueError(f"odom_timeout must be a positive number of seconds, got {odom_timeout!r}")
+            raise ParameterError(f"odom_timeout must be a positive number of seconds, got {odom_timeout!r}")
         self.controller, self.log, self.odom_timeout = controller, log, float(odom_timeout)
         self.active = False
         self.last_odom: Optional[float] = None

@@ -24,6 +24,7 @@ from ..registry import parameters_of
 from ..sim.costmap_feed import CostmapFeed
 from ..world.footprint import Footprint
 from .core import Drive, Log, Twist
+from ..errors import ParameterError
 
 #: [m] the warm-up map's side (start-up: settings checked, kernels compiled)
 WARM_UP_SIDE = 4.0
@@ -108,20 +109,20 @@ class CostmapDrive:
         valid = costmap_controllers()
         if controller not in valid:
             factory = CONTROLLERS.get(controller)  # an unknown name: "did you mean"
-            raise ValueError(f"controller '{controller}' reads no costmap ({factory.__name__}); "
+            raise ParameterError(f"controller '{controller}' reads no costmap ({factory.__name__}); "
                              f"the local planner runs {', '.join(valid)}")
         for name, value in (("controller_frequency", controller_frequency), ("scan_timeout", scan_timeout)):
             if not (value > 0 and math.isfinite(value)):
-                raise ValueError(f"{name} must be a positive number, got {value!r}")
+                raise ParameterError(f"{name} must be a positive number, got {value!r}")
         if not (costmap_interval >= 0 and math.isfinite(costmap_interval)):
-            raise ValueError(f"costmap_interval must be a number ≥ 0, got {costmap_interval!r}")
+            raise ParameterError(f"costmap_interval must be a number ≥ 0, got {costmap_interval!r}")
         if "controller_frequency" in parameters_of(CONTROLLERS.get(controller)):
             settings["controller_frequency"] = float(controller_frequency)
         self.footprint = parse_footprint(footprint, robot_radius)
         try:
             self.controller = make_controller(controller, **settings)
         except (TypeError, OverflowError) as exc:  # a value of the wrong kind (ROS parameters are typed loosely)
-            raise ValueError(f"bad setting for {controller}: {exc}") from None
+            raise ParameterError(f"bad setting for {controller}: {exc}") from None
         self.name = controller
         self.log = log
         self.drive = Drive(self.controller, log, odom_timeout)
@@ -157,7 +158,7 @@ class CostmapDrive:
             feed.update(0.0, start, points)
             self.controller.command(0.0, start, points)
         except (TypeError, OverflowError) as exc:
-            raise ValueError(f"bad setting for {self.name}: {exc}") from None
+            raise ParameterError(f"bad setting for {self.name}: {exc}") from None
 
     # -- inputs ---------------------------------------------------------------
     def set_map(self, grid: OccupancyGrid):

@@ -19,6 +19,7 @@ import math
 import time
 from dataclasses import dataclass, field
 from typing import Any, Dict, List, Optional, Sequence
+from ..errors import ParameterError
 
 
 @dataclass
@@ -52,7 +53,7 @@ def message_class(type_name: str):
     """The Python class of ``pkg/msg/Name`` (imported from ``pkg.msg``)."""
     package, _, name = type_name.partition("/msg/")
     if not name:
-        raise ValueError(f"not a message type: {type_name!r}")
+        raise ParameterError(f"not a message type: {type_name!r}")
     return getattr(importlib.import_module(f"{package}.msg"), name)
 
 
@@ -97,9 +98,9 @@ def measure(topics: Sequence[str], duration: float, clock: str = "auto", discove
     from rclpy.qos import qos_profile_sensor_data
 
     if not duration > 0 or not math.isfinite(duration):
-        raise ValueError(f"--duration must be a positive number of seconds, got {duration!r}")
+        raise ParameterError(f"--duration must be a positive number of seconds, got {duration!r}")
     if clock not in ("auto", "sim", "wall"):
-        raise ValueError(f"--time must be auto, sim or wall, got {clock!r}")
+        raise ParameterError(f"--time must be auto, sim or wall, got {clock!r}")
     topics = [t if t.startswith("/") else "/" + t for t in topics]
     rclpy.init(args=args)
     try:

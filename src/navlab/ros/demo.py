@@ -40,6 +40,7 @@ from rclpy.signals import SignalHandlerOptions
 from .base import DEFAULT_QOS, NavlabNode
 from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
 from .launch import NodeProcesses, mapping_text, node_class
+from ..errors import ParameterError
 
 #: seed 002's maze geometry: 0.6 m cells, 0.1 m walls (0.5 m corridors)
 MAZE_CELL, MAZE_WALL = 0.6, 0.1
@@ -101,9 +102,9 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
     from ..sim.scene import load_scene_world
 
     if robot not in ("diff", "omni3"):
-        raise ValueError(f"robot must be diff or omni3, got {robot!r}")
+        raise ParameterError(f"robot must be diff or omni3, got {robot!r}")
     if not (real_time_factor > 0 and math.isfinite(real_time_factor)):
-        raise ValueError(f"real_time_factor must be positive, got {real_time_factor!r}")
+        raise ParameterError(f"real_time_factor must be positive, got {real_time_factor!r}")
     with run_folder(log_dir) as folder:
         if world is None:
             if robot == "diff":
@@ -114,10 +115,10 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
         scene = load_scene_world(world)
         if isinstance(scene, OccupancyGrid):
             if start is None or goal is None:
-                raise ValueError("a map has no start or goal of its own: give --start X Y [YAW] and --goal X Y")
+                raise ParameterError("a map has no start or goal of its own: give --start X Y [YAW] and --goal X Y")
         else:
             if robot == "diff":
-                raise ValueError("the diff-drive pipeline plans on a map: give a map_server YAML "
+                raise ParameterError("the diff-drive pipeline plans on a map: give a map_server YAML "
                                  "(or use --robot omni3 in a world file)")
             start, goal = start or scene.start, goal or scene.goal
         goal = (float(goal[0]), float(goal[1]))

@@ -11,6 +11,7 @@ import subprocess
 import sys
 from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Tuple
+from ..errors import ParameterError
 
 #: node name → (module, class)
 NODES: Dict[str, Tuple[str, str]] = {
@@ -38,7 +39,7 @@ def check_node_name(name: str) -> None:
     if name not in NODES:
         from ..registry import suggest
 
-        raise ValueError(f"unknown node '{name}'.{suggest(name, list(NODES))} Nodes: {', '.join(NODES)}")
+        raise ParameterError(f"unknown node '{name}'.{suggest(name, list(NODES))} Nodes: {', '.join(NODES)}")
 
 
 def node_class(name: str) -> type:

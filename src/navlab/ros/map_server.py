@@ -8,6 +8,7 @@ from nav_msgs.msg import OccupancyGrid as GridMsg
 from ..grid.mapio import load_map
 from .base import MAP_QOS, NavlabNode, Param, node_main
 from .convert import grid_to_msg
+from ..errors import ParameterError
 
 
 class MapServer(NavlabNode):
@@ -21,7 +22,7 @@ class MapServer(NavlabNode):
         super().__init__("map_server", **kwargs)
         path = self.params["yaml_filename"]
         if not path:
-            raise ValueError("map_server needs a map: -p yaml_filename:=maze.yaml")
+            raise ParameterError("map_server needs a map: -p yaml_filename:=maze.yaml")
         grid = load_map(path)
         self.publisher = self.create_publisher(GridMsg, self.params["topic_name"], MAP_QOS)
         msg = grid_to_msg(grid, self.params["frame_id"], self.get_clock().now().to_msg())

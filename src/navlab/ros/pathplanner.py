@@ -28,6 +28,7 @@ from visualization_msgs.msg import MarkerArray
 from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, NavlabNode, Param, node_main
 from .convert import grid_from_msg, path_to_msg, pose_from_msg, tree_to_markers
 from .core import GoalPlanner
+from ..errors import ParameterError
 
 
 class PathPlanner(NavlabNode):
@@ -73,9 +74,9 @@ class PathPlanner(NavlabNode):
         try:
             value = yaml.safe_load(text)
         except yaml.YAMLError as exc:
-            raise ValueError(f"parameter {name}: cannot read {text!r} as a YAML mapping ({exc})") from None
+            raise ParameterError(f"parameter {name}: cannot read {text!r} as a YAML mapping ({exc})") from None
         if not isinstance(value, dict):
-            raise ValueError(f"parameter {name}: {text!r} is not a YAML mapping")
+            raise ParameterError(f"parameter {name}: {text!r} is not a YAML mapping")
         return value
 
     def keep_tree(self, nodes, parent) -> None:

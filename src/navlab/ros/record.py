@@ -16,6 +16,7 @@ from visualization_msgs.msg import MarkerArray
 
 from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, SCAN_QOS, NavlabNode
 from .convert import tf_message_type
+from ..errors import ParameterError
 
 #: the navlab pipeline's topics: message class and subscription QoS
 TOPICS: Dict[str, Tuple[type, object]] = {
@@ -83,9 +84,9 @@ class BagRecorder(NavlabNode):
         super().__init__("navlab_recorder", **kwargs)
         unknown = [t for t in topics if t not in TOPICS]
         if unknown:
-            raise ValueError(f"cannot record {unknown}: known topics are {sorted(TOPICS)}")
+            raise ParameterError(f"cannot record {unknown}: known topics are {sorted(TOPICS)}")
         if Path(path).exists():
-            raise ValueError(f"{path} exists already: give a new directory for the bag")
+            raise ParameterError(f"{path} exists already: give a new directory for the bag")
         typestore = get_typestore(Stores.ROS2_KILTED)
         self.writer = Writer(Path(path), version=9, storage_plugin=StoragePlugin.MCAP)
         self.writer.open()

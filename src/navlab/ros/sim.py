@@ -39,6 +39,7 @@ from ..sim.scene import Scene, load_scene_world
 from ..sim.simulation import MAX_DT, MIN_DT
 from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, STREAM_QOS, NavlabNode, Param, node_main
 from .convert import odometry_msg, scan_to_msg, tf_message_type, time_msg, transform_msg, twist_from_msg
+from ..errors import ParameterError
 
 
 class SimNode(NavlabNode):
@@ -78,24 +79,24 @@ class SimNode(NavlabNode):
         super().__init__("sim", **kwargs)
         p = self.params
         if not p["world"]:
-            raise ValueError("sim needs a world: -p world:=maze.yaml (a map, world file or scene name)")
+            raise ParameterError("sim needs a world: -p world:=maze.yaml (a map, world file or scene name)")
         for name in ("dt", "real_time_factor"):
             if not (p[name] > 0 and math.isfinite(p[name])):
-                raise ValueError(f"{name} must be positive, got {p[name]!r}")
+                raise ParameterError(f"{name} must be positive, got {p[name]!r}")
         if p["dt"] < MIN_DT:
-            raise ValueError(f"dt = {p['dt']:g} s is below the smallest supported step, {MIN_DT:g} s")
+            raise ParameterError(f"dt = {p['dt']:g} s is below the smallest supported step, {MIN_DT:g} s")
         if p["dt"] > MAX_DT:
-            raise ValueError(f"dt = {p['dt']:g} s is above the largest supported step, {MAX_DT:g} s")
+            raise ParameterError(f"dt = {p['dt']:g} s is above the largest supported step, {MAX_DT:g} s")
         world = load_scene_world(p["world"])
         self.robot = make_robot(p["robot"])
         start = (p["x"], p["y"], p["yaw"])
         if math.isnan(p["x"]) or math.isnan(p["y"]):
             if isinstance(world, OccupancyGrid):
-                raise ValueError("a map has no start of its own: set -p x:=... -p y:=...")
+                raise ParameterError("a map has no start of its own: set -p x:=... -p y:=...")
             start = (*world.start, p["yaw"])
         self.scene = Scene(world, self.robot.radius, self.robot.footprint)
         if not self.scene.free(start):
-            raise ValueError(f"the robot cannot start there: {self.scene.describe(start)}")
+            raise ParameterError(f"the robot cannot start there: {self.scene.describe(start)}")
         noisy = p["noisy"]
         self.plant = Plant(self.scene, self.robot, start,
                            WheelEncoders(noise=0.02 if noisy else 0.0, slip=0.01 if noisy else 0.0),
@@ -106,7 +107,7 @@ class SimNode(NavlabNode):
         self.dt = p["dt"]
         for name in ("scan_latency", "scan_jitter", "odom_latency", "odom_jitter", "odom_rate"):
             if not (p[name] >= 0 and math.isfinite(p[name])):
-                raise ValueError(f"{name} must be a number ≥ 0, got {p[name]!r}")
+                raise ParameterError(f"{name} must be a number ≥ 0, got {p[name]!r}")
         # delays have their own generator: a run without them draws exactly as before
         self.delay_rng = np.random.default_rng(np.random.SeedSequence(int(p["seed"]), spawn_key=(4,)))
         self.odom_every = max(1, round(1.0 / (p["odom_rate"] * self.dt))) if p["odom_rate"] > 0 else 1

@@ -23,6 +23,7 @@ from numba import njit
 
 from ..angles import planned_heading, wrap_angle as _wrap
 from ..limits import check_coordinate, check_length
+from ..errors import ParameterError
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
 #: a segment code's letter in a word
@@ -43,9 +44,9 @@ def check_pose(name: str, pose, degrees_hint: bool = False) -> Tuple[float, floa
     try:
         values = list(pose)
     except TypeError:
-        raise ValueError(f"{name} must be a pose (x, y, theta), got {pose!r}") from None
+        raise ParameterError(f"{name} must be a pose (x, y, theta), got {pose!r}") from None
     if len(values) != 3:
-        raise ValueError(f"{name} must be a pose (x, y, theta) of 3 numbers, got {len(values)}")
+        raise ParameterError(f"{name} must be a pose (x, y, theta) of 3 numbers, got {len(values)}")
     x = check_coordinate(f"{name} x", values[0])
     y = check_coordinate(f"{name} y", values[1])
     return x, y, planned_heading(f"{name} theta", values[2], degrees_hint)

@@ -29,6 +29,7 @@ from shapely.geometry import Point, Polygon
 from ..limits import check_length, check_memory
 from ..world.footprint_collision import pose_grid_overlap
 from .curves import NOP, STRAIGHT, advance, trace_word
+from ..errors import ParameterError
 
 
 def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple[np.ndarray, float]:
@@ -36,7 +37,7 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
     polygon ``footprint`` ((K, 2) vertices, or a Footprint), or ``(empty, radius)``
     for a disc of ``robot_radius`` (a point robot when both are None)."""
     if footprint is not None and robot_radius is not None:
-        raise ValueError("give footprint or robot_radius, not both")
+        raise ParameterError("give footprint or robot_radius, not both")
     if footprint is not None and hasattr(footprint, "vertices"):  # navlab.world.footprint.Footprint
         if footprint.vertices is None:
             return np.empty((0, 2)), check_length("footprint radius", footprint.radius)
@@ -46,13 +47,13 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
     try:
         vertices = np.asarray(footprint, dtype=float)
     except (TypeError, ValueError):
-        raise ValueError(f"footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
+        raise ParameterError(f"footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
                          f"got {footprint!r:.80}") from None
     if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3:
-        raise ValueError("footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
+        raise ParameterError("footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
                          f"got shape {vertices.shape}")
     if not np.isfinite(vertices).all():
-        raise ValueError(f"footprint vertices must be finite numbers [m], got {vertices.tolist()!r:.80}")
+        raise ParameterError(f"footprint vertices must be finite numbers [m], got {vertices.tolist()!r:.80}")
     _check_polygon(tuple(map(tuple, vertices.tolist())))
     return vertices, 0.0
 
@@ -63,9 +64,9 @@ def _check_polygon(vertices: Tuple[Tuple[float, float], ...]) -> None:
     plans with one outline many times and shapely's validity test is a good part of a small query."""
     poly = Polygon(vertices)
     if not poly.is_valid or poly.area <= 0:
-        raise ValueError("footprint must be a simple polygon (its edges must not cross)")
+        raise ParameterError("footprint must be a simple polygon (its edges must not cross)")
     if not poly.covers(Point(0.0, 0.0)):
-        raise ValueError("footprint must contain the robot's origin (0, 0)")
+        raise ParameterError("footprint must contain the robot's origin (0, 0)")
 
 
 @njit(cache=True)
@@ -377,11 +378,11 @@ def _turning_scale_checked(turning_radius: float, vertices, disc: float, resolut
     delta = 0.5 * resolution  # as Lattice spaces poses
     smallest = reach / (delta / (FINEST_SPACING * resolution) - 1.0)
     if turning_radius < smallest:
-        raise ValueError(f"turning_radius {turning_radius:g} m is too small for a footprint reaching {reach:g} m "
+        raise ParameterError(f"turning_radius {turning_radius:g} m is too small for a footprint reaching {reach:g} m "
                          f"on {resolution:g} m cells: at least {smallest:.3g} m (or plan on finer cells: resolution)")
     step_arc = turning_radius * 2.0 * math.pi / bins
     if step_arc > extent:
-        raise ValueError(f"turning_radius {turning_radius:g} m: one heading step ({360 / bins:g}°) of arc is "
+        raise ParameterError(f"turning_radius {turning_radius:g} m: one heading step ({360 / bins:g}°) of arc is "
                          f"{step_arc:.3g} m, longer than the map ({extent:.3g} m across); use a smaller radius")
 
 

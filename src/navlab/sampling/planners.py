@@ -25,6 +25,7 @@ from ..result import Result, Status, Tree
 from . import tree_kernel as K
 from .regions import BoxRegion, InformedRegion
 from .samplers import Sampler, make_sampler
+from ..errors import ParameterError
 
 PLANNERS: Registry[type] = Registry("planner")
 
@@ -44,10 +45,10 @@ def _check_positive(name: str, value: Any, required: bool = False) -> None:
         return
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or (
             isinstance(value, float) and not math.isfinite(value)):
-        raise ValueError(f"{name} must be a positive number, got {value!r}")
+        raise ParameterError(f"{name} must be a positive number, got {value!r}")
     if value > MAX_COUNT:  # the compiled loops count in int64
         shown = f"{value:.3g}" if value < 1e300 else f"a number of {len(str(int(value)))} digits"
-        raise ValueError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown}")
+        raise ParameterError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown}")
 
 
 def rrt_star_gamma(world) -> float:
@@ -116,12 +117,12 @@ class TreePlanner:
         _check_positive("max_time", self.max_time)
         self.batch_size = check_count("batch_size", self.batch_size)
         if self.batch_size > MAX_BATCH_SIZE:
-            raise ValueError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
+            raise ParameterError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
                              f"got {self.batch_size}")
         if self.index not in INDEXES:
-            raise ValueError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
+            raise ParameterError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
         if not isinstance(self.keep_tree, (bool, np.bool_)):  # 'yes' and 2 were taken as true
-            raise ValueError(f"keep_tree must be true or false, got {self.keep_tree!r}")
+            raise ParameterError(f"keep_tree must be true or false, got {self.keep_tree!r}")
 
     def check_fits(self, max_iter: Optional[int] = None) -> None:
         """Refuse (ValueError naming max_iter) a budget whose tree could not fit in

@@ -23,6 +23,7 @@ import numpy as np
 from ..limits import check_count, check_length
 from ..registry import Registry, UnknownNameError, check_params, parameters_of, suggest
 from .regions import BoxRegion
+from ..errors import ParameterError
 
 #: most rounds a sampler may be asked to try (each round is one batch of checks)
 MAX_ROUNDS = 1_000_000
@@ -36,7 +37,7 @@ SAMPLERS: Registry[type] = Registry("sampler")
 
 def _probability(name: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not (0.0 <= value <= 1.0):
-        raise ValueError(f"{name} must be a probability in [0, 1], got {value!r}")
+        raise ParameterError(f"{name} must be a probability in [0, 1], got {value!r}")
     return float(value)
 
 
@@ -86,9 +87,9 @@ class Sampler:
             has passed and the sampler returns what it has, topped up.
         """
         if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 0:
-            raise ValueError(f"n must be a non-negative whole number, got {n!r}")
+            raise ParameterError(f"n must be a non-negative whole number, got {n!r}")
         if deadline is not None and not (isinstance(deadline, (int, float)) and math.isfinite(deadline)):
-            raise ValueError(f"deadline must be a finite time.perf_counter() value, got {deadline!r}")
+            raise ParameterError(f"deadline must be a finite time.perf_counter() value, got {deadline!r}")
         region = region if region is not None else BoxRegion(world.bounds)
         checker = checker if checker is not None else world.checker()
         if n == 0:
@@ -132,7 +133,7 @@ class GoalBiasSampler(Sampler):
         elif isinstance(base, Sampler):
             self._base = base
         else:
-            raise ValueError(f"base must be a sampler name or a Sampler, got {base!r}")
+            raise ParameterError(f"base must be a sampler name or a Sampler, got {base!r}")
         self.base = base
 
     def resolved_params(self, world) -> Dict[str, Any]:
@@ -325,16 +326,16 @@ class IntegrationSampler(Sampler):
     def __init__(self, weights: Optional[Dict[str, float]] = None, sigma: Optional[float] = None,
                  directions: int = 8, tolerance: Optional[float] = None) -> None:
         if weights is not None and not isinstance(weights, Mapping):
-            raise ValueError("weights must be a mapping of component to probability, e.g. "
+            raise ParameterError("weights must be a mapping of component to probability, e.g. "
                              f"{INTEGRATION_DEFAULT_WEIGHTS}, got {weights!r}")
         w = dict(INTEGRATION_DEFAULT_WEIGHTS if weights is None else weights)
         for key, value in w.items():
             if not isinstance(key, str) or key not in self.COMPONENTS:
                 key = str(key)
-                raise ValueError(f"weights: unknown component '{key}'; valid: {', '.join(self.COMPONENTS)}." + suggest(key, list(self.COMPONENTS)))
+                raise ParameterError(f"weights: unknown component '{key}'; valid: {', '.join(self.COMPONENTS)}." + suggest(key, list(self.COMPONENTS)))
             _probability(f"weights['{key}']", value)
         if abs(sum(w.values()) - 1.0) > 1e-9:
-            raise ValueError(f"weights must sum to 1, got {sum(w.values()):.6g} ({w})")
+            raise ParameterError(f"weights must sum to 1, got {sum(w.values()):.6g} ({w})")
         self.weights = w
         self.sigma, self.directions, self.tolerance = sigma, directions, tolerance
         self._parts = {

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..registry import Registry
 from . import raycast as R
+from ..errors import ParameterError
 
 NOISE_MODELS: Registry[Callable[..., "NoiseModel"]] = Registry("lidar noise model")
 
@@ -43,7 +44,7 @@ class RPLidarA1Noise(NoiseModel):
 
     def __init__(self, scale: float = 1.0) -> None:
         if not scale > 0:
-            raise ValueError(f"noise scale must be positive, got {scale!r}")
+            raise ParameterError(f"noise scale must be positive, got {scale!r}")
         self.scale = scale
 
     def sigma(self, ranges: np.ndarray) -> np.ndarray:
@@ -57,7 +58,7 @@ class GaussianNoise(NoiseModel):
 
     def __init__(self, sigma: float = 0.01, relative: float = 0.0) -> None:
         if sigma < 0 or relative < 0:
-            raise ValueError("noise sigma and relative must be ≥ 0")
+            raise ParameterError("noise sigma and relative must be ≥ 0")
         self.sigma_m, self.relative = sigma, relative
 
     def sigma(self, ranges: np.ndarray) -> np.ndarray:
@@ -98,15 +99,15 @@ class Lidar:
 
     def __post_init__(self) -> None:
         if isinstance(self.beams, bool) or not isinstance(self.beams, int) or not 1 <= self.beams <= MAX_BEAMS:
-            raise ValueError(f"beams must be an integer from 1 to {MAX_BEAMS}, got {self.beams!r}")
+            raise ParameterError(f"beams must be an integer from 1 to {MAX_BEAMS}, got {self.beams!r}")
         if not 0 < self.fov <= 2 * math.pi + 1e-12:
-            raise ValueError(f"fov must be in (0, 2π], got {self.fov!r}")
+            raise ParameterError(f"fov must be in (0, 2π], got {self.fov!r}")
         if not 0 <= self.range_min < self.range_max:
-            raise ValueError(f"need 0 ≤ range_min < range_max, got {self.range_min}, {self.range_max}")
+            raise ParameterError(f"need 0 ≤ range_min < range_max, got {self.range_min}, {self.range_max}")
         if isinstance(self.noise, str):
             self.noise = NOISE_MODELS.get(self.noise)()
         elif self.noise is not None and not isinstance(self.noise, NoiseModel):  # (lidar=3 was an AttributeError)
-            raise ValueError(f"lidar noise must be a model's name ({', '.join(NOISE_MODELS.names())}) or a "
+            raise ParameterError(f"lidar noise must be a model's name ({', '.join(NOISE_MODELS.names())}) or a "
                              f"NoiseModel, got {self.noise!r}")
         full = abs(self.fov - 2 * math.pi) < 1e-12
         start = self.angle_min if self.angle_min is not None else (0.0 if full else -self.fov / 2)

@@ -15,6 +15,7 @@ from dataclasses import dataclass
 from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
+from ..errors import ParameterError
 
 #: [s] slack when comparing times built from sums of steps
 _EPS = 1e-9
@@ -41,11 +42,11 @@ class SensorTiming:
 
     def __post_init__(self) -> None:
         if self.rate is not None and not (_number(self.rate) and math.isfinite(self.rate) and self.rate > 0):
-            raise ValueError(f"field 'rate' must be a positive number of Hz, got {self.rate!r}")
+            raise ParameterError(f"field 'rate' must be a positive number of Hz, got {self.rate!r}")
         for name in ("latency", "jitter"):
             value = getattr(self, name)
             if not (_number(value) and math.isfinite(value) and value >= 0):
-                raise ValueError(f"field '{name}' must be a number of seconds ≥ 0, got {value!r}")
+                raise ParameterError(f"field '{name}' must be a number of seconds ≥ 0, got {value!r}")
 
     @property
     def immediate(self) -> bool:
@@ -60,14 +61,14 @@ class SensorTiming:
         if isinstance(data, SensorTiming):
             return data
         if not isinstance(data, dict):
-            raise ValueError(f"{what}: expected a mapping {{rate, latency, jitter}}, got {data!r}")
+            raise ParameterError(f"{what}: expected a mapping {{rate, latency, jitter}}, got {data!r}")
         unknown = sorted(set(data) - {"rate", "latency", "jitter"})
         if unknown:
-            raise ValueError(f"{what}: field '{unknown[0]}' is not one of rate, latency, jitter")
+            raise ParameterError(f"{what}: field '{unknown[0]}' is not one of rate, latency, jitter")
         try:
             return cls(**data)
         except ValueError as exc:
-            raise ValueError(f"{what}: {exc}") from None
+            raise ParameterError(f"{what}: {exc}") from None
 
 
 def _number(value: Any) -> bool:

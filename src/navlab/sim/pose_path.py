@@ -17,6 +17,7 @@ import math
 from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
+from ..errors import ParameterError
 
 #: controllers that follow a path of poses with reverse stretches
 POSE_FOLLOWERS = ("rear_wheel_feedback", "pure_pursuit")
@@ -81,7 +82,7 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
     planner = planner or DEFAULT_POSE_PLANNER
     params = dict(plan_params)
     if planner not in POSE_PLANNERS and planner not in TREE_POSE_PLANNERS:
-        raise ValueError(f"planner '{planner}' plans for a point; a run between poses needs "
+        raise ParameterError(f"planner '{planner}' plans for a point; a run between poses needs "
                          f"{', '.join((*POSE_PLANNERS, *TREE_POSE_PLANNERS))}")
     params.setdefault("motion", "reeds_shepp")
     if getattr(robot, "steers", False):
@@ -90,7 +91,7 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
         least = robot.turning_radius
         given = check_turning_radius(params.setdefault("turning_radius", least * STEERING_ROOM))
         if given < least * (1 - 1e-12):
-            raise ValueError(f"turning_radius {given:g} m is tighter than the car can turn "
+            raise ParameterError(f"turning_radius {given:g} m is tighter than the car can turn "
                              f"({least:.4g} m = wheelbase / tan(max_steer); its plans are drawn at "
                              f"{STEERING_ROOM:g} × that, {least * STEERING_ROOM:.4g} m, unless turning_radius is given)")
     params.setdefault("footprint", robot.shape.to_value())

@@ -14,6 +14,7 @@ from .replan import PLAN_MARGIN, Replanner  # noqa: F401  (PLAN_MARGIN: the seed
 from .replan import plan_path as _plan_path
 from .scene import load_scene_world
 from .simulation import SimResult, Simulation
+from ..errors import NavlabError, ParameterError
 
 #: the omni robot follows a global plan with the potential field as its local
 #: avoider (the plain field stalls in traps and clutter); the diff drive
@@ -28,7 +29,7 @@ def _has_moving(scene_world) -> bool:
     return any(getattr(o, "motion", None) is not None for o in getattr(scene_world, "obstacles", ()))
 
 
-class NoPathError(ValueError):
+class NoPathError(NavlabError):
     """The global planner found no path for the robot (an answer about the
     world, not bad input: an experiment records it and goes on). ``status``
     says which answer, as ``navlab plan``'s statuses do."""
@@ -58,7 +59,7 @@ def _speed_within_robot(name: str, params: Dict[str, Any], given: Dict[str, Any]
     if not _is_number(speed) or speed <= bot.max_speed:  # not a number: the controller names it
         return params
     if setting in given:
-        raise ValueError(f"controller {name} {setting} {speed:g} m/s is more than the robot's max_speed "
+        raise ParameterError(f"controller {name} {setting} {speed:g} m/s is more than the robot's max_speed "
                          f"{bot.max_speed:g} m/s: lower it, or raise the robot's (--robot-param max_speed=...)")
     return {**params, setting: bot.max_speed}
 
@@ -90,7 +91,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         if values is None:
             continue
         if isinstance(values, (str, bytes, dict)) or not hasattr(values, "__len__") or len(values) not in (2, 3):
-            raise ValueError(f"{name} must be (x, y) or (x, y, θ), got {values!r}")
+            raise ParameterError(f"{name} must be (x, y) or (x, y, θ), got {values!r}")
         for axis, v in zip("xy", values):
             check_coordinate(f"{name} {axis}", v)
         # any finite heading, wrapped (and a note beyond ±2π, most often degrees), as the planners take it
@@ -99,12 +100,12 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     for name, value in (("robot_params", robot_params), ("controller_params", controller_params),
                         ("plan_params", plan_params)):
         if value is not None and not isinstance(value, dict):
-            raise ValueError(f"{name} must be a mapping of name: value, got {value!r}")
+            raise ParameterError(f"{name} must be a mapping of name: value, got {value!r}")
     check_seed(seed)
     if lidar is not None and not isinstance(lidar, str):  # (lidar=3 was an AttributeError deep in a scan)
         from ..sensors.lidar import NOISE_MODELS
 
-        raise ValueError(f"lidar must be 'none', 'exact' or a noise model's name ({', '.join(NOISE_MODELS.names())}), "
+        raise ParameterError(f"lidar must be 'none', 'exact' or a noise model's name ({', '.join(NOISE_MODELS.names())}), "
                          f"got {lidar!r}")
     scene_world = load_scene_world(world)
     plan_params = dict(plan_params or {})
@@ -118,7 +119,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
 
             CONTROLLERS.get(controller)  # an unknown name first: "did you mean"
         if controller is not None and controller not in POSE_FOLLOWERS:
-            raise ValueError(f"controller '{controller}' cannot follow a path of poses with reverse stretches (this "
+            raise ParameterError(f"controller '{controller}' cannot follow a path of poses with reverse stretches (this "
                              f"run plans between poses); use {', '.join(POSE_FOLLOWERS)}")
         follower = controller or POSE_FOLLOWERS[0]
         if getattr(bot, "steers", False):
@@ -131,18 +132,18 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:
         if is_grid:
-            raise ValueError("a map has no start of its own: give --start X Y THETA")
+            raise ParameterError("a map has no start of its own: give --start X Y THETA")
         start = (*scene_world.start, getattr(scene_world, "start_heading", None) or 0.0)
     if goal is None:
         if is_grid:
-            raise ValueError("a map has no goal of its own: give --goal X Y")
+            raise ParameterError("a map has no goal of its own: give --goal X Y")
         heading = getattr(scene_world, "goal_heading", None)
         goal = tuple(scene_world.goal) + ((heading,) if poses and heading is not None else ())
     start = tuple(float(v) for v in start) if len(start) == 3 else (float(start[0]), float(start[1]), 0.0)
     goal_heading = float(goal[2]) if len(goal) == 3 else None
     goal = (float(goal[0]), float(goal[1]))
     if planner is not None and not ctrl.needs_path:
-        raise ValueError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
+        raise ParameterError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
                          "and pure_pursuit")
     direction = None
     if poses:

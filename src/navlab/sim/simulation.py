@@ -28,6 +28,7 @@ from ..sensors.timing import DelayLine, SensorTiming
 from .plant import Plant
 from .polyline import distance_to_polyline
 from .scene import Scene
+from ..errors import ParameterError
 
 #: simulation steps the logs hold at first (they double as the run goes on)
 INITIAL_LOG_ROWS = 4096
@@ -163,23 +164,23 @@ class Simulation:
                  lidar_timing: Optional[SensorTiming] = None, odometry_timing: Optional[SensorTiming] = None,
                  direction=None, goal_heading: Optional[float] = None) -> None:
         if not (isinstance(dt, (int, float)) and is_finite_real(dt) and dt > 0):
-            raise ValueError(f"time step dt must be a positive number of seconds, got {shown(dt)}")
+            raise ParameterError(f"time step dt must be a positive number of seconds, got {shown(dt)}")
         if dt < MIN_DT:
-            raise ValueError(f"time step dt = {dt:g} s is below the smallest supported step, {MIN_DT:g} s")
+            raise ParameterError(f"time step dt = {dt:g} s is below the smallest supported step, {MIN_DT:g} s")
         if dt > MAX_DT:
-            raise ValueError(f"time step dt = {dt:g} s is above the largest supported step, {MAX_DT:g} s "
+            raise ParameterError(f"time step dt = {dt:g} s is above the largest supported step, {MAX_DT:g} s "
                              "(the controller acts once a step: a longer step drives blind past goals and gaps)")
         if not (isinstance(max_time, (int, float)) and is_finite_real(max_time) and max_time > 0):
-            raise ValueError(f"max_time must be a positive, finite number of seconds, got {shown(max_time)}")
+            raise ParameterError(f"max_time must be a positive, finite number of seconds, got {shown(max_time)}")
         if max_time / dt > MAX_STEPS:
-            raise ValueError(f"max_time / dt = {max_time / dt:.3g} steps, more than the {MAX_STEPS:.0e} a run "
+            raise ParameterError(f"max_time / dt = {max_time / dt:.3g} steps, more than the {MAX_STEPS:.0e} a run "
                              f"supports; lower max_time or raise dt")
         if controller.needs_scan and lidar is None:
-            raise ValueError(f"controller {type(controller).__name__} reads LiDAR points: give a lidar")
+            raise ParameterError(f"controller {type(controller).__name__} reads LiDAR points: give a lidar")
         if controller.needs_path and path is None:
-            raise ValueError(f"controller {type(controller).__name__} follows a path: give a path or a planner")
+            raise ParameterError(f"controller {type(controller).__name__} follows a path: give a path or a planner")
         if controller.holonomic and not robot.holonomic:
-            raise ValueError(f"controller {type(controller).__name__} commands sideways motion, "
+            raise ParameterError(f"controller {type(controller).__name__} commands sideways motion, "
                              f"which a {type(robot).__name__} cannot do")
         self.scene = Scene(scene_world, robot.radius, getattr(robot, "footprint", None))
         self.robot, self.controller, self.lidar = robot, controller, lidar
@@ -191,9 +192,9 @@ class Simulation:
         self.path = None if path is None else np.asarray(path, float)
         self.direction = None if direction is None else np.asarray(direction, float)
         if self.direction is not None and (self.path is None or len(self.direction) != len(self.path)):
-            raise ValueError("direction needs a path with one direction per pose")
+            raise ParameterError("direction needs a path with one direction per pose")
         if goal_heading is not None and not (isinstance(goal_heading, (int, float)) and math.isfinite(goal_heading)):
-            raise ValueError(f"goal_heading must be a finite number of radians, got {goal_heading!r}")
+            raise ParameterError(f"goal_heading must be a finite number of radians, got {goal_heading!r}")
         self.goal_heading = None if goal_heading is None else float(goal_heading)
         self.record_scans = record_scans
         self.lidar_timing = SensorTiming.from_dict(lidar_timing, "lidar")
@@ -210,10 +211,10 @@ class Simulation:
 
             self.costmap_feed = CostmapFeed(scene_world, robot.shape, controller, self.goal)
         if not self.scene.free(self.start):
-            raise ValueError(f"the robot starts in collision: {self.scene.describe(self.start)}")
+            raise ParameterError(f"the robot starts in collision: {self.scene.describe(self.start)}")
         headings = np.linspace(0, np.pi, 8, False) if self.goal_heading is None else (self.goal_heading,)
         if not any(self.scene.free(np.array((*self.goal, heading))) for heading in headings):
-            raise ValueError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
+            raise ParameterError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
 
     def run(self, seed: Any = 0) -> SimResult:
         rng = np.random.default_rng(seed)

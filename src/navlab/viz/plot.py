@@ -9,6 +9,7 @@ import numpy as np
 from ..result import Result, Tree
 from .legend import FRAME, place_legend
 from .save import save_figure
+from ..errors import ParameterError
 
 
 def _pyplot():
@@ -31,9 +32,9 @@ def finish_figure(fig, out: Optional[str], dpi: int = 110):
         try:
             save_figure(fig, out, dpi=dpi, bbox_inches="tight")
         except OSError as exc:
-            raise ValueError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
+            raise ParameterError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
         except ValueError as exc:  # matplotlib: "Format 'txt' is not supported (supported formats: ...)"
-            raise ValueError(f"{out}: cannot write the figure: {exc}") from None
+            raise ParameterError(f"{out}: cannot write the figure: {exc}") from None
         finally:
             _pyplot().close(fig)
     return fig
@@ -66,9 +67,9 @@ def finish_figure_keep(fig, out: str, dpi: int = 110) -> None:
     try:
         save_figure(fig, out, dpi=dpi, bbox_inches="tight")
     except OSError as exc:
-        raise ValueError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
+        raise ParameterError(f"{out}: cannot write the figure: {exc.strerror or exc}") from None
     except ValueError as exc:
-        raise ValueError(f"{out}: cannot write the figure: {exc}") from None
+        raise ParameterError(f"{out}: cannot write the figure: {exc}") from None
 
 
 def draw_map(ax, grid, allow_unknown: bool = False, occupied: float = 0.35) -> None:
@@ -211,7 +212,7 @@ def _world_and_result(world, result):
     if not isinstance(world, Result):
         raise TypeError(f"plot_plan(world, result) or plot_plan(result): got one {type(world).__name__} and no result")
     if world.world is None:
-        raise ValueError("this result does not record its world (navlab.plan records it; a planner called "
+        raise ParameterError("this result does not record its world (navlab.plan records it; a planner called "
                          "directly does not): plot_plan(world, result)")
     return world.world, world
 

@@ -8,6 +8,7 @@ from typing import Optional
 import numpy as np
 
 from .plot import _pyplot, draw_footprint, draw_path, draw_world, finish_plot, new_axes
+from ..errors import ParameterError
 
 
 def draw_scene(ax, scene_world, moving: bool = True) -> None:
@@ -213,7 +214,7 @@ def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = G
             images[0].save(tmp, format="GIF", save_all=True, append_images=images[1:],
                            duration=int(round(1000 / fps)), loop=0)
     except OSError as exc:
-        raise ValueError(f"{out}: cannot write the animation: {exc.strerror or exc}") from None
+        raise ParameterError(f"{out}: cannot write the animation: {exc.strerror or exc}") from None
     finally:
         plt.close(fig)
 

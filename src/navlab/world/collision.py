@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from . import geometry as _geo
+from ..errors import ParameterError
 
 #: [cells] how far past a surface cell's far side a boundary sampler's ray reaches
 _MAP_REACH_CELLS = 2.5
@@ -24,7 +25,7 @@ def _as_points(points) -> np.ndarray:
     if arr.ndim == 1:
         arr = arr.reshape(1, -1)
     if arr.ndim != 2 or arr.shape[1] != 2:
-        raise ValueError(f"expected points of shape (N, 2), got {np.shape(points)}")
+        raise ParameterError(f"expected points of shape (N, 2), got {np.shape(points)}")
     return arr
 
 
@@ -72,7 +73,7 @@ class CollisionChecker:
         """Bool array: each segment ``a[i] → b[i]`` keeps clearance everywhere."""
         pa, pb = _as_points(a), _as_points(b)
         if pa.shape != pb.shape:
-            raise ValueError(f"segment ends differ in shape: {pa.shape} vs {pb.shape}")
+            raise ParameterError(f"segment ends differ in shape: {pa.shape} vs {pb.shape}")
         self.calls += 1
         self.segment_checks += len(pa)
         return _geo.segments_free_batch(pa, pb, self.geometry)

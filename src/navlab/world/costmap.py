@@ -39,6 +39,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 from numba import njit
 
+from ..errors import NavlabError
 from ..limits import check_length, is_finite_real, shown
 
 FREE_SPACE = 0
@@ -51,7 +52,7 @@ MAX_NON_OBSTACLE = 252
 MAX_COSTMAP_CELLS = 100_000_000
 
 
-class CostmapError(ValueError):
+class CostmapError(NavlabError):
     """A costmap setting that cannot work; the message names the field."""
 
 

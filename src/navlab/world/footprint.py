@@ -17,13 +17,14 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
+from ..errors import NavlabError
 from ..limits import MAX_COORDINATE
 
 #: the most vertices a footprint may have (real ones have 4–20)
 MAX_VERTICES = 1000
 
 
-class FootprintError(ValueError):
+class FootprintError(NavlabError):
     """A footprint that cannot describe a robot; the message names the field."""
 
 

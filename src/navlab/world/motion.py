@@ -35,12 +35,13 @@ import numpy as np
 
 from ..limits import check_coordinate
 from ..registry import suggest
+from ..errors import NavlabError, ParameterError
 
 Point = Tuple[float, float]
 AT_BOUNDS = ("reflect", "stop")
 
 
-class MotionFormatError(ValueError):
+class MotionFormatError(NavlabError):
     """A ``motion`` entry is malformed; ``field`` names the key (``motion.speed``)."""
 
     def __init__(self, field: str, message: str) -> None:
@@ -180,7 +181,7 @@ class _VelocityTrack(Track):
         high_limit = (bounds.xmax - size[0], bounds.ymax - size[1])
         for axis in range(2):
             if self.v[axis] != 0 and not low_limit[axis] <= lo[axis] <= high_limit[axis]:
-                raise ValueError(f"obstacle {index}: field 'motion.velocity': the shape must lie inside the "
+                raise ParameterError(f"obstacle {index}: field 'motion.velocity': the shape must lie inside the "
                                  f"bounds at t = 0 to {motion.at_bounds} at them")
         self.lo, self.low, self.high = lo, low_limit, high_limit
         if not self.reflect:  # the first time any axis reaches its limit

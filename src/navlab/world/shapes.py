@@ -15,6 +15,7 @@ from functools import cached_property
 from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
+from ..errors import ParameterError
 
 Point = Tuple[float, float]
 
@@ -28,14 +29,14 @@ def _motion_dict(shape, out: Dict[str, Any]) -> Dict[str, Any]:
 def _point(value: Any, what: str) -> Point:
     arr = np.asarray(value, dtype=float)
     if arr.shape != (2,) or not np.all(np.isfinite(arr)):
-        raise ValueError(f"{what} must be two finite numbers [x, y], got {value!r}")
+        raise ParameterError(f"{what} must be two finite numbers [x, y], got {value!r}")
     return (float(arr[0]), float(arr[1]))
 
 
 def _polygon_points(points: Any) -> Tuple[Point, ...]:
     pts = tuple(_point(p, "polygon point") for p in points)
     if len(pts) < 3:
-        raise ValueError(f"polygon needs at least 3 points, got {len(pts)}")
+        raise ParameterError(f"polygon needs at least 3 points, got {len(pts)}")
     return pts
 
 
@@ -50,7 +51,7 @@ class Circle:
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _point(self.center, "circle center"))
         if not (math.isfinite(self.radius) and self.radius > 0):
-            raise ValueError(f"circle radius must be positive, got {self.radius!r}")
+            raise ParameterError(f"circle radius must be positive, got {self.radius!r}")
         object.__setattr__(self, "radius", float(self.radius))
 
     def bbox(self) -> Tuple[float, float, float, float]:
@@ -82,7 +83,7 @@ class Rectangle:
         lo = _point(self.min, "rectangle min")
         hi = _point(self.max, "rectangle max")
         if not (hi[0] > lo[0] and hi[1] > lo[1]):
-            raise ValueError(f"rectangle max {hi} must exceed min {lo} in x and y")
+            raise ParameterError(f"rectangle max {hi} must exceed min {lo} in x and y")
         object.__setattr__(self, "min", lo)
         object.__setattr__(self, "max", hi)
 
@@ -115,7 +116,7 @@ class Polygon:
 
         shape = shapely.Polygon(pts)
         if not shape.is_valid or shape.area <= 0:
-            raise ValueError(f"polygon {pts} is not simple (edges cross or it has no area)")
+            raise ParameterError(f"polygon {pts} is not simple (edges cross or it has no area)")
         object.__setattr__(self, "points", pts)
 
     @classmethod

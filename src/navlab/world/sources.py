@@ -24,9 +24,10 @@ from ..angles import HeadingWarning
 from ..limits import check_coordinate, check_length
 from .io import WorldFormatError, load_world, read_yaml_document
 from .world import World
+from ..errors import NavlabError, ParameterError
 
 
-class MissingQueryError(ValueError):
+class MissingQueryError(NavlabError):
     """A map source was given without a start or a goal.
 
     Attributes
@@ -59,7 +60,7 @@ def source_kind(source: Any) -> str:
     if isinstance(source, OccupancyGrid):
         return "occupancy"
     if not isinstance(source, (str, os.PathLike)):
-        raise ValueError(f"source must be a scene name, a file path, a World or an OccupancyGrid, "
+        raise ParameterError(f"source must be a scene name, a file path, a World or an OccupancyGrid, "
                         f"got {type(source).__name__}")
     path = Path(source)
     if not path.exists():
@@ -96,7 +97,7 @@ def _point_or_none(value: Any, field: str):
     if isinstance(value, np.ndarray):
         value = value.tolist()
     if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) not in (2, 3):
-        raise ValueError(f"{field} must be two numbers (x, y) in metres or a pose (x, y, theta), got {value!r}")
+        raise ParameterError(f"{field} must be two numbers (x, y) in metres or a pose (x, y, theta), got {value!r}")
     point = (check_coordinate(f"{field} x", value[0]), check_coordinate(f"{field} y", value[1]))
     return point + tuple(value[2:])  # a heading is checked by the World
 
@@ -133,7 +134,7 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
         changes["goal_tolerance"] = check_length("goal_tolerance", goal_tolerance)
     if allow_unknown is not None:
         if not isinstance(allow_unknown, bool):
-            raise ValueError(f"allow_unknown must be true or false, got {allow_unknown!r}")
+            raise ParameterError(f"allow_unknown must be true or false, got {allow_unknown!r}")
         changes["allow_unknown"] = allow_unknown
 
     kind = source_kind(source)

@@ -12,6 +12,7 @@ from ..angles import planned_heading
 from ..limits import check_coordinate, check_length
 from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
+from ..errors import ParameterError
 
 if TYPE_CHECKING:  # the grid package imports nothing from world; keep it that way at run time
     from ..grid.occupancy import OccupancyGrid
@@ -28,7 +29,7 @@ def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[f
     if isinstance(value, np.ndarray):
         value = value.tolist()
     if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) not in (2, 3):
-        raise ValueError(f"{what} must be [x, y] in metres or a pose [x, y, theta] (rad), got {value!r}")
+        raise ParameterError(f"{what} must be [x, y] in metres or a pose [x, y, theta] (rad), got {value!r}")
     point = (check_coordinate(f"{what} x", _plain(value[0])), check_coordinate(f"{what} y", _plain(value[1])))
     return point, (_heading(f"{what} theta", value[2]) if len(value) == 3 else None)
 
@@ -42,7 +43,7 @@ def _heading(what: str, value: Any) -> float:
 def _check_obstacle(k: int, obstacle: Any) -> None:
     """Every coordinate of an obstacle within the supported range (circle radii too)."""
     if not isinstance(obstacle, (Circle, Rectangle, Polygon)):
-        raise ValueError(f"obstacles[{k}] must be a Circle, Rectangle or Polygon, got {type(obstacle).__name__}")
+        raise ParameterError(f"obstacles[{k}] must be a Circle, Rectangle or Polygon, got {type(obstacle).__name__}")
     for v in obstacle.bbox():
         check_coordinate(f"obstacles[{k}] coordinate", float(v))
     if isinstance(obstacle, Circle):
@@ -62,7 +63,7 @@ class Bounds:
         for what in ("xmin", "xmax", "ymin", "ymax"):
             object.__setattr__(self, what, check_coordinate(f"bounds.{what}", _plain(getattr(self, what))))
         if not (self.xmax > self.xmin and self.ymax > self.ymin):
-            raise ValueError(f"bounds need max > min in x and y, got x=[{self.xmin}, {self.xmax}] y=[{self.ymin}, {self.ymax}]")
+            raise ParameterError(f"bounds need max > min in x and y, got x=[{self.xmin}, {self.xmax}] y=[{self.ymin}, {self.ymax}]")
 
     @property
     def low(self) -> np.ndarray:
@@ -127,7 +128,7 @@ class World:
         # Everything is checked against navlab.limits here, so the compiled
         # kernels never see a non-finite or overflowing number.
         if not isinstance(self.bounds, Bounds):
-            raise ValueError(f"bounds must be a Bounds, got {type(self.bounds).__name__}")
+            raise ParameterError(f"bounds must be a Bounds, got {type(self.bounds).__name__}")
         for what in ("start", "goal"):
             point, heading = _query_point(getattr(self, what), what)
             object.__setattr__(self, what, point)
@@ -143,12 +144,12 @@ class World:
         for what in ("robot_radius", "goal_tolerance"):
             object.__setattr__(self, what, check_length(what, _plain(getattr(self, what))))
         if not isinstance(self.allow_unknown, (bool, np.bool_)):
-            raise ValueError(f"allow_unknown must be true or false, got {self.allow_unknown!r}")
+            raise ParameterError(f"allow_unknown must be true or false, got {self.allow_unknown!r}")
         object.__setattr__(self, "allow_unknown", bool(self.allow_unknown))
         if self.occupancy is not None:
             for what in ("blocked", "resolution", "origin"):
                 if not hasattr(self.occupancy, what):
-                    raise ValueError(f"occupancy must be an OccupancyGrid, got {type(self.occupancy).__name__}")
+                    raise ParameterError(f"occupancy must be an OccupancyGrid, got {type(self.occupancy).__name__}")
 
     @classmethod
     def from_grid(cls, grid: "OccupancyGrid", start, goal, robot_radius: float = 0.0,

@@ -1,0 +1,32 @@
+"""navlab's error types for bad input: one family, each a ``ValueError``.
+
+Every check on what a user gives navlab (an argument, a setting, a file, a
+name) raises a :class:`NavlabError` whose message names the field, so a
+caller can tell a refused input from a fault inside navlab or a library
+(``except navlab.NavlabError``), and code that catches ``ValueError`` keeps
+working. The subclasses say which kind of input:
+
+- :class:`ParameterError`: an argument or setting (out of range, of the wrong
+  type, not finite, inconsistent with another);
+- ``WorldFormatError``, ``MapFormatError``, ``MotionFormatError``,
+  ``FootprintError``, ``CostmapError``, ``ExperimentError``: a world, map,
+  motion, footprint, costmap or experiment definition (a file's messages
+  name the file);
+- ``UnknownNameError`` (also a ``KeyError``): a name no registry holds, with
+  the valid names;
+- ``MissingQueryError``, ``NoPathError``: a query without its start or goal,
+  a simulation with nothing to follow.
+
+This module imports nothing of navlab's, so every module may raise them.
+"""
+
+from __future__ import annotations
+
+
+class NavlabError(ValueError):
+    """Input navlab refuses; the message names the field (and the file, for a file)."""
+
+
+class ParameterError(NavlabError):
+    """An argument or setting navlab refuses: out of range, of the wrong type, not finite, or at odds
+    with another; the message names it."""

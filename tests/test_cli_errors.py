@@ -9,6 +9,7 @@ from click.testing import CliRunner
 
 from navlab.cli import NavlabGroup, main
 from navlab.cli.common import parse_params
+from navlab.errors import ParameterError
 from navlab.grid.mapio import MapFormatError
 from navlab.registry import UnknownNameError
 from navlab.world import WorldFormatError
@@ -48,8 +49,10 @@ def numpy_memory_error():
     (WorldFormatError("w.yaml: field 'start': expected a pair"), 2, "Error: w.yaml: field 'start': expected a pair"),
     (MapFormatError("m.yaml: field 'resolution': must be positive"), 2, "Error: m.yaml: field 'resolution'"),
     (UnknownNameError("unknown planner 'rrtx'; valid: rrt"), 2, "Error: unknown planner 'rrtx'; valid: rrt"),
-    (ValueError("max_iter must be positive"), 2, "Error: max_iter must be positive"),
-    (ValueError("two\nlines"), 2, "Error: two lines"),
+    (ParameterError("max_iter must be positive"), 2, "Error: max_iter must be positive"),
+    (ParameterError("two\nlines"), 2, "Error: two lines"),
+    # a ValueError that is not navlab's own came from no check of navlab's: a defect to report (session 17)
+    (ValueError("operands could not be broadcast together"), 1, "Error: internal error: ValueError: operands"),
     (FileNotFoundError(errno.ENOENT, "No such file or directory", "maze.yaml"), 2,
      "Error: maze.yaml: No such file or directory"),
     (IsADirectoryError(errno.EISDIR, "Is a directory", "out"), 2, "Error: out: Is a directory"),

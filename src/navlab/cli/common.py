@@ -116,11 +116,13 @@ def _one_line(text: str, limit: int = 2000) -> str:
 def describe_error(exc: BaseException) -> Tuple[int, str]:
     """The exit status and the one ``Error: ...`` line the CLI prints for ``exc``.
 
-    Bad input — navlab's own error types (``WorldFormatError``, ``MapFormatError``,
-    ``UnknownNameError``, ``ExperimentError``: all ``ValueError``), a file that
+    Bad input — navlab's own error types (:class:`navlab.NavlabError`: ``ParameterError``,
+    ``WorldFormatError``, ``MapFormatError``, ``UnknownNameError``, ...), a file that
     cannot be read or written, a missing optional package, a request larger
     than memory — is the user's to fix: status 2. Anything else is a defect in
-    navlab: status 1 and the exception's type, so it can be reported.
+    navlab: status 1 and the exception's type, so it can be reported; that includes
+    a ``ValueError`` that is not navlab's (numpy's, say), which no check of navlab's
+    raised (until session 17 every ``ValueError`` was taken for bad input).
     """
     if isinstance(exc, MemoryError):
         detail = _one_line(exc) or "out of memory"
@@ -138,7 +140,9 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
             other = f" -> {os.fsdecode(exc.filename2)}" if exc.filename2 is not None else ""
             return EXIT_USAGE, f"Error: {name}{other}: {what}"
         return EXIT_USAGE, f"Error: {what}"
-    if isinstance(exc, ValueError):
+    from ..errors import NavlabError
+
+    if isinstance(exc, NavlabError):
         return EXIT_USAGE, f"Error: {_one_line(exc) or type(exc).__name__}"
     return EXIT_INTERNAL, (f"Error: internal error: {type(exc).__name__}: {_one_line(exc, 500)} "
                            "(run with NAVLAB_DEBUG=1 for the traceback)")

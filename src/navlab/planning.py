@@ -27,6 +27,7 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from .compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
+from .errors import ParameterError
 from .limits import check_seed
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
@@ -34,7 +35,6 @@ from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_
 from .result import Result, Status
 from .registry import parameters_of
 from .sampling.samplers import SAMPLERS
-from .errors import ParameterError
 
 
 def _warm(planner: str, sampler: Optional[str], grid_settings: Optional[dict], on_map: bool) -> float:
@@ -187,7 +187,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         if sampler not in (None, "uniform"):
             SAMPLERS.get(sampler)
             raise ParameterError(f"sampler: grid planner '{planner}' draws no samples; leave the sampler out "
-                             f"(got '{sampler}')")
+                                 f"(got '{sampler}')")
         settings = split_grid_params(planner, params)
     else:
         sampler = sampler or "uniform"

@@ -20,9 +20,9 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
+from .errors import ParameterError
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
-from .errors import ParameterError
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
@@ -48,7 +48,7 @@ def check_motion(value: Any, allowed: Tuple[str, ...] = MOTIONS) -> str:
     """``value`` if it is one of ``allowed`` motions, else ValueError listing them (and the nearest)."""
     if value not in allowed:
         raise ParameterError(f"motion must be one of {', '.join(allowed)}, got {value!r}."
-                         + suggest(str(value), list(allowed)))
+                             + suggest(str(value), list(allowed)))
     return value
 
 
@@ -64,14 +64,14 @@ def is_pose_query(planner: str, params: Dict[str, Any]) -> bool:
     if planner in POSE_PLANNERS:
         if motion == "holonomic":
             raise ParameterError(f"motion: {planner} plans for a car-like robot: motion must be dubins or reeds_shepp, "
-                             "got 'holonomic'")
+                                 "got 'holonomic'")
         return True
     if motion == "holonomic":
         return False
     if planner in TREE_POSE_PLANNERS:
         return True
     raise ParameterError(f"motion '{motion}': planner '{planner}' plans for a robot that can move in any direction; "
-                     f"the planners for {motion} motion: {', '.join(POSE_PLANNERS + TREE_POSE_PLANNERS)}")
+                         f"the planners for {motion} motion: {', '.join(POSE_PLANNERS + TREE_POSE_PLANNERS)}")
 
 
 def query_poses(world) -> Tuple[Tuple[float, float, float], Tuple[float, float, float]]:
@@ -123,10 +123,10 @@ def check_radius_not_dropped(world, robot_radius, params: Dict[str, Any], planne
         "leave robot_radius out"
     if params.get("footprint") is not None:  # the setting wins (query_footprint)
         raise ParameterError(f"robot_radius: give footprint or robot_radius, not both ({planner} plans with the "
-                         f"footprint); {disc}")
+                             f"footprint); {disc}")
     if world.footprint is not None:
         raise ParameterError(f"robot_radius: {world.name}'s robot has its own footprint, which {planner} plans with; "
-                         f"{disc}")
+                             f"{disc}")
 
 
 def _pose_grid(world, resolution):

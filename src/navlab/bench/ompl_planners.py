@@ -24,10 +24,10 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..registry import UnknownNameError, suggest
 from ..result import Result, Status
 from ..sampling.planners import _check_query
-from ..errors import ParameterError
 
 #: OMPL geometric planners offered by name (``ompl:RRTstar``, ...).
 OMPL_NAMES = ("RRT", "RRTConnect", "RRTstar", "InformedRRTstar", "PRMstar", "BITstar")

@@ -24,8 +24,8 @@ from pathlib import Path
 from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
-from .experiment import DESCRIPTIVE, Experiment, ExperimentError
 from ..errors import ParameterError
+from .experiment import DESCRIPTIVE, Experiment, ExperimentError
 
 EXPERIMENT_FILE = "experiment.json"
 RESULTS_FILE = "results.jsonl"

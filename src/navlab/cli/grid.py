@@ -10,8 +10,8 @@ import sys
 import click
 import numpy as np
 
-from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import
 from ..errors import ParameterError
+from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -60,7 +60,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
 
     if source_kind(map_path) == "world_file":
         raise ParameterError(f"{map_path}: this is a world file (shapes, start and goal), not a map: use "
-                         f"navlab plan {map_path} --planner {algorithm}")
+                             f"navlab plan {map_path} --planner {algorithm}")
     grid = load_map(map_path, rule=map_rule)
     if inflate:
         grid = grid.inflate(inflate)

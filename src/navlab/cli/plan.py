@@ -8,8 +8,8 @@ import sys
 
 import click
 
-from .common import Count, PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
 from ..errors import ParameterError
+from .common import Count, PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -86,7 +86,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
         except MissingQueryError as exc:
             # one line through the CLI's error handler (exit 2), naming the flag
             raise ParameterError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
-                             f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
+                                 f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
         if is_pose_query(planner, settings):
             check_radius_not_dropped(world, robot_radius, settings, planner)
         result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)

@@ -8,8 +8,8 @@ from typing import Any, Callable, Optional
 
 import numpy as np
 
-from ..registry import Registry
 from ..errors import ParameterError
+from ..registry import Registry
 
 CONTROLLERS: Registry[Callable[..., "Controller"]] = Registry("controller")
 

@@ -8,10 +8,10 @@ from typing import Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 from .path_tracking import split_at_cusps
-from ..errors import ParameterError
 
 
 class _Follower(Controller):

@@ -6,9 +6,9 @@ from __future__ import annotations
 import math
 import numpy as np
 
+from ..errors import ParameterError
 from .base import CONTROLLERS, REACHED, STALLED, Command, Controller, StallDetector
 from .potential_field import PotentialField
-from ..errors import ParameterError
 
 
 @CONTROLLERS.register("hybrid")

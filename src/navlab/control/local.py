@@ -15,8 +15,8 @@ from typing import Dict
 
 import numpy as np
 
-from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number  # noqa: F401
 from ..errors import ParameterError
+from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number  # noqa: F401
 
 
 class CostmapController(Controller):

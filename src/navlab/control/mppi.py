@@ -39,11 +39,11 @@ from typing import Any, Optional
 import numpy as np
 from numba import njit
 
+from ..errors import ParameterError
 from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS
 from .local import CostmapController, check_number
-from ..errors import ParameterError
 
 
 @njit(cache=True)

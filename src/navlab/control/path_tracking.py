@@ -39,9 +39,9 @@ from typing import List, Tuple
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
-from ..errors import ParameterError
 
 
 #: [m] how far along the stretch the nearest point is looked for each step: a path that passes

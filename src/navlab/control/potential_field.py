@@ -7,9 +7,9 @@ from typing import Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..robots.kinematics import _wrap, world_to_body
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
-from ..errors import ParameterError
 
 
 def attractive(dx: float, dy: float, alpha: float, r: float, s: float) -> np.ndarray:

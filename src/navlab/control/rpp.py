@@ -60,10 +60,10 @@ from typing import Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, MAX_NON_OBSTACLE
 from .base import CONTROLLERS
 from .local import CostmapController, arc_rollouts, check_number
-from ..errors import ParameterError
 
 
 def carrot_on_path(path: np.ndarray, pose, lookahead: float) -> np.ndarray:
@@ -167,7 +167,7 @@ class RegulatedPurePursuit(CostmapController):
         self.max_lookahead_dist = check_number("max_lookahead_dist", max_lookahead_dist)
         if self.max_lookahead_dist < self.min_lookahead_dist:
             raise ParameterError(f"max_lookahead_dist ({max_lookahead_dist}) must be ≥ min_lookahead_dist "
-                             f"({min_lookahead_dist})")
+                                 f"({min_lookahead_dist})")
         self.lookahead_time = check_number("lookahead_time", lookahead_time)
         self.scaled_lookahead = use_velocity_scaled_lookahead_dist
         self.rotate_vel = check_number("rotate_to_heading_angular_vel", rotate_to_heading_angular_vel)

@@ -79,6 +79,7 @@ import numpy as np
 from numba import njit
 from shapely.geometry import Point, Polygon
 
+from ..errors import ParameterError
 from ..limits import MAX_COUNT, check_count, check_length, finite_number
 from ..registry import suggest
 from ..result import Result, Status
@@ -91,7 +92,6 @@ from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search
 from .occupancy import OccupancyGrid, check_grid
-from ..errors import ParameterError
 
 MOTIONS = ("dubins", "reeds_shepp")
 DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
@@ -376,7 +376,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     waypoints = word_poses(kinds, lengths, spacing)
     if waypoints > MAX_WAYPOINTS:
         raise ParameterError(f"waypoint_spacing: {spacing:g} m gives {waypoints:.3g} poses along the "
-                         f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")
+                             f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")
     poses, direction = trace_word(lsx, lsy, lst, kinds, lengths, r, spacing)
     world = np.column_stack([ox + c * poses[:, 0] - s * poses[:, 1], oy + s * poses[:, 0] + c * poses[:, 1],
                              poses[:, 2] + yaw])

@@ -24,10 +24,10 @@ import numpy as np
 import yaml
 
 from ..atomic import atomic_path
+from ..errors import NavlabError, ParameterError
 from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number
 from ..yamlio import read_yaml, regular_file
 from .occupancy import MAX_CELLS, OccupancyGrid
-from ..errors import NavlabError, ParameterError
 
 PathLike = Union[str, os.PathLike]
 

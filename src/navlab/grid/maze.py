@@ -6,9 +6,9 @@ from typing import Callable, Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..limits import MAX_COORDINATE, available_memory, check_length
 from .occupancy import MAX_CELLS, OccupancyGrid
-from ..errors import ParameterError
 
 #: Bytes a maze cell costs while it is carved: three bool arrays and, at
 #: worst, one (x, y) tuple on the Python stack (~120 B measured).
@@ -30,24 +30,24 @@ def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolut
     extent = max(cells_x, cells_y) * cell_size + wall
     if extent > MAX_COORDINATE:
         raise ParameterError(f"a {cells_x}x{cells_y}-cell maze of {cell_size:g} m cells is {extent:.3g} m across, more "
-                         f"than the {MAX_COORDINATE:g} m navlab supports")
+                             f"than the {MAX_COORDINATE:g} m navlab supports")
     if wall < resolution:
         raise ParameterError(f"resolution {resolution:g} m is coarser than the {wall:g} m wall: walls would vanish "
-                         f"from the map; use a resolution of at most {wall:g} m")
+                             f"from the map; use a resolution of at most {wall:g} m")
     if cell_size - wall < resolution:
         raise ParameterError(f"resolution {resolution:g} m is coarser than the {cell_size - wall:g} m corridor "
-                         f"(cell_size - wall): corridors would vanish; use a resolution of at most "
-                         f"{cell_size - wall:g} m")
+                             f"(cell_size - wall): corridors would vanish; use a resolution of at most "
+                             f"{cell_size - wall:g} m")
     nx = int(round((cells_x * cell_size + wall) / resolution))
     ny = int(round((cells_y * cell_size + wall) / resolution))
     if nx * ny > MAX_CELLS:
         raise ParameterError(f"a {cells_x}x{cells_y}-cell maze at {resolution:g} m is a {nx:.3g}x{ny:.3g}-pixel map, more than "
-                         f"the {MAX_CELLS:.0e} cells navlab supports; use fewer cells or a coarser resolution")
+                             f"the {MAX_CELLS:.0e} cells navlab supports; use fewer cells or a coarser resolution")
     need = cells_x * cells_y * BYTES_PER_MAZE_CELL + nx * ny * BYTES_PER_PIXEL
     have = available_memory()
     if have is not None and need > have:
         raise ParameterError(f"a {cells_x}x{cells_y}-cell maze ({nx}x{ny} pixels) needs about {need / 2**30:.1f} GiB, "
-                         f"more than the {have / 2**30:.1f} GiB available")
+                             f"more than the {have / 2**30:.1f} GiB available")
     return nx, ny
 
 

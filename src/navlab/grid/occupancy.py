@@ -16,8 +16,8 @@ from typing import Any, Optional, Tuple
 
 import numpy as np
 
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number
 from ..errors import ParameterError
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number
 
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
@@ -52,7 +52,7 @@ def _mask(values: Any, name: str) -> np.ndarray:
         if odd.size:
             at = np.unravel_index(int(odd[0]), given.shape) if given.ndim else ()
             raise ParameterError(f"{name} must be true/false (or 0/1) per cell, got {given[at].item()!r} at index "
-                             f"{tuple(int(i) for i in at)}")
+                                 f"{tuple(int(i) for i in at)}")
     return _read_only(given, bool, name)
 
 
@@ -106,7 +106,7 @@ class OccupancyGrid:
         resolution = finite_number("resolution", self.resolution)
         if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
             raise ParameterError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
-                             f"got {self.resolution!r}")
+                                 f"got {self.resolution!r}")
         put(self, "resolution", resolution)
         try:
             origin = tuple(self.origin)
@@ -216,7 +216,7 @@ def check_grid(grid: Any, name: str = "grid") -> OccupancyGrid:
     (an array of cells is the usual mistake: it has no resolution or origin to plan in)."""
     if not isinstance(grid, OccupancyGrid):
         raise ParameterError(f"{name} must be an OccupancyGrid (navlab.grid.OccupancyGrid(blocked, resolution=...)), "
-                         f"got {type(grid).__name__}")
+                             f"got {type(grid).__name__}")
     return grid
 
 

@@ -35,12 +35,12 @@ from typing import Any, Dict, Iterator, Optional, Tuple
 import numpy as np
 
 from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
+from ..errors import ParameterError
 from ..limits import check_coordinate
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
 from .occupancy import OccupancyGrid, check_grid
-from ..errors import ParameterError
 
 HEURISTICS: Registry[int] = Registry("heuristic")
 for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),

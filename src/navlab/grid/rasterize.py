@@ -26,9 +26,9 @@ from typing import Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..world.raster import block_obstacles  # noqa: F401  (re-exported: the grid's rasteriser uses it)
 from .occupancy import MAX_CELLS, OccupancyGrid  # MAX_CELLS: the largest grid navlab makes or reads
-from ..errors import ParameterError
 
 DEFAULT_CELLS_ALONG_LONGER_SIDE = 200  #: default resolution = longer side of the bounds / this
 
@@ -53,8 +53,8 @@ def grid_shape(bounds, resolution: float) -> tuple[int, int]:
     fx, fy = sx / resolution * (1 + 1e-12), sy / resolution * (1 + 1e-12)
     if not fx * fy <= MAX_CELLS:  # counted in floats: 1e-300 m cells are more than an int can format
         raise ParameterError(f"resolution {resolution:g} m would rasterise the {sx:g} m x {sy:g} m bounds to "
-                         f"{fx:.3g} x {fy:.3g} = {fx * fy:.3g} cells (more than {MAX_CELLS:.0e}); "
-                         "use a coarser resolution")
+                             f"{fx:.3g} x {fy:.3g} = {fx * fy:.3g} cells (more than {MAX_CELLS:.0e}); "
+                             "use a coarser resolution")
     nx, ny = math.floor(fx), math.floor(fy)
     if nx < 1 or ny < 1:
         raise ParameterError(f"resolution {resolution:g} m is larger than the {sx:g} m x {sy:g} m bounds")
@@ -111,7 +111,7 @@ def rasterize(world, resolution: Optional[float] = None) -> OccupancyGrid:
     if grid is not None:
         if resolution is not None:
             raise ParameterError(f"resolution: a map is planned on its own cells ({grid.resolution:g} m); "
-                             "leave resolution out")
+                                 "leave resolution out")
         # Many queries on one map (a benchmark, a ROS node) share its raster and
         # so its search buffers. A grid is immutable (read-only arrays, frozen
         # fields), so a raster hung on it can never go stale.

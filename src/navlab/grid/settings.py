@@ -12,8 +12,8 @@ from __future__ import annotations
 import math
 from typing import Any, Dict
 
-from ..limits import MAX_COORDINATE, MIN_LENGTH, is_finite_real, shown
 from ..errors import ParameterError
+from ..limits import MAX_COORDINATE, MIN_LENGTH, is_finite_real, shown
 
 
 def _name(key: str, value: Any, valid) -> str:
@@ -59,7 +59,7 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
         r = _number("resolution", out["resolution"])
         if not MIN_LENGTH <= r <= MAX_COORDINATE:
             raise ParameterError(f"resolution must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} m per cell, "
-                             f"got {out['resolution']!r}")
+                                 f"got {out['resolution']!r}")
     if "smooth_method" in out:
         _name("smooth_method", out["smooth_method"], ["bresenham", "supercover"])
     return out

@@ -16,10 +16,10 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..angles import wrap_angle as _wrap
+from ..errors import ParameterError
 from ..limits import check_length, is_finite_real, shown
 from ..registry import Registry
 from ..world.footprint import Footprint
-from ..errors import ParameterError
 
 ROBOTS: Registry[type] = Registry("robot")
 

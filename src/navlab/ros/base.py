@@ -18,9 +18,9 @@ from rclpy.executors import ExternalShutdownException
 from rclpy.node import Node
 from rclpy.qos import DurabilityPolicy, QoSProfile, ReliabilityPolicy, qos_profile_sensor_data
 
+from ..errors import ParameterError
 from ..registry import UnknownNameError, suggest
 from .convert import stamp_seconds
-from ..errors import ParameterError
 
 #: /map is latched: late subscribers get the last map (as nav2's map_server).
 MAP_QOS = QoSProfile(depth=1, durability=DurabilityPolicy.TRANSIENT_LOCAL, reliability=ReliabilityPolicy.RELIABLE)

@@ -15,8 +15,8 @@ from typing import Optional, Tuple
 
 import numpy as np
 
-from ..grid.occupancy import OccupancyGrid
 from ..errors import ParameterError
+from ..grid.occupancy import OccupancyGrid
 
 
 def yaw_to_quaternion(yaw: float) -> Tuple[float, float, float, float]:

@@ -15,12 +15,12 @@ from typing import Any, Callable, Dict, Optional, Tuple
 import numpy as np
 
 from ..control.base import REACHED, STALLED, Controller
+from ..errors import ParameterError
 from ..grid.occupancy import OccupancyGrid
 from ..planning import is_grid_planner, plan
 from ..pose_queries import POSE_PLANNERS, is_pose_query
 from ..result import Result
 from ..world.world import World
-from ..errors import ParameterError
 
 Log = Callable[[str, str], None]
 Twist = Tuple[float, float, float]

@@ -19,12 +19,12 @@ from typing import Any, List, Optional
 import numpy as np
 
 from ..control.base import CONTROLLERS, make_controller
+from ..errors import ParameterError
 from ..grid.occupancy import OccupancyGrid
 from ..registry import parameters_of
 from ..sim.costmap_feed import CostmapFeed
 from ..world.footprint import Footprint
 from .core import Drive, Log, Twist
-from ..errors import ParameterError
 
 #: [m] the warm-up map's side (start-up: settings checked, kernels compiled)
 WARM_UP_SIDE = 4.0
@@ -110,7 +110,7 @@ class CostmapDrive:
         if controller not in valid:
             factory = CONTROLLERS.get(controller)  # an unknown name: "did you mean"
             raise ParameterError(f"controller '{controller}' reads no costmap ({factory.__name__}); "
-                             f"the local planner runs {', '.join(valid)}")
+                                 f"the local planner runs {', '.join(valid)}")
         for name, value in (("controller_frequency", controller_frequency), ("scan_timeout", scan_timeout)):
             if not (value > 0 and math.isfinite(value)):
                 raise ParameterError(f"{name} must be a positive number, got {value!r}")

@@ -37,10 +37,10 @@ from rclpy.executors import ExternalShutdownException, SingleThreadedExecutor
 from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 
+from ..errors import ParameterError
 from .base import DEFAULT_QOS, NavlabNode
 from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
 from .launch import NodeProcesses, mapping_text, node_class
-from ..errors import ParameterError
 
 #: seed 002's maze geometry: 0.6 m cells, 0.1 m walls (0.5 m corridors)
 MAZE_CELL, MAZE_WALL = 0.6, 0.1
@@ -119,7 +119,7 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
         else:
             if robot == "diff":
                 raise ParameterError("the diff-drive pipeline plans on a map: give a map_server YAML "
-                                 "(or use --robot omni3 in a world file)")
+                                     "(or use --robot omni3 in a world file)")
             start, goal = start or scene.start, goal or scene.goal
         goal = (float(goal[0]), float(goal[1]))
         specs = pipeline(str(world), robot, start, real_time_factor, sim_params, planner, planner_params)

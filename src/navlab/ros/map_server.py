@@ -5,10 +5,10 @@ from __future__ import annotations
 
 from nav_msgs.msg import OccupancyGrid as GridMsg
 
+from ..errors import ParameterError
 from ..grid.mapio import load_map
 from .base import MAP_QOS, NavlabNode, Param, node_main
 from .convert import grid_to_msg
-from ..errors import ParameterError
 
 
 class MapServer(NavlabNode):

@@ -25,10 +25,10 @@ from nav_msgs.msg import OccupancyGrid as GridMsg
 from nav_msgs.msg import Odometry, Path
 from visualization_msgs.msg import MarkerArray
 
+from ..errors import ParameterError
 from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, NavlabNode, Param, node_main
 from .convert import grid_from_msg, path_to_msg, pose_from_msg, tree_to_markers
 from .core import GoalPlanner
-from ..errors import ParameterError
 
 
 class PathPlanner(NavlabNode):

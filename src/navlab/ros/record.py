@@ -14,9 +14,9 @@ from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 from visualization_msgs.msg import MarkerArray
 
+from ..errors import ParameterError
 from .base import DEFAULT_QOS, MAP_QOS, PLAN_QOS, SCAN_QOS, NavlabNode
 from .convert import tf_message_type
-from ..errors import ParameterError
 
 #: the navlab pipeline's topics: message class and subscription QoS
 TOPICS: Dict[str, Tuple[type, object]] = {

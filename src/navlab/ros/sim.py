@@ -31,6 +31,7 @@ from nav_msgs.msg import Odometry
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import LaserScan
 
+from ..errors import ParameterError
 from ..grid.occupancy import OccupancyGrid
 from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
@@ -39,7 +40,6 @@ from ..sim.scene import Scene, load_scene_world
 from ..sim.simulation import MAX_DT, MIN_DT
 from .base import DEFAULT_QOS, MAP_QOS, SCAN_QOS, STREAM_QOS, NavlabNode, Param, node_main
 from .convert import odometry_msg, scan_to_msg, tf_message_type, time_msg, transform_msg, twist_from_msg
-from ..errors import ParameterError
 
 
 class SimNode(NavlabNode):

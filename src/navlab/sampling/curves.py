@@ -22,8 +22,8 @@ import numpy as np
 from numba import njit
 
 from ..angles import planned_heading, wrap_angle as _wrap
-from ..limits import check_coordinate, check_length
 from ..errors import ParameterError
+from ..limits import check_coordinate, check_length
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels
 #: a segment code's letter in a word

@@ -26,10 +26,10 @@ import numpy as np
 from numba import njit
 from shapely.geometry import Point, Polygon
 
+from ..errors import ParameterError
 from ..limits import check_length, check_memory
 from ..world.footprint_collision import pose_grid_overlap
 from .curves import NOP, STRAIGHT, advance, trace_word
-from ..errors import ParameterError
 
 
 def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple[np.ndarray, float]:
@@ -48,10 +48,10 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
         vertices = np.asarray(footprint, dtype=float)
     except (TypeError, ValueError):
         raise ParameterError(f"footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
-                         f"got {footprint!r:.80}") from None
+                             f"got {footprint!r:.80}") from None
     if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3:
         raise ParameterError("footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
-                         f"got shape {vertices.shape}")
+                             f"got shape {vertices.shape}")
     if not np.isfinite(vertices).all():
         raise ParameterError(f"footprint vertices must be finite numbers [m], got {vertices.tolist()!r:.80}")
     _check_polygon(tuple(map(tuple, vertices.tolist())))
@@ -379,11 +379,11 @@ def _turning_scale_checked(turning_radius: float, vertices, disc: float, resolut
     smallest = reach / (delta / (FINEST_SPACING * resolution) - 1.0)
     if turning_radius < smallest:
         raise ParameterError(f"turning_radius {turning_radius:g} m is too small for a footprint reaching {reach:g} m "
-                         f"on {resolution:g} m cells: at least {smallest:.3g} m (or plan on finer cells: resolution)")
+                             f"on {resolution:g} m cells: at least {smallest:.3g} m (or plan on finer cells: resolution)")
     step_arc = turning_radius * 2.0 * math.pi / bins
     if step_arc > extent:
         raise ParameterError(f"turning_radius {turning_radius:g} m: one heading step ({360 / bins:g}°) of arc is "
-                         f"{step_arc:.3g} m, longer than the map ({extent:.3g} m across); use a smaller radius")
+                             f"{step_arc:.3g} m, longer than the map ({extent:.3g} m across); use a smaller radius")
 
 
 @functools.lru_cache(maxsize=64)

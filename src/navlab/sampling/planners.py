@@ -19,13 +19,13 @@ from typing import Any, Dict, Optional, Union
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..limits import MAX_COUNT, check_count, check_length, check_memory
 from ..registry import Registry, parameters_of
 from ..result import Result, Status, Tree
 from . import tree_kernel as K
 from .regions import BoxRegion, InformedRegion
 from .samplers import Sampler, make_sampler
-from ..errors import ParameterError
 
 PLANNERS: Registry[type] = Registry("planner")
 
@@ -118,7 +118,7 @@ class TreePlanner:
         self.batch_size = check_count("batch_size", self.batch_size)
         if self.batch_size > MAX_BATCH_SIZE:
             raise ParameterError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
-                             f"got {self.batch_size}")
+                                 f"got {self.batch_size}")
         if self.index not in INDEXES:
             raise ParameterError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
         if not isinstance(self.keep_tree, (bool, np.bool_)):  # 'yes' and 2 were taken as true

@@ -20,10 +20,10 @@ from typing import Any, Dict, Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..limits import check_count, check_length
 from ..registry import Registry, UnknownNameError, check_params, parameters_of, suggest
 from .regions import BoxRegion
-from ..errors import ParameterError
 
 #: most rounds a sampler may be asked to try (each round is one batch of checks)
 MAX_ROUNDS = 1_000_000
@@ -327,7 +327,7 @@ class IntegrationSampler(Sampler):
                  directions: int = 8, tolerance: Optional[float] = None) -> None:
         if weights is not None and not isinstance(weights, Mapping):
             raise ParameterError("weights must be a mapping of component to probability, e.g. "
-                             f"{INTEGRATION_DEFAULT_WEIGHTS}, got {weights!r}")
+                                 f"{INTEGRATION_DEFAULT_WEIGHTS}, got {weights!r}")
         w = dict(INTEGRATION_DEFAULT_WEIGHTS if weights is None else weights)
         for key, value in w.items():
             if not isinstance(key, str) or key not in self.COMPONENTS:

@@ -9,9 +9,9 @@ from typing import Any, Callable, Optional, Union
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..registry import Registry
 from . import raycast as R
-from ..errors import ParameterError
 
 NOISE_MODELS: Registry[Callable[..., "NoiseModel"]] = Registry("lidar noise model")
 
@@ -108,7 +108,7 @@ class Lidar:
             self.noise = NOISE_MODELS.get(self.noise)()
         elif self.noise is not None and not isinstance(self.noise, NoiseModel):  # (lidar=3 was an AttributeError)
             raise ParameterError(f"lidar noise must be a model's name ({', '.join(NOISE_MODELS.names())}) or a "
-                             f"NoiseModel, got {self.noise!r}")
+                                 f"NoiseModel, got {self.noise!r}")
         full = abs(self.fov - 2 * math.pi) < 1e-12
         start = self.angle_min if self.angle_min is not None else (0.0 if full else -self.fov / 2)
         increment = self.fov / self.beams if full else self.fov / max(self.beams - 1, 1)

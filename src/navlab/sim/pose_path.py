@@ -83,7 +83,7 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
     params = dict(plan_params)
     if planner not in POSE_PLANNERS and planner not in TREE_POSE_PLANNERS:
         raise ParameterError(f"planner '{planner}' plans for a point; a run between poses needs "
-                         f"{', '.join((*POSE_PLANNERS, *TREE_POSE_PLANNERS))}")
+                             f"{', '.join((*POSE_PLANNERS, *TREE_POSE_PLANNERS))}")
     params.setdefault("motion", "reeds_shepp")
     if getattr(robot, "steers", False):
         from ..sampling.curves import check_turning_radius
@@ -92,8 +92,8 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
         given = check_turning_radius(params.setdefault("turning_radius", least * STEERING_ROOM))
         if given < least * (1 - 1e-12):
             raise ParameterError(f"turning_radius {given:g} m is tighter than the car can turn "
-                             f"({least:.4g} m = wheelbase / tan(max_steer); its plans are drawn at "
-                             f"{STEERING_ROOM:g} × that, {least * STEERING_ROOM:.4g} m, unless turning_radius is given)")
+                                 f"({least:.4g} m = wheelbase / tan(max_steer); its plans are drawn at "
+                                 f"{STEERING_ROOM:g} × that, {least * STEERING_ROOM:.4g} m, unless turning_radius is given)")
     params.setdefault("footprint", robot.shape.to_value())
     result = plan(scene_world, planner=planner, start=tuple(start), goal=tuple(goal), seed=seed, **params)
     if not result.success:

@@ -7,6 +7,7 @@ from typing import Any, Dict, Optional, Tuple
 import numpy as np
 
 from ..control import make_controller
+from ..errors import NavlabError, ParameterError
 from ..grid.occupancy import OccupancyGrid
 from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
@@ -14,7 +15,6 @@ from .replan import PLAN_MARGIN, Replanner  # noqa: F401  (PLAN_MARGIN: the seed
 from .replan import plan_path as _plan_path
 from .scene import load_scene_world
 from .simulation import SimResult, Simulation
-from ..errors import NavlabError, ParameterError
 
 #: the omni robot follows a global plan with the potential field as its local
 #: avoider (the plain field stalls in traps and clutter); the diff drive
@@ -60,7 +60,7 @@ def _speed_within_robot(name: str, params: Dict[str, Any], given: Dict[str, Any]
         return params
     if setting in given:
         raise ParameterError(f"controller {name} {setting} {speed:g} m/s is more than the robot's max_speed "
-                         f"{bot.max_speed:g} m/s: lower it, or raise the robot's (--robot-param max_speed=...)")
+                             f"{bot.max_speed:g} m/s: lower it, or raise the robot's (--robot-param max_speed=...)")
     return {**params, setting: bot.max_speed}
 
 
@@ -106,7 +106,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         from ..sensors.lidar import NOISE_MODELS
 
         raise ParameterError(f"lidar must be 'none', 'exact' or a noise model's name ({', '.join(NOISE_MODELS.names())}), "
-                         f"got {lidar!r}")
+                             f"got {lidar!r}")
     scene_world = load_scene_world(world)
     plan_params = dict(plan_params or {})
     poses = wants_pose_path(scene_world, robot, planner, goal, plan_params)
@@ -120,7 +120,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
             CONTROLLERS.get(controller)  # an unknown name first: "did you mean"
         if controller is not None and controller not in POSE_FOLLOWERS:
             raise ParameterError(f"controller '{controller}' cannot follow a path of poses with reverse stretches (this "
-                             f"run plans between poses); use {', '.join(POSE_FOLLOWERS)}")
+                                 f"run plans between poses); use {', '.join(POSE_FOLLOWERS)}")
         follower = controller or POSE_FOLLOWERS[0]
         if getattr(bot, "steers", False):
             params = {**CAR_FOLLOWER[follower], **params}
@@ -144,7 +144,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     goal = (float(goal[0]), float(goal[1]))
     if planner is not None and not ctrl.needs_path:
         raise ParameterError(f"controller '{controller}' plans nothing ahead; --planner is for hybrid, goto_waypoint "
-                         "and pure_pursuit")
+                             "and pure_pursuit")
     direction = None
     if poses:
         result, path, direction = plan_pose_path(scene_world, bot, start, goal + ((goal_heading,) if goal_heading

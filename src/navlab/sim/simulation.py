@@ -21,6 +21,7 @@ import numpy as np
 
 from ..arrays import grown
 from ..control.base import REACHED, STALLED, Controller
+from ..errors import ParameterError
 from ..limits import is_finite_real, shown
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
@@ -28,7 +29,6 @@ from ..sensors.timing import DelayLine, SensorTiming
 from .plant import Plant
 from .polyline import distance_to_polyline
 from .scene import Scene
-from ..errors import ParameterError
 
 #: simulation steps the logs hold at first (they double as the run goes on)
 INITIAL_LOG_ROWS = 4096
@@ -169,19 +169,19 @@ class Simulation:
             raise ParameterError(f"time step dt = {dt:g} s is below the smallest supported step, {MIN_DT:g} s")
         if dt > MAX_DT:
             raise ParameterError(f"time step dt = {dt:g} s is above the largest supported step, {MAX_DT:g} s "
-                             "(the controller acts once a step: a longer step drives blind past goals and gaps)")
+                                 "(the controller acts once a step: a longer step drives blind past goals and gaps)")
         if not (isinstance(max_time, (int, float)) and is_finite_real(max_time) and max_time > 0):
             raise ParameterError(f"max_time must be a positive, finite number of seconds, got {shown(max_time)}")
         if max_time / dt > MAX_STEPS:
             raise ParameterError(f"max_time / dt = {max_time / dt:.3g} steps, more than the {MAX_STEPS:.0e} a run "
-                             f"supports; lower max_time or raise dt")
+                                 f"supports; lower max_time or raise dt")
         if controller.needs_scan and lidar is None:
             raise ParameterError(f"controller {type(controller).__name__} reads LiDAR points: give a lidar")
         if controller.needs_path and path is None:
             raise ParameterError(f"controller {type(controller).__name__} follows a path: give a path or a planner")
         if controller.holonomic and not robot.holonomic:
             raise ParameterError(f"controller {type(controller).__name__} commands sideways motion, "
-                             f"which a {type(robot).__name__} cannot do")
+                                 f"which a {type(robot).__name__} cannot do")
         self.scene = Scene(scene_world, robot.radius, getattr(robot, "footprint", None))
         self.robot, self.controller, self.lidar = robot, controller, lidar
         self.encoders = encoders or WheelEncoders()

@@ -6,10 +6,10 @@ from typing import Optional
 
 import numpy as np
 
+from ..errors import ParameterError
 from ..result import Result, Tree
 from .legend import FRAME, place_legend
 from .save import save_figure
-from ..errors import ParameterError
 
 
 def _pyplot():
@@ -213,7 +213,7 @@ def _world_and_result(world, result):
         raise TypeError(f"plot_plan(world, result) or plot_plan(result): got one {type(world).__name__} and no result")
     if world.world is None:
         raise ParameterError("this result does not record its world (navlab.plan records it; a planner called "
-                         "directly does not): plot_plan(world, result)")
+                             "directly does not): plot_plan(world, result)")
     return world.world, world
 
 

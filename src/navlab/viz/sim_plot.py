@@ -7,8 +7,8 @@ from typing import Optional
 
 import numpy as np
 
-from .plot import _pyplot, draw_footprint, draw_path, draw_world, finish_plot, new_axes
 from ..errors import ParameterError
+from .plot import _pyplot, draw_footprint, draw_path, draw_world, finish_plot, new_axes
 
 
 def draw_scene(ax, scene_world, moving: bool = True) -> None:

@@ -13,8 +13,8 @@ import math
 
 import numpy as np
 
-from . import geometry as _geo
 from ..errors import ParameterError
+from . import geometry as _geo
 
 #: [cells] how far past a surface cell's far side a boundary sampler's ray reaches
 _MAP_REACH_CELLS = 2.5

@@ -33,9 +33,9 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
+from ..errors import NavlabError, ParameterError
 from ..limits import check_coordinate
 from ..registry import suggest
-from ..errors import NavlabError, ParameterError
 
 Point = Tuple[float, float]
 AT_BOUNDS = ("reflect", "stop")
@@ -182,7 +182,7 @@ class _VelocityTrack(Track):
         for axis in range(2):
             if self.v[axis] != 0 and not low_limit[axis] <= lo[axis] <= high_limit[axis]:
                 raise ParameterError(f"obstacle {index}: field 'motion.velocity': the shape must lie inside the "
-                                 f"bounds at t = 0 to {motion.at_bounds} at them")
+                                     f"bounds at t = 0 to {motion.at_bounds} at them")
         self.lo, self.low, self.high = lo, low_limit, high_limit
         if not self.reflect:  # the first time any axis reaches its limit
             times = [((high_limit[a] if self.v[a] > 0 else low_limit[a]) - lo[a]) / self.v[a]

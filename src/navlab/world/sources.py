@@ -21,10 +21,10 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..angles import HeadingWarning
+from ..errors import NavlabError, ParameterError
 from ..limits import check_coordinate, check_length
 from .io import WorldFormatError, load_world, read_yaml_document
 from .world import World
-from ..errors import NavlabError, ParameterError
 
 
 class MissingQueryError(NavlabError):

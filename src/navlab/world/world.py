@@ -9,10 +9,10 @@ from typing import TYPE_CHECKING, Any, Dict, Optional, Tuple
 import numpy as np
 
 from ..angles import planned_heading
+from ..errors import ParameterError
 from ..limits import check_coordinate, check_length
 from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
-from ..errors import ParameterError
 
 if TYPE_CHECKING:  # the grid package imports nothing from world; keep it that way at run time
     from ..grid.occupancy import OccupancyGrid

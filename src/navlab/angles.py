@@ -24,7 +24,7 @@ def wrap_angle(angle: float) -> float:
 
 def finite_heading(what: str, value) -> float:
     """``value`` [rad] as a float if it is a finite real number of any type (Python's, numpy's
-    including ``longdouble``, an int that fits a float), else ValueError naming ``what``."""
+    including ``longdouble``, an int that fits a float), else ParameterError naming ``what``."""
     import numbers
 
     if isinstance(value, bool) or not isinstance(value, numbers.Real):

@@ -25,7 +25,7 @@ MIN_LENGTH = 1.0e-9  #: [m] smallest positive length (radius, resolution, tolera
 
 def finite_number(name: str, value: Any) -> float:
     """``value`` as a float if it is a finite real number (Python or numpy;
-    not a bool, not a string), else ValueError naming ``name``."""
+    not a bool, not a string), else ParameterError naming ``name``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
         raise ParameterError(f"{name} must be a number, got {value!r}")
     try:
@@ -57,7 +57,7 @@ def shown(value: Any) -> str:
 
 
 def check_coordinate(name: str, value: Any) -> float:
-    """``value`` as a float if it is a finite number within ±MAX_COORDINATE [m], else ValueError
+    """``value`` as a float if it is a finite number within ±MAX_COORDINATE [m], else ParameterError
     naming ``name`` (headings are not coordinates: any finite one is taken and wrapped,
     :func:`navlab.angles.planned_heading`)."""
     v = finite_number(name, value)
@@ -67,7 +67,7 @@ def check_coordinate(name: str, value: Any) -> float:
 
 
 def check_length(name: str, value: Any, allow_zero: bool = True) -> float:
-    """A non-negative (or positive) length within [MIN_LENGTH, MAX_COORDINATE], else ValueError naming ``name``."""
+    """A non-negative (or positive) length within [MIN_LENGTH, MAX_COORDINATE], else ParameterError naming ``name``."""
     v = check_coordinate(name, value)
     if v < 0 or (v == 0 and not allow_zero):
         raise ParameterError(f"{name} must be {'non-negative' if allow_zero else 'positive'}, got {value!r}")
@@ -82,7 +82,7 @@ MAX_COUNT = 2 ** 62
 
 def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX_COUNT) -> int:
     """``value`` as an int if it is a whole number in [low, high] (``high`` None: no upper bound), else
-    ValueError naming ``name``. A float that is a whole number counts (``1e6`` from a command line or a
+    ParameterError naming ``name``. A float that is a whole number counts (``1e6`` from a command line or a
     YAML file); bools, strings and fractions do not."""
     if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
         value = int(value)
@@ -148,7 +148,7 @@ def _address_space_room() -> Optional[int]:
 
 
 def check_memory(need: int, what: str) -> None:
-    """Refuse, with a ValueError, a request whose memory estimate ``need``
+    """Refuse, with a ParameterError, a request whose memory estimate ``need``
     (bytes) exceeds what this process can have now: better one line before
     starting than an out-of-memory kill later. ``what`` starts the message
     and should name the field (``"max_iter=10**12 could grow a tree that"``)."""
@@ -165,7 +165,7 @@ def _bytes(n: int) -> str:
 
 def check_seed(seed: Any) -> None:
     """A seed is a non-negative whole number, None, or a numpy Generator
-    (``ValueError`` naming ``seed`` otherwise: a dict or -5 would reach numpy
+    (``ParameterError`` naming ``seed`` otherwise: a dict or -5 would reach numpy
     as a ``TypeError``)."""
     if seed is None or isinstance(seed, np.random.Generator):
         return

@@ -147,7 +147,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
 
     Raises
     ------
-    ValueError
+    ParameterError
         Bad source, missing start/goal for a map
         (:class:`~navlab.world.sources.MissingQueryError`), unknown planner,
         sampler or parameter, bad value. An unusable start or goal is not an

@@ -45,7 +45,7 @@ VERIFY_SPACING = 0.001
 
 
 def check_motion(value: Any, allowed: Tuple[str, ...] = MOTIONS) -> str:
-    """``value`` if it is one of ``allowed`` motions, else ValueError listing them (and the nearest)."""
+    """``value`` if it is one of ``allowed`` motions, else ParameterError listing them (and the nearest)."""
     if value not in allowed:
         raise ParameterError(f"motion must be one of {', '.join(allowed)}, got {value!r}."
                              + suggest(str(value), list(allowed)))

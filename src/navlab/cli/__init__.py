@@ -200,7 +200,7 @@ def _stdout_reader_gone() -> bool:
 class NavlabGroup(SuggestingGroup):
     """The top-level group: no Python traceback ever reaches a user.
 
-    Bad input (navlab's ``ValueError`` types, unreadable files, a missing
+    Bad input (navlab's own error types, ``NavlabError``, unreadable files, a missing
     optional package, a request too large for memory) prints one
     ``Error: ...`` line and exits 2; Ctrl-C prints one line and exits 130; an
     unexpected exception (a bug) prints one ``Error: internal error: ...``

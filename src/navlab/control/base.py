@@ -60,7 +60,7 @@ class Controller:
 
 def check_number(name: str, value: Any, low: float = 0.0, allow_low: bool = False,
                  high: float = math.inf) -> float:
-    """``value`` as a float in (low, high] (or [low, high] with ``allow_low``), else ValueError naming it."""
+    """``value`` as a float in (low, high] (or [low, high] with ``allow_low``), else ParameterError naming it."""
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
             or not math.isfinite(value):
         raise ParameterError(f"{name} must be a finite number, got {value!r}")

@@ -22,7 +22,7 @@ def maze_size(cells_x: int, cells_y: int, cell_size: float, wall: float, resolut
     """The map's size in pixels (nx, ny), after checking the maze fits: at
     most MAX_CELLS pixels, walls and corridors at least a pixel wide, and an
     estimate of the memory it needs below what the machine has available.
-    Raises ValueError naming the parameter, before anything is allocated."""
+    Raises ParameterError naming the parameter, before anything is allocated."""
     cell_size, wall, resolution = (check_length(name, v, allow_zero=False) for name, v in
                                    (("cell_size", cell_size), ("wall", wall), ("resolution", resolution)))
     if wall >= cell_size:
@@ -116,7 +116,7 @@ def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0
 
     Raises
     ------
-    ValueError
+    ParameterError
         Naming the parameter: bad sizes, a resolution too coarse for the
         walls, or a maze whose map exceeds MAX_CELLS pixels or the memory
         available (checked before anything is allocated; :func:`maze_size`).

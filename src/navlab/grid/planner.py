@@ -36,7 +36,7 @@ import numpy as np
 
 from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from ..errors import ParameterError
-from ..limits import check_coordinate
+from ..limits import check_coordinate, shown
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
@@ -383,9 +383,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
     except OverflowError:  # an int past float's range (10**400)
         as_float = math.inf
     if isinstance(weight, (bool, np.bool_)) or not as_float >= 1 or not math.isfinite(as_float):
-        shown = f"an integer of {len(str(abs(int(weight))))} digits" if math.isinf(as_float) and \
-            isinstance(weight, numbers.Integral) else repr(weight)
-        raise ParameterError(f"weight must be a finite number >= 1, got {shown}")
+        raise ParameterError(f"weight must be a finite number >= 1, got {shown(weight)}")
     weight = as_float
     for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
         if not isinstance(value, (bool, np.bool_)):

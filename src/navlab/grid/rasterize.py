@@ -101,7 +101,7 @@ def rasterize(world, resolution: Optional[float] = None) -> OccupancyGrid:
 
     Raises
     ------
-    ValueError
+    ParameterError
         A bad resolution, one giving more than :data:`MAX_CELLS` cells (before
         anything is allocated), or a resolution for a map.
     """

@@ -37,7 +37,7 @@ def _number(key: str, value: Any) -> float:
 def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     """``params`` with every grid setting it has checked (values unchanged
     but for integral floats of ``connectivity``); unknown keys pass through
-    (the caller reports them). Raises ``ValueError`` naming the setting."""
+    (the caller reports them). Raises ``ParameterError`` naming the setting."""
     from .planner import GRID_ALGORITHMS, HEURISTICS
 
     out = dict(params)

@@ -82,7 +82,7 @@ def grid_from_msg(msg, occupied_threshold: int = 65, free_threshold: int = 25, n
 
     Raises
     ------
-    ValueError
+    ParameterError
         Empty map, zero resolution, or data of the wrong length.
     """
     w, h = int(msg.info.width), int(msg.info.height)

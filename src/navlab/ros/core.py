@@ -92,7 +92,7 @@ class GoalPlanner:
 
     Raises
     ------
-    ValueError
+    ParameterError
         An unknown algorithm, sampler or parameter (with a "did you mean"),
         or a bad value: found by planning once on a small empty map, which
         also compiles the planner's kernels before the first goal.

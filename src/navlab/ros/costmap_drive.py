@@ -95,7 +95,7 @@ class CostmapDrive:
 
     Raises
     ------
-    ValueError
+    ParameterError
         An unknown or non-costmap controller, an unknown setting (with a "did
         you mean"), a bad value or footprint, an inflation radius below the
         footprint's inscribed radius: found by building the costmap of a small

@@ -95,7 +95,7 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
 
     Raises
     ------
-    ValueError
+    ParameterError
         Bad settings (checked before anything starts).
     """
     from ..grid.occupancy import OccupancyGrid

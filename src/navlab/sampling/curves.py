@@ -34,7 +34,7 @@ NEGLIGIBLE = 1e-12  #: a segment shorter than this many turning radii is roundin
 
 def check_pose(name: str, pose, degrees_hint: bool = False) -> Tuple[float, float, float]:
     """``pose`` as three floats ``(x, y, θ)``, θ wrapped to [−π, π] (exactly: a heading
-    already there is kept bit for bit); ValueError naming ``name`` if it is not three
+    already there is kept bit for bit); ParameterError naming ``name`` if it is not three
     finite numbers with x and y within navlab's coordinate range. Any finite heading
     is a heading, as for a ``World``'s start and goal (until session 16 this refused
     headings beyond ±1e7 rad, which ``navlab.plan`` wrapped). With ``degrees_hint`` (a

@@ -390,7 +390,7 @@ def _turning_scale_checked(turning_radius: float, vertices, disc: float, resolut
 def footprint_misfit(vertices: Tuple[Tuple[float, float], ...], disc: float, width: float, height: float,
                      resolution: float, bins: int, field: str) -> Optional[str]:
     """Why a robot fits the ``width`` × ``height`` map [m] in no orientation (its narrowest extent
-    is wider than the map's longer side), or None; and a ValueError naming ``field``
+    is wider than the map's longer side), or None; and a ParameterError naming ``field``
     (``footprint`` or ``robot_radius``) when its lattice of footprint cells (one list per
     heading bin, 16 bytes a cell, about three times that while built) needs more memory than
     the machine has. Both before any table is built: a 100 m disc on a 6 × 8 m map took 19 s

@@ -125,7 +125,7 @@ class TreePlanner:
             raise ParameterError(f"keep_tree must be true or false, got {self.keep_tree!r}")
 
     def check_fits(self, max_iter: Optional[int] = None) -> None:
-        """Refuse (ValueError naming max_iter) a budget whose tree could not fit in
+        """Refuse (ParameterError naming max_iter) a budget whose tree could not fit in
         this machine's memory. Only max_iter bounds the tree without max_time;
         with a time budget the tree only grows as far as the time allows."""
         if self.max_time is None:

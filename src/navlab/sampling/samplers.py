@@ -7,7 +7,7 @@ replaces the bounds as the source of uniform draws (Informed RRT* passes its
 ellipse). ``deadline`` (a :func:`time.perf_counter` value) bounds the time a
 sampler may spend: loops that try again stop once it has passed.
 
-Parameters are validated when a sampler is built, with a ``ValueError``
+Parameters are validated when a sampler is built, with a ``ParameterError``
 naming the field.
 """
 

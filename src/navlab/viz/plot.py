@@ -25,7 +25,7 @@ def finish_figure(fig, out: Optional[str], dpi: int = 110):
     """Write ``fig`` to ``out`` (when given) and release it; return it.
 
     The file appears whole or not at all (:func:`.save.save_figure`); a
-    write that fails (disk full, no permission) is one ``ValueError`` naming
+    write that fails (disk full, no permission) is one ``ParameterError`` naming
     the file.
     """
     if out:

@@ -120,7 +120,7 @@ def animate_run(scene_world, result, out: str, robot_radius: float, fps: int = G
     At most ``max_frames`` frames, evenly spaced in time; only the artists
     that move are redrawn each frame (the static scene is rendered once), so
     a one-minute run takes a few seconds. The file appears whole or not at
-    all; a failed write is one ``ValueError`` naming it. ``progress``: a bar
+    all; a failed write is one ``ParameterError`` naming it. ``progress``: a bar
     on stderr (default: when stderr is a terminal).
     """
     import sys

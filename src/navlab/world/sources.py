@@ -123,7 +123,7 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
     ------
     MissingQueryError
         A map without ``start`` or ``goal``.
-    WorldFormatError, navlab.grid.MapFormatError, ValueError
+    WorldFormatError, navlab.grid.MapFormatError, navlab.ParameterError
         Malformed files or values; the message names the file and the field.
     """
     start, goal = _point_or_none(start, "start"), _point_or_none(goal, "goal")

@@ -25,7 +25,7 @@ def _plain(value: Any) -> Any:
 
 def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[float]]:
     """``value`` as an (x, y) pair of supported coordinates and the heading
-    θ [rad] when it is a pose (x, y, θ) (else None); ValueError naming ``what``."""
+    θ [rad] when it is a pose (x, y, θ) (else None); ParameterError naming ``what``."""
     if isinstance(value, np.ndarray):
         value = value.tolist()
     if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) not in (2, 3):

@@ -106,6 +106,10 @@ def test_malformed_pose_names_the_model(pose, words):
     (b"<world/>", "not an SDF file"),
     (b"<sdf version='1.6'/>", "no <world>"),
     (b"<sdf><world name='w'><include><uri>model://jackal</uri></include></world></sdf>", "include"),
+    # an internal LookupError and RecursionError until session 17 (an attack on the command)
+    (b"<?xml version='1.0' encoding='bogus-enc'?><sdf><world/></sdf>", "not readable XML \\(unknown encoding"),
+    (b"<sdf><world name='w'>" + b"<model name='n'>" * 2000 + b"</model>" * 2000 + b"</world></sdf>",
+     "model 'n': models nested more than 100 deep"),
 ])
 def test_bad_files(text, words):
     with pytest.raises(WorldFormatError, match=words):

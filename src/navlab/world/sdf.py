@@ -45,6 +45,8 @@ DEFAULT_GOAL = (-2.0, 13.0)
 BOUNDS_MARGIN = 1.0
 #: [rad] a roll or pitch above this is a tilted model, which a plan view cannot hold
 TILT_TOLERANCE = 1e-6
+#: the deepest nesting of models read (Gazebo's own worlds nest two or three; 2 000 was a RecursionError)
+MAX_MODEL_DEPTH = 100
 #: geometry without extent in the plane, or none to collide with
 IGNORED_GEOMETRY = ("plane", "empty")
 
@@ -131,7 +133,9 @@ def _state_poses(world: ET.Element) -> Dict[str, Pose2]:
     return out
 
 
-def _model_shapes(model: ET.Element, pose: Pose2, name: str) -> List[Any]:
+def _model_shapes(model: ET.Element, pose: Pose2, name: str, depth: int = 1) -> List[Any]:
+    if depth > MAX_MODEL_DEPTH:
+        raise WorldFormatError(f"model '{name.split('::')[0]}': models nested more than {MAX_MODEL_DEPTH} deep")
     shapes = []
     for link in model.findall("link"):
         link_pose = _compose(pose, _pose(link, name))
@@ -144,7 +148,7 @@ def _model_shapes(model: ET.Element, pose: Pose2, name: str) -> List[Any]:
                 shapes.append(shape)
     for nested in model.findall("model"):
         nested_name = f"{name}::{nested.get('name') or ''}"
-        shapes.extend(_model_shapes(nested, _compose(pose, _pose(nested, nested_name)), nested_name))
+        shapes.extend(_model_shapes(nested, _compose(pose, _pose(nested, nested_name)), nested_name, depth + 1))
     return shapes
 
 
@@ -158,6 +162,8 @@ def parse_sdf(text: bytes, where: str = "<sdf>", start: Optional[Sequence[float]
         root = ET.fromstring(text)
     except ET.ParseError as exc:
         raise WorldFormatError(f"{where}: not well-formed XML ({exc})") from None
+    except LookupError as exc:  # <?xml encoding='bogus'?>: Python has no such codec
+        raise WorldFormatError(f"{where}: not readable XML ({exc})") from None
     if root.tag != "sdf":
         raise WorldFormatError(f"{where}: not an SDF file (the root element is <{root.tag}>, expected <sdf>)")
     world = root.find("world")

@@ -53,6 +53,15 @@ def test_grid_settings_from_the_command_line(param):
     ("params: {heuristic: 0}", "heuristic must be one of"),
     ("budget: {max_iter: 1.0e+12}", "max_iter must be a positive integer"),
     ("claims: [{text: x, metric: cost, lower: nothere, higher: astar}]", "nothere"),
+    # YAML values no experiment can hold were internal errors in a trial or the results file (an attack on
+    # the command, session 17)
+    ("claims: [{text: {a: 1}, lower: astar, higher: astar}]", "claim text must be text"),
+    ("claims: [{text: x, lower: [1], higher: astar}]", "claim lower must be a group name or a list of them"),
+    ("grid: {1: [2]}", "grid: keys must be names, got 1"),
+    ("params: {weight: !!binary aGVsbG8=}", "params.weight: binary data is not an experiment value"),
+    ("grid: {weight: [2001-01-01]}", "grid.weight\\[0\\]: a date is not an experiment value"),
+    ("params: {weight: !!set {a}}", "params.weight: a set is not an experiment value"),
+    ("study: {title: [1]}", "study.title must be text"),
 ])
 def test_experiment_files_are_checked_before_any_trial(tmp_path, body, words):
     path = tmp_path / "e.yaml"

@@ -117,3 +117,17 @@ def test_the_terminal_says_over_which_queries_a_map_suites_costs_are(tmp_path):
     assert len(compared) == 5
     assert all(f"{world} {s['common']} of {s['queries']}" in line for world, s in compared.items())
     assert compared["maze512-32-9"]["common"] < 2  # 300 RRT* iterations reach the goal on the shortest query only
+
+
+def test_a_scenario_cell_outside_the_map_is_named_before_any_trial(tmp_path):
+    """A .scen row with a 400-digit start cell reached numpy as an object array: an internal
+    UFuncTypeError (an attack on the command, session 17)."""
+    from navlab.bench.experiment import ExperimentError, load_experiment
+
+    (tmp_path / "ok.map").write_text("type octile\nheight 6\nwidth 8\nmap\n" + "........\n" * 6)
+    (tmp_path / "far.scen").write_text("version 1\n" + f"0\tok.map\t8\t6\t{'9' * 400}\t0\t7\t5\t8.2\n")
+    (tmp_path / "e.yaml").write_text("worlds: [{map: ok.map, scen: far.scen, queries: 1}]\nplanners: [astar]\n"
+                                     "trials: 1\n")
+    with pytest.raises(ExperimentError, match="scenario 1's start cell with a coordinate of over 20 digits is "
+                                              "outside the 8x6 map"):
+        load_experiment(tmp_path / "e.yaml")

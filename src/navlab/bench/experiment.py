@@ -256,7 +256,27 @@ def load_experiment(source: Union[str, Path, Dict[str, Any]], where: str = "expe
     return exp
 
 
+def _plain(value: Any, path: str) -> None:
+    """Refuse what YAML can hold but an experiment cannot: a key that is not a name (``{1: [2]}``), and
+    binary data, dates and sets (``!!binary``, ``2001-01-01``, ``!!set``), which reached a trial or the
+    results file as internal errors (an attack on the command, session 17). ``path`` names the place."""
+    if isinstance(value, dict):
+        for key, item in value.items():
+            if not isinstance(key, str):
+                raise ExperimentError(f"{path}: keys must be names, got {key!r}")
+            _plain(item, f"{path}.{key}" if path else key)
+    elif isinstance(value, (list, tuple)):
+        for i, item in enumerate(value):
+            _plain(item, f"{path}[{i}]")
+    elif value is not None and not isinstance(value, (str, bool, int, float)):
+        kind = {"bytes": "binary data", "date": "a date", "datetime": "a date and time", "set": "a set"}.get(
+            type(value).__name__, f"a {type(value).__name__}")
+        raise ExperimentError(f"{path}: {kind} is not an experiment value (names, numbers, true/false, lists "
+                              f"and mappings are), got {value!r}")
+
+
 def _from_dict(data: Dict[str, Any]) -> Experiment:
+    _plain(data, "")
     for key in data:
         if key not in FIELDS:
             raise ExperimentError(f"unknown field '{key}'; valid: {', '.join(FIELDS)}." + suggest(key, list(FIELDS)))
@@ -277,6 +297,9 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
     study = data.get("study") or {}
     if not isinstance(study, dict):
         raise ExperimentError("'study' must be a mapping (title, measured, table)")
+    for key in ("short", "title", "measured"):  # they are the report's sentences
+        if not isinstance(study.get(key, ""), str):
+            raise ExperimentError(f"study.{key} must be text, got {study[key]!r}")
     from .maps import is_map_entry, map_entry
 
     worlds, maps = [], {}
@@ -342,6 +365,13 @@ def _check_world(world: str) -> None:
 def _claim(entry: Any) -> Dict[str, Any]:
     if not isinstance(entry, dict) or set(entry) - set(CLAIM_FIELDS) or not {"text", "lower", "higher"} <= set(entry):
         raise ExperimentError(f"each claim is a mapping with {', '.join(CLAIM_FIELDS)}, got {entry!r}")
+    # a sentence, and a group name (or a list of them) on each side ({a: 1} was an internal error)
+    if not isinstance(entry["text"], str):
+        raise ExperimentError(f"claim text must be text, got {entry['text']!r}")
+    for key in ("lower", "higher"):
+        names = entry[key] if isinstance(entry[key], list) else [entry[key]]
+        if not names or not all(isinstance(n, str) for n in names):
+            raise ExperimentError(f"claim {key} must be a group name or a list of them, got {entry[key]!r}")
     if entry.get("metric", "cost") not in CLAIM_METRICS:
         raise ExperimentError(f"claim metric must be one of {', '.join(CLAIM_METRICS)}, got {entry['metric']!r}")
     return {"metric": "cost", **entry}

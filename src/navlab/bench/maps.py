@@ -113,6 +113,11 @@ def scen_queries(scen: str, grid, count: int) -> List[Dict[str, Any]]:
     out = []
     for k in picks:
         sc = rows[int(k)]
+        for label, (x, y) in (("start", sc.start), ("goal", sc.goal)):
+            if not (0 <= x < grid.width and 0 <= y < grid.height):  # (a 400-digit cell was an internal error)
+                shown = f"({x}, {y})" if max(abs(x), abs(y)) < 10 ** 20 else "with a coordinate of over 20 digits"
+                raise ExperimentError(f"{scen}: scenario {int(k) + 1}'s {label} cell {shown} is outside the "
+                                      f"{grid.width}x{grid.height} map")
         ends = grid.cell_to_world(np.array([sc.start, sc.goal]))
         out.append({"index": int(k), "start": ends[0].tolist(), "goal": ends[1].tolist(),
                     "optimum": sc.optimal * grid.resolution})

@@ -344,3 +344,34 @@ def test_a_goal_bias_base_that_is_no_sampler_names_the_field():
 
     with pytest.raises(UnknownNameError, match="^base: unknown sampler 'bogus'"):
         navlab.plan("trap", sampler="goal_bias", base="bogus", max_iter=20)
+
+
+@pytest.mark.parametrize("args, words", [
+    (["plan", "trap", "--param", "sampler=gaussian", "--max-iter", "50"], "give --sampler gaussian instead"),
+    (["sim", "one_obstacle", "--max-time", "1", "--plan-param", "sampler=gaussian"],
+     "plan_params: 'sampler' is the run's own setting"),
+    (["sim", "one_obstacle", "--max-time", "1", "--controller", "potential_field", "--controller-param", "alpha=abc"],
+     "potential field alpha must be a finite number, got 'abc'"),
+    (["sim", "one_obstacle", "--max-time", "1", "--controller", "potential_field", "--controller-param",
+      "stall_window=abc"], "stall_window must be a finite number"),
+    (["sim", "one_obstacle", "--max-time", "1", "--robot", "diff", "--controller", "pure_pursuit",
+      "--controller-param", "lookahead=1e300"], "pure_pursuit lookahead = 1e+300 is out of range"),
+    (["sim", "one_obstacle", "--max-time", "1", "--robot", "diff", "--controller", "dwa", "--controller-param",
+      "sim_granularity=1e-9"], "give rollouts of up to 2.2e+08 steps, more than 10000"),
+    (["grid", "maze", "--cells", "3", "3", "--out", ""], "'': not a file name for the map's YAML"),
+    (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=[2001-01-01]", "--trials", "1"],
+     "the command line: grid.expand_dis[0]: a date is not an experiment value"),
+])
+def test_bad_input_an_attack_found_reaching_internal_errors_is_one_line(args, words, tmp_path, monkeypatch):
+    """An attack on the command (session 17, after only navlab's own errors counted as bad input) found
+    these reaching 'internal error' (TypeError, OverflowError, a ValueError of pathlib's) or, for DWA's
+    sim_granularity, a run that never ended."""
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    result = CliRunner().invoke(main, args, prog_name="navlab")
+    assert result.exit_code == 2 and "internal error" not in result.output, result.output
+    lines = [x for x in result.output.splitlines() if x.strip()]
+    assert len(lines) == 1 and words in lines[0], result.output

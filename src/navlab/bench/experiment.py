@@ -256,7 +256,7 @@ def load_experiment(source: Union[str, Path, Dict[str, Any]], where: str = "expe
     return exp
 
 
-def _plain(value: Any, path: str) -> None:
+def check_plain(value: Any, path: str = "") -> None:
     """Refuse what YAML can hold but an experiment cannot: a key that is not a name (``{1: [2]}``), and
     binary data, dates and sets (``!!binary``, ``2001-01-01``, ``!!set``), which reached a trial or the
     results file as internal errors (an attack on the command, session 17). ``path`` names the place."""
@@ -264,10 +264,10 @@ def _plain(value: Any, path: str) -> None:
         for key, item in value.items():
             if not isinstance(key, str):
                 raise ExperimentError(f"{path}: keys must be names, got {key!r}")
-            _plain(item, f"{path}.{key}" if path else key)
+            check_plain(item, f"{path}.{key}" if path else key)
     elif isinstance(value, (list, tuple)):
         for i, item in enumerate(value):
-            _plain(item, f"{path}[{i}]")
+            check_plain(item, f"{path}[{i}]")
     elif value is not None and not isinstance(value, (str, bool, int, float)):
         kind = {"bytes": "binary data", "date": "a date", "datetime": "a date and time", "set": "a set"}.get(
             type(value).__name__, f"a {type(value).__name__}")
@@ -276,7 +276,7 @@ def _plain(value: Any, path: str) -> None:
 
 
 def _from_dict(data: Dict[str, Any]) -> Experiment:
-    _plain(data, "")
+    check_plain(data)
     for key in data:
         if key not in FIELDS:
             raise ExperimentError(f"unknown field '{key}'; valid: {', '.join(FIELDS)}." + suggest(key, list(FIELDS)))

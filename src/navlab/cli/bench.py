@@ -132,7 +132,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
       navlab bench --suite barn --data ../shared/data/barn --controller dwa_barn --controller rpp
     """
     from ..bench import load_experiment, run_experiment
-    from ..bench.experiment import experiment_data
+    from ..bench.experiment import ExperimentError, check_plain, experiment_data
     from ..bench.runner import Interrupted, breakdown_lines
 
     if resume and overwrite:
@@ -182,6 +182,11 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         data["seed"] = seed
     if not (experiment or suite):
         # an experiment made of flags: named by what it runs, so two different ones never share a folder
+        # (its values checked first: the name hashes them, and a date was an internal TypeError there)
+        try:
+            check_plain(data)
+        except ExperimentError as exc:
+            raise ExperimentError(f"{where}: {exc}") from None
         data["name"] = _adhoc_name(data)
     exp = load_experiment(data, where)
     if show:

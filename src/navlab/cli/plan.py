@@ -69,6 +69,9 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
 
         before_first_kernel()  # numba is imported by now (the planners' kernels)
         settings = parse_params(params)
+        for key in ("planner", "sampler", "seed"):  # the flags' own (a TypeError, "multiple values", until session 17)
+            if key in settings:
+                raise click.UsageError(f"--param {key}=... : give --{key} {settings[key]} instead")
         for flag, value in (("max_iter", max_iter), ("max_time", max_time)):
             if value is not None:
                 if flag in settings and settings[flag] != value:

@@ -91,9 +91,8 @@ class StallDetector:
     not dropped by ``progress`` metres over the last ``window`` seconds."""
 
     def __init__(self, window: float = 4.0, progress: float = 0.03) -> None:
-        if window <= 0 or progress <= 0:
-            raise ParameterError("stall window and progress must be positive")
-        self.window, self.progress = window, progress
+        # (a number's checks: a string was an internal TypeError)
+        self.window, self.progress = check_number("stall_window", window), check_number("stall_progress", progress)
         self._t0: Optional[float] = None
         self._best = float("inf")
 

@@ -83,12 +83,16 @@ from typing import Optional
 import numpy as np
 from numba import njit
 
+from ..errors import ParameterError
 from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS, RUNNING, STALLED, Command
 from .local import CostmapController, check_number
 from .move_base_navfn import plan_navfn
 
+#: the most Euclidean steps one rollout may take (ROS's defaults give 22; a sim_granularity of 1e-9 m gave 10⁹
+#: steps per rollout and a run that never ended: an attack on the command, session 17)
+MAX_ROLLOUT_STEPS = 10_000
 #: a distance no cell can have: the cell is unreachable from the path or goal (MapGrid's obstacleCosts)
 UNREACHABLE = 1e18
 #: rollout costs for a rejected rollout: the footprint meets an obstacle or leaves the map / no path reaches a point
@@ -278,6 +282,13 @@ class DWA(CostmapController):
         self.sim_time = check_number("sim_time", sim_time, high=60.0)
         self.sim_granularity = check_number("sim_granularity", sim_granularity)
         self.angular_sim_granularity = check_number("angular_sim_granularity", angular_sim_granularity)
+        steps = max(self.max_vel_x * self.sim_time / self.sim_granularity,
+                    self.max_vel_theta / self.angular_sim_granularity)  # the rollout's n at the fastest sample
+        if steps > MAX_ROLLOUT_STEPS:
+            raise ParameterError(f"sim_granularity {self.sim_granularity:g} m and angular_sim_granularity "
+                                 f"{self.angular_sim_granularity:g} rad give rollouts of up to {steps:.3g} steps, "
+                                 f"more than {MAX_ROLLOUT_STEPS}: raise them (ROS's defaults, 0.025 and 0.025, "
+                                 "give 22)")
         self.vx_samples = check_count("vx_samples", vx_samples, 1, 1000)
         self.vtheta_samples = check_count("vtheta_samples", vtheta_samples, 1, 1000)
         self.period = 1.0 / check_number("controller_frequency", controller_frequency, high=1e4)

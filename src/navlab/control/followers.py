@@ -9,6 +9,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
+from ..limits import check_length
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 from .path_tracking import split_at_cusps
@@ -192,6 +193,8 @@ class PurePursuit(_Follower):
         for name, value in (("lookahead", lookahead), ("speed", speed), ("goal_radius", goal_radius),
                             ("cusp_radius", cusp_radius)):
             check_number(f"pure_pursuit {name}", value)  # a positive finite number ('fast' named, not a TypeError)
+            if name != "speed":  # a length within navlab's range (1e300 overflowed squaring the lookahead)
+                check_length(f"pure_pursuit {name}", value, allow_zero=False)
         self.lookahead, self.speed, self.goal_radius, self.cusp_radius = lookahead, speed, goal_radius, cusp_radius
         self._stretches: list = []  #: (points, sign) of each stretch between cusps, for paths with directions
         self._sign = 1.0

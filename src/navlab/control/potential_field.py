@@ -7,9 +7,8 @@ from typing import Optional
 
 import numpy as np
 
-from ..errors import ParameterError
 from ..robots.kinematics import _wrap, world_to_body
-from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 
 
 def attractive(dx: float, dy: float, alpha: float, r: float, s: float) -> np.ndarray:
@@ -84,19 +83,16 @@ class PotentialField(Controller):
                  s: float = 0.3, obstacle_r: float = 0.2, obstacle_s: float = 0.35, max_speed: float = 0.3,
                  heading_gain: float = 2.0, min_speed: float = 0.01, stall_window: float = 4.0,
                  stall_progress: float = 0.03) -> None:
+        # (a number's checks: 'abc' or a list was an internal TypeError, an attack on the command, session 17)
         for name, value in (("alpha", alpha), ("s", s), ("obstacle_s", obstacle_s), ("max_speed", max_speed)):
-            if not value > 0:
-                raise ParameterError(f"potential field {name} must be positive, got {value!r}")
+            check_number(f"potential field {name}", value)
         for name, value in (("beta", beta), ("delta", delta), ("r", r), ("obstacle_r", obstacle_r),
                             ("heading_gain", heading_gain)):
-            if not value >= 0:
-                raise ParameterError(f"potential field {name} must be ≥ 0, got {value!r}")
+            check_number(f"potential field {name}", value, allow_low=True)
         self.alpha, self.beta, self.delta, self.r, self.s = alpha, beta, delta, r, s
         self.obstacle_r, self.obstacle_s = obstacle_r, obstacle_s
         self.max_speed, self.heading_gain = max_speed, heading_gain
-        if not min_speed >= 0:
-            raise ParameterError(f"potential field min_speed must be ≥ 0, got {min_speed!r}")
-        self.min_speed = min_speed
+        self.min_speed = check_number("potential field min_speed", min_speed, allow_low=True)
         self.stall = StallDetector(stall_window, stall_progress)
         self.goal = np.zeros(2)
 

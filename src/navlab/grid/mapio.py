@@ -457,6 +457,8 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     Probabilities (``grid.probability``) are not written.
     """
     ypath = Path(yaml_path)
+    if ypath.name in ("", ".", ".."):  # '' is Path('.'): with_suffix's ValueError was an internal error
+        raise ParameterError(f"{os.fspath(yaml_path)!r}: not a file name for the map's YAML (say maze.yaml)")
     image = ypath.with_suffix(".pgm")
     pixels = np.full(grid.blocked.shape, 254, dtype=np.uint8)
     pixels[grid.unknown] = 205

@@ -109,6 +109,10 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
                              f"got {lidar!r}")
     scene_world = load_scene_world(world)
     plan_params = dict(plan_params or {})
+    for key in ("planner", "sampler", "seed"):  # the run's own settings (a TypeError, "multiple values", until 17)
+        if key in plan_params:
+            raise ParameterError(f"plan_params: '{key}' is the run's own setting: give {key}={plan_params[key]!r} "
+                                 "(--" + key + " on the command line)")
     poses = wants_pose_path(scene_world, robot, planner, goal, plan_params)
     bot = make_robot(robot, **(scene_robot_params(scene_world, robot, robot_params or {}) if poses
                                else (robot_params or {})))

@@ -375,3 +375,13 @@ def test_bad_input_an_attack_found_reaching_internal_errors_is_one_line(args, wo
     assert result.exit_code == 2 and "internal error" not in result.output, result.output
     lines = [x for x in result.output.splitlines() if x.strip()]
     assert len(lines) == 1 and words in lines[0], result.output
+
+
+def test_a_map_reaching_past_the_coordinate_range_is_named(tmp_path):
+    """A map whose origin is in range but whose far edge is not said 'bounds.xmax = 1e+07 is out of
+    range (≤ 1e+07)', naming neither the map nor the true value (an attack on the command, session 17)."""
+    Image.fromarray(np.full((4, 4), 254, dtype=np.uint8)).save(tmp_path / "ok.pgm")
+    (tmp_path / "far.yaml").write_text("image: ok.pgm\nresolution: 0.5\norigin: [9999999, 0, 0]\nnegate: 0\n"
+                                       "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    with pytest.raises(navlab.ParameterError, match="far.yaml: bounds.xmax = 10000001 is out of range"):
+        navlab.plan(str(tmp_path / "far.yaml"), planner="rrt", start=(9999999.5, 0.5), goal=(9999999.9, 1.5))

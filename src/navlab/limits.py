@@ -62,7 +62,8 @@ def check_coordinate(name: str, value: Any) -> float:
     :func:`navlab.angles.planned_heading`)."""
     v = finite_number(name, value)
     if abs(v) > MAX_COORDINATE:
-        raise ParameterError(f"{name} = {v:g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
+        # (ten digits: "1e+07 is out of range (≤ 1e+07)" hid a 10000000.4 just past the bound)
+        raise ParameterError(f"{name} = {v:.10g} is out of range (|{name}| ≤ {MAX_COORDINATE:g} m)")
     return v
 
 

@@ -110,6 +110,12 @@ def test_malformed_pose_names_the_model(pose, words):
     (b"<?xml version='1.0' encoding='bogus-enc'?><sdf><world/></sdf>", "not readable XML \\(unknown encoding"),
     (b"<sdf><world name='w'>" + b"<model name='n'>" * 2000 + b"</model>" * 2000 + b"</world></sdf>",
      "model 'n': models nested more than 100 deep"),
+    # the World's own checks and the <state> poses named no file (an attack on the command, session 17)
+    (b"<sdf><world name='w'><model name='a'><pose>1e300 0 0 0 0 0</pose><link name='l'><collision name='c'>"
+     b"<geometry><cylinder><radius>0.1</radius><length>1</length></cylinder></geometry></collision></link>"
+     b"</model></world></sdf>", "^bad.world: bounds.xmax = 1e\\+300 is out of range"),
+    (b"<sdf><world name='w'><state><model name='a'><pose>bad</pose></model></state></world></sdf>",
+     "^bad.world: model 'a': malformed pose 'bad'"),
 ])
 def test_bad_files(text, words):
     with pytest.raises(WorldFormatError, match=words):

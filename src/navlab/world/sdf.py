@@ -173,10 +173,11 @@ def parse_sdf(text: bytes, where: str = "<sdf>", start: Optional[Sequence[float]
         uri = world.find("include/uri")
         raise WorldFormatError(f"{where}: <include> of {None if uri is None else uri.text!r} cannot be read "
                                "(navlab does not resolve Gazebo's model database); inline the model")
-    state = _state_poses(world)
     obstacles: List[Any] = []
     names: List[str] = []
+    name = ""
     try:
+        state = _state_poses(world)
         for model in world.findall("model"):
             name = model.get("name") or f"model {len(names)}"
             pose = state.get(name) or _pose(model, name)
@@ -195,8 +196,11 @@ def parse_sdf(text: bytes, where: str = "<sdf>", start: Optional[Sequence[float]
     xy = np.array(points, float)
     lo, hi = xy.min(axis=0) - BOUNDS_MARGIN, xy.max(axis=0) + BOUNDS_MARGIN
     stem = os.path.splitext(os.path.basename(where))[0]
-    return World(name=stem, bounds=Bounds(float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1])), start=start,
-                 goal=goal, obstacles=tuple(obstacles), meta={"obstacle_names": names, "source": where})
+    try:
+        return World(name=stem, bounds=Bounds(float(lo[0]), float(hi[0]), float(lo[1]), float(hi[1])), start=start,
+                     goal=goal, obstacles=tuple(obstacles), meta={"obstacle_names": names, "source": where})
+    except ValueError as exc:  # the World's own checks (a model past navlab's range, a 1e-300 m cylinder)
+        raise WorldFormatError(f"{where}: {exc}") from None
 
 
 def read_sdf(path, start=None, goal=None) -> World:

@@ -70,6 +70,14 @@ def test_experiment_files_are_checked_before_any_trial(tmp_path, body, words):
         load_experiment(path)
 
 
+def test_an_experiment_file_without_worlds_is_named(tmp_path):
+    """"'worlds' is empty: nothing to run" named no file (an attack on the command, session 17)."""
+    path = tmp_path / "e.yaml"
+    path.write_text("worlds: []\nplanners: [astar]\n")
+    with pytest.raises(ExperimentError, match="e.yaml: 'worlds' is empty"):
+        load_experiment(path)
+
+
 def test_a_raster_too_fine_to_count_is_one_line():
     from navlab.grid.rasterize import grid_shape
     from navlab.world.world import Bounds
@@ -361,6 +369,7 @@ def test_a_goal_bias_base_that_is_no_sampler_names_the_field():
     (["grid", "maze", "--cells", "3", "3", "--out", ""], "'': not a file name for the map's YAML"),
     (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=[2001-01-01]", "--trials", "1"],
      "the command line: grid.expand_dis[0]: a date is not an experiment value"),
+    (["bench", "--suite", "smoke", "--out", ""], "--out must name a folder, got ''"),  # it wrote into '.'
 ])
 def test_bad_input_an_attack_found_reaching_internal_errors_is_one_line(args, words, tmp_path, monkeypatch):
     """An attack on the command (session 17, after only navlab's own errors counted as bad input) found

@@ -212,7 +212,11 @@ def experiment_data(source: Union[str, Path]) -> Tuple[Dict[str, Any], str]:
         if isinstance(data, dict):
             data.setdefault("name", Path(source).stem)
             if isinstance(data.get("worlds"), (list, str, dict)):
-                data["worlds"] = [_beside(w, Path(source).parent) for w in _as_list(data["worlds"], "worlds")]
+                try:
+                    worlds = _as_list(data["worlds"], "worlds")
+                except ExperimentError as exc:  # name the file ("'worlds' is empty" named nothing)
+                    raise ExperimentError(f"{where}: {exc}") from None
+                data["worlds"] = [_beside(w, Path(source).parent) for w in worlds]
         return data, where
     if isinstance(source, str):
         found = find_suite(source)

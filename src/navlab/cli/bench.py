@@ -137,6 +137,8 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
 
     if resume and overwrite:
         raise click.UsageError("--resume keeps the finished trials and --overwrite discards them: give one")
+    if out is not None and not str(out).strip():  # '' wrote the run into the current folder
+        raise click.UsageError("--out must name a folder, got ''")
     if suite == "barn":
         _barn(data, barn_worlds, controllers, planners, params, trials, seed, out, executor, jobs, scheduler, resume,
               overwrite, no_plots, quiet, straight_line, barn_lidar, experiment or worlds or samplers or grid or show)

@@ -60,3 +60,14 @@ def test_grid_plan_reports_the_warm_up_apart_from_the_search():
     second = plan(OccupancyGrid(np.zeros((30, 30), bool)), (0, 0), (29, 29), algorithm="jps", smooth=True)
     assert first.stats["warmup_s"] > 0 and second.stats["warmup_s"] == 0.0
     assert first.cost == second.cost
+
+
+def test_a_cells_failure_note_says_when_its_reason_is_one_of_several(tmp_path, monkeypatch):
+    """The summary showed the first failed trial's reason as if every failure had it (two failures,
+    2.1 and 11.5 m short of the goal; newcomer run, session 17)."""
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "rrt", "--trials", "3", "--max-iter", "5",
+                                    "--executor", "serial", "--no-plots", "--out", "r", "-q"])
+    line = next(x for x in res.output.splitlines() if "success 0/3" in x)
+    assert "[APPROXIMATE: goal not reached in 5 iterations; the path ends" in line
+    assert line.endswith("; 1 of 3 failed trials, report.md lists the others]"), line

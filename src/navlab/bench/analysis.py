@@ -385,26 +385,29 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         out[v["claim"]].append(v)
     lines = {}
     for claim, vs in out.items():
-        confirmed = _where(vs, "confirmed")
-        contradicted = _where(vs, "contradicted")
+        # a claim on several comparisons names the groups of each (which one decided a world was not said)
+        pairs = len({(v["lower"], v["higher"]) for v in vs}) > 1
+        confirmed = _where(vs, "confirmed", pairs)
+        contradicted = _where(vs, "contradicted", pairs)
         unsolved = _by_world((v["world"], f"{v['lower']} solved {v['solved'][0]}, {v['higher']} {v['solved'][1]}")
                              for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v))
         judged = {v["world"] for v in vs if v["verdict"] in ("confirmed", "contradicted")}
         too_few = {v["world"] for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)}
         rest = sorted({v["world"] for v in vs} - judged - too_few)
         if all(v["verdict"] == "confirmed" for v in vs):
-            line = f"confirmed in every world: {confirmed}"
-        elif contradicted:
-            line = f"contradicted in {contradicted}" + (f"; confirmed in {confirmed}" if confirmed else "")
-        elif confirmed:
-            line = f"confirmed in {confirmed} only"
-        else:
-            line = f"not shown in any of {', '.join(sorted({v['world'] for v in vs}))}"
-        if judged and rest:
-            line += f"; not shown in {', '.join(rest)}"
+            lines[claim] = f"confirmed in every world: {confirmed}"
+            continue
+        parts = []
+        if contradicted:
+            parts.append(f"contradicted in {contradicted}")
+        if confirmed:
+            parts.append(f"confirmed in {confirmed}" + ("" if contradicted else " only"))
+        if rest:  # ("not shown in any of" every world, and then too few to judge in them, said it twice)
+            parts.append(f"not shown in {'' if judged or unsolved else 'any of '}{', '.join(rest)}")
         if unsolved:
-            line += f"; too few solved trials to judge in {unsolved}"
-        lines[claim] = line
+            # "not shown", as the report's per-world table says it (the line's own wording for it confused)
+            parts.append(f"not shown for too few solved trials in {unsolved}")
+        lines[claim] = "; ".join(parts)
     return lines
 
 
@@ -418,10 +421,14 @@ def _by_world(items) -> str:
     return ", ".join(f"{world} ({'; '.join(d)})" if any(d) else world for world, d in details.items())
 
 
-def _where(verdicts: List[Dict[str, Any]], verdict: str) -> str:
-    """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``, each world once."""
-    return _by_world((v["world"], f"{v['solved'][0]} vs {v['solved'][1]} solved" if v.get("solved") else "")
-                     for v in verdicts if v["verdict"] == verdict)
+def _where(verdicts: List[Dict[str, Any]], verdict: str, pairs: bool = False) -> str:
+    """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``, each world once; with
+    ``pairs``, each comparison's groups before its counts (``boundary vs gaussian: 18/20 vs 20/20 solved``)."""
+    def detail(v: Dict[str, Any]) -> str:
+        counts = f"{v['solved'][0]} vs {v['solved'][1]} solved" if v.get("solved") else ""
+        return f"{v['lower']} vs {v['higher']}" + (f": {counts}" if counts else "") if pairs else counts
+
+    return _by_world((v["world"], detail(v)) for v in verdicts if v["verdict"] == verdict)
 
 
 def _too_few_solved(verdict: Dict[str, Any]) -> bool:

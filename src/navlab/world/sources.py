@@ -158,12 +158,7 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
         for field, value in (("start", start), ("goal", goal)):
             if value is None:
                 raise MissingQueryError(field, label)
-        try:
-            world = World.from_grid(grid, start, goal)
-        except ParameterError as exc:  # the map's extent past navlab's range: name the map (it said only bounds)
-            if not str(exc).startswith("bounds."):
-                raise  # the query's start or goal: the message names it
-            raise ParameterError(f"{label}: {exc}") from None
+        world = World.from_grid(grid, start, goal, where=label)
     if start is not None or goal is not None:
         world = world.with_query(start, goal)
     for caught in superseded:  # (a query that failed above says only why: one line, not a note about the file)

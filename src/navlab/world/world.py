@@ -153,7 +153,8 @@ class World:
 
     @classmethod
     def from_grid(cls, grid: "OccupancyGrid", start, goal, robot_radius: float = 0.0,
-                  goal_tolerance: float = 0.0, allow_unknown: bool = False, name: Optional[str] = None) -> "World":
+                  goal_tolerance: float = 0.0, allow_unknown: bool = False, name: Optional[str] = None,
+                  where: Optional[str] = None) -> "World":
         """A world whose obstacles are the occupied cells of ``grid``; bounds are its extent.
 
         Parameters
@@ -165,14 +166,20 @@ class World:
             Metres.
         allow_unknown : bool
             Treat unknown cells as free (default: as occupied).
+        where : str, optional
+            How to name the map when its extent passes navlab's coordinate range (its file; default
+            ``grid 'NAME'``): the error said only "bounds.xmax ... is out of range".
         """
         ox, oy, yaw = grid.origin
         c, s = math.cos(yaw), math.sin(yaw)
         # the map's four outer corners, rotated about the origin by the map's yaw
         local = np.array([[0.0, 0.0], [grid.width, 0.0], [0.0, grid.height], [grid.width, grid.height]]) * grid.resolution
         corners = local @ np.array([[c, s], [-s, c]]) + (ox, oy)
-        bounds = Bounds(float(corners[:, 0].min()), float(corners[:, 0].max()),
-                        float(corners[:, 1].min()), float(corners[:, 1].max()))
+        try:
+            bounds = Bounds(float(corners[:, 0].min()), float(corners[:, 0].max()),
+                            float(corners[:, 1].min()), float(corners[:, 1].max()))
+        except ParameterError as exc:
+            raise ParameterError(f"{where or f'grid {grid.name!r}'}: {exc}") from None
         return cls(name=name or grid.name, bounds=bounds, start=start, goal=goal, robot_radius=robot_radius,
                    goal_tolerance=goal_tolerance, occupancy=grid, allow_unknown=allow_unknown)
 

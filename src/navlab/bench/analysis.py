@@ -389,11 +389,11 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         pairs = len({(v["lower"], v["higher"]) for v in vs}) > 1
         confirmed = _where(vs, "confirmed", pairs)
         contradicted = _where(vs, "contradicted", pairs)
+        few = [v for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)]
         unsolved = _by_world((v["world"], f"{v['lower']} solved {v['solved'][0]}, {v['higher']} {v['solved'][1]}")
-                             for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v))
+                             for v in few)
         judged = {v["world"] for v in vs if v["verdict"] in ("confirmed", "contradicted")}
-        too_few = {v["world"] for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)}
-        rest = sorted({v["world"] for v in vs} - judged - too_few)
+        rest = sorted({v["world"] for v in vs} - judged - {v["world"] for v in few})
         if all(v["verdict"] == "confirmed" for v in vs):
             lines[claim] = f"confirmed in every world: {confirmed}"
             continue

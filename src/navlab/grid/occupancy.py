@@ -48,9 +48,9 @@ def _mask(values: Any, name: str) -> np.ndarray:
     if given.dtype != bool:
         if given.dtype.kind not in "iuf":
             raise ParameterError(f"{name} must be an array of true/false (or 0/1) per cell, got dtype {given.dtype}")
-        odd = np.flatnonzero((given != 0) & (given != 1)) if given.ndim else np.array([] if given in (0, 1) else [0])
+        odd = np.flatnonzero((given != 0) & (given != 1))  # (a 0-d array too: its one element)
         if odd.size:
-            at = np.unravel_index(int(odd[0]), given.shape) if given.ndim else ()
+            at = np.unravel_index(int(odd[0]), given.shape)
             raise ParameterError(f"{name} must be true/false (or 0/1) per cell, got {given[at].item()!r} at index "
                                  f"{tuple(int(i) for i in at)}")
     return _read_only(given, bool, name)

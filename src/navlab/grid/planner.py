@@ -250,8 +250,12 @@ STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells", 
 
 
 def search_heuristic(algorithm: str, hcode: int) -> int:
-    """The heuristic code ``algorithm``'s kernel searches with, given ``hcode`` for A* (:data:`OWN_HEURISTIC`)."""
-    return {"dijkstra": K.H_ZERO, "theta_star": K.H_EUCLIDEAN}.get(algorithm, hcode)
+    """The heuristic code ``algorithm``'s kernel searches with, given ``hcode`` for A*: its
+    :data:`OWN_HEURISTIC`'s, so the code and the name the params report cannot disagree."""
+    own = OWN_HEURISTIC.get(algorithm)
+    if own is None:
+        return hcode
+    return K.H_ZERO if own == "none" else HEURISTICS.get(own)
 
 
 @functools.lru_cache(maxsize=None)

@@ -251,8 +251,12 @@ def world_from_dict(data: Any, source: str = "<dict>") -> World:
     try:
         return _world(data, Path(source).stem)
     except _FieldError as exc:
-        where = f"field '{exc.field}': " if exc.field else ""
-        raise WorldFormatError(f"{source}: {where}{exc}") from None
+        what = str(exc)
+        if not exc.field:
+            raise WorldFormatError(f"{source}: {what}") from None
+        # a check that names its value ("obstacles[0].radius must be positive") is not named twice
+        what = what[len(exc.field):].lstrip() if what.startswith(exc.field + " ") else what
+        raise WorldFormatError(f"{source}: field '{exc.field}': {what}") from None
     except RecursionError:  # a YAML document nested thousands deep
         raise WorldFormatError(f"{source}: nested too deeply to be a world file") from None
 

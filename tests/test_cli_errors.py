@@ -133,7 +133,7 @@ def test_parse_params_bad_items_are_usage_errors(item):
 @pytest.mark.parametrize("args, message", [
     (["plan", "trap", "--max-iter", "-5"], "Error: Invalid value for '--max-iter': max_iter must be a whole number "
                                            "from 1 to 4.61e+18, got -5 (see 'navlab plan --help')"),
-    (["plan"], "Error: Missing argument 'SOURCE'. (see 'navlab plan --help')"),
+    (["plan"], "Error: Missing argument 'SOURCE' (see 'navlab plan --help')."),
     (["plan", "trap", "--seed", "-1"], "Error: Invalid value for '--seed': seed must be a whole number from 0 to"),
     # every count flag takes a whole float as --max-iter does (--seed 1e3 was "not a valid integer range")
     (["grid", "maze", "--cells", "1.5", "10"], "Error: Invalid value for '--cells': cells must be a whole number"),

@@ -123,7 +123,8 @@ def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
     ({"start": (1, 1)}, "start"), ({"motion": "car"}, "motion"),
     ({"footprint": [[1, 1], [2, 1], [2, 2]]}, "origin"),
     ({"footprint": [[-1, -1], [1, 1], [1, -1], [-1, 1]]}, "cross"),
-    ({"footprint": [[0, 0], [1, float("nan")], [1, 1]]}, "finite"), ({"heading_bins": 3}, "heading_bins"),
+    ({"footprint": [[0, 0], [1, float("nan")], [1, 1]]}, "finite"), ({"footprint": -0.2}, "footprint must be non-neg"),
+    ({"footprint": True}, "footprint must be a disc's radius .* got True"), ({"heading_bins": 3}, "heading_bins"),
     ({"heading_bins": 72.5}, "heading_bins"), ({"heading_bins": True}, "heading_bins"),
     ({"reverse_penalty": 0.5}, "reverse_penalty"),
     ({"analytic_expansion": "fals"}, "analytic_expansion must be true or false"),  # bool("fals") would be True
@@ -137,6 +138,17 @@ def test_bad_input_is_named(kwargs, field):
     args.update(kwargs)
     with pytest.raises(ValueError, match=field):
         plan_hybrid(**args)
+
+
+def test_a_footprint_given_as_a_number_is_a_disc_of_that_radius():
+    """As for navlab.plan and a world file's ``footprint: 0.2`` (plan_hybrid refused it until session 18)."""
+    args = {"grid": aisle(), "start": (1.2, 1.55, 0.0), "goal": (4.05, 4.6, 1.5), "turning_radius": 0.5}
+    as_number, as_radius = plan_hybrid(footprint=0.2, **args), plan_hybrid(robot_radius=0.2, **args)
+    assert as_number.status is as_radius.status is Status.EXACT
+    assert as_number.cost == as_radius.cost and np.array_equal(as_number.path, as_radius.path)
+    # (a point robot takes a shorter way here: 5.03 m against 5.28)
+    assert plan_hybrid(**args).cost < as_number.cost - 0.1
+    assert plan_hybrid(footprint=np.float32(0.45), **args).cost == plan_hybrid(robot_radius=0.45, **args).cost
 
 
 def test_heading_bins_given_as_a_whole_float_plans_as_the_int():

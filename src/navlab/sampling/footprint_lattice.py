@@ -32,12 +32,19 @@ from ..world.footprint_collision import pose_grid_overlap
 from .curves import NOP, STRAIGHT, advance, trace_word
 
 
+_FOOTPRINT_FORMS = "footprint must be a disc's radius [m] or 3 or more (x, y) vertices in body coordinates, [[x, y], ...]"
+
+
 def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple[np.ndarray, float]:
     """The robot's outline in body coordinates: ``(vertices (K, 2), 0.0)`` for a
     polygon ``footprint`` ((K, 2) vertices, or a Footprint), or ``(empty, radius)``
-    for a disc of ``robot_radius`` (a point robot when both are None)."""
+    for a disc (``footprint`` a number or a disc Footprint, or ``robot_radius``;
+    a point robot when both are None)."""
     if footprint is not None and robot_radius is not None:
         raise ParameterError("give footprint or robot_radius, not both")
+    if isinstance(footprint, (int, float, np.integer, np.floating)) and not isinstance(footprint, bool):
+        # a number is a disc's radius, as for navlab.plan and a world file's footprint
+        return np.empty((0, 2)), check_length("footprint", footprint)
     if footprint is not None and hasattr(footprint, "vertices"):  # navlab.world.footprint.Footprint
         if footprint.vertices is None:
             return np.empty((0, 2)), check_length("footprint radius", footprint.radius)
@@ -47,11 +54,10 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
     try:
         vertices = np.asarray(footprint, dtype=float)
     except (TypeError, ValueError):
-        raise ParameterError(f"footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
-                             f"got {footprint!r:.80}") from None
+        raise ParameterError(f"{_FOOTPRINT_FORMS}, got {footprint!r:.80}") from None
     if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3:
-        raise ParameterError("footprint must be 3 or more (x, y) vertices in body coordinates, [[x, y], ...], "
-                             f"got shape {vertices.shape}")
+        got = repr(footprint)[:80] if vertices.ndim == 0 else f"shape {vertices.shape}"
+        raise ParameterError(f"{_FOOTPRINT_FORMS}, got {got}")
     if not np.isfinite(vertices).all():
         raise ParameterError(f"footprint vertices must be finite numbers [m], got {vertices.tolist()!r:.80}")
     _check_polygon(tuple(map(tuple, vertices.tolist())))

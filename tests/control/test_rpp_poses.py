@@ -81,3 +81,16 @@ def test_poses_are_tracked_within_two_centimetres_on_a_tight_circle():
 def test_bad_pose_settings_name_the_field(params, words):
     with pytest.raises(ValueError, match=words):
         make_controller("rpp", **params)
+
+
+def test_a_stall_at_a_gap_the_centre_path_fits_says_so_and_plan_poses_passes_it():
+    """The built-in clutter scene: the costmap path runs between a cylinder and a box where the
+    jackal's rectangle only passes lengthwise; Nav2's RPP stops there, and the stalled run says
+    why and which setting answers it (it said only "no progress" until session 18)."""
+    from navlab.sim.runner import simulate
+
+    stalled, *_ = simulate("clutter", robot="jackal", controller="rpp")
+    assert stalled.status.name == "STALLED" and np.hypot(*(stalled.final_true[:2] - stalled.goal)) > 2.0
+    assert "LETHAL cell on the arc ahead" in stalled.reason and "plan_poses=true" in stalled.reason
+    passed, *_ = simulate("clutter", robot="jackal", controller="rpp", controller_params={"plan_poses": True})
+    assert passed.status.name == "REACHED", passed.reason

@@ -65,6 +65,9 @@ from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, MAX_NO
 from .base import CONTROLLERS
 from .local import CostmapController, arc_rollouts, check_number
 
+#: the command that stands still
+STOP = (0.0, 0.0, 0.0)
+
 
 def carrot_on_path(path: np.ndarray, pose, lookahead: float) -> np.ndarray:
     """The point ``lookahead`` metres from the robot along the path: the first point past
@@ -208,6 +211,7 @@ class RegulatedPurePursuit(CostmapController):
     def reset(self, goal, path=None) -> None:
         super().reset(goal, path)
         self._reset_poses()
+        self.stall_reason = None  # a new run has not stalled
         if path is not None and np.ndim(path) == 2 and np.shape(path)[1] == 3:  # a path of poses
             self.set_pose_path(path)
 
@@ -260,8 +264,22 @@ class RegulatedPurePursuit(CostmapController):
             elif t - since >= self.pose_plan_after and not self.wants_pose_plan:
                 self.wants_pose_plan = True
                 self._progress = (t, left)
+        command = self._track_poses(pose) if self.poses is not None else self._pursue(pose)
+        self.stall_reason = self._blocked_reason() if command == STOP else None
+        return command
+
+    def _blocked_reason(self) -> str:
+        """Why the robot stands still (a stalled run's reason): its footprint would meet a LETHAL cell
+        ahead; with the setting that answers it where one does."""
         if self.poses is not None:
-            return self._track_poses(pose)
+            return "the footprint would meet a LETHAL cell on its path of poses"
+        why = "the footprint would meet a LETHAL cell on the arc ahead, where Nav2's RPP stops"
+        if not self.plan_poses:
+            return f"{why} (the path is planned for the robot's centre; plan_poses=true plans one for its footprint)"
+        return f"{why} (and no forward path of poses for its footprint leaves this pose)"
+
+    def _pursue(self, pose):
+        """Nav2's regulated pure pursuit along ``path`` (the module's steps 1-5)."""
         lookahead = self.lookahead()
         carrot = carrot_on_path(self.path, pose, lookahead)
         self.last_carrot = carrot

@@ -179,7 +179,7 @@ def test_a_grid_that_is_not_an_occupancy_grid_is_named(call, grid):
         fn(grid, *rest)
 
 
-@pytest.mark.parametrize("footprint, words", [("abc", "footprint must be 3 or more"),
+@pytest.mark.parametrize("footprint, words", [("abc", "footprint must be a disc's radius [m] or 3 or more"),
                                               ([[np.nan, 0.1], [-0.1, 0.1], [0, -0.1]], "must be finite"),
                                               ([0, 0, 1, 1, 2, 2], "got shape (6,)")])
 def test_a_footprint_that_is_no_outline_is_named(footprint, words):

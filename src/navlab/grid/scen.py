@@ -40,6 +40,10 @@ def read_scen(path) -> List[Scenario]:
         raise MapFormatError(f"{p}: not a text file (byte {exc.start} is not UTF-8)") from None
     if not lines or not lines[0].startswith("version"):
         raise MapFormatError(f"{p}: not a Moving AI scenario file (first line must be 'version ...')")
+    version = lines[0][len("version"):].strip()
+    if version not in ("1", "1.0"):
+        raise MapFormatError(f"{p}: line 1: scenario format version {version[:20]!r} is not one navlab reads "
+                             "(version 1: bucket, map, width, height, start x, y, goal x, y, optimal length)")
     out = []
     for n, line in enumerate(lines[1:], start=2):
         if not line.strip():

@@ -104,3 +104,17 @@ def test_the_simulator_takes_any_finite_heading_as_the_planners_do():
     assert a.status == b.status and np.array_equal(a.true_poses, b.true_poses)
     res = CliRunner().invoke(main, ["sim", "one_obstacle", "--start", "1", "1", "1e300"])
     assert "Error" not in res.output and "note: start θ 1e+300 is beyond ±2π" in res.output, res.output
+
+
+def test_a_run_reports_its_simulated_time_at_every_step_to_the_progress_callback():
+    """The command line draws its bar from these calls (a terminal only: CliRunner's stderr is none)."""
+    from navlab.sim.runner import simulate
+
+    seen = []
+    result, *_ = simulate("one_obstacle", robot="diff", progress=lambda t, limit: seen.append((t, limit)))
+    times, limits = zip(*seen)
+    # every step's time, the step that ended the run included (dt 0.05 s, the default)
+    assert times == tuple(k * 0.05 for k in range(result.steps + 1))
+    assert set(limits) == {limits[0]} and limits[0] == int(limits[0]) > result.time_s  # whole seconds, not reached
+    out = CliRunner().invoke(main, ["sim", "one_obstacle", "--robot", "diff"])
+    assert out.exit_code == 0 and "simulated [" not in out.output  # no bar off a terminal

@@ -9,7 +9,7 @@ from pathlib import Path
 
 import click
 
-from .common import Count, PointOrPoseOption, check_output_file, parse_params
+from .common import Count, PointOrPoseOption, before_first_kernel, check_output_file, parse_params
 
 #: runs per setting an experiment takes (each is a whole simulation: 10 000 of the shortest take minutes)
 MAX_EXPERIMENT_RUNS = 10_000
@@ -110,7 +110,9 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
             check_output_file(name, flag)
     from ..sim.runner import NoPathError, simulate
 
+    before_first_kernel()  # numba is imported by now (the simulator's kernels)
     began = time.perf_counter()
+    bar = SimulatedTimeBar()
     try:
         result, scene_world, sim = simulate(world, robot=robot, controller=controller, start=start, goal=goal,
                                             planner=planner, sampler=sampler, lidar=lidar,
@@ -119,11 +121,14 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
                                             dt=dt, max_time=max_time, seed=seed,
                                             lidar_timing=_timing(lidar_timing, "--lidar-timing"),
                                             odometry_timing=_timing(odom_timing, "--odom-timing"),
-                                            plan_params=parse_params(plan_params, "--plan-param"))
+                                            plan_params=parse_params(plan_params, "--plan-param"),
+                                            progress=bar)
     except NoPathError as exc:
         # the planner's answer about this world, as `navlab plan` gives it: not bad input
         click.echo(json.dumps({"status": exc.status, "reason": str(exc)}) if as_json else f"{exc.status} ({exc})")
         sys.exit(1)
+    finally:
+        bar.close()
     if trajectory:
         from ..sim.trajectory import write_trajectory_csv
 
@@ -164,6 +169,33 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
                 click.echo(f"  {what} written to {name}")
     if result.status.name != "REACHED":
         sys.exit(1)
+
+
+class SimulatedTimeBar:
+    """A run's progress in simulated seconds, as a tqdm bar on standard error when that is a terminal,
+    shown only once the run has taken :data:`BAR_DELAY` s of wall time (a jackal's MPPI run in a BARN world
+    takes 10 s, a DWA run that times out 20 s; most runs end well under a second)."""
+
+    def __init__(self) -> None:
+        self.bar = None
+
+    def __call__(self, t: float, max_time: float) -> None:
+        if self.bar is None:
+            from tqdm import tqdm
+
+            self.bar = tqdm(total=max_time, unit=" s simulated", file=sys.stderr, disable=None, leave=False,
+                            dynamic_ncols=True, delay=BAR_DELAY, bar_format=BAR_FORMAT)
+        self.bar.update(t - self.bar.n)  # tqdm redraws at most every 0.1 s
+
+    def close(self) -> None:
+        if self.bar is not None:
+            self.bar.close()
+
+
+#: [s] of wall time before the bar shows
+BAR_DELAY = 2.0
+#: simulated seconds of the limit, wall time, and the real-time factor
+BAR_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:.0f} s simulated [{elapsed}, {rate_fmt}]"
 
 
 def _timing(items, flag: str):

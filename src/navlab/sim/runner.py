@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Any, Dict, Optional, Tuple
+import math
+from typing import Any, Callable, Dict, Optional, Tuple
 
 import numpy as np
 
@@ -69,7 +70,8 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
              controller_params: Optional[Dict] = None, dt: float = 0.05, max_time: Optional[float] = None,
              seed: Any = 0, sampler: str = "uniform", lidar_timing: Optional[Dict] = None,
              odometry_timing: Optional[Dict] = None,
-             plan_params: Optional[Dict] = None) -> Tuple[SimResult, Any, Simulation]:
+             plan_params: Optional[Dict] = None,
+             progress: Optional[Callable[[float, float], None]] = None) -> Tuple[SimResult, Any, Simulation]:
     """Build and run one simulation; every input is checked before it runs.
 
     ``max_time`` defaults to :func:`default_max_time` of the path (or the
@@ -78,8 +80,9 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     robot's footprint, ``planner='hybrid_astar'`` or ``plan_params={'motion':
     ...}``; see :mod:`navlab.sim.pose_path`) and ends REACHED only with the
     heading within :data:`~navlab.sim.simulation.GOAL_YAW_TOLERANCE`.
-    ``plan_params`` go to the global planner. Returns the result, the world
-    or grid, and the Simulation.
+    ``plan_params`` go to the global planner. ``progress(t, max_time)`` is
+    called at every step with the simulated time (the command line's bar).
+    Returns the result, the world or grid, and the Simulation.
     """
     from .pose_path import CAR_FOLLOWER, POSE_FOLLOWERS, plan_pose_path, scene_robot_params, wants_pose_path
 
@@ -177,17 +180,17 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
                      compass=Compass(noise_deg=1.0) if noisy else None, dt=dt, max_time=max_time, path=path,
                      lidar_timing=lidar_timing, odometry_timing=odometry_timing, direction=direction,
                      goal_heading=goal_heading)
-    return sim.run(seed), scene_world, sim
+    return sim.run(seed, progress=progress), scene_world, sim
 
 
 def default_max_time(path: np.ndarray, robot, controller) -> float:
     """Four times the path's length at the slower of the robot's and the
     controller's top speed, plus a minute for turning and waiting (a 49 m
-    map path gets about 15 min rather than a fixed 120 s)."""
+    map path gets about 15 min rather than a fixed 120 s), rounded up to a whole second."""
     length = float(np.sum(np.hypot(*np.diff(np.asarray(path, float)[:, :2], axis=0).T)))
     field = getattr(controller, "field", controller)
     speed = min(robot.max_speed, getattr(controller, "speed", None) or getattr(field, "max_speed", robot.max_speed))
-    return 60.0 + 4.0 * length / speed
+    return float(math.ceil(60.0 + 4.0 * length / speed))  # whole seconds: "90.8701 s" read as a measurement
 
 
 def costmap_path(scene_world, robot, controller, start, goal) -> np.ndarray:

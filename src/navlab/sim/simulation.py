@@ -15,7 +15,7 @@ import enum
 import math
 import time
 from dataclasses import dataclass, field
-from typing import Any, Dict, List, Optional
+from typing import Any, Callable, Dict, List, Optional
 
 import numpy as np
 
@@ -216,7 +216,9 @@ class Simulation:
         if not any(self.scene.free(np.array((*self.goal, heading))) for heading in headings):
             raise ParameterError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
 
-    def run(self, seed: Any = 0) -> SimResult:
+    def run(self, seed: Any = 0, progress: Optional[Callable[[float, float], None]] = None) -> SimResult:
+        """Run from the start until the goal, a stall, a collision or ``max_time``; ``progress(t,
+        max_time)``, if given, is called at every step with the simulated time."""
         rng = np.random.default_rng(seed)
         replanner = getattr(self.controller, "replanner", None)
         replans_before = len(getattr(replanner, "paths", ()))
@@ -255,6 +257,8 @@ class Simulation:
                 true, odo, cmds = grown(true, rows), grown(odo, rows), grown(cmds, rows)
                 scans = None if scans is None else grown(scans, rows)
             t = (n - 1) * dt
+            if progress is not None:
+                progress(t, self.max_time)
             scene.set_time(t)
             if odom_line.due(t):
                 odom_line.push(t, plant.odometry.pose)

@@ -112,8 +112,14 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
     def bad(value: Any) -> bool:
         if isinstance(value, bool):
             return False
-        if isinstance(value, (int, float)):
-            return isinstance(value, float) and not math.isfinite(value)
+        if isinstance(value, int):  # one past float's range (10**400) is as unusable as inf
+            try:
+                float(value)
+            except OverflowError:
+                return True
+            return False
+        if isinstance(value, float):
+            return not math.isfinite(value)
         if isinstance(value, (list, tuple)):
             return any(bad(v) for v in value)
         try:  # numpy scalars and arrays
@@ -126,4 +132,6 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
 
     for key, value in params.items():
         if bad(value):
-            raise ParameterError(f"{what}: {key} must be finite, got {value!r}")
+            from .limits import shown
+
+            raise ParameterError(f"{what}: {key} must be finite, got {shown(value)}")

@@ -117,6 +117,20 @@ def test_select_worlds_names_the_missing_ones_as_ranges():
     assert barn.select_worlds("test", list(range(300))) == list(range(0, 300, 6))
 
 
+def test_select_worlds_says_which_worlds_the_folder_has():
+    """(newcomer run: `--worlds test` on the eight worlds of ../shared listed 42 missing numbers and no more)"""
+    with pytest.raises(ExperimentError, match=r"no world file for 6, 12, .*, \.\.\. \(42 in all\) in the data "
+                                              r"folder; it has 0, 36, 72, 108, 144, 180, 216, 252$"):
+        barn.select_worlds("test", [0, 36, 72, 108, 144, 180, 216, 252])
+
+
+@pytest.mark.parametrize("text", ["0-" + "9" * 400, "0-2000000", "3000000", "0-10:" + "7" * 30])
+def test_select_worlds_refuses_numbers_past_a_million_without_listing_them(text):
+    """(10**400 was an OverflowError, an internal error, from the range it listed)"""
+    with pytest.raises(ExperimentError, match="world numbers go up to 1000000"):
+        barn.select_worlds(text, list(range(300)))
+
+
 @pytest.mark.parametrize("text", ["a", "5-2", "1-3:0", "-1"])
 def test_select_worlds_refuses_what_is_not_a_selection(text):
     with pytest.raises(ExperimentError, match="--worlds"):

@@ -46,3 +46,22 @@ def test_unknown_controller_and_bad_gains():
         make_controller("potential_feild")
     with pytest.raises(ValueError):
         make_controller("potential_field", alpha=0)
+
+
+def test_every_numeric_setting_of_every_controller_refuses_an_integer_past_floats_range():
+    """10**400 written out (a YAML file's or --controller-param's number) is bad input naming the
+    setting, never an OverflowError: 176 settings were internal errors until session 18."""
+    from navlab.control.base import CONTROLLERS
+    from navlab.errors import ParameterError
+    from navlab.registry import parameters_of
+
+    tried = 0
+    for name in CONTROLLERS.names():
+        for key, default in parameters_of(CONTROLLERS.get(name)).items():
+            if isinstance(default, bool) or not isinstance(default, (int, float)):
+                continue
+            for huge in (10 ** 400, -(10 ** 400)):
+                with pytest.raises(ParameterError, match=f"{key} must be finite, got an integer of 401 digits"):
+                    make_controller(name, **{key: huge})
+            tried += 1
+    assert tried > 150

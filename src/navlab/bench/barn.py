@@ -42,6 +42,8 @@ REFERENCE_SPEED = 2.0  #: [m/s] the speed the optimal time is counted at
 PATH_CELL = 0.15  #: [m] the world generator's grid (twice the cylinder radius)
 WORLD_COUNT = 300
 TEST_WORLDS = tuple(range(0, WORLD_COUNT, 6))  #: the challenge's 50 test worlds
+#: the largest world number --worlds takes (a range is listed in memory: 10**400 overflowed it)
+MAX_WORLD_NUMBER = 10 ** 6
 STATUSES = ("succeeded", "collided", "timeout")
 
 
@@ -213,24 +215,31 @@ def select_worlds(text: Optional[str], available: Sequence[int]) -> List[int]:
         if not match:
             raise ExperimentError(f"--worlds: {part!r} is not a world number, a range like 0-49, "
                                   "a stepped range like 0-299:6, or 'test'")
+        if any(len(number) > len(str(MAX_WORLD_NUMBER)) for number in match.groups() if number):
+            raise ExperimentError(f"--worlds: {part[:40]!r}: world numbers go up to {MAX_WORLD_NUMBER}")
         first = int(match.group(1))
         last = int(match.group(2)) if match.group(2) else first
         step = int(match.group(3)) if match.group(3) else 1
         if last < first or step < 1:
             raise ExperimentError(f"--worlds: {part!r} is an empty range")
+        if last > MAX_WORLD_NUMBER:
+            raise ExperimentError(f"--worlds: {part!r}: world numbers go up to {MAX_WORLD_NUMBER}")
         chosen.extend(range(first, last + 1, step))
     missing = sorted(set(chosen) - set(available))
     if missing:
-        raise ExperimentError(f"--worlds: no world file for {_ranges(missing)} in the data folder")
+        raise ExperimentError(f"--worlds: no world file for {_ranges(missing)} in the data folder; "
+                              f"it has {_ranges(available)}")
     return sorted(set(chosen))
 
 
-def _ranges(numbers: Sequence[int]) -> str:
-    """``0, 6, 7, 8, 12`` as ``0, 6-8, 12``."""
+def _ranges(numbers: Sequence[int], shown: int = 12) -> str:
+    """``0, 6, 7, 8, 12`` as ``0, 6-8, 12``; past ``shown`` runs, the first ones and how many numbers."""
     parts: List[str] = []
     for n in sorted(numbers):
         if parts and parts[-1].split("-")[-1] == str(n - 1):
             parts[-1] = f"{parts[-1].split('-')[0]}-{n}"
         else:
             parts.append(str(n))
+    if len(parts) > shown:
+        return ", ".join(parts[:shown]) + f", ... ({len(numbers)} in all)"
     return ", ".join(parts)

@@ -9,6 +9,7 @@ from typing import Any, Callable, Optional
 import numpy as np
 
 from ..errors import ParameterError
+from ..limits import is_finite_real, shown
 from ..registry import Registry
 
 CONTROLLERS: Registry[Callable[..., "Controller"]] = Registry("controller")
@@ -61,9 +62,8 @@ class Controller:
 def check_number(name: str, value: Any, low: float = 0.0, allow_low: bool = False,
                  high: float = math.inf) -> float:
     """``value`` as a float in (low, high] (or [low, high] with ``allow_low``), else ParameterError naming it."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
-            or not math.isfinite(value):
-        raise ParameterError(f"{name} must be a finite number, got {value!r}")
+    if not is_finite_real(value):  # (math.isfinite overflowed on 10**400: an internal error until session 18)
+        raise ParameterError(f"{name} must be a finite number, got {shown(value)}")
     value = float(value)
     if value < low or (value == low and not allow_low) or value > high:
         bound = f"{'≥' if allow_low else '>'} {low:g}" + (f" and ≤ {high:g}" if math.isfinite(high) else "")

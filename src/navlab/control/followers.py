@@ -9,7 +9,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import check_length
+from ..limits import check_length, is_finite_real, shown
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 from .path_tracking import split_at_cusps
@@ -31,8 +31,8 @@ class _Follower(Controller):
         if not isinstance(replan, bool):
             raise ParameterError(f"replan must be true or false, got {replan!r}")
         for name, value in (("replan_interval", replan_interval), ("check_ahead", check_ahead)):
-            if not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise ParameterError(f"{name} must be a positive number, got {value!r}")
+            if not (is_finite_real(value) and value > 0):
+                raise ParameterError(f"{name} must be a positive number, got {shown(value)}")
         self.stall = StallDetector(stall_window, stall_progress)
         self.path = np.zeros((1, 2))
         self.index = 0

@@ -40,6 +40,7 @@ from typing import List, Tuple
 import numpy as np
 
 from ..errors import ParameterError
+from ..limits import is_finite_real, shown
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
 
@@ -47,6 +48,8 @@ from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, S
 #: [m] how far along the stretch the nearest point is looked for each step: a path that passes
 #: near itself again (a U-turn) must not pull the reference ahead
 SEARCH_WINDOW = 2.0
+#: [m] the settling distances rear_wheel_feedback takes: 1e-300 divided its gains by zero, 1e308 overflowed them
+SETTLING_RANGE = (1e-3, 1e3)
 
 
 def split_at_cusps(path, direction) -> List[Tuple[np.ndarray, float]]:
@@ -124,8 +127,11 @@ class RearWheelFeedback(Controller):
                             ("approach_dist", approach_dist), ("creep_speed", creep_speed),
                             ("goal_radius", goal_radius), ("cusp_radius", cusp_radius),
                             ("stall_window", stall_window)):
-            if isinstance(value, bool) or not (isinstance(value, (int, float)) and math.isfinite(value) and value > 0):
-                raise ParameterError(f"rear_wheel_feedback {name} must be a positive number, got {value!r}")
+            if not (is_finite_real(value) and value > 0):
+                raise ParameterError(f"rear_wheel_feedback {name} must be a positive number, got {shown(value)}")
+        if not SETTLING_RANGE[0] <= settling_distance <= SETTLING_RANGE[1]:  # its gains are 2/d and 1/d²
+            raise ParameterError(f"rear_wheel_feedback settling_distance must be from {SETTLING_RANGE[0]:g} to "
+                                 f"{SETTLING_RANGE[1]:g} m, got {settling_distance!r}")
         if creep_speed > speed:
             raise ParameterError(f"rear_wheel_feedback creep_speed ({creep_speed:g}) must not exceed speed ({speed:g})")
         self.speed, self.creep_speed = float(speed), float(creep_speed)

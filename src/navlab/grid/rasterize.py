@@ -27,6 +27,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
+from ..limits import is_finite_real, shown
 from ..world.raster import block_obstacles  # noqa: F401  (re-exported: the grid's rasteriser uses it)
 from .occupancy import MAX_CELLS, OccupancyGrid  # MAX_CELLS: the largest grid navlab makes or reads
 
@@ -45,9 +46,8 @@ def grid_shape(bounds, resolution: float) -> tuple[int, int]:
     cells, so a sliver narrower than a cell along the upper edges is left out
     (conservative: every cell lies inside the bounds).
     """
-    if isinstance(resolution, bool) or not isinstance(resolution, (int, float)) or not math.isfinite(resolution) \
-            or resolution <= 0:
-        raise ParameterError(f"resolution must be a positive number of metres per cell, got {resolution!r}")
+    if not is_finite_real(resolution) or resolution <= 0:
+        raise ParameterError(f"resolution must be a positive number of metres per cell, got {shown(resolution)}")
     sx, sy = bounds.xmax - bounds.xmin, bounds.ymax - bounds.ymin
     # a hair of slack so that 10 m / 0.05 m counts 200 cells, not 199
     fx, fy = sx / resolution * (1 + 1e-12), sy / resolution * (1 + 1e-12)

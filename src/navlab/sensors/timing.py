@@ -16,6 +16,7 @@ from typing import Any, Dict, List, Optional, Tuple
 
 import numpy as np
 from ..errors import ParameterError
+from ..limits import is_finite_real, shown
 
 #: [s] slack when comparing times built from sums of steps
 _EPS = 1e-9
@@ -41,12 +42,12 @@ class SensorTiming:
     jitter: float = 0.0
 
     def __post_init__(self) -> None:
-        if self.rate is not None and not (_number(self.rate) and math.isfinite(self.rate) and self.rate > 0):
-            raise ParameterError(f"field 'rate' must be a positive number of Hz, got {self.rate!r}")
+        if self.rate is not None and not (is_finite_real(self.rate) and self.rate > 0):
+            raise ParameterError(f"field 'rate' must be a positive number of Hz, got {shown(self.rate)}")
         for name in ("latency", "jitter"):
             value = getattr(self, name)
-            if not (_number(value) and math.isfinite(value) and value >= 0):
-                raise ParameterError(f"field '{name}' must be a number of seconds ≥ 0, got {value!r}")
+            if not (is_finite_real(value) and value >= 0):
+                raise ParameterError(f"field '{name}' must be a number of seconds ≥ 0, got {shown(value)}")
 
     @property
     def immediate(self) -> bool:
@@ -69,10 +70,6 @@ class SensorTiming:
             return cls(**data)
         except ValueError as exc:
             raise ParameterError(f"{what}: {exc}") from None
-
-
-def _number(value: Any) -> bool:
-    return isinstance(value, (int, float)) and not isinstance(value, bool)
 
 
 class DelayLine:

@@ -18,6 +18,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 from ..errors import ParameterError
+from ..limits import is_finite_real
 
 #: controllers that follow a path of poses with reverse stretches
 POSE_FOLLOWERS = ("rear_wheel_feedback", "pure_pursuit")
@@ -64,7 +65,7 @@ def scene_robot_params(scene_world, robot_name: str, robot_params: Dict[str, Any
     cls = ROBOTS.get(robot_name)
     if getattr(cls, "steers", False) and radius is not None and "max_steer" not in params:
         wheelbase = params.get("wheelbase", cls.wheelbase)
-        if isinstance(wheelbase, (int, float)) and math.isfinite(wheelbase) and wheelbase > 0:
+        if is_finite_real(wheelbase) and wheelbase > 0:  # (else make_robot names the bad wheelbase)
             params["max_steer"] = math.atan2(wheelbase, radius / STEERING_ROOM)
     return params
 

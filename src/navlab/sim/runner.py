@@ -9,6 +9,7 @@ import numpy as np
 
 from ..control import make_controller
 from ..errors import NavlabError, ParameterError
+from ..limits import is_finite_real
 from ..grid.occupancy import OccupancyGrid
 from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
@@ -40,10 +41,6 @@ class NoPathError(NavlabError):
         self.status = status
 
 
-def _is_number(value: Any) -> bool:
-    return isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(value, bool)
-
-
 def _speed_within_robot(name: str, params: Dict[str, Any], given: Dict[str, Any], bot: Any) -> Dict[str, Any]:
     """The controller's settings with its top speed (``Controller.speed_setting``)
     within the robot's ``max_speed``: a default above it is lowered to it, a value
@@ -57,7 +54,7 @@ def _speed_within_robot(name: str, params: Dict[str, Any], given: Dict[str, Any]
     factory = CONTROLLERS.get(name)
     setting = factory.speed_setting
     speed = params.get(setting, parameters_of(factory).get(setting)) if setting else None
-    if not _is_number(speed) or speed <= bot.max_speed:  # not a number: the controller names it
+    if not is_finite_real(speed) or speed <= bot.max_speed:  # not a number: the controller names it
         return params
     if setting in given:
         raise ParameterError(f"controller {name} {setting} {speed:g} m/s is more than the robot's max_speed "

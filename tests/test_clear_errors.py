@@ -304,7 +304,7 @@ HUGE = 10 ** 400  # an int past float's range: math.isfinite raises OverflowErro
                                                                    "of 401 digits"),
     (lambda: navlab.plan("clutter", planner="jps", resolution=HUGE), "resolution must be a finite number"),
     (lambda: navlab.plan("clutter", planner="astar", costmap=True, cost_scaling_factor=HUGE), "cost_scaling_factor"),
-    (lambda: simulate("one_obstacle", robot_params={"max_speed": HUGE}), "max_speed must be a positive"),
+    (lambda: simulate("one_obstacle", robot_params={"max_speed": HUGE}), "max_speed must be finite, got an integer of 401 digits"),
     (lambda: simulate("one_obstacle", dt=HUGE), "time step dt must be a positive number of seconds, got an "
                                                        "integer of 401 digits"),
     (lambda: simulate("one_obstacle", max_time=HUGE), "max_time must be a positive"),

@@ -104,3 +104,17 @@ def test_inflation_below_the_footprint_is_refused_when_the_run_is_built():
         Simulation(POSTS, make_robot("jackal"), make_controller("rpp", inflation_radius=0.1), (0, 0, 0), (5, 0),
                    path=np.array(((0, 0), (5, 0))))
     assert LETHAL_OBSTACLE == 254
+
+
+@pytest.mark.parametrize("setting, words", [
+    ({"vx_std": 1e-300}, "vx_std must be 0 .no noise. or at least 1e-06"),
+    ({"wz_std": 1e-9}, "wz_std must be 0 .no noise. or at least 1e-06"),
+    ({"gamma": 1e308}, r"gamma must be ≥ 0 and ≤ 1000"),
+    ({"vy_std": "abc"}, "vy_std must be a finite number"),  # a diff drive's too, which does not sample it
+    ({"vy_std": -1.0}, "vy_std must be ≥ 0")])
+def test_mppi_refuses_noise_and_weights_that_overflow_its_control_cost(setting, words):
+    """γ/σ² with σ = 1e-300 or γ = 1e308 overflowed to NaN poses (attack run, session 18)."""
+    from navlab.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=words):
+        make_controller("mppi", **setting)

@@ -45,6 +45,20 @@ from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footp
 from .base import CONTROLLERS
 from .local import CostmapController, check_number
 
+#: the smallest noise standard deviation other than 0 (no noise) [m/s, rad/s]: the control cost divides by its
+#: square, and 1e-300 overflowed it to NaN poses
+MIN_NOISE = 1e-6
+#: the largest control-cost weight γ (Nav2's default 0.015)
+MAX_GAMMA = 1e3
+
+
+def _noise(name: str, value) -> float:
+    """A noise standard deviation: 0 (none) or from :data:`MIN_NOISE` on."""
+    value = check_number(name, value, allow_low=True, high=1e3)
+    if 0.0 < value < MIN_NOISE:
+        raise ParameterError(f"{name} must be 0 (no noise) or at least {MIN_NOISE:g}, got {value!r}")
+    return value
+
 
 @njit(cache=True)
 def rollout_and_score(pose, v0, controls, dt, acc, costs, ox, oy, res, body, possibly_inscribed, path, goal,
@@ -231,9 +245,8 @@ class MPPI(CostmapController):
         self.time_steps = check_count("time_steps", time_steps, 2, 10_000)
         self.iteration_count = check_count("iteration_count", iteration_count, 1, 100)
         self.model_dt = check_number("model_dt", model_dt, high=10.0)
-        self.std = np.array([check_number("vx_std", vx_std, allow_low=True),
-                             check_number("vy_std", vy_std, allow_low=True) if self.holonomic else 0.0,
-                             check_number("wz_std", wz_std, allow_low=True)])
+        vy_std = _noise("vy_std", vy_std)  # checked for a diff drive too, which does not sample it
+        self.std = np.array([_noise("vx_std", vx_std), vy_std if self.holonomic else 0.0, _noise("wz_std", wz_std)])
         self.vx_max = check_number("vx_max", vx_max)
         self.vx_min = check_number("vx_min", vx_min, low=-1e6, allow_low=True, high=self.vx_max)
         self.vy_max = check_number("vy_max", vy_max)
@@ -241,7 +254,8 @@ class MPPI(CostmapController):
         self.acc = np.array([check_number("ax_max", ax_max), check_number("ax_min", ax_min, low=-1e6, high=-1e-9),
                              check_number("ay_max", ay_max), check_number("az_max", az_max)])
         self.temperature = check_number("temperature", temperature)
-        self.gamma = check_number("gamma", gamma, allow_low=True)
+        # γ/σ² weighs the control cost: 1e308 overflowed it to NaN poses (attack run, session 18)
+        self.gamma = check_number("gamma", gamma, allow_low=True, high=MAX_GAMMA)
         self.weights = np.array([check_number(name, value, allow_low=True) for name, value in (
             ("cost_weight", cost_weight), ("path_align_weight", path_align_weight),
             ("path_follow_weight", path_follow_weight), ("path_angle_weight", path_angle_weight),

@@ -65,3 +65,23 @@ def test_every_numeric_setting_of_every_controller_refuses_an_integer_past_float
                     make_controller(name, **{key: huge})
             tried += 1
     assert tried > 150
+
+
+@pytest.mark.parametrize("name, setting, words", [
+    ("hybrid", {"carrot": "abc"}, "hybrid carrot must be a finite number"),
+    ("hybrid", {"carrot": True}, "hybrid carrot must be a finite number, got True"),
+    ("hybrid", {"replan_interval": "abc"}, "hybrid replan_interval must be a finite number"),
+    ("hybrid", {"max_replans": True}, "hybrid max_replans must be a whole number"),
+    ("goto_waypoint", {"slow_speed": "abc"}, "goto_waypoint slow_speed must be a finite number"),
+    ("goto_waypoint", {"slow_speed": -1.0}, "goto_waypoint slow_speed must be ≥ 0"),
+    ("goto_waypoint", {"turn_boost": 0.0}, "goto_waypoint turn_boost must be > 0"),
+    ("rear_wheel_feedback", {"settling_distance": 1e-300}, "settling_distance must be from 0.001 to 1000 m"),
+    ("rear_wheel_feedback", {"settling_distance": 1e308}, "settling_distance must be from 0.001 to 1000 m")])
+def test_settings_once_unchecked_are_named(name, setting, words):
+    """Each was a TypeError, ZeroDivisionError or OverflowError mid-run, or silently taken (attack run, session 18)."""
+    from navlab.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=words):
+        make_controller(name, **setting)
+    sensible = {key: 2 if key == "max_replans" else 0.5 for key in setting}
+    assert make_controller(name, **sensible)

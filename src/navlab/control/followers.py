@@ -133,6 +133,8 @@ class GotoWaypoint(_Follower):
         for name, value in (("speed", speed), ("heading_gain", heading_gain), ("reach_radius", reach_radius),
                             ("goal_radius", goal_radius), ("turn_threshold", turn_threshold)):
             check_number(f"goto_waypoint {name}", value)  # a positive finite number ('fast' named, not a TypeError)
+        check_number("goto_waypoint slow_speed", slow_speed, allow_low=True)  # 0: turn on the spot
+        check_number("goto_waypoint turn_boost", turn_boost)
         self.speed, self.heading_gain, self.turn_threshold = speed, heading_gain, turn_threshold
         self.slow_speed, self.turn_boost = slow_speed, turn_boost
         self.reach_radius, self.goal_radius = reach_radius, goal_radius

@@ -6,8 +6,8 @@ from __future__ import annotations
 import math
 import numpy as np
 
-from ..errors import ParameterError
-from .base import CONTROLLERS, REACHED, STALLED, Command, Controller, StallDetector
+from ..limits import check_count
+from .base import CONTROLLERS, REACHED, STALLED, Command, Controller, StallDetector, check_number
 from .potential_field import PotentialField
 
 
@@ -50,12 +50,11 @@ class Hybrid(Controller):
 
     def __init__(self, carrot: float = 0.5, replan_interval: float = 2.0, max_replans: int = 5,
                  stall_window: float = 4.0, stall_progress: float = 0.03, **field) -> None:
-        if not carrot > 0:
-            raise ParameterError(f"hybrid carrot must be positive, got {carrot!r}")
-        if not replan_interval > 0:  # as the followers': 0 would replan on every step of a stall
-            raise ParameterError(f"hybrid replan_interval must be a positive number, got {replan_interval!r}")
-        if not (isinstance(max_replans, int) and max_replans >= 0):
-            raise ParameterError(f"hybrid max_replans must be an integer ≥ 0, got {max_replans!r}")
+        # (a string was a TypeError, an internal error, and true was taken as 1: attack run, session 18)
+        carrot = check_number("hybrid carrot", carrot)
+        # as the followers': 0 would replan on every step of a stall
+        replan_interval = check_number("hybrid replan_interval", replan_interval)
+        max_replans = check_count("hybrid max_replans", max_replans, low=0)
         field.setdefault("stall_window", 1e9)  # the hybrid judges progress along the path itself
         self.field = PotentialField(**field)
         self.carrot, self.replan_interval, self.max_replans = carrot, replan_interval, max_replans

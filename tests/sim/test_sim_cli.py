@@ -118,3 +118,18 @@ def test_a_run_reports_its_simulated_time_at_every_step_to_the_progress_callback
     assert set(limits) == {limits[0]} and limits[0] == int(limits[0]) > result.time_s  # whole seconds, not reached
     out = CliRunner().invoke(main, ["sim", "one_obstacle", "--robot", "diff"])
     assert out.exit_code == 0 and "simulated [" not in out.output  # no bar off a terminal
+
+
+@pytest.mark.parametrize("world, extra", [("one_obstacle", []),
+                                          ("jackal_world", ["--start", "-2", "3", "1.57", "--controller", "dwa"])])
+def test_a_footprint_robots_goal_off_the_map_is_invalid_goal(world, extra):
+    """(an IndexError, an internal error, for the jackal with every costmap controller: attack run, session 18)"""
+    from pathlib import Path
+
+    if world == "jackal_world":
+        world = Path(__file__).parents[2] / ".." / "shared" / "data" / "barn" / "world_0.world"
+        if not world.is_file():
+            pytest.skip("needs ../shared/data/barn")
+    out = CliRunner().invoke(main, ["sim", str(world), "--robot", "jackal", "--goal", "100", "100", *extra])
+    assert out.exit_code == 1, out.output
+    assert out.output.startswith("INVALID_GOAL (the goal is in collision: at (100, 100) the robot's footprint left")

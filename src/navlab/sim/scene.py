@@ -141,6 +141,14 @@ class Scene:
     def _footprint_hit(self, a, b, t0: float, t1: float, twist, first: int) -> Optional[str]:
         """The footprint swept from pose a (at t0) to pose b (at t1) at ``twist`` (see
         :mod:`navlab.world.footprint_collision`): None, or who was hit, where and when."""
+        contact = self._footprint_contact(a, b, t0, t1, twist, first)
+        if contact is None:
+            return None
+        t, x, y, what = contact
+        return f"collision at t = {t:.2f} s near ({x:.3f}, {y:.3f}): {what}"
+
+    def _footprint_contact(self, a, b, t0: float, t1: float, twist, first: int):
+        """:meth:`_footprint_hit`'s answer as (t, x, y, what the footprint met), or None."""
         from ..world import footprint_collision as F
 
         dt = t1 - t0 if t1 > t0 else 1.0
@@ -171,14 +179,14 @@ class Scene:
             return None
         t = t0 + (t1 - t0) * (k / n)
         x, y, _ = F.arc_pose(pose[0], pose[1], pose[2], *twist, dt * k / n)
-        where = f"at t = {t:.2f} s near ({x:.3f}, {y:.3f})"
         if kind == F.KIND_BOUNDS:
-            return f"collision {where}: the robot's footprint left the {'map' if self.is_grid else 'bounds'}"
-        if kind == F.KIND_CELL:
+            what = f"the robot's footprint left the {'map' if self.is_grid else 'bounds'}"
+        elif kind == F.KIND_CELL:
             w = self.world.blocked.shape[1]
-            return f"collision {where}: the robot's footprint touched blocked cell (x={row % w}, y={row // w})"
-        index = self._all_layout.index((kind, row))
-        return f"collision {where}: the robot's footprint touched {self.name_obstacle(index)}"
+            what = f"the robot's footprint touched blocked cell (x={row % w}, y={row // w})"
+        else:
+            what = f"the robot's footprint touched {self.name_obstacle(self._all_layout.index((kind, row)))}"
+        return t, x, y, what
 
     def name_obstacle(self, index: int) -> str:
         """``obstacle 12 (circle 'unit_cylinder_12')``: see :meth:`navlab.world.World.describe_obstacle`."""
@@ -311,8 +319,10 @@ class Scene:
 
     def describe(self, p) -> str:
         where = f"({p[0]:g}, {p[1]:g})"
-        if self.footprint is not None:
-            return self.hit(p, p) or f"{where} is free"
+        if self.footprint is not None:  # a point (x, y) as the robot facing +x there
+            pose = (p[0], p[1], p[2] if len(p) > 2 else 0.0)
+            contact = self._footprint_contact(pose, pose, 0.0, 0.0, None, 0)
+            return f"{where} is free" if contact is None else f"at {where} {contact[3]}"
         if self.is_grid:
             return f"{where} overlaps a blocked cell or leaves the map (robot radius {self.radius:g} m)"
         b = self.world.bounds

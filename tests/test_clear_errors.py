@@ -91,7 +91,7 @@ def test_a_raster_too_fine_to_count_is_one_line():
     ("robot", "diff", {"wheel_radius": float("inf")}, "wheel_radius"),
     ("controller", "potential_field", {"heading_gain": float("inf")}, "heading_gain must be finite"),
     ("controller", "goto_waypoint", {"heading_gain": float("nan")}, "heading_gain must be finite"),
-    ("controller", "hybrid", {"replan_interval": 0}, "replan_interval must be a positive number"),
+    ("controller", "hybrid", {"replan_interval": 0}, "replan_interval must be > 0"),
     ("controller", "goto_waypoint", {"replan": True, "replan_interval": 0}, "replan_interval must be a positive"),
 ])
 def test_non_finite_robot_and_controller_settings_are_named(kind, name, params, words):

@@ -106,8 +106,10 @@ class SimResult:
 
     def tracking_error(self) -> float:
         """Largest distance of the true trajectory from the planned path (m)."""
-        if self.path is None or len(self.path) < 2:
+        if self.path is None:
             return float("nan")
+        if len(self.path) == 1:  # a goal at the start: the distance from that point (it was NaN)
+            return float(np.max(np.hypot(*(self.true_poses[:, :2] - self.path[0, :2]).T)))
         return float(np.max(distance_to_polyline(self.true_poses[:, :2], self.path[:, :2])))
 
     def to_dict(self, trajectory: bool = False) -> Dict[str, Any]:

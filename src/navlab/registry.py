@@ -134,4 +134,5 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
         if bad(value):
             from .limits import shown
 
-            raise ParameterError(f"{what}: {key} must be finite, got {shown(value)}")
+            got = shown(value)
+            raise ParameterError(f"{what}: {key} must be finite, got {got if len(got) <= 80 else got[:77] + '...'}")

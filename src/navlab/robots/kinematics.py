@@ -312,9 +312,13 @@ class Omni3(_Shaped):
         for name in ("wheel_radius", "base_radius", "max_speed", "max_turn_rate", "max_wheel_speed", "radius"):
             _positive(name, getattr(self, name))
         self._check_shape()
-        if len(self.wheel_angles_deg) != 3:
-            raise ParameterError("Omni3 needs exactly three wheel angles")
-        drive = np.radians(self.wheel_angles_deg) + np.pi / 2
+        angles = self.wheel_angles_deg
+        if isinstance(angles, (str, bytes, dict)) or not hasattr(angles, "__len__") or len(angles) != 3 \
+                or not all(is_finite_real(a) for a in angles):
+            # (a single number or a string was a TypeError, an internal error: attack run, session 18)
+            raise ParameterError(f"wheel_angles_deg must be three finite angles in degrees, [a, b, c], "
+                                 f"got {shown(angles)[:80]}")
+        drive = np.radians(np.asarray(angles, float)) + np.pi / 2
         self._J = np.column_stack((np.cos(drive), np.sin(drive), np.full(3, self.base_radius)))
         if abs(np.linalg.det(self._J)) < 1e-9:
             raise ParameterError(f"wheel angles {self.wheel_angles_deg} cannot drive every body twist")

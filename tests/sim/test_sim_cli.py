@@ -133,3 +133,12 @@ def test_a_footprint_robots_goal_off_the_map_is_invalid_goal(world, extra):
     out = CliRunner().invoke(main, ["sim", str(world), "--robot", "jackal", "--goal", "100", "100", *extra])
     assert out.exit_code == 1, out.output
     assert out.output.startswith("INVALID_GOAL (the goal is in collision: at (100, 100) the robot's footprint left")
+
+
+def test_a_goal_at_the_start_has_a_tracking_error_not_nan():
+    from navlab.sim.runner import simulate
+
+    result, *_ = simulate("one_obstacle", robot="diff", goal=(0.0, 0.0), max_time=5)
+    assert result.status.name == "REACHED" and result.tracking_error() == 0.0
+    result, *_ = simulate("one_obstacle", robot="diff", goal=(0.02, 0.0), max_time=5)
+    assert 0.0 <= result.tracking_error() <= 0.03  # within reach: the start's distance from that point at most

@@ -211,12 +211,12 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         sys.exit(EXIT_INTERRUPTED)
     summary = run.summary
     repeats = run.breakdown.get("repeats", 0)
-    ran = f"{run.ran - repeats} run now, {run.errors} errors" + (f"; {repeats} noise repeats besides" if repeats
-                                                                 else "")
+    ran = f"{run.ran - repeats} run now, {_count(run.errors, 'error')}" + (
+        f"; {_count(repeats, 'noise repeat')} besides" if repeats else "")
     # (the elapsed time is the run's wall time, warm-up included; the times per cell below are each trial's own:
     # "in 74.7 s; times are thread CPU time" read as 74.7 s of CPU for trials that took 25.9, newcomer run)
-    click.echo(f"{len(run.rows)} trials ({ran}) in {run.elapsed_s:.1f} s of wall time; each trial's time below is "
-               f"its {summary['time_label']}")
+    click.echo(f"{_count(len(run.rows), 'trial')} ({ran}) in {run.elapsed_s:.1f} s of wall time; each trial's time "
+               f"below is its {summary['time_label']}")
     if run.ran:  # this run's workers' warm-up: a resumed run's earlier rows hold an earlier run's
         click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
                    f"{run.breakdown.get('warmup_s', 0.0):.1f} s in all, not counted in any trial")
@@ -282,13 +282,20 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
         sys.exit(EXIT_INTERRUPTED)
     from ..bench.barn_report import disclaimer, means_table
 
-    click.echo(f"{len(rows)} runs ({summary['ran']} run now) in {summary['elapsed_s']:.1f} s")
+    # ("1 runs (1 run now) in 5.6 s", read against 12.3 s of wall time: the report's plots come after; newcomer run)
+    click.echo(f"{_count(len(rows), 'run')} ({summary['ran']} run now) in {summary['elapsed_s']:.1f} s of wall time, "
+               "before the report")
     for line in means_table(summary):
         click.echo(line)
     click.echo(disclaimer(study.lidar))
     click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl, results.csv)")
     if any(r["status"] == "ERROR" for r in rows):
         sys.exit(1)
+
+
+def _count(n: int, noun: str) -> str:
+    """``1 run``, ``4 runs`` ("1 runs (1 run now)": newcomer run, session 18)."""
+    return f"{n} {noun}" + ("" if n == 1 else "s")
 
 
 def _as_world(world: str, start, goal):

@@ -274,9 +274,9 @@ class RegulatedPurePursuit(CostmapController):
         if self.poses is not None:
             return "the footprint would meet a LETHAL cell on its path of poses"
         why = "the footprint would meet a LETHAL cell on the arc ahead, where Nav2's RPP stops"
-        if not self.plan_poses:
-            return f"{why} (the path is planned for the robot's centre; plan_poses=true plans one for its footprint)"
-        return f"{why} (and no forward path of poses for its footprint leaves this pose)"
+        if not self.plan_poses:  # (the run's line wraps this in parentheses: none nested here)
+            return f"{why}; the path is planned for the robot's centre, and plan_poses=true plans one for its footprint"
+        return f"{why}, and no forward path of poses for its footprint leaves this pose"
 
     def _pursue(self, pose):
         """Nav2's regulated pure pursuit along ``path`` (the module's steps 1-5)."""

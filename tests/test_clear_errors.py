@@ -279,7 +279,7 @@ def test_a_world_file_takes_any_finite_heading_as_the_api_does(tmp_path, heading
         world = navlab.load_world(path)
     assert world.start_heading == pytest.approx(planned, abs=1e-4)
     path.write_text("bounds: {x: [0, 10], y: [0, 10]}\nstart: [1, 1, .nan]\ngoal: [9, 9]\n")
-    with pytest.raises(ValueError, match=r"field 'start\[2\]': must be a finite heading in radians"):
+    with pytest.raises(ValueError, match=r"field 'start\[2\]' must be a finite heading in radians"):
         navlab.load_world(path)
 
 

@@ -116,8 +116,19 @@ def test_bad_value_names_its_field(tmp_path, edit, field):
 
 def test_huge_integer_in_the_file_names_the_field(tmp_path):
     path = write(tmp_path, ZIGZAG.replace("robot_radius: 0.0", "robot_radius: " + "9" * 400))
-    with pytest.raises(WorldFormatError, match=r"field 'robot_radius': is too large"):
+    with pytest.raises(WorldFormatError, match=r"field 'robot_radius' is too large"):
         navlab.load_world(path)
+
+
+@pytest.mark.parametrize("replace, words", [
+    (("robot_radius: 0.0", "robot_radius: -1"), "field 'robot_radius' must be "),
+    (("start: [", "start: [100000000, "), r"field 'start\[0\]' = 100000000 is out of range")])
+def test_a_field_is_named_once_and_the_check_reads_on_from_it(tmp_path, replace, words):
+    """("field 'start[0]': start[0] = ..." until session 18, then for a while "field 'start[0]': = ...")"""
+    with pytest.raises(WorldFormatError, match=words) as err:
+        navlab.load_world(write(tmp_path, ZIGZAG.replace(*replace, 1)))
+    field = words.split("'")[1].replace("\\", "")
+    assert str(err.value).count(field) <= 2 and f"{field}': " not in str(err.value)
 
 
 def test_exponent_without_dot_is_a_number(tmp_path):

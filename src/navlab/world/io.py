@@ -254,8 +254,10 @@ def world_from_dict(data: Any, source: str = "<dict>") -> World:
         what = str(exc)
         if not exc.field:
             raise WorldFormatError(f"{source}: {what}") from None
-        # a check that names its value ("obstacles[0].radius must be positive") is not named twice
-        what = what[len(exc.field):].lstrip() if what.startswith(exc.field + " ") else what
+        if what.startswith(exc.field + " "):
+            # a check that names its value reads on from the field, not after it a second time: "field
+            # 'obstacles[0].radius' must be positive", "field 'start[0]' = 1e+08 is out of range"
+            raise WorldFormatError(f"{source}: field '{exc.field}'{what[len(exc.field):]}") from None
         raise WorldFormatError(f"{source}: field '{exc.field}': {what}") from None
     except RecursionError:  # a YAML document nested thousands deep
         raise WorldFormatError(f"{source}: nested too deeply to be a world file") from None

@@ -394,3 +394,21 @@ def test_a_map_reaching_past_the_coordinate_range_is_named(tmp_path):
                                        "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
     with pytest.raises(navlab.ParameterError, match="far.yaml: bounds.xmax = 10000001 is out of range"):
         navlab.plan(str(tmp_path / "far.yaml"), planner="rrt", start=(9999999.5, 0.5), goal=(9999999.9, 1.5))
+
+
+@pytest.mark.parametrize("what", ["footprint", "padding", "circle", "rear_wheel_feedback", "goto_waypoint",
+                                  "sensor timing"])
+def test_the_classes_themselves_name_an_integer_past_floats_range(what):
+    """Beneath make_controller's and the world file's own checks (an OverflowError until session 18, review)."""
+    from navlab.control.followers import GotoWaypoint
+    from navlab.control.path_tracking import RearWheelFeedback
+    from navlab.sensors.timing import SensorTiming
+    from navlab.world.footprint import Footprint
+    from navlab.world.shapes import Circle
+
+    make = {"footprint": lambda: Footprint(radius=HUGE), "padding": lambda: Footprint(radius=0.2).padded(HUGE),
+            "circle": lambda: Circle((0, 0), HUGE), "rear_wheel_feedback": lambda: RearWheelFeedback(speed=HUGE),
+            "goto_waypoint": lambda: GotoWaypoint(replan_interval=HUGE),
+            "sensor timing": lambda: SensorTiming(rate=HUGE)}[what]
+    with pytest.raises(navlab.NavlabError, match="an integer of 401 digits"):
+        make()

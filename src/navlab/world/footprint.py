@@ -18,7 +18,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..errors import NavlabError
-from ..limits import MAX_COORDINATE
+from ..limits import MAX_COORDINATE, is_finite_real, shown
 
 #: the most vertices a footprint may have (real ones have 4–20)
 MAX_VERTICES = 1000
@@ -45,10 +45,9 @@ class Footprint:
             raise FootprintError("footprint: give either points (a polygon) or a radius (a disc)")
         if self.radius is not None:
             r = self.radius
-            if isinstance(r, bool) or not isinstance(r, (int, float, np.floating, np.integer)) \
-                    or not math.isfinite(r) or not 0 < r <= MAX_COORDINATE:
+            if not is_finite_real(r) or not 0 < r <= MAX_COORDINATE:  # (10**400: OverflowError until session 18)
                 raise FootprintError(f"footprint radius must be a positive number of metres, at most "
-                                     f"{MAX_COORDINATE:g}, got {r!r}")
+                                     f"{MAX_COORDINATE:g}, got {shown(r)}")
             object.__setattr__(self, "radius", float(r))
             return
         object.__setattr__(self, "points", _checked_polygon(self.points))
@@ -151,8 +150,8 @@ class Footprint:
     def padded(self, padding: float) -> "Footprint":
         """The footprint grown by ``padding`` metres (move_base's ``footprint_padding``:
         each vertex pushed ``padding`` further from the origin along both axes' signs)."""
-        if not (math.isfinite(padding) and padding >= 0):
-            raise FootprintError(f"footprint_padding must be ≥ 0 m, got {padding!r}")
+        if not (is_finite_real(padding) and 0 <= padding <= MAX_COORDINATE):
+            raise FootprintError(f"footprint_padding must be from 0 to {MAX_COORDINATE:g} m, got {shown(padding)}")
         if self.radius is not None:
             return Footprint.disc(self.radius + padding)
         v = np.array(self.points)

@@ -16,6 +16,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 from ..errors import ParameterError
+from ..limits import is_finite_real, shown
 
 Point = Tuple[float, float]
 
@@ -50,8 +51,8 @@ class Circle:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "center", _point(self.center, "circle center"))
-        if not (math.isfinite(self.radius) and self.radius > 0):
-            raise ParameterError(f"circle radius must be positive, got {self.radius!r}")
+        if not (is_finite_real(self.radius) and self.radius > 0):  # (10**400: OverflowError until session 18)
+            raise ParameterError(f"circle radius must be positive, got {shown(self.radius)}")
         object.__setattr__(self, "radius", float(self.radius))
 
     def bbox(self) -> Tuple[float, float, float, float]:

@@ -92,5 +92,8 @@ def test_a_stall_at_a_gap_the_centre_path_fits_says_so_and_plan_poses_passes_it(
     stalled, *_ = simulate("clutter", robot="jackal", controller="rpp")
     assert stalled.status.name == "STALLED" and np.hypot(*(stalled.final_true[:2] - stalled.goal)) > 2.0
     assert "LETHAL cell on the arc ahead" in stalled.reason and "plan_poses=true" in stalled.reason
+    crept, *_ = simulate("clutter", robot="jackal", controller="rpp", controller_params={"creep_when_blocked": True})
+    # (creeping, it turns in place and never stands still: the reason does not hang on a stop command)
+    assert crept.status.name == "STALLED" and "LETHAL cell on the arc ahead, and creeping did not" in crept.reason
     passed, *_ = simulate("clutter", robot="jackal", controller="rpp", controller_params={"plan_poses": True})
     assert passed.status.name == "REACHED", passed.reason

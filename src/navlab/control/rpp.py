@@ -65,9 +65,6 @@ from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, MAX_NO
 from .base import CONTROLLERS
 from .local import CostmapController, arc_rollouts, check_number
 
-#: the command that stands still
-STOP = (0.0, 0.0, 0.0)
-
 
 def carrot_on_path(path: np.ndarray, pose, lookahead: float) -> np.ndarray:
     """The point ``lookahead`` metres from the robot along the path: the first point past
@@ -200,9 +197,11 @@ class RegulatedPurePursuit(CostmapController):
                                                      high=100.0)
         self.pose_track_settling = check_number("pose_track_settling", pose_track_settling, high=100.0)
         self.last_carrot = None
-        self._reset_poses()
+        self._reset_run()
 
-    def _reset_poses(self) -> None:
+    def _reset_run(self) -> None:
+        """Forget the last run: its pose path, its progress and when it was last blocked."""
+        self._now, self._blocked_at = 0.0, -math.inf  # this cycle's time; the last the look-ahead met a LETHAL cell
         self.poses = None  #: (N, 3) the footprint-aware path being tracked (None: following ``path``)
         self.wants_pose_plan = False  #: read by the costmap feed, which then calls set_pose_path
         self._progress = (0.0, math.inf)  # (since when, the distance left then)
@@ -210,8 +209,7 @@ class RegulatedPurePursuit(CostmapController):
 
     def reset(self, goal, path=None) -> None:
         super().reset(goal, path)
-        self._reset_poses()
-        self.stall_reason = None  # a new run has not stalled
+        self._reset_run()
         if path is not None and np.ndim(path) == 2 and np.shape(path)[1] == 3:  # a path of poses
             self.set_pose_path(path)
 
@@ -256,6 +254,7 @@ class RegulatedPurePursuit(CostmapController):
         return inscribed - math.log(cost / MAX_NON_OBSTACLE) / factor if factor > 0 else inscribed
 
     def plan(self, t: float, pose: np.ndarray):
+        self._now = t
         if self.plan_poses:
             left = self.remaining(pose)
             since, then = self._progress
@@ -264,17 +263,19 @@ class RegulatedPurePursuit(CostmapController):
             elif t - since >= self.pose_plan_after and not self.wants_pose_plan:
                 self.wants_pose_plan = True
                 self._progress = (t, left)
-        command = self._track_poses(pose) if self.poses is not None else self._pursue(pose)
-        self.stall_reason = self._blocked_reason() if command == STOP else None
-        return command
+        return self._track_poses(pose) if self.poses is not None else self._pursue(pose)
 
-    def _blocked_reason(self) -> str:
-        """Why the robot stands still (a stalled run's reason): its footprint would meet a LETHAL cell
-        ahead; with the setting that answers it where one does."""
+    def why_stalled(self) -> str:
+        """A stall within the stall window of the collision look-ahead's last LETHAL cell is put down to
+        it, with the setting that answers it where one does (newcomer runs: the jackal in clutter stalled
+        saying only "no progress"); any other, as the base class says."""
+        if self._now - self._blocked_at > self.stall.window:
+            return super().why_stalled()
         if self.poses is not None:
             return "the footprint would meet a LETHAL cell on its path of poses"
-        why = "the footprint would meet a LETHAL cell on the arc ahead, where Nav2's RPP stops"
-        if not self.plan_poses:  # (the run's line wraps this in parentheses: none nested here)
+        why = "the footprint would meet a LETHAL cell on the arc ahead" + (
+            ", and creeping did not pass it" if self.creep_when_blocked else ", where Nav2's RPP stops")
+        if not self.plan_poses:
             return f"{why}; the path is planned for the robot's centre, and plan_poses=true plans one for its footprint"
         return f"{why}, and no forward path of poses for its footprint leaves this pose"
 
@@ -388,4 +389,7 @@ class RegulatedPurePursuit(CostmapController):
         reach = min(v * self.collision_time, carrot_dist)
         steps = max(int(math.ceil(reach / self.costmap.resolution)), 1)
         arc = arc_rollouts(*pose, np.array([v]), np.zeros(1), np.array([w]), reach / v / steps, steps)[0]
-        return bool((self.costmap.footprint_cost(arc, self.footprint) >= LETHAL_OBSTACLE).any())
+        blocked = bool((self.costmap.footprint_cost(arc, self.footprint) >= LETHAL_OBSTACLE).any())
+        if blocked:
+            self._blocked_at = self._now
+        return blocked

@@ -42,3 +42,24 @@ def test_max_iter_written_as_a_float_plans_as_the_whole_number(scene, extra):
     assert a.status == b.status and a.cost == b.cost
     with pytest.raises(ValueError, match="max_iter must be a whole number"):
         navlab.plan(scene, planner="rrt", max_iter=2.5, **extra)
+
+
+@pytest.mark.parametrize("value, text", [
+    (10 ** 400, "an integer of 401 digits"), ([30, 150, 10 ** 400], "[30, 150, an integer of 401 digits]"),
+    ((1,), "(1,)"), ("abc", "'abc'"), (0.5, "0.5"),
+    (list(range(100)), "[0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20, 21..."),
+    (np.zeros((2, 1)), "array([[0.], [0.]])")])
+def test_shown_is_one_line_of_at_most_80_characters(value, text):
+    from navlab.limits import shown
+
+    assert shown(value) == text and len(shown("x" * 500)) == 80
+
+
+def test_shown_survives_a_list_nested_thousands_deep():
+    from navlab.limits import shown
+
+    deep = inner = []
+    for _ in range(100_000):
+        inner.append([])
+        inner = inner[0]
+    assert shown(deep) == "[a list nested too deeply to show]"

@@ -37,6 +37,10 @@ def finite_number(name: str, value: Any) -> float:
     return v
 
 
+#: the longest value a message shows (:func:`shown`)
+SHOWN_LENGTH = 80
+
+
 def is_finite_real(value: Any) -> bool:
     """Whether ``value`` is a finite real number (Python or numpy, not a bool) that fits a float:
     ``math.isfinite`` raises OverflowError on an int past float's range (10**400), which
@@ -49,11 +53,25 @@ def is_finite_real(value: Any) -> bool:
         return False
 
 
-def shown(value: Any) -> str:
-    """``repr(value)`` for a message, but an integer too long to read as its number of digits."""
+def shown(value: Any, limit: int = SHOWN_LENGTH) -> str:
+    """``repr(value)`` for a message, on one line and at most ``limit`` characters (cut with "..."); an
+    integer too long to read, alone or in a list or tuple, as its number of digits."""
+    if isinstance(value, (list, tuple)):
+        items = [_one_value(v) for v in value[:limit]]  # (no deeper: the first level is what messages show)
+        inner = ", ".join(items) + ("," if isinstance(value, tuple) and len(value) == 1 else "")
+        text = f"[{inner}]" if isinstance(value, list) else f"({inner})"
+    else:
+        text = _one_value(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
+
+
+def _one_value(value: Any) -> str:
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and abs(int(value)) >= 10 ** 20:
         return f"an integer of {len(str(abs(int(value))))} digits"
-    return repr(value)
+    try:
+        return " ".join(repr(value).split())  # a numpy array's repr spans lines
+    except RecursionError:  # a list nested thousands deep
+        return f"a {type(value).__name__} nested too deeply to show"
 
 
 def check_coordinate(name: str, value: Any) -> float:

@@ -107,19 +107,13 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
     naming the parameter: a robot or controller setting of ``.nan`` or
     ``.inf`` would otherwise run, and end in NaN poses or a robot that never
     turns. (For "no limit", a setting says so in its own terms, e.g. ``None``.)"""
-    import math
+    from .limits import is_finite_real, shown  # (numpy: by now a robot or a controller has loaded it)
 
     def bad(value: Any) -> bool:
         if isinstance(value, bool):
             return False
-        if isinstance(value, int):  # one past float's range (10**400) is as unusable as inf
-            try:
-                float(value)
-            except OverflowError:
-                return True
-            return False
-        if isinstance(value, float):
-            return not math.isfinite(value)
+        if isinstance(value, (int, float)):  # an int past float's range (10**400) is as unusable as inf
+            return not is_finite_real(value)
         if isinstance(value, (list, tuple)):
             return any(bad(v) for v in value)
         try:  # numpy scalars and arrays
@@ -132,7 +126,4 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
 
     for key, value in params.items():
         if bad(value):
-            from .limits import shown
-
-            got = shown(value)
-            raise ParameterError(f"{what}: {key} must be finite, got {got if len(got) <= 80 else got[:77] + '...'}")
+            raise ParameterError(f"{what}: {key} must be finite, got {shown(value)}")

@@ -75,8 +75,8 @@ def test_every_numeric_setting_of_every_controller_refuses_an_integer_past_float
     ("goto_waypoint", {"slow_speed": "abc"}, "goto_waypoint slow_speed must be a finite number"),
     ("goto_waypoint", {"slow_speed": -1.0}, "goto_waypoint slow_speed must be ≥ 0"),
     ("goto_waypoint", {"turn_boost": 0.0}, "goto_waypoint turn_boost must be > 0"),
-    ("rear_wheel_feedback", {"settling_distance": 1e-300}, "settling_distance must be from 0.001 to 1000 m"),
-    ("rear_wheel_feedback", {"settling_distance": 1e308}, "settling_distance must be from 0.001 to 1000 m")])
+    ("rear_wheel_feedback", {"settling_distance": 1e-300}, "settling_distance must be ≥ 0.001 and ≤ 1000"),
+    ("rear_wheel_feedback", {"settling_distance": 1e308}, "settling_distance must be ≥ 0.001 and ≤ 1000")])
 def test_settings_once_unchecked_are_named(name, setting, words):
     """Each was a TypeError, ZeroDivisionError or OverflowError mid-run, or silently taken (attack run, session 18)."""
     from navlab.errors import ParameterError

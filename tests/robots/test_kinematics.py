@@ -90,7 +90,7 @@ def test_bad_robot_parameters(name, params):
         make_robot("omni3", wheel_radus=0.1)
 
 
-@pytest.mark.parametrize("angles", [30, "abc", [30, 150], [30, 150, "abc"]])
+@pytest.mark.parametrize("angles", [30, "abc", [30, 150], [30, 150, "abc"], {0, 120, 240}, [[0], [120], [240]]])
 def test_omni3_wheel_angles_must_be_three_finite_numbers(angles):
     """(a single number or a string was a TypeError, an internal error: attack run, session 18)"""
     from navlab.errors import ParameterError
@@ -98,5 +98,5 @@ def test_omni3_wheel_angles_must_be_three_finite_numbers(angles):
     with pytest.raises(ParameterError, match=r"wheel_angles_deg must be three finite angles in degrees"):
         make_robot("omni3", wheel_angles_deg=angles)
     assert make_robot("omni3", wheel_angles_deg=(0, 120.0, 240)).n_wheels == 3
-    with pytest.raises(ParameterError, match=r"wheel_angles_deg must be finite, got \[30, 150, 10+\.\.\.$"):
-        make_robot("omni3", wheel_angles_deg=[30, 150, 10 ** 400])  # (the message cut short)
+    with pytest.raises(ParameterError, match=r"wheel_angles_deg must be finite, got \[30, 150, an integer of 401 "):
+        make_robot("omni3", wheel_angles_deg=[30, 150, 10 ** 400])

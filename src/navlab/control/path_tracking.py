@@ -42,7 +42,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..limits import is_finite_real, shown
 from ..robots.kinematics import _wrap
-from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector
+from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 
 
 #: [m] how far along the stretch the nearest point is looked for each step: a path that passes
@@ -129,9 +129,9 @@ class RearWheelFeedback(Controller):
                             ("stall_window", stall_window)):
             if not (is_finite_real(value) and value > 0):
                 raise ParameterError(f"rear_wheel_feedback {name} must be a positive number, got {shown(value)}")
-        if not SETTLING_RANGE[0] <= settling_distance <= SETTLING_RANGE[1]:  # its gains are 2/d and 1/d²
-            raise ParameterError(f"rear_wheel_feedback settling_distance must be from {SETTLING_RANGE[0]:g} to "
-                                 f"{SETTLING_RANGE[1]:g} m, got {settling_distance!r}")
+        # its gains are 2/d and 1/d²
+        check_number("rear_wheel_feedback settling_distance", settling_distance, low=SETTLING_RANGE[0],
+                     allow_low=True, high=SETTLING_RANGE[1])
         if creep_speed > speed:
             raise ParameterError(f"rear_wheel_feedback creep_speed ({creep_speed:g}) must not exceed speed ({speed:g})")
         self.speed, self.creep_speed = float(speed), float(creep_speed)

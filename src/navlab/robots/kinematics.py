@@ -313,12 +313,14 @@ class Omni3(_Shaped):
             _positive(name, getattr(self, name))
         self._check_shape()
         angles = self.wheel_angles_deg
-        if isinstance(angles, (str, bytes, dict)) or not hasattr(angles, "__len__") or len(angles) != 3 \
-                or not all(is_finite_real(a) for a in angles):
-            # (a single number or a string was a TypeError, an internal error: attack run, session 18)
+        try:  # (a single number, a string or a set was a TypeError, an internal error: attack run, session 18)
+            degrees = np.asarray(angles, dtype=float) if isinstance(angles, (list, tuple, np.ndarray)) else None
+        except (TypeError, ValueError, OverflowError):
+            degrees = None
+        if degrees is None or degrees.shape != (3,) or not np.isfinite(degrees).all():
             raise ParameterError(f"wheel_angles_deg must be three finite angles in degrees, [a, b, c], "
-                                 f"got {shown(angles)[:80]}")
-        drive = np.radians(np.asarray(angles, float)) + np.pi / 2
+                                 f"got {shown(angles)}")
+        drive = np.radians(degrees) + np.pi / 2
         self._J = np.column_stack((np.cos(drive), np.sin(drive), np.full(3, self.base_radius)))
         if abs(np.linalg.det(self._J)) < 1e-9:
             raise ParameterError(f"wheel angles {self.wheel_angles_deg} cannot drive every body twist")

@@ -27,7 +27,7 @@ from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..errors import ParameterError
-from ..limits import check_length, check_memory
+from ..limits import check_length, check_memory, shown
 from ..world.footprint_collision import pose_grid_overlap
 from .curves import NOP, STRAIGHT, advance, trace_word
 
@@ -54,12 +54,12 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
     try:
         vertices = np.asarray(footprint, dtype=float)
     except (TypeError, ValueError):
-        raise ParameterError(f"{_FOOTPRINT_FORMS}, got {footprint!r:.80}") from None
+        raise ParameterError(f"{_FOOTPRINT_FORMS}, got {shown(footprint)}") from None
     if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3:
-        got = repr(footprint)[:80] if vertices.ndim == 0 else f"shape {vertices.shape}"
+        got = shown(footprint) if vertices.ndim == 0 else f"shape {vertices.shape}"
         raise ParameterError(f"{_FOOTPRINT_FORMS}, got {got}")
     if not np.isfinite(vertices).all():
-        raise ParameterError(f"footprint vertices must be finite numbers [m], got {vertices.tolist()!r:.80}")
+        raise ParameterError(f"footprint vertices must be finite numbers [m], got {shown(vertices.tolist())}")
     _check_polygon(tuple(map(tuple, vertices.tolist())))
     return vertices, 0.0
 

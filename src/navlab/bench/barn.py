@@ -31,6 +31,7 @@ from typing import Dict, Iterable, List, Mapping, Optional, Sequence, Tuple
 
 import numpy as np
 
+from ..limits import shown
 from .experiment import ExperimentError
 
 START = (-2.0, 3.0, 1.57)  #: [m, m, rad] the start pose of every run
@@ -215,15 +216,11 @@ def select_worlds(text: Optional[str], available: Sequence[int]) -> List[int]:
         if not match:
             raise ExperimentError(f"--worlds: {part!r} is not a world number, a range like 0-49, "
                                   "a stepped range like 0-299:6, or 'test'")
-        if any(len(number) > len(str(MAX_WORLD_NUMBER)) for number in match.groups() if number):
-            raise ExperimentError(f"--worlds: {part[:40]!r}: world numbers go up to {MAX_WORLD_NUMBER}")
-        first = int(match.group(1))
-        last = int(match.group(2)) if match.group(2) else first
-        step = int(match.group(3)) if match.group(3) else 1
+        first, last, step = (_selection_number(number, part) if number else None for number in match.groups())
+        last = first if last is None else last
+        step = 1 if step is None else step
         if last < first or step < 1:
             raise ExperimentError(f"--worlds: {part!r} is an empty range")
-        if last > MAX_WORLD_NUMBER:
-            raise ExperimentError(f"--worlds: {part!r}: world numbers go up to {MAX_WORLD_NUMBER}")
         chosen.extend(range(first, last + 1, step))
     missing = sorted(set(chosen) - set(available))
     if missing:
@@ -232,14 +229,23 @@ def select_worlds(text: Optional[str], available: Sequence[int]) -> List[int]:
     return sorted(set(chosen))
 
 
-def _ranges(numbers: Sequence[int], shown: int = 12) -> str:
-    """``0, 6, 7, 8, 12`` as ``0, 6-8, 12``; past ``shown`` runs, the first ones and how many numbers."""
+def _selection_number(digits: str, part: str) -> int:
+    """One number of a ``--worlds`` part, at most :data:`MAX_WORLD_NUMBER` (leading zeros aside): a range is
+    listed in memory, and 10**400 overflowed it (int() refuses 4 300 digits and more outright)."""
+    digits = digits.lstrip("0") or "0"
+    if len(digits) > len(str(MAX_WORLD_NUMBER)) or int(digits) > MAX_WORLD_NUMBER:
+        raise ExperimentError(f"--worlds: {shown(part, 40)}: its numbers go up to {MAX_WORLD_NUMBER}")
+    return int(digits)
+
+
+def _ranges(numbers: Sequence[int], most: int = 12) -> str:
+    """``0, 6, 7, 8, 12`` as ``0, 6-8, 12``; past ``most`` runs, the first ones and how many numbers."""
     parts: List[str] = []
     for n in sorted(numbers):
         if parts and parts[-1].split("-")[-1] == str(n - 1):
             parts[-1] = f"{parts[-1].split('-')[0]}-{n}"
         else:
             parts.append(str(n))
-    if len(parts) > shown:
-        return ", ".join(parts[:shown]) + f", ... ({len(numbers)} in all)"
+    if len(parts) > most:
+        return ", ".join(parts[:most]) + f", ... ({len(numbers)} in all)"
     return ", ".join(parts)

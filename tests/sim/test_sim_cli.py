@@ -142,3 +142,25 @@ def test_a_goal_at_the_start_has_a_tracking_error_not_nan():
     assert result.status.name == "REACHED" and result.tracking_error() == 0.0
     result, *_ = simulate("one_obstacle", robot="diff", goal=(0.02, 0.0), max_time=5)
     assert 0.0 <= result.tracking_error() <= 0.03  # within reach: the start's distance from that point at most
+
+
+def test_the_bar_draws_simulated_seconds_against_the_limit_on_a_terminal(monkeypatch):
+    """The bar itself, on a stand-in terminal (the run's 2 s delay set to 0)."""
+    import io
+    import sys
+
+    import navlab.cli.sim as sim_cli
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    terminal = Terminal()
+    monkeypatch.setattr(sim_cli, "BAR_DELAY", 0.0)
+    monkeypatch.setattr(sys, "stderr", terminal)
+    bar = sim_cli.SimulatedTimeBar()
+    for step in range(51):
+        bar(step * 0.05, 2.5)
+    bar.close()
+    drawn = terminal.getvalue().replace("\r", "\n")
+    assert "/2.5 s simulated [" in drawn and "s simulated/s]" in drawn  # the limit as given, not rounded

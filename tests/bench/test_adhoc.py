@@ -71,3 +71,19 @@ def test_a_cells_failure_note_says_when_its_reason_is_one_of_several(tmp_path, m
     line = next(x for x in res.output.splitlines() if "success 0/3" in x)
     assert "[APPROXIMATE: goal not reached in 5 iterations; the path ends" in line
     assert line.endswith("; 1 of 3 failed trials, report.md lists the others]"), line
+
+
+def test_one_trial_is_counted_in_the_singular(tmp_path, monkeypatch):
+    """("1 trials (1 run now, 0 errors; 1 noise repeats besides)" until session 18: newcomer run)"""
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "rrt", "--trials", "1", "--max-iter",
+                                    "200", "-q", "--no-plots", "--executor", "serial"])
+    assert res.exit_code == 0, res.output
+    line = next(line for line in res.output.splitlines() if "run now" in line)
+    assert line.startswith("1 trial (1 run now, 0 errors") and "trials" not in line.split("of wall")[0]
+
+
+def test_counted_says_one_in_the_singular():
+    from navlab.wording import counted
+
+    assert [counted(n, "run") for n in (0, 1, 2)] == ["0 runs", "1 run", "2 runs"]

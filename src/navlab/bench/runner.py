@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence
 
 from ..atomic import write_text_atomic
+from ..wording import counted
 from .analysis import by_world, compared_rows, judge_claims, scope_text, summarize, timed
 from .executors import EXECUTORS, check_executor
 from .export import write_csv
@@ -154,8 +155,7 @@ def _bar_label(name: str, trials: int, trials_todo: int, repeats_todo: int) -> s
     showed a bar of 2), and how many trials an earlier run already kept."""
     label = name + (f": {trials - trials_todo} of {trials} trials done before" if trials_todo < trials else "")
     if repeats_todo:
-        label += f" ({trials_todo} trial{'s' if trials_todo != 1 else ''} + {repeats_todo} noise repeat"
-        label += "s)" if repeats_todo != 1 else ")"
+        label += f" ({counted(trials_todo, 'trial')} + {counted(repeats_todo, 'noise repeat')})"
     return label
 
 
@@ -300,7 +300,7 @@ def breakdown_lines(run: BenchRun, total_s: Optional[float] = None) -> List[str]
         known = p.get("trials", 0) + p.get("plots", 0) + p.get("report", 0)
         parts.append(f"start-up and checks {max(0.0, total_s - known):.1f} s")
     workers = p.get("workers", 1)
-    parts.append(f"trials {p.get('trials', 0):.1f} s on {workers} worker{'s' if workers > 1 else ''} "
+    parts.append(f"trials {p.get('trials', 0):.1f} s on {counted(workers, 'worker')} "
                  f"(trial CPU {p.get('trial_cpu_s', 0):.1f} s, warm-up {p.get('warmup_s', 0):.1f} s summed over "
                  f"workers, {p.get('repeats', 0)} noise repeats)")
     parts.append(f"plots {p.get('plots', 0):.1f} s")

@@ -12,6 +12,7 @@ import click
 import yaml
 
 from ..bench.suites import suite_help
+from ..wording import counted
 from .common import Count, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
@@ -211,11 +212,11 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         sys.exit(EXIT_INTERRUPTED)
     summary = run.summary
     repeats = run.breakdown.get("repeats", 0)
-    ran = f"{run.ran - repeats} run now, {_count(run.errors, 'error')}" + (
-        f"; {_count(repeats, 'noise repeat')} besides" if repeats else "")
+    ran = f"{run.ran - repeats} run now, {counted(run.errors, 'error')}" + (
+        f"; {counted(repeats, 'noise repeat')} besides" if repeats else "")
     # (the elapsed time is the run's wall time, warm-up included; the times per cell below are each trial's own:
     # "in 74.7 s; times are thread CPU time" read as 74.7 s of CPU for trials that took 25.9, newcomer run)
-    click.echo(f"{_count(len(run.rows), 'trial')} ({ran}) in {run.elapsed_s:.1f} s of wall time; each trial's time "
+    click.echo(f"{counted(len(run.rows), 'trial')} ({ran}) in {run.elapsed_s:.1f} s of wall time; each trial's time "
                f"below is its {summary['time_label']}")
     if run.ran:  # this run's workers' warm-up: a resumed run's earlier rows hold an earlier run's
         click.echo(f"warm-up (compiling and loading kernels, before the first timed trial of each worker): "
@@ -283,7 +284,7 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
     from ..bench.barn_report import disclaimer, means_table
 
     # ("1 runs (1 run now) in 5.6 s", read against 12.3 s of wall time: the report's plots come after; newcomer run)
-    click.echo(f"{_count(len(rows), 'run')} ({summary['ran']} run now) in {summary['elapsed_s']:.1f} s of wall time, "
+    click.echo(f"{counted(len(rows), 'run')} ({summary['ran']} run now) in {summary['elapsed_s']:.1f} s of wall time, "
                "before the report")
     for line in means_table(summary):
         click.echo(line)
@@ -291,11 +292,6 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
     click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl, results.csv)")
     if any(r["status"] == "ERROR" for r in rows):
         sys.exit(1)
-
-
-def _count(n: int, noun: str) -> str:
-    """``1 run``, ``4 runs`` ("1 runs (1 run now)": newcomer run, session 18)."""
-    return f"{n} {noun}" + ("" if n == 1 else "s")
 
 
 def _as_world(world: str, start, goal):

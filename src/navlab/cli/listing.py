@@ -10,6 +10,7 @@ from typing import Any, Callable, Dict, Iterator, List, Optional, Tuple
 import click
 
 from ..registry import Registry, parameters_of
+from ..wording import counted
 from .common import SuggestingChoice, before_numba_import
 
 NAME_WIDTH = 20  #: [characters] the name column
@@ -110,8 +111,7 @@ def _scenes() -> Iterator[str]:
         start = w.start if w.start_heading is None else (*w.start, round(w.start_heading, 4))
         goal = w.goal if w.goal_heading is None else (*w.goal, round(w.goal_heading, 4))
         yield from _entry(name, first_paragraph(factory.__doc__),
-                          f"start {start}, goal {goal}, {robot}, "
-                          f"{len(w.obstacles)} obstacle{'s' if len(w.obstacles) != 1 else ''}")
+                          f"start {start}, goal {goal}, {robot}, {counted(len(w.obstacles), 'obstacle')}")
 
 
 def _controllers() -> Iterator[str]:

@@ -9,6 +9,7 @@ import sys
 import click
 
 from ..errors import ParameterError
+from ..wording import counted
 from .common import Count, PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
@@ -141,9 +142,9 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
     elif "expansions" in s:  # a heading-aware planner
         p, n = result.params, s["expansions"]
         cusps = s.get("cusps", 0)  # of a path found: a failed search has none to count
-        cusps_said = f"{cusps} cusp{'' if cusps == 1 else 's'}, " if len(result.path) else ""
-        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {n} expansion"
-                   f"{'' if n == 1 else 's'}, {cusps_said}planning {s['time_s'] * 1000:.1f} ms")
+        cusps_said = f"{counted(cusps, 'cusp')}, " if len(result.path) else ""
+        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, "
+                   f"{counted(n, 'expansion')}, {cusps_said}planning {s['time_s'] * 1000:.1f} ms")
         off, turn = s.get("goal_offset_m", 0.0), s.get("goal_heading_offset_rad", 0.0)
         if len(result.path) and (off > 1e-6 or turn > 1e-6):  # analytic_expansion=false: near the goal, not at it
             click.echo(f"  ends {off:.3f} m and {math.degrees(turn):.1f}° from the goal pose (without the analytic "

@@ -82,6 +82,7 @@ from shapely.geometry import Point, Polygon
 from ..errors import ParameterError
 from ..limits import MAX_COUNT, check_count, check_length, finite_number
 from ..registry import suggest
+from ..wording import counted
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LEFT, LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, RIGHT, _wrap_compiled, advance,
@@ -339,7 +340,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
             why = "the search space is exhausted" + forward_only
             if not analytic_expansion:  # the goal is one cell and a few bins: the lattice may never land in it
                 heading = "in the goal's heading bin" if lattice.k == 1 else \
-                    f"at a heading within {lattice.k - 1} bin{'' if lattice.k == 2 else 's'} of the goal's"
+                    f"at a heading within {counted(lattice.k - 1, 'bin')} of the goal's"
                 why += (f"; without the analytic expansion it must end in the goal's {lattice.resolution:g} m cell "
                         f"{heading}, which the primitives may never reach (coarser cells or the analytic expansion "
                         "may)")

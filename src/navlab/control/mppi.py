@@ -48,13 +48,15 @@ from .local import CostmapController, check_number
 #: the smallest noise standard deviation other than 0 (no noise) [m/s, rad/s]: the control cost divides by its
 #: square, and 1e-300 overflowed it to NaN poses
 MIN_NOISE = 1e-6
+#: the largest noise standard deviation [m/s, rad/s]
+MAX_NOISE = 1e3
 #: the largest control-cost weight γ (Nav2's default 0.015)
 MAX_GAMMA = 1e3
 
 
 def _noise(name: str, value) -> float:
     """A noise standard deviation: 0 (none) or from :data:`MIN_NOISE` on."""
-    value = check_number(name, value, allow_low=True, high=1e3)
+    value = check_number(name, value, allow_low=True, high=MAX_NOISE)
     if 0.0 < value < MIN_NOISE:
         raise ParameterError(f"{name} must be 0 (no noise) or at least {MIN_NOISE:g}, got {value!r}")
     return value
@@ -205,13 +207,14 @@ class MPPI(CostmapController):
     model_dt : float
         [s] rollout step (0.05).
     vx_std, vy_std, wz_std : float
-        Noise standard deviations (0.2, 0.2, 0.4).
+        Noise standard deviations (0.2, 0.2, 0.4): 0 (no noise) or from :data:`MIN_NOISE` to
+        :data:`MAX_NOISE`.
     vx_max, vx_min, vy_max, wz_max : float
         Velocity limits [m/s, rad/s] (0.5, −0.35, 0.5, 1.9).
     ax_max, ax_min, ay_max, az_max : float
         Acceleration limits [m/s², rad/s²] (3.0, −3.0, 3.0, 3.5).
     temperature, gamma : float
-        Softmax temperature and control-cost weight (0.3, 0.015).
+        Softmax temperature and control-cost weight (0.3, 0.015; gamma at most :data:`MAX_GAMMA`).
     cost_weight, path_align_weight, path_follow_weight, path_angle_weight, goal_weight, prefer_forward_weight
         Critic weights (3.81, 14.0, 5.0, 2.0, 5.0, 5.0).
     collision_cost : float

@@ -412,3 +412,22 @@ def test_the_classes_themselves_name_an_integer_past_floats_range(what):
             "sensor timing": lambda: SensorTiming(rate=HUGE)}[what]
     with pytest.raises(navlab.NavlabError, match="an integer of 401 digits"):
         make()
+
+
+@pytest.mark.parametrize("params, words", [
+    ({"costmap": True, "cost_travel_multiplier": HUGE}, "cost_travel_multiplier must be a number ≥ 0, got an integer"),
+    ({"planner": "hybrid_astar", "footprint": [[0, 0], [1, 0], [1, HUGE]]}, "footprint points must be")])
+def test_planner_settings_past_floats_range_are_named(params, words):
+    """(an OverflowError, an internal error, until session 18's second attack)"""
+    params = {"planner": "astar", **params}
+    with pytest.raises(navlab.NavlabError, match=words):
+        navlab.plan("narrow_aisle" if params["planner"] == "hybrid_astar" else "squarefield", **params)
+
+
+def test_a_path_that_fails_the_exact_check_names_its_leg_in_plain_numbers():
+    """(it showed "(np.float64(5.275), np.float64(6.725))": costmap A* with cost_travel_multiplier=0 on squarefield)"""
+    from navlab.queries import _leg_not_free
+
+    path = np.array([[5.225, 6.725], [5.275, 6.725], [5.325, 6.725]])
+    assert _leg_not_free("costmap", path, 1) == ("the costmap path's leg 1 from (5.275, 6.725) to (5.325, 6.725) is "
+                                                 "not free in the exact world")

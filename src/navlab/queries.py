@@ -15,6 +15,7 @@ from typing import Any, Dict
 import numpy as np
 
 from .errors import ParameterError
+from .limits import MIN_LENGTH, is_finite_real, shown
 from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
@@ -182,10 +183,8 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     stats["collision_checks"] = checker.checks
     stats["time_s"] = time.perf_counter() - t0
     if len(bad):
-        i = int(bad[0])
         return Result(status=Status.FAILED, params=out_params, stats=stats, cells=r.cells,
-                      reason=f"the grid path's leg {i} from {tuple(np.round(path[i], 6))} to "
-                             f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
+                      reason=_leg_not_free("grid", path, int(bad[0])))
     cost = path_length(path)
     tree = (r.tree or Tree()).with_raster(grid)
     return Result(status=Status.EXACT, path=path, cost=cost, stats=stats, params=out_params, cells=r.cells, tree=tree)
@@ -221,7 +220,6 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     formula, step costs weighted by cell cost (:mod:`navlab.grid.cost_search`). The returned
     path is checked against the exact world before it is returned."""
     from .grid.cost_search import DEFAULT_COST_TRAVEL_MULTIPLIER, plan_on_costmap
-    from .limits import MIN_LENGTH
     from .world.costmap import LayeredCostmap
     from .world.footprint import Footprint
 
@@ -235,8 +233,8 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     settings = {"inflation_radius": params.get("inflation_radius", 0.55),
                 "cost_scaling_factor": params.get("cost_scaling_factor", 3.0)}
     multiplier = params.get("cost_travel_multiplier", DEFAULT_COST_TRAVEL_MULTIPLIER)
-    if isinstance(multiplier, bool) or not isinstance(multiplier, (int, float)):
-        raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {multiplier!r}")
+    if not is_finite_real(multiplier):  # (10**400: an OverflowError deeper down until session 18)
+        raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {shown(multiplier)}")
     footprint = Footprint.disc(max(world.robot_radius, MIN_LENGTH))
     source = world.occupancy if world.occupancy is not None else world
     layers = LayeredCostmap(source, footprint, resolution=params.get("resolution"), **settings)
@@ -259,12 +257,18 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     stats["collision_checks"] = checker.checks
     stats["time_s"] = time.perf_counter() - t0
     if len(bad):
-        i = int(bad[0])
         return Result(status=Status.FAILED, params=out_params, stats=stats,
-                      reason=f"the costmap path's leg {i} from {tuple(np.round(path[i], 6))} to "
-                             f"{tuple(np.round(path[i + 1], 6))} is not free in the exact world")
+                      reason=_leg_not_free("costmap", path, int(bad[0])))
     stats["cost_cells"] = stats["raw_cost_cells"] = path_length(path) / costmap.resolution  # as a grid query's
     return Result(status=Status.EXACT, path=path, cost=path_length(path), stats=stats, params=out_params)
+
+
+def _leg_not_free(kind: str, path: np.ndarray, i: int) -> str:
+    """Why a grid or costmap path failed the exact check: its leg ``i`` (in metres, as plain numbers: the
+    message showed ``np.float64(5.275)``, attack run of session 18)."""
+    a, b = path[i], path[i + 1]
+    return (f"the {kind} path's leg {i} from ({a[0]:.6g}, {a[1]:.6g}) to ({b[0]:.6g}, {b[1]:.6g}) is not free in "
+            "the exact world")
 
 
 def path_length(path) -> float:

@@ -182,8 +182,8 @@ def _parse_text(text: str) -> Any:
 def _checked_polygon(points: Any) -> Tuple[Tuple[float, float], ...]:
     try:
         v = np.array(points, dtype=float)
-    except (TypeError, ValueError):
-        raise FootprintError(f"footprint points must be [[x, y], ...] numbers, got {_show(points)}") from None
+    except (TypeError, ValueError, OverflowError):  # (OverflowError: a 400-digit vertex, until session 18)
+        raise FootprintError(f"footprint points must be [[x, y], ...] numbers, got {shown(points, 60)}") from None
     if v.ndim != 2 or v.shape[1] != 2:
         raise FootprintError(f"footprint points must be [[x, y], ...] pairs, got shape {v.shape}")
     distinct = len(np.unique(v, axis=0)) if len(v) else 0
@@ -213,8 +213,3 @@ def _checked_polygon(points: Any) -> Tuple[Tuple[float, float], ...]:
     if not ring.is_ccw:
         v = v[::-1]
     return tuple((float(x), float(y)) for x, y in v)
-
-
-def _show(value: Any, limit: int = 60) -> str:
-    text = repr(value)
-    return text if len(text) <= limit else text[:limit] + "…"

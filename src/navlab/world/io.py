@@ -30,7 +30,7 @@ from typing import Any, Callable, Dict, Tuple, Union
 
 from ..angles import finite_heading
 from ..atomic import write_text_atomic
-from ..limits import check_coordinate, check_length
+from ..limits import check_coordinate, check_length, shown
 from ..registry import suggest
 from .footprint import Footprint, FootprintError
 from .errors import WorldFormatError  # noqa: F401  (defined apart so the SDF reader can raise it too)
@@ -104,10 +104,9 @@ def _interval(field: str, value: Any) -> Tuple[float, float]:
     return lo, hi
 
 
-def _show(value: Any, limit: int = 60) -> str:
-    """``repr`` of a bad value, shortened: the message must stay one readable line."""
-    text = repr(value)
-    return text if len(text) <= limit else text[: limit - 3] + "..."
+def _show(value: Any) -> str:
+    """A bad value for a message, shortened: the message must stay one readable line."""
+    return shown(value, 60)
 
 
 def _short(exc: Exception, limit: int = 200) -> str:

@@ -181,3 +181,14 @@ def test_a_source_after_a_point_is_still_the_source():
     assert result.output.startswith("trap: ") and "Error" not in result.output, result.output
     result = CliRunner().invoke(main, ["plan", "--start", "1", "1", "2d_map.yaml"], prog_name="navlab")
     assert result.exit_code == 2 and "2d_map.yaml" in result.output and "THETA" not in result.output, result.output
+
+
+@pytest.mark.parametrize("value", ["1" + "0" * 400, "1e400", "-2e999"])
+def test_a_coordinate_past_floats_range_is_named_not_called_inf(value):
+    """(it said "start x must be finite, got inf" for a number the user wrote out: second attack, session 18)"""
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    res = CliRunner().invoke(main, ["plan", "squarefield", "--start", value, "1"])
+    assert res.exit_code == 2 and "past the largest number a float holds" in res.output and "got inf" not in res.output

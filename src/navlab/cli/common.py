@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 import re
 from typing import Any, Dict, Optional, Tuple
@@ -257,6 +258,11 @@ class PointOrPoseOption(click.Option):
         tokens = str(value).split()
         if len(tokens) not in (2, 3) or not all(_is_number(t) for t in tokens):
             raise click.BadParameter(f"expected X Y or X Y THETA (numbers), got {str(value)!r}", ctx=ctx, param=self)
+        numbers = tuple(float(t) for t in tokens)
+        for token, number in zip(tokens, numbers):
+            if math.isinf(number) and "inf" not in token.lower():  # float() made 10**400 written out inf
+                digits = f"{token[:12]}... ({len(token)} characters)" if len(token) > 24 else token
+                raise click.BadParameter(f"{digits} is past the largest number a float holds", ctx=ctx, param=self)
         # (a heading beyond ±2π is legal, but more often degrees: the planner's HeadingWarning says so,
         # printed as a note by the command: navlab.cli.heading_notes)
-        return tuple(float(t) for t in tokens)
+        return numbers

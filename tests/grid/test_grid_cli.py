@@ -1,6 +1,7 @@
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -108,3 +109,16 @@ def test_progress_is_reported_per_scenario_and_per_carved_cell(tmp_path):
     carved = []
     make_maze(40, 30, progress=carved.append)
     assert carved == [1024, 1200]  # every 1024 cells and at the end
+
+
+@pytest.mark.parametrize("radius, words", [("-1", "--robot-radius must be non-negative"),
+                                           ("nan", "--robot-radius must be finite")])
+def test_a_bad_robot_radius_is_named_by_its_flag(tmp_path, radius, words):
+    """(it said "inflation radius", OccupancyGrid.inflate's name for it: second attack run, session 18)"""
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.mapio import save_map
+
+    save_map(OccupancyGrid(np.zeros((8, 8), bool), resolution=0.1), tmp_path / "open.yaml")
+    res = run("grid", "plan", str(tmp_path / "open.yaml"), "--start", "0", "0", "--goal", "7", "4",
+              "--robot-radius", radius)
+    assert res.exit_code == 2 and f"Error: {words}" in res.output

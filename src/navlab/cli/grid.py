@@ -50,6 +50,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     """Plan a path on MAP between two cells (x = column, y = row)."""
     before_numba_import()
     from ..grid import load_map, plan, plan_world
+    from ..limits import check_length
 
     for label, v in (("--start", start), ("--goal", goal)):
         if not all(math.isfinite(c) for c in v):
@@ -62,8 +63,8 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         raise ParameterError(f"{map_path}: this is a world file (shapes, start and goal), not a map: use "
                              f"navlab plan {map_path} --planner {algorithm}")
     grid = load_map(map_path, rule=map_rule)
-    if inflate:
-        grid = grid.inflate(inflate)
+    if inflate:  # checked under the flag's name (OccupancyGrid.inflate calls it "inflation radius")
+        grid = grid.inflate(check_length("--robot-radius", inflate))
     kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,
                   weight=weight, allow_unknown=allow_unknown)
     before_first_kernel()  # numba loads for the search below anyway

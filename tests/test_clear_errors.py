@@ -431,3 +431,16 @@ def test_a_path_that_fails_the_exact_check_names_its_leg_in_plain_numbers():
     path = np.array([[5.225, 6.725], [5.275, 6.725], [5.325, 6.725]])
     assert _leg_not_free("costmap", path, 1) == ("the costmap path's leg 1 from (5.275, 6.725) to (5.325, 6.725) is "
                                                  "not free in the exact world")
+
+
+@pytest.mark.parametrize("sampler", [0, False, 1.5])
+def test_a_sampler_that_is_not_a_name_is_refused(sampler):
+    """(0 and False were read as "uniform": second attack run, session 18)"""
+    with pytest.raises(navlab.NavlabError, match="sampler"):
+        navlab.plan("squarefield", planner="rrt", sampler=sampler, max_iter=100)
+
+
+def test_a_resolution_too_fine_to_count_names_no_inf():
+    with pytest.raises(navlab.NavlabError, match=r"to 6e\+300 x 6e\+300 cells, more than 1e\+08") as err:
+        navlab.plan("narrow_aisle", planner="hybrid_astar", resolution=1e-300)
+    assert "inf" not in str(err.value)

@@ -28,7 +28,7 @@ import numpy as np
 
 from .compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from .errors import ParameterError
-from .limits import check_seed
+from .limits import check_seed, shown
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
                       planner_names, split_grid_params, split_params, tree_query)
@@ -162,6 +162,9 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     if not isinstance(planner, str):
         raise ParameterError(f"planner must be a planner's name, got {planner!r}; see navlab.planner_names()")
     check_seed(seed)
+    if sampler is not None and not isinstance(sampler, str):  # (0 and False were read as "uniform")
+        raise ParameterError(f"sampler must be a sampler's name, got {shown(sampler)}; valid: "
+                             f"{', '.join(SAMPLERS.names())}")
     params = dict(params)
     grid = planner not in POSE_PLANNERS and is_grid_planner(planner)  # unknown names: "did you mean"
     if is_pose_query(planner, params):  # a bad motion is named before any file is read

@@ -52,9 +52,9 @@ def grid_shape(bounds, resolution: float) -> tuple[int, int]:
     # a hair of slack so that 10 m / 0.05 m counts 200 cells, not 199
     fx, fy = sx / resolution * (1 + 1e-12), sy / resolution * (1 + 1e-12)
     if not fx * fy <= MAX_CELLS:  # counted in floats: 1e-300 m cells are more than an int can format
+        # (no product: at 1e-300 m it said "= inf cells")
         raise ParameterError(f"resolution {resolution:g} m would rasterise the {sx:g} m x {sy:g} m bounds to "
-                             f"{fx:.3g} x {fy:.3g} = {fx * fy:.3g} cells (more than {MAX_CELLS:.0e}); "
-                             "use a coarser resolution")
+                             f"{fx:.3g} x {fy:.3g} cells, more than {MAX_CELLS:.0e}; use a coarser resolution")
     nx, ny = math.floor(fx), math.floor(fy)
     if nx < 1 or ny < 1:
         raise ParameterError(f"resolution {resolution:g} m is larger than the {sx:g} m x {sy:g} m bounds")

@@ -169,7 +169,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     smooth : bool
         Shorten the path with collision-free Dubins/Reeds–Shepp shortcuts.
     waypoint_spacing : float, optional
-        Spacing of the returned poses [m]; the grid's resolution by default.
+        Spacing of the returned poses [m] along the path; the grid's resolution by default. The poses
+        lie on the checked curve (``stats['word']`` and ``stats['segments']`` give it exactly); a
+        straight line between two of them cuts an arc by up to spacing² / (8 · turning_radius), so
+        a sparse spacing is for display, not for driving chord by chord.
     exact_retry : bool
         When the search exhausts its space on the primitives' swept cells
         (which can wall off a gap the robot clears by more than res/2 on each

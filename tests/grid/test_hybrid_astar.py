@@ -444,3 +444,11 @@ def test_an_exhausted_search_without_the_analytic_expansion_says_the_goal_state_
     assert navlab.plan("narrow_aisle", planner="hybrid_astar").status is Status.EXACT
     coarser = navlab.plan("narrow_aisle", planner="hybrid_astar", analytic_expansion=False, resolution=0.05)
     assert coarser.status is Status.EXACT and coarser.stats["goal_offset_m"] < 0.05 * math.sqrt(2)
+
+
+def test_a_footprint_vertex_past_floats_range_is_named():
+    """(an OverflowError from numpy, an internal error, until session 18)"""
+    from navlab.errors import ParameterError
+
+    with pytest.raises(ParameterError, match="footprint must be a disc's radius"):
+        plan_hybrid(aisle(), (1.2, 1.55, 0.0), (4.05, 4.6, 1.5), 0.5, footprint=[[0, 0], [1, 0], [1, 10 ** 400]])

@@ -6,7 +6,6 @@ import math
 from dataclasses import dataclass
 from typing import Any, Callable, Optional
 
-
 from ..errors import ParameterError
 from ..limits import is_finite_real, shown
 from ..registry import Registry

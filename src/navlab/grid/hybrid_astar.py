@@ -82,13 +82,13 @@ from shapely.geometry import Point, Polygon
 from ..errors import ParameterError
 from ..limits import MAX_COUNT, check_count, check_length, finite_number
 from ..registry import suggest
-from ..wording import counted
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import (LEFT, LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, RIGHT, _wrap_compiled, advance,
                                check_pose, check_turning_radius, trace_word, word_poses)
 from ..sampling.footprint_lattice import (check_turning_scale, curve_free, footprint_misfit, lattice_for,
                                           pose_free, robot_outline)
+from ..wording import counted
 from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search

@@ -53,7 +53,7 @@ def robot_outline(footprint=None, robot_radius: Optional[float] = None) -> Tuple
         return np.empty((0, 2)), check_length("robot_radius", 0.0 if robot_radius is None else robot_radius)
     try:
         vertices = np.asarray(footprint, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # (OverflowError: a vertex of 10**400)
         raise ParameterError(f"{_FOOTPRINT_FORMS}, got {shown(footprint)}") from None
     if vertices.ndim != 2 or vertices.shape[1] != 2 or len(vertices) < 3:
         got = shown(footprint) if vertices.ndim == 0 else f"shape {vertices.shape}"

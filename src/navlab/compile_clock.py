@@ -145,7 +145,8 @@ def hold_interrupts_while_compiling() -> None:
             if threading.current_thread() is not threading.main_thread():
                 return  # only the main thread receives signals, and only it may set their handlers
             self._depth += 1
-            if self._depth == 1 and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+            if self._depth == 1 and signal.getsignal(signal.SIGINT) is signal.default_int_handler \
+                    and not _ros_owns_sigint():
                 self._previous = signal.signal(signal.SIGINT, self._note)
 
         def on_end(self, ev) -> None:
@@ -165,6 +166,21 @@ def hold_interrupts_while_compiling() -> None:
     # event: loading a cached kernel, and the runtime's own module, compiled in every process (rtsys.initialize);
     # a Ctrl-C landing there was lost the same way (fuzz test_real_command_ctrl_c_is_one_line, CI under load)
     event.register("numba:compiler_lock", held)
+
+
+def _ros_owns_sigint() -> bool:
+    """Whether rclpy is initialised in this process: it handles SIGINT in C, below what
+    ``signal.getsignal`` sees (Python still reports its default handler), and setting a Python
+    handler, even to put the default back, replaces rclpy's for good: a ROS node that loaded a
+    kernel after ``rclpy.init`` then ignored Ctrl-C, its executor never woken (the pathplanner
+    node: attack run, session 18). Under rclpy, Ctrl-C shuts the executor down instead."""
+    import sys
+
+    rclpy = sys.modules.get("rclpy")
+    try:
+        return rclpy is not None and bool(rclpy.ok())
+    except Exception:  # an rclpy too old or half-imported to say: leave its signals alone too
+        return rclpy is not None
 
 
 @functools.lru_cache(maxsize=1)

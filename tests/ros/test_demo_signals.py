@@ -130,3 +130,33 @@ def test_a_later_run_removes_the_temporary_folder_of_a_killed_one(tmp_path, monk
     with run_folder(str(tmp_path / "out")) as folder:
         assert folder == tmp_path / "out"
     assert folder.is_dir()  # a run's own output folder stays
+
+
+def test_ctrl_c_ends_a_pathplanner_node_that_has_loaded_its_kernels(tmp_path):
+    """The node loads its kernels after rclpy.init: numba's compile-lock listener (navlab.compile_clock)
+    set a Python SIGINT handler around each load, which replaced rclpy's for good, and the node then
+    ignored Ctrl-C until killed (attack run, session 18)."""
+    env = ros_env(DOMAIN_ID)
+    cmd = navlab_cmd("ros", "pathplanner")
+    if can_unshare():
+        cmd = ["unshare", "-n", "sh", "-c", 'ip link set lo up && exec "$@"', "sh", *cmd]
+    else:
+        env["ROS_DOMAIN_ID"] = str(100 + os.getpid() % 100)
+    proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            start_new_session=True)
+    lines = []
+    reader = threading.Thread(target=lambda: lines.extend(proc.stderr), daemon=True)
+    reader.start()
+    end = time.monotonic() + START_LIMIT
+    while not any("ready" in line for line in lines):
+        assert proc.poll() is None, "".join(lines)[-4000:]
+        assert time.monotonic() < end, f"no 'ready' in {START_LIMIT:g} s:\n{''.join(lines)[-4000:]}"
+        time.sleep(0.05)
+    os.killpg(proc.pid, signal.SIGINT)
+    try:
+        proc.wait(timeout=EXIT_LIMIT)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        pytest.fail(f"the pathplanner node still ran {EXIT_LIMIT:g} s after Ctrl-C")
+    reader.join(timeout=EXIT_LIMIT)
+    assert proc.returncode in (0, 130) and "Traceback" not in "".join(lines), "".join(lines)[-4000:]

@@ -99,8 +99,25 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "seed:=-5"], "parameter seed must be a non-negative"),
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "dt:=1e-300"], "below the smallest supported step"),
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "lidar_beams:=1000000000"], "beams must be an integer"),
+    # the attack run of session 18: NaN past click's range checks, an unchecked timeout, an internal error
+    (["ros", "demo", "--maze-size", "3", "--timeout", "nan"], "timeout must be a positive number of seconds"),
+    (["ros", "demo", "--maze-size", "3", "--max-time", "nan"], "max_time must be a positive number of seconds"),
+    (["ros", "demo", "--maze-size", "3", "--goal", "3.5", "nan"], "goal y must be finite, got nan"),
+    (["ros", "delay", "/odom", "--wait", "nan"], "--wait must be a number of seconds ≥ 0, got nan"),
+    (["ros", "potential_field_navigator", "--ros-args", "-p", "scan_timeout:=-1.0"],
+     "parameter scan_timeout must be at least 0"),
+    (["ros", "map_server", "--ros-args", "-p", "yaml_filename:=MAP", "-p", "topic_name:=bad topic!"],
+     "parameter topic_name 'bad topic!' is not a topic name: topic name must not contain characters"),
 ])
-def test_node_commands_refuse_bad_settings_in_one_line(args, message):
+def test_node_commands_refuse_bad_settings_in_one_line(args, message, tmp_path):
+    if "yaml_filename:=MAP" in args:  # a map of the test's own
+        import numpy as np
+
+        from navlab.grid import OccupancyGrid
+        from navlab.grid.mapio import save_map
+
+        save_map(OccupancyGrid(np.zeros((4, 4), bool), resolution=0.1), tmp_path / "open.yaml")
+        args = [f"yaml_filename:={tmp_path / 'open.yaml'}" if a == "yaml_filename:=MAP" else a for a in args]
     proc = run_isolated(navlab_cmd(*args), timeout=60)
     assert proc.returncode == 2, proc.stderr
     assert message in proc.stderr and "Traceback" not in proc.stderr
@@ -110,3 +127,13 @@ def test_node_help_lists_parameters():
     proc = run_isolated(navlab_cmd("ros", "sim", "--help"), timeout=60)
     assert proc.returncode == 0
     assert "real_time_factor (default 1.0)" in proc.stdout and "/cmd_vel" in proc.stdout
+
+
+def test_json_summaries_carry_null_where_a_number_is_missing():
+    """Python writes NaN and Infinity, which JSON has not ("error_odom_m": Infinity for a run that
+    never heard the robot; "rate_hz": NaN for a topic that sent nothing: attack run, session 18)."""
+    from navlab.cli.ros import _strict_json
+
+    summary = {"error_odom_m": float("inf"), "rate_hz": float("nan"), "goal": [1.5, float("-inf")], "count": 0}
+    assert json.loads(json.dumps(_strict_json(summary)), parse_constant=pytest.fail) == {
+        "error_odom_m": None, "rate_hz": None, "goal": [1.5, None], "count": 0}

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import json
+import math
 import sys
 
 import click
@@ -78,6 +79,19 @@ class NodeCommand(click.Command):
         sys.exit(run_node(node_class(self.node), [f"navlab-{self.node}", *ctx.args]))
 
 
+def _strict_json(value):
+    """``value`` with every NaN or infinite float as None: JSON has neither (Python writes the
+    non-standard ``NaN`` and ``Infinity``, which strict parsers refuse: a run that heard no
+    odometry, a topic that sent nothing)."""
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    if isinstance(value, dict):
+        return {k: _strict_json(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_strict_json(v) for v in value]
+    return value
+
+
 for _node in NODES:
     ros_group.add_command(NodeCommand(_node))
 
@@ -106,7 +120,7 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
     summaries, used = measure(list(topics), duration, clock, wait=wait, args=["navlab-delay"])
     if as_json:
         for s in summaries:
-            click.echo(json.dumps(s | {"clock": used}))
+            click.echo(json.dumps(_strict_json(s | {"clock": used})))
     else:
         click.echo(table(summaries, used))
     if any(s["count"] == 0 for s in summaries):
@@ -156,11 +170,15 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
                        max_time=max_time, timeout=timeout, log_dir=log_dir, planner=planner,
                        planner_params=parse_params(params))
     if as_json:
-        click.echo(json.dumps(summary))
+        click.echo(json.dumps(_strict_json(summary)))
     else:
         click.echo(f"{summary['status']}" + (f": {summary['reason']}" if summary["reason"] else ""))
-        click.echo(f"  goal {summary['goal']}, odometry {summary['error_odom_m'] * 1000:.0f} mm and true pose "
-                   f"{summary['error_true_m'] * 1000:.0f} mm from it")
+        odom, true = (summary[key] for key in ("error_odom_m", "error_true_m"))
+        if math.isfinite(odom) and math.isfinite(true):
+            click.echo(f"  goal {summary['goal']}, odometry {odom * 1000:.0f} mm and true pose {true * 1000:.0f} mm "
+                       "from it")
+        else:  # (it printed "inf mm" when the run ended before the robot was heard)
+            click.echo(f"  goal {summary['goal']}; the robot's pose was never heard")
         click.echo(f"  {summary['sim_time_s']:.1f} s simulated in {summary['wall_time_s']:.1f} s, "
                    f"travelled {summary['travelled_m']:.2f} m"
                    + (f", plan {summary['plan_length_m']:.2f} m" if summary["plan_length_m"] else ""))

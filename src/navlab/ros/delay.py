@@ -99,6 +99,8 @@ def measure(topics: Sequence[str], duration: float, clock: str = "auto", discove
 
     if not duration > 0 or not math.isfinite(duration):
         raise ParameterError(f"--duration must be a positive number of seconds, got {duration!r}")
+    if not wait >= 0 or not math.isfinite(wait):  # (NaN passed click's range check)
+        raise ParameterError(f"--wait must be a number of seconds ≥ 0, got {wait!r}")
     if clock not in ("auto", "sim", "wall"):
         raise ParameterError(f"--time must be auto, sim or wall, got {clock!r}")
     topics = [t if t.startswith("/") else "/" + t for t in topics]

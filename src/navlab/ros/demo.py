@@ -38,6 +38,7 @@ from rclpy.parameter import Parameter
 from rclpy.signals import SignalHandlerOptions
 
 from ..errors import ParameterError
+from ..limits import check_coordinate, finite_number, is_finite_real, shown
 from .base import DEFAULT_QOS, NavlabNode
 from .convert import path_from_msg, pose_from_msg, pose_msg, stamp_seconds
 from .launch import NodeProcesses, mapping_text, node_class
@@ -105,6 +106,14 @@ def run_demo(world: Optional[str] = None, robot: str = "diff", start=None, goal=
         raise ParameterError(f"robot must be diff or omni3, got {robot!r}")
     if not (real_time_factor > 0 and math.isfinite(real_time_factor)):
         raise ParameterError(f"real_time_factor must be positive, got {real_time_factor!r}")
+    # (a range check lets NaN through: --timeout nan ran without a limit, --max-time nan was taken)
+    for name, seconds in (("max_time", max_time), ("timeout", timeout)):
+        if seconds is not None and not (is_finite_real(seconds) and seconds > 0):
+            raise ParameterError(f"{name} must be a positive number of seconds, got {shown(seconds)}")
+    for name, point in (("start", start), ("goal", goal)):
+        for axis, value in zip(("x", "y", "yaw"), point or ()):
+            # (a NaN goal started the whole pipeline, which then ignored it)
+            (finite_number if axis == "yaw" else check_coordinate)(f"{name} {axis}", value)
     with run_folder(log_dir) as folder:
         if world is None:
             if robot == "diff":

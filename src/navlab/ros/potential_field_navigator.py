@@ -25,7 +25,8 @@ class PotentialFieldNavigator(DriveNode):
         Param("obstacle_r", 0.2, "radius of the repulsive field around each point (m)"),
         Param("obstacle_s", 0.35, "spread of the repulsive field (m)"),
         Param("max_speed", 0.3, "speed limit of the command (m/s)"),
-        Param("scan_timeout", 0.5, "ignore scans older than this (wall-clock s)"),
+        # (a timeout below 0 took every scan as stale: the robot never moved; attack run, session 18)
+        Param("scan_timeout", 0.5, "ignore scans older than this (wall-clock s)", low=0.0),
         ODOM_TIMEOUT,
     )
 

@@ -245,7 +245,8 @@ class NavlabGroup(SuggestingGroup):
                 sys.exit(exc.exit_code)
             where = f" (see '{exc.ctx.command_path} --help')" if exc.ctx is not None else ""
             message = " ".join(exc.format_message().splitlines())  # one line, even for a value holding newlines
-            if where and message.endswith("."):  # click's own full stop goes after the pointer to --help
+            # click's own full stop goes after the pointer to --help (an ellipsis stays whole)
+            if where and message.endswith(".") and not message.endswith("..."):
                 message, where = message[:-1], where + "."
             click.echo(f"Error: {message}{where}", err=True)
             sys.exit(exc.exit_code)

@@ -76,6 +76,10 @@ class NodeCommand(click.Command):
         from ..ros.launch import node_class
 
         ctx = click.get_current_context()
+        before = ctx.args[:ctx.args.index("--ros-args")] if "--ros-args" in ctx.args else ctx.args
+        if "-p" in before or "--param" in before:  # rclpy reads -p only after --ros-args: it was ignored
+            raise click.UsageError(f"ROS parameters follow --ros-args: navlab ros {self.node} --ros-args "
+                                   "-p NAME:=VALUE ...")
         sys.exit(run_node(node_class(self.node), [f"navlab-{self.node}", *ctx.args]))
 
 

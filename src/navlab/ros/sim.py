@@ -92,7 +92,8 @@ class SimNode(NavlabNode):
         start = (p["x"], p["y"], p["yaw"])
         if math.isnan(p["x"]) or math.isnan(p["y"]):
             if isinstance(world, OccupancyGrid):
-                raise ParameterError("a map has no start of its own: set -p x:=... -p y:=...")
+                raise ParameterError("a map has no start of its own: set -p x:=... -p y:=... to finite numbers "
+                                     "(NaN, the default, means the world's own start)")
             start = (*world.start, p["yaw"])
         self.scene = Scene(world, self.robot.radius, self.robot.footprint)
         if not self.scene.free(start):

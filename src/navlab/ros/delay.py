@@ -104,6 +104,15 @@ def measure(topics: Sequence[str], duration: float, clock: str = "auto", discove
     if clock not in ("auto", "sim", "wall"):
         raise ParameterError(f"--time must be auto, sim or wall, got {clock!r}")
     topics = [t if t.startswith("/") else "/" + t for t in topics]
+    from rclpy.exceptions import InvalidTopicNameException
+    from rclpy.validate_topic_name import validate_topic_name
+
+    for topic in topics:  # (a bad name waited out --wait and said "no message received")
+        try:
+            validate_topic_name(topic)
+        except InvalidTopicNameException as exc:
+            why = str(exc).splitlines()[0].removeprefix("Invalid topic name: ").rstrip(":")
+            raise ParameterError(f"{topic[1:]!r} is not a topic name: {why}") from None
     rclpy.init(args=args)
     try:
         node = Node("navlab_delay")

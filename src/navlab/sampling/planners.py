@@ -20,7 +20,7 @@ from typing import Any, Dict, Optional, Union
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import MAX_COUNT, check_count, check_length, check_memory
+from ..limits import MAX_COUNT, check_count, check_length, check_memory, shown
 from ..registry import Registry, parameters_of
 from ..result import Result, Status, Tree
 from . import tree_kernel as K
@@ -47,8 +47,7 @@ def _check_positive(name: str, value: Any, required: bool = False) -> None:
             isinstance(value, float) and not math.isfinite(value)):
         raise ParameterError(f"{name} must be a positive number, got {value!r}")
     if value > MAX_COUNT:  # the compiled loops count in int64
-        shown = f"{value:.3g}" if value < 1e300 else f"a number of {len(str(int(value)))} digits"
-        raise ParameterError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown}")
+        raise ParameterError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown(value)}")
 
 
 def rrt_star_gamma(world) -> float:

@@ -17,6 +17,7 @@ import math
 from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
+
 from ..errors import ParameterError
 from ..limits import is_finite_real
 

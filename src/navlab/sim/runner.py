@@ -9,8 +9,8 @@ import numpy as np
 
 from ..control import make_controller
 from ..errors import NavlabError, ParameterError
-from ..limits import is_finite_real
 from ..grid.occupancy import OccupancyGrid
+from ..limits import is_finite_real
 from ..robots import Compass, WheelEncoders, make_robot
 from ..sensors import Lidar
 from .replan import PLAN_MARGIN, Replanner  # noqa: F401  (PLAN_MARGIN: the seeds' experiments use it)

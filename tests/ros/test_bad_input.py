@@ -105,6 +105,7 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     (["ros", "demo", "--maze-size", "3", "--goal", "3.5", "nan"], "goal y must be finite, got nan"),
     (["ros", "delay", "/odom", "--wait", "nan"], "--wait must be a number of seconds ≥ 0, got nan"),
     (["ros", "delay", "bad topic!", "--wait", "1"], "'bad topic!' is not a topic name: topic name must not"),
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "x:=2"], "set the start's x and y together"),
     (["ros", "sim", "-p", "world:=trap"],  # rclpy ignored -p without --ros-args, and said "sim needs a world"
      "ROS parameters follow --ros-args: navlab ros sim --ros-args -p NAME:=VALUE ... (see '"),
     (["ros", "potential_field_navigator", "--ros-args", "-p", "scan_timeout:=-1.0"],

@@ -90,7 +90,9 @@ class SimNode(NavlabNode):
         world = load_scene_world(p["world"])
         self.robot = make_robot(p["robot"])
         start = (p["x"], p["y"], p["yaw"])
-        if math.isnan(p["x"]) or math.isnan(p["y"]):
+        if math.isnan(p["x"]) != math.isnan(p["y"]):  # (a lone x:=2 was dropped without a word)
+            raise ParameterError("set the start's x and y together: -p x:=... -p y:=...")
+        if math.isnan(p["x"]):
             if isinstance(world, OccupancyGrid):
                 raise ParameterError("a map has no start of its own: set -p x:=... -p y:=... to finite numbers "
                                      "(NaN, the default, means the world's own start)")

@@ -148,6 +148,7 @@ def test_the_bar_draws_simulated_seconds_against_the_limit_on_a_terminal(monkeyp
     """The bar itself, on a stand-in terminal (the run's 2 s delay set to 0)."""
     import io
     import sys
+    import time
 
     import navlab.cli.sim as sim_cli
 
@@ -159,8 +160,12 @@ def test_the_bar_draws_simulated_seconds_against_the_limit_on_a_terminal(monkeyp
     monkeypatch.setattr(sim_cli, "BAR_DELAY", 0.0)
     monkeypatch.setattr(sys, "stderr", terminal)
     bar = sim_cli.SimulatedTimeBar()
-    for step in range(51):
+    for step in range(3):  # slower than real time at first, as a run's start-up is
+        bar(step * 0.05, 2.5)
+        time.sleep(0.15)
+    for step in range(3, 51):
         bar(step * 0.05, 2.5)
     bar.close()
     drawn = terminal.getvalue().replace("\r", "\n")
     assert "/2.5 s simulated [" in drawn and "s simulated/s]" in drawn  # the limit as given, not rounded
+    assert "s/ s simulated" not in drawn  # (tqdm inverts a rate below 1: "1.83s/ s simulated" at start-up)

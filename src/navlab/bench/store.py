@@ -25,6 +25,7 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
 from ..errors import ParameterError
+from ..wording import counted
 from .experiment import DESCRIPTIVE, Experiment, ExperimentError
 
 EXPERIMENT_FILE = "experiment.json"
@@ -235,8 +236,8 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
                 f"differs in: {', '.join(_differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
                 "Use another --out, or --overwrite to discard them.")
         if old_rows and not resume:
-            raise ExperimentError(f"'{folder}' already holds {len(old_rows)} finished runs of this experiment "
-                                  "(trials and noise repeats); "
+            raise ExperimentError(f"'{folder}' already holds {counted(len(old_rows), 'finished run')} of this "
+                                  "experiment (trials and noise repeats); "
                                   "pass --resume to continue it or --overwrite to start again")
     elif old_rows:
         raise ExperimentError(f"'{folder}' holds results without {EXPERIMENT_FILE}; use another --out")

@@ -195,7 +195,7 @@ class SimulatedTimeBar:
 #: [s] of wall time before the bar shows
 BAR_DELAY = 2.0
 #: simulated seconds of the limit, wall time, and the real-time factor
-BAR_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:g} s simulated [{elapsed}, {rate_fmt}]"
+BAR_FORMAT = "{l_bar}{bar}| {n:.1f}/{total:g} s simulated [{elapsed}, {rate_noinv_fmt}]"  # (not "1.83s/ s simulated")
 
 
 def _timing(items, flag: str):

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import List
 
+from ..limits import shown
 from .mapio import MapFormatError
 
 
@@ -42,7 +43,7 @@ def read_scen(path) -> List[Scenario]:
         raise MapFormatError(f"{p}: not a Moving AI scenario file (first line must be 'version ...')")
     version = lines[0][len("version"):].strip()
     if version not in ("1", "1.0"):
-        raise MapFormatError(f"{p}: line 1: scenario format version {version[:20]!r} is not one navlab reads "
+        raise MapFormatError(f"{p}: line 1: scenario format version {shown(version, 30)} is not one navlab reads "
                              "(version 1: bucket, map, width, height, start x, y, goal x, y, optimal length)")
     out = []
     for n, line in enumerate(lines[1:], start=2):

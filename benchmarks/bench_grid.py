@@ -127,8 +127,8 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     process's first 134 MB array, whoever allocates it), which would land on
     whichever tool runs first; that figure is printed apart. Bytes per expanded
     cell: the search state the query touched over the cells it expanded,
-    counted two ways: cells written (their 8-byte state and the
-    legal-move byte) and whole 4 KB pages of the state
+    counted two ways: cells written (their state, 4 bytes for A* and 8 for
+    JPS, and the legal-move byte) and whole 4 KB pages of the state
     array written (what a first query pays to map). With ``with_scipy``,
     navlab's Dijkstra against scipy's on the explicit graph (built apart,
     untimed; scipy has no goal, so it settles every reachable cell)."""
@@ -183,8 +183,8 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
             scipy_dijkstra(name, grid, s, t, repeat)
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
     print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
-    print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (8 B of")
-    print("state each, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
+    print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (4 B of")
+    print("state each for A*, 8 for JPS, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
     print(load_line("at end"))
 
 
@@ -252,8 +252,7 @@ def bidirectional_bound(name: str, grid) -> None:
     for a, b in ((s, t), (t, s)):
         with pool.lease() as searcher:
             searcher.search("dijkstra", searcher.index(*a), searcher.index(*b), 8, K.H_ZERO, 1.0)
-            closed = searcher.g < 0  # exact distances (g + 1 stored)
-            fields.append((closed, -searcher.g - 1.0))
+            fields.append(K.state_costs(searcher.written))  # (closed, exact distances)
     with pool.lease() as searcher:
         expanded = searcher.search("astar", searcher.index(*s), searcher.index(*t), 8, K.H_OCTILE, 1.0)[1]
     stride = grid.width + 2
@@ -282,9 +281,10 @@ def touched_bytes(grid):
     from navlab.grid.planner import pool_for
 
     (searcher,) = pool_for(grid, False)._idle
-    written = searcher.g != 0
-    per_cell = 8 + 1  # the state and the legal-move byte (A* and JPS build no padded copy of the grid)
-    page = 4096 // searcher.g.itemsize
+    state = searcher.written  # A*'s packed uint32 state, JPS's float64
+    written = state != 0
+    per_cell = state.itemsize + 1  # and the legal-move byte (A* and JPS build no padded copy of the grid)
+    page = 4096 // state.itemsize
     pages = np.count_nonzero(np.add.reduceat(written, np.arange(0, written.size, page)))
     return int(np.count_nonzero(written)) * per_cell, pages * 4096
 

@@ -29,8 +29,8 @@ def settle_everything(blocked, start):
     with pool.lease() as searcher:
         status, expanded = searcher.search("dijkstra", searcher.index(*start), 0, 8, K.H_ZERO, 1.0)
         assert status == 0
-        g = searcher.g.reshape(h + 2, w + 2)[1:-1, 1:-1].copy()
-    return g < 0, -g - 1.0, expanded
+        closed, g = K.state_costs(searcher.written)
+    return closed.reshape(h + 2, w + 2)[1:-1, 1:-1], g.reshape(h + 2, w + 2)[1:-1, 1:-1], expanded
 
 
 def maps():

@@ -33,18 +33,21 @@ def small_query():
 
 def test_jps_takes_no_references_in_its_loop():
     grid, s, a, b = small_query()
-    calls, arrays = incref_calls(K.jps.py_func, (grid.moves, grid.stride, a, b, s.g, s.lo, s.hi, s.extent,
+    g = np.zeros(grid.moves.size)  # JPS's float64 state (the searcher allocates its own at first use)
+    calls, arrays = incref_calls(K.jps.py_func, (grid.moves, grid.stride, a, b, g, s.lo, s.hi, s.extent,
                                                  s.key, s.cell, s.next, s.head, s.stack))
     assert calls <= arrays
 
 
-@pytest.mark.parametrize("conn, hcode, any_angle", [(8, K.H_OCTILE, False), (8, K.H_ZERO, False),
-                                                     (4, K.H_MANHATTAN, False), (8, K.H_EUCLIDEAN, True)])
-def test_astar_variants_take_no_references_in_their_loops(conn, hcode, any_angle):
+@pytest.mark.parametrize("conn, hcode, any_angle, wide", [
+    (8, K.H_OCTILE, False, False), (8, K.H_ZERO, False, False), (4, K.H_MANHATTAN, False, False),
+    (8, K.H_OCTILE, False, True), (8, K.H_EUCLIDEAN, True, False)])
+def test_astar_variants_take_no_references_in_their_loops(conn, hcode, any_angle, wide):
     grid, s, a, b = small_query()
     parent = np.empty(grid.moves.size, dtype=np.int32)
-    kernel = K.make_astar(conn, hcode, any_angle)
-    calls, arrays = incref_calls(kernel.py_func, (grid.free, grid.moves, grid.stride, a, b, 1.0, s.g, parent,
+    state = np.zeros(grid.moves.size, dtype=np.float64 if any_angle else K.state_layout(wide)[0])
+    kernel = K.make_astar(conn, hcode, any_angle, wide)
+    calls, arrays = incref_calls(kernel.py_func, (grid.free, grid.moves, grid.stride, a, b, 1.0, state, parent,
                                                   s.lo, s.hi, s.extent, s.key, s.cell, s.next, s.head, s.stack))
     assert calls <= arrays
 

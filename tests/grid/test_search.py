@@ -216,10 +216,13 @@ def test_large_grid_reuses_search_state():
     grid = OccupancyGrid(np.zeros((5000, 5000), dtype=bool))
     r1 = plan(grid, (10, 10), (60, 40))
     (searcher,) = pool_for(grid, False)._idle
-    arrays = [id(a) for a in (searcher.g, searcher.lo)]
     r2 = plan(grid, (4000, 4000), (4010, 4990), algorithm="jps")
-    assert r1.success and r2.success and r2.stats["expanded"] < 100
-    assert pool_for(grid, False)._idle == [searcher] and arrays == [id(a) for a in (searcher.g, searcher.lo)]
+    arrays = [id(a) for a in (searcher.state, searcher.g, searcher.lo)]
+    r3 = plan(grid, (4000, 10), (10, 4000))
+    r4 = plan(grid, (10, 4000), (4000, 4900), algorithm="jps")
+    assert all(r.success for r in (r1, r2, r3, r4)) and r2.stats["expanded"] < 100
+    assert pool_for(grid, False)._idle == [searcher]
+    assert arrays == [id(a) for a in (searcher.state, searcher.g, searcher.lo)]
 
 
 def test_open_lists_grow_when_full_and_the_query_is_rerun():

@@ -1,7 +1,8 @@
 """Search state reused across queries, paths read back without parents, and the bucket queue's window.
 
-A searcher keeps one float64 per cell and zeroes only what the previous query
-wrote; A* reads its path back from those values. These tests check the
+A searcher keeps one packed state per cell for A* (one float64 for JPS and
+Theta*) and zeroes only what the previous query wrote; A* reads its path back
+from those values. These tests check the
 answers against scipy's Dijkstra on the explicit graph (tests/grid/test_search.py's
 ``explicit_graph``) and against fresh grids.
 """
@@ -62,6 +63,49 @@ def test_one_grid_answers_a_mixed_stream_of_queries_like_fresh_grids():
         else:
             assert got.success and got.cost == pytest.approx(d, abs=1e-9)
             legal_steps(shared, got.cells, connectivity)
+    (s,) = pool_for(shared, False)._idle  # A* and JPS write different arrays: only the last one written is dirty
+    assert all(not np.any(a) for a in (s.state, s.state_wide, s.g) if a is not s.written)
+
+
+def sawtooth(width: int, amplitude: int = 20) -> np.ndarray:
+    """A corridor three cells wide zigzagging at 45°: its shortest path is nearly all diagonal moves."""
+    x = np.arange(width)
+    wave = amplitude - np.abs(x % (2 * amplitude) - amplitude)
+    return np.abs(np.arange(amplitude + 3)[:, None] - 1 - wave[None, :]) > 1
+
+
+@pytest.mark.parametrize("blocked, moves", [(np.zeros((1, 40_000), bool), "straight"), (sawtooth(76_000), "diagonal")])
+def test_a_path_too_long_for_the_narrow_state_is_searched_wide(blocked, moves):
+    """A*'s 32-bit state counts up to 32 766 straight and 65 534 diagonal moves (kernels.state_layout); a
+    longer path stops the search, which runs again in 64 bits: the same cost as JPS's float64 state, and
+    later queries on that searcher start wide."""
+    grid = OccupancyGrid(blocked)
+    free = np.argwhere(~blocked)
+    start, goal = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+    got = plan(grid, start, goal)
+    steps = np.abs(np.diff(got.cells, axis=0)).sum(axis=1)
+    assert np.count_nonzero(steps == (1 if moves == "straight" else 2)) > (32_766 if moves == "straight" else 65_534)
+    assert got.success and got.cost == pytest.approx(plan(grid, start, goal, algorithm="jps").cost, rel=1e-12)
+    legal_steps(grid, got.cells, 8)
+    (s,) = pool_for(grid, False)._idle
+    assert s.wide and not np.any(s.state)  # the narrow attempt's writes were cleared
+    short = plan(grid, start, tuple(int(v) for v in free[40][::-1]))
+    assert short.success and short.cost == plan(OccupancyGrid(blocked), start, tuple(free[40][::-1])).cost
+    assert s.written is s.state_wide
+
+
+def test_state_layout_adds_moves_exactly():
+    """The packed state's g + 1 is a + b·√2 with one rounding, and each move adds one to its own field."""
+    for wide in (False, True):
+        dtype, shift, a_mask, b_mask, closed = K.state_layout(wide)
+        steps = K.state_steps(wide)
+        state = dtype(1) << shift  # the start
+        for k in (0, 4, 4, 2, 7):
+            state = state + steps[k]
+        assert state.dtype == dtype and (state >> shift) == 3 and (state & b_mask) == 3
+        closed_mask, g = K.state_costs(np.array([0, state, state | closed], dtype=dtype))
+        assert closed_mask.tolist() == [False, False, True]
+        assert g[0] == math.inf and g[1] == g[2] == 2 + 3 * math.sqrt(2)
 
 
 @pytest.mark.parametrize("algorithm", ["astar", "jps", "theta_star"])
@@ -75,9 +119,10 @@ def test_the_next_query_starts_from_all_zero_state(algorithm):
         (sy, sx), (gy, gx) = free[rng.integers(len(free), size=2)]
         plan(grid, (sx, sy), (gx, gy), algorithm=algorithm)
         (s,) = pool._idle
-        assert np.any(s.g != 0)
-        K.clear_touched(s.g, s.stride, s.lo, s.hi, s.extent)
-        assert not np.any(s.g != 0) and np.all(s.lo == s.stride) and np.all(s.hi == -1)
+        assert np.any(s.written != 0)
+        K.clear_touched(s.written, s.stride, s.lo, s.hi, s.extent)
+        assert not any(np.any(a != 0) for a in (s.state, s.state_wide, s.g))
+        assert np.all(s.lo == s.stride) and np.all(s.hi == -1)
 
 
 @pytest.mark.parametrize("heuristic, weight", [("octile", 1.5), ("octile", 40.0), ("manhattan", 1.0),

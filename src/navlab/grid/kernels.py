@@ -4,10 +4,11 @@ The grid is a flat ``uint8`` array of passable cells padded with a blocked
 border one cell wide, so neighbour lookups need no bounds checks: cell (x, y)
 sits at index ``(y + 1) * S + (x + 1)`` with stride ``S = W + 2``.
 
-Per-cell search state is one float64 per cell (and a parent index for
-Theta*), allocated once per grid; a query clears only the rows and
-columns the previous one wrote (:func:`clear_touched`). The open list is
-described below.
+Per-cell search state is one packed integer per cell for A* and Dijkstra
+(a uint32: :func:`state_layout`), one float64 for JPS and Theta* (and a
+parent index for Theta*), allocated once per grid; a query clears only the
+rows and columns the previous one wrote (:func:`clear_touched`). The open
+list is described below.
 """
 
 from __future__ import annotations
@@ -41,6 +42,8 @@ def heuristic(code, ax, ay, bx, by):
 
 TIE = 1e-9  # f values closer than this are equal (distinct a + b√2 lengths differ by far more)
 OVERFLOW = -1
+#: an A* or Dijkstra search whose path outgrew the 32-bit state (:func:`state_layout`): rerun it wide
+WIDEN = -2
 ALL_BITS = np.uint64(0xFFFFFFFFFFFFFFFF)
 # The kernels spell out their open-list pops and pushes inline rather than
 # through shared helpers: helpers returning (size, top, ...) tuples made A*
@@ -148,14 +151,58 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 
 
 # -- per-cell search state -------------------------------------------------------
-# One float64 per cell is all A* keeps: 0.0 unseen, g + 1 while open, -(g + 1)
-# once closed (g + 1 > 0 keeps the start's g = 0 apart from "unseen"). With the
-# legal-move byte (:func:`legal_moves`) that is 9 bytes per cell, for JPS too
-# (21 with separate g, parent, mark and slot arrays, 10 with a padded copy of
-# the grid): fewer bytes and one cache line per neighbour. The
-# state starts as np.zeros (untouched pages stay unallocated), and a query
-# records the rows and columns it expanded so that the next query can zero
-# just those (:func:`clear_touched`) instead of the whole grid.
+# A* and Dijkstra keep one packed integer per cell (:func:`state_layout`): 0 unseen, else the
+# straight moves + 1 and the diagonal moves of the best path found so far, with a closed bit.
+# Their g is a + b·√2 for whole a and b, so the pair is exact where a float sum rounds: equal
+# lengths are equal bit for bit, and the path is read back by integer equality
+# (:func:`trace_back`). In 32 bits that is 4 bytes per cell, with the legal-move byte
+# (:func:`legal_moves`) 5; JPS and Theta* keep one float64 (0.0 unseen, g + 1 while open,
+# -(g + 1) once closed; g + 1 > 0 keeps the start's g = 0 apart from "unseen"). The state starts
+# as np.zeros (untouched pages stay unallocated), and a query records the rows and columns it
+# expanded so that the next query can zero just those (:func:`clear_touched`) instead of the
+# whole grid.
+
+
+def state_layout(wide: bool):
+    """How A* and Dijkstra pack a cell's state: ``(dtype, shift, a_mask, b_mask, closed)``, numpy
+    scalars of the state's dtype. A reached cell holds ``(a << shift) | b`` with ``a`` the path's
+    straight moves + 1 (so no reached cell is 0) and ``b`` its diagonal moves, its g + 1 being
+    ``a + b·√2``, and ``closed`` or-ed in once it is expanded.
+
+    Narrow (uint32: a < 2¹⁵, b < 2¹⁶) is the default: half the bytes of a float64, so a search's
+    state takes half the cache lines and a first query maps half the pages (random4096 A*
+    0.91x the time of the float64 state on a fresh grid, 0.96x repeated; in-process A/B). A
+    path with more moves than that stops the search (:data:`WIDEN`) and it runs again wide
+    (uint64: a < 2³¹, b < 2³², more than the 10⁸ cells of the largest grid)."""
+    if wide:
+        return np.uint64, np.uint64(32), np.uint64(0x7FFFFFFF), np.uint64(0xFFFFFFFF), np.uint64(1 << 63)
+    return np.uint32, np.uint32(16), np.uint32(0x7FFF), np.uint32(0xFFFF), np.uint32(1 << 31)
+
+
+def state_steps(wide: bool) -> np.ndarray:
+    """What each of the eight moves (:data:`MOVES_X`, orthogonal first) adds to a packed state:
+    one straight move (``1 << shift``) or one diagonal (1)."""
+    state_type, shift = state_layout(wide)[:2]
+    return np.array([state_type(1) << shift] * 4 + [state_type(1)] * 4, dtype=state_type)
+
+
+@njit(cache=True, inline="always")
+def state_g(p, shift, a_mask, b_mask):
+    """g + 1 of a packed state ``p`` (:func:`state_layout`): ``a + b·√2``, one rounding."""
+    return np.float64(np.int64((p >> shift) & a_mask)) + np.float64(np.int64(p & b_mask)) * SQRT2
+
+
+def state_costs(state: np.ndarray):
+    """(closed mask, g [cells]) of every cell of a search's state array, packed (uint32 or uint64,
+    :func:`state_layout`) or float64 (JPS, Theta*); g is inf where the search never reached."""
+    if state.dtype == np.float64:
+        return state < 0, np.where(state == 0, np.inf, np.abs(state) - 1.0)
+    _, shift, a_mask, b_mask, closed = state_layout(state.dtype == np.uint64)
+    a = ((state >> shift) & a_mask).astype(np.float64)
+    b = (state & b_mask).astype(np.float64)
+    return (state & closed) != 0, np.where(state == 0, np.inf, (a - 1.0) + b * SQRT2)
+
+
 @njit(cache=True)
 def clear_touched(gs, S, lo, hi, extent):
     """Zero the state a query wrote: every cell within one of a recorded cell
@@ -171,7 +218,7 @@ def clear_touched(gs, S, lo, hi, extent):
             a = min(a, lo[q])
             b = max(b, hi[q])
         for v in range(r * S + a - 1, r * S + b + 2):
-            gs[v] = 0.0
+            gs[v] = 0
     for q in range(r0, r1 + 1):
         lo[q] = S
         hi[q] = -1
@@ -334,12 +381,15 @@ JPS_LOOK = 8
 
 
 
-def make_astar(conn: int, hcode: int, any_angle: bool):
+def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     """A* over padded flat indices, compiled for one connectivity, heuristic
     and any-angle setting (Dijkstra with ``hcode`` 0; Theta* with
-    ``any_angle``): as compile-time constants they cost nothing in the inner
+    ``any_angle``) and state width: as compile-time constants they cost nothing in the inner
     loop (about 8% of A*'s time when they were arguments). Numba caches each
     variant on disk like any other kernel.
+
+    ``gs`` is the packed state of :func:`state_layout` (uint32, or uint64 with
+    ``wide``), or for Theta* a float64 per cell (its g is a sum of square roots).
 
     The returned kernel ``astar(free, moves, S, start, goal, weight, gs,
     parent, lo, hi, extent, key, cell, nxt, head, stack)`` (``moves``: the
@@ -355,7 +405,8 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     (``N_BUCKETS`` int32) its buckets; an open entry (in ``cell`` or on
     ``stack``) is ``cell * 256`` plus the moves that cell may expand.
     Returns (status, expanded) with status 1 found, 0 no path, OVERFLOW when
-    the pool or the stack ran out of room.
+    the pool or the stack ran out of room, WIDEN when a path outgrew the narrow
+    state (the caller runs the wide variant).
 
     8-connected A* and Dijkstra (not Theta*) generate canonical successors
     (Sturtevant & Rabin 2016; the pruning rules of Jump Point Search,
@@ -381,6 +432,11 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
     legal = 255 if conn == 8 else 15  # the mask bits of the allowed moves
     slots = 8 if conn == 8 else 4
     canonical = conn == 8 and not any_angle
+    state_type, shift, a_mask, b_mask, closed_bit = state_layout(wide)
+    zero = state_type(0)
+    a_one = state_type(1) << shift  # the start: no moves yet (a = 0 + 1)
+    a_room, b_room = a_mask - state_type(1), b_mask - state_type(1)  # a cell past either could carry over
+    step_bits = state_steps(wide)
 
     @njit(cache=True)
     def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack):
@@ -399,9 +455,11 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
         size = 0
         cap_pool = key.shape[0]
         cap_stack = stack.shape[0]
-        gs[np.uint64(start)] = 1.0
         if any_angle:
+            gs[np.uint64(start)] = 1.0
             parent[start] = start
+        else:
+            gs[np.uint64(start)] = a_one
         fcur = 1.0 + weight * heuristic(hcode, start % S, start // S, gx, gy)  # keys are (g + 1) + weight * h
         cb = np.int64(fcur * inv_width) & mask
         stack[np.uint64(0)] = start * 256 + 255  # open entries: cell * 256 + the moves it may expand
@@ -467,10 +525,21 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                     for row in (w - S, w, w + S):
                         _prefetch(gs, row)
                     _prefetch(moves, w)
-            gu = gs[np.uint64(u)]
-            if gu < 0.0:  # closed already: a node superseded by a better push, or a tie pushed twice
-                continue
-            gs[np.uint64(u)] = -gu
+            if any_angle:
+                gu = gs[np.uint64(u)]
+                if gu < 0.0:  # closed already: a node superseded by a better push, or a tie pushed twice
+                    continue
+                gs[np.uint64(u)] = -gu
+                pu = zero
+            else:
+                pu = gs[np.uint64(u)]
+                if pu >= closed_bit:  # closed already (as above)
+                    continue
+                if not wide and ((pu & b_mask) >= b_room or (pu >> shift) >= a_room):
+                    status = WIDEN  # a move from here could carry into the next field
+                    break
+                gs[np.uint64(u)] = pu | closed_bit
+                gu = state_g(pu, shift, a_mask, b_mask)
             expanded += 1
             ux = u % S
             uy = u // S
@@ -490,7 +559,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
             if u == goal:
                 status = 1
                 break
-            pu = parent[u] if any_angle else u
+            grandparent = parent[u] if any_angle else u  # Theta*: the parent a child may inherit
             mu = np.int64(moves[np.uint64(u)])
             m = mu & legal & allowed
             for j in range(slots):  # the legal moves, lowest bit first (orthogonal before diagonal)
@@ -508,21 +577,31 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
                 dx = _DX[np.uint64(k)]
                 dy = _DY[np.uint64(k)]
                 v = u + dx + dy * S
-                gv = gs[np.uint64(v)]  # a closed cell's -(g + 1) < 0 < ng: never improved below
-                if any_angle and gv < 0.0:
-                    continue  # (and Theta* spares its line of sight)
-                ng = gu + _STEP[np.uint64(k)]
-                par = u
-                if any_angle and pu != u:
-                    pux = pu % S
-                    puy = pu // S
-                    if los_supercover(free, S, pux - 1, puy - 1, ux + dx - 1, uy + dy - 1):
-                        ng = -gs[np.uint64(pu)] + math.sqrt((ux + dx - pux) ** 2 + (uy + dy - puy) ** 2)
-                        par = pu
-                if gv == 0.0 or ng < gv:
-                    gs[np.uint64(v)] = ng
+                if any_angle:
+                    gv = gs[np.uint64(v)]
+                    if gv < 0.0:
+                        continue  # closed: never improved (and Theta* spares its line of sight)
+                    ng = gu + _STEP[np.uint64(k)]
+                    par = u
+                    if grandparent != u:
+                        qx = grandparent % S
+                        qy = grandparent // S
+                        if los_supercover(free, S, qx - 1, qy - 1, ux + dx - 1, uy + dy - 1):
+                            ng = -gs[np.uint64(grandparent)] + math.sqrt((ux + dx - qx) ** 2 + (uy + dy - qy) ** 2)
+                            par = grandparent
+                    better = gv == 0.0 or ng < gv
+                else:
+                    pv = gs[np.uint64(v)]
+                    pn = pu + step_bits[np.uint64(k)]
+                    ng = state_g(pn, shift, a_mask, b_mask)
+                    # a closed cell is never improved: closed cells are not reopened (as Theta*'s above)
+                    better = pv == zero or (pv < closed_bit and ng < state_g(pv, shift, a_mask, b_mask))
+                if better:
                     if any_angle:
+                        gs[np.uint64(v)] = ng
                         parent[v] = par
+                    else:
+                        gs[np.uint64(v)] = pn
                     if canonical:
                         entry = v * 256 + np.int64(CANONICAL[np.uint64(k * 256 + mu)])
                     else:
@@ -562,42 +641,45 @@ def make_astar(conn: int, hcode: int, any_angle: bool):
 
 
 @njit(cache=True)
-def _predecessor(moves, S, gs, v, n_moves):
-    """A reached neighbour u of v with |gs[u]| + step(u, v) == |gs[v]| (the
-    same float sum that set gs[v]), over a legal move (``moves``: the legal-move
-    masks); -1 if there is none."""
-    gv = abs(gs[v])
+def _predecessor(moves, S, gs, v, n_moves, steps, value_mask):
+    """A reached neighbour u of v with ``state(u) + steps[k] == state(v)``
+    (packed states without their closed bit, :func:`state_layout`; ``steps``:
+    what each move k adds, :func:`state_steps`), over a legal move
+    (``moves``: the legal-move masks); -1 if there is none."""
+    pv = gs[v] & value_mask
     for k in range(n_moves):
         u = v - MOVES_X[k] - MOVES_Y[k] * S
-        if (moves[u] >> k) & 1 == 0 or gs[u] == 0.0:  # u cannot step to v, or was never reached
+        pu = gs[u] & value_mask
+        if (moves[u] >> k) & 1 == 0 or pu == 0:  # u cannot step to v, or was never reached
             continue
-        if abs(gs[u]) + (SQRT2 if k >= 4 else 1.0) == gv:
+        if pu + steps[k] == pv:
             return u
     return -1
 
 
 @njit(cache=True)
-def trace_back(moves, S, gs, start, goal, conn):
-    """Cells (x, y) from start to goal of the path A* found, read from ``gs``
-    alone (A* keeps no parents).
+def trace_back(moves, S, gs, start, goal, conn, steps, value_mask):
+    """Cells (x, y) from start to goal of the path A* found, read from its
+    packed state ``gs`` alone (A* keeps no parents; :func:`state_layout`;
+    ``steps`` and ``value_mask`` of the state's dtype: :func:`trace_back_args`).
 
-    Why this works: every reached cell v other than the start got its g as
-    ``g[u] + step(u, v)`` from a cell u that was closed then, and closed
-    cells never change again, so at the end v has at least one reached
-    neighbour u with ``|gs[u]| + step == |gs[v]|`` exactly: a predecessor
-    always exists. Any such u (not only the one that set v) lies on a path of
-    cost g[v], since every stored g is the length of a path the search
-    built; so the walk from the goal returns a path of exactly the cost the
-    search found, optimal when the goal's g is (A* with a consistent
-    heuristic). It ends: g falls by at least 1 per step, and the start is the
-    only cell with g + 1 = 1. Returns an empty array if the walk breaks
-    (which would be a bug in the search).
+    Why this works: every reached cell v other than the start got its state
+    as ``state[u] + step(u, v)`` (one more straight or diagonal move) from a
+    cell u that was closed then, and closed cells never change again, so at
+    the end v has at least one reached neighbour u with ``state[u] + step ==
+    state[v]``, in whole numbers: a predecessor always exists. Any such u (not
+    only the one that set v) lies on a path of cost g[v], since every stored
+    state counts the moves of a path the search built; so the walk from the goal returns a
+    path of exactly the cost the search found, optimal when the goal's g is
+    (A* with a consistent heuristic). It ends: each step removes a move, and
+    the start is the only cell with none. Returns an empty array if the walk
+    breaks (which would be a bug in the search).
     """
     n_moves = 8 if conn == 8 else 4
     count = 1
     v = goal
     while v != start:
-        v = _predecessor(moves, S, gs, v, n_moves)
+        v = _predecessor(moves, S, gs, v, n_moves, steps, value_mask)
         if v < 0:
             return np.empty((0, 2), dtype=np.int64)
         count += 1
@@ -607,8 +689,14 @@ def trace_back(moves, S, gs, start, goal, conn):
         out[m, 0] = v % S - 1
         out[m, 1] = v // S - 1
         if m > 0:
-            v = _predecessor(moves, S, gs, v, n_moves)
+            v = _predecessor(moves, S, gs, v, n_moves, steps, value_mask)
     return out
+
+
+def trace_back_args(wide: bool):
+    """:func:`trace_back`'s ``steps`` and ``value_mask`` (the state without its closed bit) for the
+    narrow or wide state."""
+    return state_steps(wide), ~state_layout(wide)[4]
 
 
 # -- Jump Point Search (8-connected, no corner cutting) -------------------------

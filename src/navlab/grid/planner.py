@@ -113,8 +113,12 @@ class GridSearcher:
     Queries lease one from the grid's :class:`SearcherPool`, so threads planning
     on the same grid never share it; a searcher is reused by later queries,
     so only the first query on a grid (per concurrent thread) pays for its
-    arrays. ``g`` holds all of A*'s per-cell state (``kernels.clear_touched``);
-    Theta* adds ``parent``, allocated when it first runs.
+    arrays. ``state`` holds all of A*'s and Dijkstra's per-cell state, packed
+    in 32 bits (``kernels.state_layout``; ``state_wide``, 64, for a path too
+    long for that), ``g`` JPS's and Theta*'s (one float64 per cell), Theta*
+    adds ``parent``: each allocated when first used. ``lo``, ``hi`` and
+    ``extent`` record what the last query wrote in ``written``, which the next
+    clears (``kernels.clear_touched``), whichever array it uses.
     """
 
     def __init__(self, grid: PaddedGrid) -> None:
@@ -123,7 +127,12 @@ class GridSearcher:
         self.moves = grid.moves
         n = self.moves.size
         rows = n // self.stride
-        self.g = np.zeros(n)  # zero pages are mapped when first written: a search pays for the cells it reaches
+        # zero pages are mapped when first written: a search pays for the cells it reaches
+        self.state = np.zeros(0, dtype=K.state_layout(False)[0])
+        self.state_wide = np.zeros(0, dtype=K.state_layout(True)[0])
+        self.g = np.zeros(0)
+        self.written = self.g  # the array the records below describe (all the others are zero)
+        self.wide = False  # a query on this searcher outgrew the narrow state: later ones start wide
         self.parent = np.empty(0, dtype=np.int32)
         self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
         self.hi = np.full(rows, -1, dtype=np.int64)
@@ -145,23 +154,41 @@ class GridSearcher:
 
     def search(self, algorithm: str, a: int, b: int, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
         """One query from flat index ``a`` to ``b``, rerun with larger open
-        lists until they suffice: (status, expanded) as the kernels return."""
+        lists until they suffice, and with the wide state if its path
+        outgrew the narrow one: (status, expanded) as the kernels return."""
         if algorithm == "theta_star" and self.parent.size == 0:
             self.parent = np.empty(self.moves.size, dtype=np.int32)
         while True:
             if algorithm == "jps":
-                status, expanded = K.jps(self.moves, self.stride, a, b, self.g, self.lo, self.hi,
+                status, expanded = K.jps(self.moves, self.stride, a, b, self._writing("g"), self.lo, self.hi,
                                          self.extent, self.key, self.cell, self.next, self.head, self.stack)
             else:
                 any_angle = algorithm == "theta_star"
-                kernel = astar_kernel(connectivity, hcode, any_angle)
+                wide = self.wide and not any_angle
+                kernel = astar_kernel(connectivity, hcode, any_angle, wide)
                 free = self.grid.free if any_angle else self.grid.no_free
-                status, expanded = kernel(free, self.moves, self.stride, a, b, weight, self.g, self.parent, self.lo,
+                state = self._writing("g" if any_angle else "state_wide" if wide else "state")
+                status, expanded = kernel(free, self.moves, self.stride, a, b, weight, state, self.parent, self.lo,
                                           self.hi, self.extent, self.key, self.cell, self.next,
                                           self.head, self.stack)
-            if status != K.OVERFLOW:
+            if status == K.WIDEN:
+                self.wide = True  # (a rare grid: a path of over 32 766 straight or 65 534 diagonal moves)
+            elif status == K.OVERFLOW:
+                self.grow()
+            else:
                 return status, expanded
-            self.grow()
+
+    def _writing(self, name: str) -> np.ndarray:
+        """The state array ``name`` (allocated at first use), once what the last query wrote in another
+        is cleared: only ``written`` ever holds anything but zeros."""
+        array = getattr(self, name)
+        if array.size == 0:
+            array = np.zeros(self.moves.size, dtype=array.dtype)
+            setattr(self, name, array)
+        if array is not self.written:
+            K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
+            self.written = array
+        return array
 
     def cells(self, algorithm: str, connectivity: int, a: int, b: int) -> np.ndarray:
         """The path the last search (from ``a``, which reached ``b``) found, as cells (x, y)."""
@@ -170,7 +197,8 @@ class GridSearcher:
         if algorithm == "jps":
             cells = K.trace_jumps(self.moves, self.stride, self.g, a, b)
         else:
-            cells = K.trace_back(self.moves, self.stride, self.g, a, b, connectivity)
+            wide = self.written is self.state_wide
+            cells = K.trace_back(self.moves, self.stride, self.written, a, b, connectivity, *_TRACE_BACK[wide])
         if len(cells) == 0:  # impossible after a successful search (kernels.trace_back); never report it as found
             raise RuntimeError(f"grid search state broken: no predecessor chain from {b} back to {a}")
         return cells
@@ -181,9 +209,13 @@ class GridSearcher:
 
 
 @functools.lru_cache(maxsize=None)
-def astar_kernel(connectivity: int, hcode: int, any_angle: bool):
+def astar_kernel(connectivity: int, hcode: int, any_angle: bool, wide: bool = False):
     """The compiled A* variant for these settings (see ``kernels.make_astar``)."""
-    return K.make_astar(connectivity, hcode, any_angle)
+    return K.make_astar(connectivity, hcode, any_angle, wide)
+
+
+#: kernels.trace_back's last two arguments, for the narrow (False) and wide (True) state
+_TRACE_BACK = {wide: K.trace_back_args(wide) for wide in (False, True)}
 
 
 class SearcherPool:

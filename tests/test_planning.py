@@ -147,6 +147,21 @@ def test_allow_unknown_lets_the_query_use_unknown_cells():
         navlab.plan("trap", planner="rrt", allow_unknown=True)
 
 
+@pytest.mark.parametrize("planner", ["astar", "jps", "dijkstra"])
+def test_a_grid_planner_stopped_by_unknown_cells_says_so(planner):
+    """The world's raster holds a map's unknown cells as blocked; the reason still names them, as navlab grid
+    plan's does, with the setting that opens them."""
+    unknown = np.zeros((10, 10), bool)
+    unknown[:, 5] = True  # a column of unknown cells cuts the map in two
+    world = World.from_grid(OccupancyGrid(np.zeros((10, 10), bool), unknown=unknown), (1.5, 1.5), (8.5, 8.5))
+    closed = navlab.plan(world, planner=planner)
+    assert closed.status is Status.FAILED and "10 unknown cells were closed" in closed.reason
+    assert "--param allow_unknown=true" in closed.reason
+    assert navlab.plan(world, planner=planner, allow_unknown=True).success
+    walled = navlab.plan(World.from_grid(OccupancyGrid(unknown), (1.5, 1.5), (8.5, 8.5)), planner=planner)
+    assert walled.status is Status.FAILED and "unknown" not in walled.reason
+
+
 @pytest.mark.parametrize("planner, params, text", [
     ("astra", {}, "Did you mean 'astar'"),
     ("rrtstar", {}, "Did you mean 'rrt_star'"),

@@ -131,7 +131,7 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     """A grid algorithm on ``world``'s conservative raster (a map: its own
     cells), joined to the exact start and goal by checked straight legs."""
     from .endpoints import attach
-    from .grid.planner import plan as grid_plan
+    from .grid.planner import plan as grid_plan, unknown_hint
     from .grid.rasterize import rasterize
 
     t0 = time.perf_counter()
@@ -172,7 +172,9 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     stats["rasterize_s"] = rasterize_s
     if not r.success:
         stats["time_s"] = time.perf_counter() - t0
-        return Result(status=Status.FAILED, params=out_params, stats=stats, reason=r.reason, cells=r.cells)
+        # the raster holds the map's unknown cells as blocked: say so, as navlab grid plan does
+        hint = unknown_hint(world.occupancy, world.allow_unknown) if world.occupancy is not None else ""
+        return Result(status=Status.FAILED, params=out_params, stats=stats, reason=r.reason + hint, cells=r.cells)
     stats["cost_cells"] = float(r.stats.get("cost_cells", r.cost))
     # (ends joined to one centre: the trim leaves the straight leg between them where it is free)
     path = _without_repeats(_trimmed_ends(np.vstack((world.start, r.path, world.goal)), checker))

@@ -242,15 +242,16 @@ class SearcherPool:
 
 
 #: what opens unknown cells to a search, as a reason names it
-OPENS_UNKNOWN = "allow_unknown=true, --allow-unknown on the command line"
+OPENS_UNKNOWN = ("allow_unknown=true opens unknown cells: --param allow_unknown=true to navlab plan, --allow-unknown "
+                 "to navlab grid plan")
 
 
-def _unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
+def unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
     """What a failed search on a map with unknown cells adds to its reason: they were closed to it."""
     if allow_unknown or not grid.unknown.any():
         return ""
     return (f"; the map's {int(np.count_nonzero(grid.unknown & ~grid.blocked))} unknown cells were closed to the "
-            f"search ({OPENS_UNKNOWN}, opens them)")
+            f"search ({OPENS_UNKNOWN})")
 
 
 def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
@@ -440,7 +441,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
         if not pool.grid.is_free(*cell):
-            kind = f"unknown ({OPENS_UNKNOWN}, opens unknown cells)" \
+            kind = f"unknown ({OPENS_UNKNOWN})" \
                 if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
@@ -452,7 +453,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
         if status != 1:
             return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded, warmup_s=warmup_s),
                           cells=np.empty((0, 2), dtype=np.int64),
-                          reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)" + _unknown_hint(
+                          reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)" + unknown_hint(
                               grid, allow_unknown))
         cells = s.cells(algorithm, connectivity, a, b)
     raw = None

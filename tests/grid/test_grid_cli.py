@@ -38,6 +38,41 @@ def test_scen_reports_matches():
     assert json.loads(res.output)["summary"]["mismatches"] == 0
 
 
+@needs_data
+def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
+    """(newcomer run, session 19: jps with --heuristic manhattan --weight 3 exited 0 without a word, and
+    grid scen named theta_star's search 'theta_star (octile)')"""
+    query = ("--start", 1, 11, "--goal", 12, 35)
+    res = run("grid", "plan", DATA / "arena.map", *query, "--algorithm", "jps", "--heuristic", "manhattan",
+              "--weight", 3, "--json")
+    assert res.exit_code == 0 and json.loads(res.stdout)["params"]["heuristic"] == "octile"
+    assert res.stderr.splitlines() == [
+        "note: jps searches with its own heuristic (octile): --heuristic manhattan is not used",
+        "note: --weight applies to astar only: jps ran unweighted"]
+    res = run("grid", "plan", DATA / "arena.map", *query, "--algorithm", "dijkstra", "--heuristic", "euclidean")
+    assert res.stderr == "note: dijkstra searches with no heuristic: --heuristic euclidean is not used\n"
+    for given in (("--algorithm", "astar", "--heuristic", "manhattan", "--weight", 3), ("--algorithm", "jps"),
+                  ("--algorithm", "theta_star", "--heuristic", "euclidean")):
+        assert run("grid", "plan", DATA / "arena.map", *query, *given).stderr == ""
+    res = run("grid", "scen", DATA / "arena.map.scen", "--algorithm", "theta_star", "--heuristic", "manhattan",
+              "--limit", 5)
+    assert res.stdout.startswith("arena: 5 scenarios, theta_star (euclidean),") and "--heuristic manhattan" in res.stderr
+    summary = json.loads(run("grid", "scen", DATA / "arena.map.scen", "--algorithm", "dijkstra", "--limit", 5,
+                             "--json").stdout)["summary"]
+    assert summary["heuristic"] == "none"
+
+
+@needs_data
+def test_scen_prints_the_length_at_the_stored_optimums_digits():
+    """(a row read 'stored 20.313709, got 20.313708 (EXACT, match, ...)': the file stores 20.31370850)"""
+    res = run("grid", "scen", DATA / "random-32-32-10-random-1.scen", "--algorithm", "dijkstra")
+    worst = [line for line in res.stdout.splitlines() if "stored" in line]
+    assert res.exit_code == 0 and len(worst) == 5
+    for line in worst:
+        stored, got = line.split("stored ")[1].split(" (")[0].split(", got ")
+        assert stored == got and len(stored.split(".")[1]) == 8, line
+
+
 def test_a_missing_map_is_clear(tmp_path):
     res = run("grid", "plan", tmp_path / "none.yaml", "--start", 0, 0, "--goal", 1, 1)
     assert res.exit_code == 2 and "no such file" in res.output

@@ -67,6 +67,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         grid = grid.inflate(check_length("--robot-radius", inflate))
     kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,
                   weight=weight, allow_unknown=allow_unknown)
+    note_unused_settings(algorithm, heuristic, weight)
     before_first_kernel()  # numba loads for the search below anyway
     if in_world:
         result = plan_world(grid, start, goal, **kwargs)
@@ -96,6 +97,21 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
             click.echo(f"  plot written to {plot}")
     if not result.success:
         sys.exit(1)
+
+
+def note_unused_settings(algorithm: str, heuristic: str, weight: float = 1.0) -> None:
+    """A line on stderr for each of ``--heuristic`` and ``--weight`` given on the command line that
+    ``algorithm`` does not use (Dijkstra, JPS and Theta* have their own heuristic; only A* weighs it),
+    rather than a run that silently searched without them."""
+    from ..grid.planner import OWN_HEURISTIC
+
+    given = click.get_current_context().get_parameter_source
+    own = OWN_HEURISTIC.get(algorithm)
+    if own is not None and given("heuristic") == click.core.ParameterSource.COMMANDLINE and heuristic != own:
+        uses = "no heuristic" if own == "none" else f"its own heuristic ({own})"
+        click.echo(f"note: {algorithm} searches with {uses}: --heuristic {heuristic} is not used", err=True)
+    if algorithm != "astar" and given("weight") == click.core.ParameterSource.COMMANDLINE and weight != 1.0:
+        click.echo(f"note: --weight applies to astar only: {algorithm} ran unweighted", err=True)
 
 
 def fail(message: str) -> None:
@@ -132,6 +148,7 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
             fail(f"{path}: no such file. Moving AI scenarios and maps come from movingai.com/benchmarks "
                  "(a .map and its .map.scen side by side; the README's examples use the five in "
                  "../shared/data/movingai beside a navlab checkout)")
+    note_unused_settings(algorithm, heuristic)
     total = len(read_scen(scen_path)[::every][:limit])
     with progress_bar(total, "scenarios", quiet) as bar:
         out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every,
@@ -148,8 +165,8 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
 def scen_report(s) -> str:
     """The summary of ``navlab grid scen`` as text: counts, times, the worst five."""
     fmt = lambda v: "-" if v is None else f"{v:.8g}"  # noqa: E731
-    # Dijkstra uses no heuristic (the setting is ignored), so it is not named beside it
-    searched = s["algorithm"] if s["algorithm"] == "dijkstra" else f"{s['algorithm']} ({s['heuristic']})"
+    # Dijkstra uses no heuristic, so none is named beside it
+    searched = s["algorithm"] if s["heuristic"] == "none" else f"{s['algorithm']} ({s['heuristic']})"
     lines = [f"{s['map']}: {s['scenarios']} scenarios, {searched}, "
              f"length {s['comparison']}: {s['matches']} match, {s['mismatches']} do not"
              + (f", {s['invalid']} invalid (start or goal blocked or outside the map)" if s["invalid"] else "")]
@@ -161,8 +178,12 @@ def scen_report(s) -> str:
     if s["worst"]:
         lines.append(f"  worst {len(s['worst'])} (length - optimum):")
         for w in s["worst"]:
-            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {fmt(w['optimal'])}, "
-                         f"got {fmt(w['length'])} ({w['status']}, {'match' if w['match'] else 'MISMATCH'}, "
+            # the length at the stored optimum's own printed digits, which it is compared at
+            text = w["optimal_text"]
+            decimals = len(text.split(".")[1]) if "." in text else 0
+            got = "-" if w["length"] is None else f"{w['length']:.{decimals}f}"
+            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {text}, "
+                         f"got {got} ({w['status']}, {'match' if w['match'] else 'MISMATCH'}, "
                          f"excess {fmt(w['excess'])})")
     return "\n".join(lines)
 

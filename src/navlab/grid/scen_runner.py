@@ -10,7 +10,7 @@ import numpy as np
 
 from . import kernels as K
 from .mapio import MapFormatError, load_map
-from .planner import plan
+from .planner import OWN_HEURISTIC, plan
 from .scen import Scenario, read_scen
 
 #: The benchmark's generator priced a diagonal at 1.414213562 (√2 cut to 9
@@ -51,7 +51,7 @@ def compare(sc: Scenario, result, any_angle: bool) -> Dict[str, Any]:
     length minus the optimum (signed; what the worst rows are ranked by).
     """
     row: Dict[str, Any] = {"start": list(sc.start), "goal": list(sc.goal), "optimal": sc.optimal,
-                           "status": result.status.name, "length": None, "exact_length": None, "excess": None,
+                           "optimal_text": sc.optimal_text, "status": result.status.name, "length": None, "exact_length": None, "excess": None,
                            "match": False, "expanded": result.stats["expanded"], "time_s": result.stats["time_s"]}
     if not result.success:
         return row
@@ -114,12 +114,15 @@ def summarize(rows: List[Dict[str, Any]], map_name: str, algorithm: str, heurist
 
     ranked = sorted((row for row in rows if not row["status"].startswith("INVALID")), key=badness, reverse=True)
     summary = {
-        "map": map_name, "scenarios": len(rows), "algorithm": algorithm, "heuristic": heuristic,
+        # the heuristic searched with: Dijkstra, JPS and Theta* have their own (the setting is not used)
+        "map": map_name, "scenarios": len(rows), "algorithm": algorithm,
+        "heuristic": OWN_HEURISTIC.get(algorithm, heuristic),
         "comparison": "at most the octile optimum" if any_angle else "equal to the octile optimum",
         "matches": sum(row["match"] for row in rows),
         "mismatches": sum(not row["match"] for row in rows) - len(invalid),
         "invalid": len(invalid), "statuses": statuses,
-        "worst": [{k: row[k] for k in ("index", "start", "goal", "optimal", "length", "excess", "status", "match")}
+        "worst": [{k: row[k] for k in ("index", "start", "goal", "optimal", "optimal_text", "length", "excess",
+                                       "status", "match")}
                   for row in ranked[:WORST]],
         "time_median_ms": float(np.median(times) * 1000), "time_p95_ms": float(np.percentile(times, 95) * 1000),
         "time_total_s": float(times.sum()),

@@ -153,6 +153,31 @@ def test_grid_plot_into_axes_has_labels_and_the_raw_path():
     assert _legend_clear(ax)
 
 
+def test_a_grid_larger_than_its_axes_keeps_every_thin_wall():
+    """Drawn cell by cell, a big grid was sampled down to the axes' pixels, which skipped whole columns of
+    cells: a maze's one-cell walls showed as stripes (newcomer run, session 19). Now blocks of cells are
+    drawn each as dark as its darkest cell, and the axes still span exactly the map."""
+    from navlab.grid import OccupancyGrid
+    from navlab.viz import draw_grid
+
+    blocked = np.zeros((600, 4000), bool)
+    blocked[:, 7::40] = True  # 100 one-cell walls, each in a different 40-cell block
+    blocked[300:, 2020] = True  # and a half wall, in a block of its own
+    grid = OccupancyGrid(blocked, resolution=0.05, origin=(1.0, -2.0, 0.0))
+    fig, ax = plt.subplots(figsize=(7, 7))
+    draw_grid(ax, grid)
+    image = ax.get_images()[0].get_array()
+    box = ax.get_window_extent()
+    assert image.shape[1] <= box.width and image.shape[0] <= box.height  # no column of the image is skipped
+    dark_columns = (image == 0).any(axis=0)
+    assert np.count_nonzero(dark_columns) == 101 and (image == 0).all(axis=0).sum() == 100
+    assert ax.get_xlim() == (1.0, 1.0 + 4000 * 0.05) and ax.get_ylim() == (-2.0, -2.0 + 600 * 0.05)
+    small = OccupancyGrid(blocked[:20, :30])  # a grid smaller than its axes: cell by cell, as before
+    ax2 = plt.subplots()[1]
+    draw_grid(ax2, small)
+    assert np.array_equal(ax2.get_images()[0].get_array() == 0, small.blocked)
+
+
 def test_sim_plot_draws_the_true_trajectory_on_top():
     from navlab.sim.runner import simulate
     world = navlab.load_world("clutter")

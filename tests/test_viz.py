@@ -172,6 +172,11 @@ def test_a_grid_larger_than_its_axes_keeps_every_thin_wall():
     dark_columns = (image == 0).any(axis=0)
     assert np.count_nonzero(dark_columns) == 101 and (image == 0).all(axis=0).sum() == 100
     assert ax.get_xlim() == (1.0, 1.0 + 4000 * 0.05) and ax.get_ylim() == (-2.0, -2.0 + 600 * 0.05)
+    world = navlab.World.from_grid(grid, (1.1, -1.9), (2.0, -1.9))  # a map under a world's shapes too
+    ax3 = plt.subplots(figsize=(7, 7))[1]
+    draw_world(ax3, world)
+    shade = ax3.get_images()[0].get_array()
+    assert shade.shape[1] <= box.width and np.count_nonzero((shade < 255).any(axis=0)) == 101
     small = OccupancyGrid(blocked[:20, :30])  # a grid smaller than its axes: cell by cell, as before
     ax2 = plt.subplots()[1]
     draw_grid(ax2, small)

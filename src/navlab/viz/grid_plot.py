@@ -2,16 +2,11 @@
 
 from __future__ import annotations
 
-import math
 from typing import Optional, Sequence
 
 import numpy as np
 
-from .plot import finish_plot, new_axes
-
-
-#: grey levels of a drawn grid's cells (uint8: a byte per cell, not the eight of a float image)
-FREE, UNKNOWN, BLOCKED = 255, 153, 0
+from .plot import cell_image, finish_plot, new_axes
 
 
 def draw_grid(ax, grid) -> None:
@@ -19,19 +14,12 @@ def draw_grid(ax, grid) -> None:
     axes labelled in metres, equal aspect.
 
     A grid with more cells across than the axes have pixels is drawn in
-    blocks of k × k cells, each as dark as its darkest cell: a wall one cell
-    thin stays visible. (Drawn cell by cell, the image was sampled down to
-    the axes' pixels, which skips whole rows and columns of cells: a 3002²
-    maze's walls showed as stripes, and the float image took 72 MB.)"""
+    blocks of k × k cells, each as dark as its darkest cell, so a wall one
+    cell thin stays visible (:func:`~navlab.viz.plot.cell_image`; a 3002²
+    maze's walls showed as stripes, and its float image took 72 MB)."""
     res = grid.resolution
     x0, y0 = grid.origin[0], grid.origin[1]
-    image = np.full(grid.blocked.shape, FREE, dtype=np.uint8)
-    image[grid.unknown] = UNKNOWN
-    image[grid.blocked] = BLOCKED
-    box = ax.get_window_extent()
-    k = max(1, math.ceil(grid.height / max(box.height, 1.0)), math.ceil(grid.width / max(box.width, 1.0)))
-    if k > 1:
-        image = _darkest_blocks(image, k)
+    image, k = cell_image(ax, grid, free=255, unknown=153, blocked=0)
     h, w = image.shape  # (blocks of k cells: up to k - 1 cells past the map's far edges, cut off below)
     ax.imshow(image, cmap="gray", vmin=0, vmax=255, origin="lower", extent=(x0, x0 + w * k * res, y0,
                                                                              y0 + h * k * res),
@@ -41,14 +29,6 @@ def draw_grid(ax, grid) -> None:
     ax.set_aspect("equal")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
-
-
-def _darkest_blocks(image: np.ndarray, k: int) -> np.ndarray:
-    """``image`` in blocks of k × k pixels, each its darkest pixel (the last blocks padded with free)."""
-    h, w = image.shape
-    padded = np.full((-(-h // k) * k, -(-w // k) * k), FREE, dtype=image.dtype)
-    padded[:h, :w] = image
-    return padded.reshape(padded.shape[0] // k, k, padded.shape[1] // k, k).min(axis=(1, 3))
 
 
 def plot_grid_plan(grid, result, out: Optional[str] = None, raw_cells: Optional[np.ndarray] = None,

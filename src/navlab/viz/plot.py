@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Optional
 
 import numpy as np
@@ -74,20 +75,37 @@ def finish_figure_keep(fig, out: str, dpi: int = 110) -> None:
 
 def draw_map(ax, grid, allow_unknown: bool = False, occupied: float = 0.35) -> None:
     """An occupancy grid under a world's shapes, in world coordinates (its
-    origin's yaw applied): blocked cells grey (``occupied`` shade), free white."""
-    """An occupancy grid as an image in the map frame: occupied cells dark
-    (grey level ``occupied``), unknown cells mid grey (light when
-    ``allow_unknown``), free cells white."""
+    origin's yaw applied): occupied cells dark (grey level ``occupied``),
+    unknown cells mid grey (light when ``allow_unknown``), free cells white;
+    a grid larger than the axes in blocks of cells (:func:`cell_image`)."""
     import matplotlib.transforms as mtransforms
 
-    shade = np.full(grid.blocked.shape, 1.0)
-    shade[grid.unknown] = 0.85 if allow_unknown else 0.6
-    shade[grid.blocked] = occupied
-    w, h = grid.width * grid.resolution, grid.height * grid.resolution
+    levels = (1.0, 0.85 if allow_unknown else 0.6, occupied)
+    shade, k = cell_image(ax, grid, *(round(255 * level) for level in levels))
+    h, w = shade.shape
     ox, oy, yaw = grid.origin
-    image = ax.imshow(shade, cmap="gray", vmin=0, vmax=1, origin="lower", extent=(0, w, 0, h),
+    size = k * grid.resolution  # (the last blocks may reach past the map's far edges, in white)
+    image = ax.imshow(shade, cmap="gray", vmin=0, vmax=255, origin="lower", extent=(0, w * size, 0, h * size),
                       interpolation="nearest", zorder=1)
     image.set_transform(mtransforms.Affine2D().rotate(yaw).translate(ox, oy) + ax.transData)
+
+
+def cell_image(ax, grid, free: int, unknown: int, blocked: int):
+    """``(image, k)``: a grid's cells as grey levels (uint8, row 0 first), in blocks of k × k cells when
+    it has more cells across than ``ax`` has pixels, each block as dark as its darkest cell (``free``
+    fills the last blocks past the grid's far edges). Drawn cell by cell, such a grid was sampled down
+    to the axes' pixels, which skips whole rows and columns: a maze's one-cell walls showed as stripes."""
+    image = np.full(grid.blocked.shape, free, dtype=np.uint8)
+    image[grid.unknown] = unknown
+    image[grid.blocked] = blocked
+    box = ax.get_window_extent()
+    k = max(1, math.ceil(grid.height / max(box.height, 1.0)), math.ceil(grid.width / max(box.width, 1.0)))
+    if k == 1:
+        return image, 1
+    h, w = image.shape
+    padded = np.full((-(-h // k) * k, -(-w // k) * k), free, dtype=np.uint8)
+    padded[:h, :w] = image
+    return padded.reshape(padded.shape[0] // k, k, padded.shape[1] // k, k).min(axis=(1, 3)), k
 
 
 def draw_world(ax, world, show_inflation: bool = True, moving: bool = True) -> None:

@@ -55,9 +55,9 @@ def issue22_maps():
 
 
 def state_array(module, algorithm: str, cells: int) -> np.ndarray:
-    """The per-cell state ``module``'s ``algorithm`` searches in: packed (``state_layout``, A* and
-    Dijkstra since session 19) or one float64 per cell (JPS, and older A*)."""
-    if algorithm != "jps" and hasattr(module, "state_layout"):
+    """The per-cell state ``module``'s ``algorithm`` searches in: packed (``state_layout``: A* and
+    Dijkstra since session 19, JPS with ``make_jps``) or one float64 per cell (older kernels)."""
+    if hasattr(module, "make_jps" if algorithm == "jps" else "state_layout"):
         return np.zeros(cells, dtype=module.state_layout(False)[0])
     return np.zeros(cells)
 
@@ -74,8 +74,9 @@ def searcher_call(module, algorithm: str):
     and ``state`` (:func:`state_array`), returning (status, expanded). A* is compiled once here (each
     make_astar call makes a new kernel)."""
     if algorithm == "jps":
-        return lambda g, state, start, goal: module.jps(g.moves, g.stride, start, goal, state, g.lo, g.hi, g.extent,
-                                                        g.key, g.cell, g.next, g.head, g.stack)
+        jps = module.make_jps(False) if hasattr(module, "make_jps") else module.jps
+        return lambda g, state, start, goal: jps(g.moves, g.stride, start, goal, state, g.lo, g.hi, g.extent, g.key,
+                                                 g.cell, g.next, g.head, g.stack)
     kernel = module.make_astar(8, 4 if algorithm == "astar" else 0, False)
     return lambda g, state, start, goal: kernel(g.grid.no_free, g.moves, g.stride, start, goal, 1.0, state, g.parent,
                                                 g.lo, g.hi, g.extent, g.key, g.cell, g.next, g.head, g.stack)
@@ -103,8 +104,8 @@ def main() -> None:
             versions[tag] = load_kernels(path, f"kernels_{tag}")
         except Exception as exc:  # noqa: BLE001 - any file that does not import is the same answer
             ap.error(f"{path}: not a grid kernels file ({type(exc).__name__}: {exc})")
-        if not hasattr(versions[tag], "make_astar") or not hasattr(versions[tag], "jps"):
-            ap.error(f"{path}: not a grid kernels file (no make_astar and jps)")
+        if not hasattr(versions[tag], "make_astar") or not any(hasattr(versions[tag], f) for f in ("make_jps", "jps")):
+            ap.error(f"{path}: not a grid kernels file (no make_astar and make_jps or jps)")
     calls = {tag: searcher_call(module, args.algorithm) for tag, module in versions.items()}
     for name, blocked in issue22_maps():
         free = np.argwhere(~blocked)

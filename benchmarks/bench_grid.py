@@ -127,8 +127,8 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     process's first 134 MB array, whoever allocates it), which would land on
     whichever tool runs first; that figure is printed apart. Bytes per expanded
     cell: the search state the query touched over the cells it expanded,
-    counted two ways: cells written (their state, 4 bytes for A* and 8 for
-    JPS, and the legal-move byte) and whole 4 KB pages of the state
+    counted two ways: cells written (their 4-byte state and the
+    legal-move byte) and whole 4 KB pages of the state
     array written (what a first query pays to map). With ``with_scipy``,
     navlab's Dijkstra against scipy's on the explicit graph (built apart,
     untimed; scipy has no goal, so it settles every reachable cell)."""
@@ -184,7 +184,7 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")
     print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
     print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (4 B of")
-    print("state each for A*, 8 for JPS, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
+    print("state each, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
     print(load_line("at end"))
 
 
@@ -281,7 +281,7 @@ def touched_bytes(grid):
     from navlab.grid.planner import pool_for
 
     (searcher,) = pool_for(grid, False)._idle
-    state = searcher.written  # A*'s packed uint32 state, JPS's float64
+    state = searcher.written  # the packed uint32 state of A*, Dijkstra and JPS
     written = state != 0
     per_cell = state.itemsize + 1  # and the legal-move byte (A* and JPS build no padded copy of the grid)
     page = 4096 // state.itemsize

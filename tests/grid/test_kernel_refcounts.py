@@ -33,9 +33,9 @@ def small_query():
 
 def test_jps_takes_no_references_in_its_loop():
     grid, s, a, b = small_query()
-    g = np.zeros(grid.moves.size)  # JPS's float64 state (the searcher allocates its own at first use)
-    calls, arrays = incref_calls(K.jps.py_func, (grid.moves, grid.stride, a, b, g, s.lo, s.hi, s.extent,
-                                                 s.key, s.cell, s.next, s.head, s.stack))
+    state = np.zeros(grid.moves.size, dtype=K.state_layout(False)[0])  # (the searcher allocates its own at first use)
+    calls, arrays = incref_calls(K.make_jps(False).py_func, (grid.moves, grid.stride, a, b, state, s.lo, s.hi,
+                                                             s.extent, s.key, s.cell, s.next, s.head, s.stack))
     assert calls <= arrays
 
 

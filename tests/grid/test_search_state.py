@@ -1,8 +1,8 @@
 """Search state reused across queries, paths read back without parents, and the bucket queue's window.
 
-A searcher keeps one packed state per cell for A* (one float64 for JPS and
-Theta*) and zeroes only what the previous query wrote; A* reads its path back
-from those values. These tests check the
+A searcher keeps one packed state per cell for A*, Dijkstra and JPS (one
+float64 for Theta*) and zeroes only what the previous query wrote; A* and JPS
+read their paths back from those values. These tests check the
 answers against scipy's Dijkstra on the explicit graph (tests/grid/test_search.py's
 ``explicit_graph``) and against fresh grids.
 """
@@ -63,7 +63,7 @@ def test_one_grid_answers_a_mixed_stream_of_queries_like_fresh_grids():
         else:
             assert got.success and got.cost == pytest.approx(d, abs=1e-9)
             legal_steps(shared, got.cells, connectivity)
-    (s,) = pool_for(shared, False)._idle  # A* and JPS write different arrays: only the last one written is dirty
+    (s,) = pool_for(shared, False)._idle  # A* and Theta* write different arrays: only the last one written is dirty
     assert all(not np.any(a) for a in (s.state, s.state_wide, s.g) if a is not s.written)
 
 
@@ -76,19 +76,23 @@ def sawtooth(width: int, amplitude: int = 20) -> np.ndarray:
 
 @pytest.mark.parametrize("blocked, moves", [(np.zeros((1, 40_000), bool), "straight"), (sawtooth(76_000), "diagonal")])
 def test_a_path_too_long_for_the_narrow_state_is_searched_wide(blocked, moves):
-    """A*'s 32-bit state counts up to 32 766 straight and 65 534 diagonal moves (kernels.state_layout); a
-    longer path stops the search, which runs again in 64 bits: the same cost as JPS's float64 state, and
-    later queries on that searcher start wide."""
-    grid = OccupancyGrid(blocked)
+    """The 32-bit state counts up to 32 766 straight and 65 534 diagonal moves (kernels.state_layout); a
+    longer path stops the search, which runs again in 64 bits: scipy's distance (to its own rounding over
+    10⁵ additions), and later queries on that searcher start wide."""
     free = np.argwhere(~blocked)
     start, goal = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
-    got = plan(grid, start, goal)
-    steps = np.abs(np.diff(got.cells, axis=0)).sum(axis=1)
-    assert np.count_nonzero(steps == (1 if moves == "straight" else 2)) > (32_766 if moves == "straight" else 65_534)
-    assert got.success and got.cost == pytest.approx(plan(grid, start, goal, algorithm="jps").cost, rel=1e-12)
-    legal_steps(grid, got.cells, 8)
-    (s,) = pool_for(grid, False)._idle
-    assert s.wide and not np.any(s.state)  # the narrow attempt's writes were cleared
+    width = blocked.shape[1]
+    truth = scipy_dijkstra(explicit_graph(blocked, 8), indices=start[1] * width + start[0])[goal[1] * width + goal[0]]
+    for algorithm in ("astar", "jps"):  # each on a fresh grid: its own narrow search must stop and widen
+        grid = OccupancyGrid(blocked)
+        got = plan(grid, start, goal, algorithm=algorithm)
+        steps = np.abs(np.diff(got.cells, axis=0)).sum(axis=1)
+        assert np.count_nonzero(steps == (1 if moves == "straight" else 2)) > (32_766 if moves == "straight"
+                                                                                else 65_534)
+        assert got.success and got.cost == pytest.approx(truth, rel=1e-11)
+        legal_steps(grid, got.cells, 8)
+        (s,) = pool_for(grid, False)._idle
+        assert s.wide and not np.any(s.state)  # the narrow attempt's writes were cleared
     short = plan(grid, start, tuple(int(v) for v in free[40][::-1]))
     assert short.success and short.cost == plan(OccupancyGrid(blocked), start, tuple(free[40][::-1])).cost
     assert s.written is s.state_wide

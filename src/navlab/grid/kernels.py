@@ -4,9 +4,9 @@ The grid is a flat ``uint8`` array of passable cells padded with a blocked
 border one cell wide, so neighbour lookups need no bounds checks: cell (x, y)
 sits at index ``(y + 1) * S + (x + 1)`` with stride ``S = W + 2``.
 
-Per-cell search state is one packed integer per cell for A* and Dijkstra
-(a uint32: :func:`state_layout`), one float64 for JPS and Theta* (and a
-parent index for Theta*), allocated once per grid; a query clears only the
+Per-cell search state is one packed integer per cell for A*, Dijkstra and
+JPS (a uint32: :func:`state_layout`), one float64 and a parent index for
+Theta*, allocated once per grid; a query clears only the
 rows and columns the previous one wrote (:func:`clear_touched`). The open
 list is described below.
 """
@@ -151,20 +151,21 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 
 
 # -- per-cell search state -------------------------------------------------------
-# A* and Dijkstra keep one packed integer per cell (:func:`state_layout`): 0 unseen, else the
-# straight moves + 1 and the diagonal moves of the best path found so far, with a closed bit.
+# A*, Dijkstra and JPS keep one packed integer per cell (:func:`state_layout`): 0 unseen, else
+# the straight moves + 1 and the diagonal moves of the best path found so far, with a closed bit.
 # Their g is a + b·√2 for whole a and b, so the pair is exact where a float sum rounds: equal
 # lengths are equal bit for bit, and the path is read back by integer equality
-# (:func:`trace_back`). In 32 bits that is 4 bytes per cell, with the legal-move byte
-# (:func:`legal_moves`) 5; JPS and Theta* keep one float64 (0.0 unseen, g + 1 while open,
-# -(g + 1) once closed; g + 1 > 0 keeps the start's g = 0 apart from "unseen"). The state starts
+# (:func:`trace_back`, :func:`trace_jumps`). In 32 bits that is 4 bytes per cell, with the
+# legal-move byte (:func:`legal_moves`) 5; Theta*, whose g is a sum of square roots, keeps one
+# float64 (0.0 unseen, g + 1 while open, -(g + 1) once closed; g + 1 > 0 keeps the start's g = 0
+# apart from "unseen"). The state starts
 # as np.zeros (untouched pages stay unallocated), and a query records the rows and columns it
 # expanded so that the next query can zero just those (:func:`clear_touched`) instead of the
 # whole grid.
 
 
 def state_layout(wide: bool):
-    """How A* and Dijkstra pack a cell's state: ``(dtype, shift, a_mask, b_mask, closed)``, numpy
+    """How A*, Dijkstra and JPS pack a cell's state: ``(dtype, shift, a_mask, b_mask, closed)``, numpy
     scalars of the state's dtype. A reached cell holds ``(a << shift) | b`` with ``a`` the path's
     straight moves + 1 (so no reached cell is 0) and ``b`` its diagonal moves, its g + 1 being
     ``a + b·√2``, and ``closed`` or-ed in once it is expanded.
@@ -194,7 +195,7 @@ def state_g(p, shift, a_mask, b_mask):
 
 def state_costs(state: np.ndarray):
     """(closed mask, g [cells]) of every cell of a search's state array, packed (uint32 or uint64,
-    :func:`state_layout`) or float64 (JPS, Theta*); g is inf where the search never reached."""
+    :func:`state_layout`) or float64 (Theta*); g is inf where the search never reached."""
     if state.dtype == np.float64:
         return state < 0, np.where(state == 0, np.inf, np.abs(state) - 1.0)
     _, shift, a_mask, b_mask, closed = state_layout(state.dtype == np.uint64)
@@ -762,242 +763,262 @@ def _jump_diagonal(moves, S, v, dx, dy, k, goal):
         n += 1
 
 
-@njit(cache=True)
-def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
-    """Jump Point Search for 8-connected grids without corner cutting.
+def make_jps(wide: bool = False):
+    """:func:`jps` compiled for the narrow (uint32) or ``wide`` (uint64) packed state of
+    :func:`state_layout`, as :func:`make_astar` is."""
+    state_type, shift, a_mask, b_mask, closed_bit = state_layout(wide)
+    zero = state_type(0)
+    a_one = state_type(1) << shift
+    step_bits = state_steps(wide)
 
-    Same per-cell state (``gs``, recorded rows) and return values as the A*
-    kernel (:func:`make_astar`), and like A* no parents: an open entry
-    carries the move that reached its cell (which successors to try: the
-    first entry of a cell popped is its last and best push, so its move is
-    that of its g), and :func:`trace_jumps` reads the path back from ``gs``.
-    Without the parent and arrival arrays (5 bytes per cell) random4096 ran
-    in 0.71 s instead of 1.0 s (CPU medians, 9 interleaved runs, load 7,
-    path tracing included). The open list
-    is A*'s circular bucket queue and same-f stack over ``key``, ``cell``,
-    ``nxt`` and ``head``, except that a jump can raise f by more than the
-    ring spans: such keys wait in an overflow list, moved into the ring when
-    the ring's minimum reaches theirs (:data:`JPS_SPAN`). Indexed through
-    ``np.uint64`` like A*.
-    """
-    clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
-    gx = goal % S
-    gy = goal // S
-    wrap = N_BUCKETS - 1
-    inv_width = N_BUCKETS / JPS_SPAN
-    for b in range(N_BUCKETS):
-        head[np.uint64(b)] = -1
-    low = np.empty(N_BUCKETS)  # a non-empty bucket's smallest key (as A*'s)
-    free_node = -1
-    bump = 0
-    ring = 0  # nodes in the ring
-    over = -1  # the overflow list and its smallest bucket number
-    over_min = np.int64(1) << 62
-    cap_pool = key.shape[0]
-    cap_stack = stack.shape[0]
-    gs[np.uint64(start)] = 1.0
-    rmin = rmax = start // S
-    lo[np.uint64(rmin)] = min(lo[np.uint64(rmin)], start % S)  # the start's row and column, recorded
-    hi[np.uint64(rmin)] = max(hi[np.uint64(rmin)], start % S)
-    fcur = 1.0 + heuristic(H_OCTILE, start % S, start // S, gx, gy)  # keys are (g + 1) + h, as A*'s
-    cur = np.int64(fcur * inv_width)  # the ring's lowest bucket number (not wrapped)
-    stack[np.uint64(0)] = start * 16 + 8  # open entries are cell * 16 + the move that reached it (8: none)
-    top = 1
-    expanded = 0
-    status = 0
-    while ring > 0 or over >= 0 or top > 0:
-        if top == 0:
-            if ring == 0:
-                cur = over_min
-            while True:
-                if cur >= over_min:  # overflow keys now within the ring's span move in
-                    n = over
-                    over = -1
-                    over_min = np.int64(1) << 62
-                    while n >= 0:
-                        after = nxt[np.uint64(n)]
-                        a = np.int64(key[np.uint64(n)] * inv_width)
-                        if a < cur + N_BUCKETS:
-                            kn = key[np.uint64(n)]
-                            if head[np.uint64(a & wrap)] < 0 or kn < low[np.uint64(a & wrap)]:
-                                low[np.uint64(a & wrap)] = kn
-                            nxt[np.uint64(n)] = head[np.uint64(a & wrap)]
-                            head[np.uint64(a & wrap)] = n
-                            ring += 1
-                        else:
-                            nxt[np.uint64(n)] = over
-                            over = n
-                            over_min = min(over_min, a)
-                        n = after
-                if head[np.uint64(cur & wrap)] >= 0:
-                    break
-                cur += 1
-            cb = cur & wrap
-            fcur = low[np.uint64(cb)]
-            n = head[np.uint64(cb)]
-            head[np.uint64(cb)] = -1
-            while n >= 0:
-                after = nxt[np.uint64(n)]
-                kn = key[np.uint64(n)]
-                if kn <= fcur + TIE:
-                    if top == cap_stack:
-                        status = OVERFLOW
+    @njit(cache=True)
+    def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
+        """Jump Point Search for 8-connected grids without corner cutting.
+
+        Same per-cell state (``gs``, packed as :func:`state_layout` says; recorded rows) and return
+        values as the A* kernel (:func:`make_astar`; a jump adds its n moves to one field at once, and
+        a field it would carry over stops the search with WIDEN), and like A* no parents: an open entry
+        carries the move that reached its cell (which successors to try: the
+        first entry of a cell popped is its last and best push, so its move is
+        that of its g), and :func:`trace_jumps` reads the path back from ``gs``.
+        Without the parent and arrival arrays (5 bytes per cell) random4096 ran
+        in 0.71 s instead of 1.0 s (CPU medians, 9 interleaved runs, load 7,
+        path tracing included). The open list
+        is A*'s circular bucket queue and same-f stack over ``key``, ``cell``,
+        ``nxt`` and ``head``, except that a jump can raise f by more than the
+        ring spans: such keys wait in an overflow list, moved into the ring when
+        the ring's minimum reaches theirs (:data:`JPS_SPAN`). Indexed through
+        ``np.uint64`` like A*.
+        """
+        clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
+        gx = goal % S
+        gy = goal // S
+        wrap = N_BUCKETS - 1
+        inv_width = N_BUCKETS / JPS_SPAN
+        for b in range(N_BUCKETS):
+            head[np.uint64(b)] = -1
+        low = np.empty(N_BUCKETS)  # a non-empty bucket's smallest key (as A*'s)
+        free_node = -1
+        bump = 0
+        ring = 0  # nodes in the ring
+        over = -1  # the overflow list and its smallest bucket number
+        over_min = np.int64(1) << 62
+        cap_pool = key.shape[0]
+        cap_stack = stack.shape[0]
+        gs[np.uint64(start)] = a_one
+        rmin = rmax = start // S
+        lo[np.uint64(rmin)] = min(lo[np.uint64(rmin)], start % S)  # the start's row and column, recorded
+        hi[np.uint64(rmin)] = max(hi[np.uint64(rmin)], start % S)
+        fcur = 1.0 + heuristic(H_OCTILE, start % S, start // S, gx, gy)  # keys are (g + 1) + h, as A*'s
+        cur = np.int64(fcur * inv_width)  # the ring's lowest bucket number (not wrapped)
+        stack[np.uint64(0)] = start * 16 + 8  # open entries are cell * 16 + the move that reached it (8: none)
+        top = 1
+        expanded = 0
+        status = 0
+        while ring > 0 or over >= 0 or top > 0:
+            if top == 0:
+                if ring == 0:
+                    cur = over_min
+                while True:
+                    if cur >= over_min:  # overflow keys now within the ring's span move in
+                        n = over
+                        over = -1
+                        over_min = np.int64(1) << 62
+                        while n >= 0:
+                            after = nxt[np.uint64(n)]
+                            a = np.int64(key[np.uint64(n)] * inv_width)
+                            if a < cur + N_BUCKETS:
+                                kn = key[np.uint64(n)]
+                                if head[np.uint64(a & wrap)] < 0 or kn < low[np.uint64(a & wrap)]:
+                                    low[np.uint64(a & wrap)] = kn
+                                nxt[np.uint64(n)] = head[np.uint64(a & wrap)]
+                                head[np.uint64(a & wrap)] = n
+                                ring += 1
+                            else:
+                                nxt[np.uint64(n)] = over
+                                over = n
+                                over_min = min(over_min, a)
+                            n = after
+                    if head[np.uint64(cur & wrap)] >= 0:
                         break
-                    stack[np.uint64(top)] = cell[np.uint64(n)]
-                    top += 1
-                    nxt[np.uint64(n)] = free_node
-                    free_node = n
-                    ring -= 1
-                else:
-                    if head[np.uint64(cb)] < 0 or kn < low[np.uint64(cb)]:
-                        low[np.uint64(cb)] = kn
-                    nxt[np.uint64(n)] = head[np.uint64(cb)]
-                    head[np.uint64(cb)] = n
-                n = after
-            if status == OVERFLOW:
-                break
-        top -= 1
-        u = stack[np.uint64(top)] >> 4
-        came = stack[np.uint64(top)] & 15
-        # As A* does (make_astar), the state and moves further along the arrival move (the start's
-        # 8 reads as move 0): 6% of JPS's time on random4096 (paired in-process A/B; 5 to 12 cells
-        # ahead within 1.5%), and the stack's second cell below (2%).
-        lead = came & 7
-        ahead = u + JPS_LOOK * (_DX[np.uint64(lead)] + _DY[np.uint64(lead)] * S)
-        _prefetch(gs, ahead)
-        _prefetch(moves, ahead)
-        if top > 0:
-            # As A* does: start loading what the next cell's jumps read first (its moves and those of
-            # the rows beside, the state around it, its arrival move); JPS waits on memory even more.
-            w = stack[np.uint64(top - 1)] >> 4
-            for row in (w - S, w, w + S):
-                _prefetch(gs, row)
-                _prefetch(moves, row)
-            if top > 1:
-                w = stack[np.uint64(top - 2)] >> 4
+                    cur += 1
+                cb = cur & wrap
+                fcur = low[np.uint64(cb)]
+                n = head[np.uint64(cb)]
+                head[np.uint64(cb)] = -1
+                while n >= 0:
+                    after = nxt[np.uint64(n)]
+                    kn = key[np.uint64(n)]
+                    if kn <= fcur + TIE:
+                        if top == cap_stack:
+                            status = OVERFLOW
+                            break
+                        stack[np.uint64(top)] = cell[np.uint64(n)]
+                        top += 1
+                        nxt[np.uint64(n)] = free_node
+                        free_node = n
+                        ring -= 1
+                    else:
+                        if head[np.uint64(cb)] < 0 or kn < low[np.uint64(cb)]:
+                            low[np.uint64(cb)] = kn
+                        nxt[np.uint64(n)] = head[np.uint64(cb)]
+                        head[np.uint64(cb)] = n
+                    n = after
+                if status == OVERFLOW:
+                    break
+            top -= 1
+            u = stack[np.uint64(top)] >> 4
+            came = stack[np.uint64(top)] & 15
+            # As A* does (make_astar), the state and moves further along the arrival move (the start's
+            # 8 reads as move 0): 6% of JPS's time on random4096 (paired in-process A/B; 5 to 12 cells
+            # ahead within 1.5%), and the stack's second cell below (2%).
+            lead = came & 7
+            ahead = u + JPS_LOOK * (_DX[np.uint64(lead)] + _DY[np.uint64(lead)] * S)
+            _prefetch(gs, ahead)
+            _prefetch(moves, ahead)
+            if top > 0:
+                # As A* does: start loading what the next cell's jumps read first (its moves and those of
+                # the rows beside, the state around it, its arrival move); JPS waits on memory even more.
+                w = stack[np.uint64(top - 1)] >> 4
                 for row in (w - S, w, w + S):
                     _prefetch(gs, row)
                     _prefetch(moves, row)
-        gu = gs[np.uint64(u)]
-        if gu < 0.0:
-            continue
-        gs[np.uint64(u)] = -gu
-        expanded += 1
-        if u == goal:
-            status = 1
-            break
-        ux = u % S
-        uy = u // S
-        # The successors canonical A* would relax (CANONICAL): after a straight jump, the move
-        # itself and, on a side blocked beside the cell before, the side move and the diagonal
-        # ahead; after a diagonal, it and its straight parts; from the start, every move.
-        m = np.int64(moves[np.uint64(u)])
-        if came < 4:
-            back = u - _DX[np.uint64(came)] - _DY[np.uint64(came)] * S
-            m &= np.int64(CANONICAL[np.uint64(came * 256 + np.int64(moves[np.uint64(back)]))])
-        elif came < 8:
-            m &= np.int64(CANONICAL[np.uint64(came * 256)])
-        while m != 0:
-            k = _cttz(m)
-            m &= m - 1
-            dx = _DX[np.uint64(k)]
-            dy = _DY[np.uint64(k)]
-            if k >= 4:
-                jp, n = _jump_diagonal(moves, S, u + dx + dy * S, dx, dy, k, goal)
-            elif k < 2:
-                jp, n = _jump_straight(moves, u + dx, dx, k, _SIDES_X, goal)
-            else:
-                jp, n = _jump_straight(moves, u + dy * S, dy * S, k, _SIDES_Y, goal)
-            if jp < 0:
+                if top > 1:
+                    w = stack[np.uint64(top - 2)] >> 4
+                    for row in (w - S, w, w + S):
+                        _prefetch(gs, row)
+                        _prefetch(moves, row)
+            pu = gs[np.uint64(u)]
+            if pu >= closed_bit:  # closed already: a node superseded by a better push, or a tie pushed twice
                 continue
-            gj = gs[np.uint64(jp)]
-            ng = gu + (n + 1) * _STEP[np.uint64(k)]  # a jump is n + 1 equal steps
-            if gj == 0.0 or ng < gj:  # (never for a closed jump point: its -(g + 1) < 0)
-                gs[np.uint64(jp)] = ng
-                jx = ux + (n + 1) * dx
-                jy = uy + (n + 1) * dy
-                if jx < lo[np.uint64(jy)]:
-                    lo[np.uint64(jy)] = jx
-                if jx > hi[np.uint64(jy)]:
-                    hi[np.uint64(jy)] = jx
-                rmin = min(rmin, jy)
-                rmax = max(rmax, jy)
-                f = ng + heuristic(H_OCTILE, jx, jy, gx, gy)
-                if f <= fcur + TIE:
-                    if top == cap_stack:
+            gs[np.uint64(u)] = pu | closed_bit
+            gu = state_g(pu, shift, a_mask, b_mask)
+            expanded += 1
+            if u == goal:
+                status = 1
+                break
+            ux = u % S
+            uy = u // S
+            # The successors canonical A* would relax (CANONICAL): after a straight jump, the move
+            # itself and, on a side blocked beside the cell before, the side move and the diagonal
+            # ahead; after a diagonal, it and its straight parts; from the start, every move.
+            m = np.int64(moves[np.uint64(u)])
+            if came < 4:
+                back = u - _DX[np.uint64(came)] - _DY[np.uint64(came)] * S
+                m &= np.int64(CANONICAL[np.uint64(came * 256 + np.int64(moves[np.uint64(back)]))])
+            elif came < 8:
+                m &= np.int64(CANONICAL[np.uint64(came * 256)])
+            while m != 0:
+                k = _cttz(m)
+                m &= m - 1
+                dx = _DX[np.uint64(k)]
+                dy = _DY[np.uint64(k)]
+                if k >= 4:
+                    jp, n = _jump_diagonal(moves, S, u + dx + dy * S, dx, dy, k, goal)
+                elif k < 2:
+                    jp, n = _jump_straight(moves, u + dx, dx, k, _SIDES_X, goal)
+                else:
+                    jp, n = _jump_straight(moves, u + dy * S, dy * S, k, _SIDES_Y, goal)
+                if jp < 0:
+                    continue
+                # a jump is n + 1 equal moves, added to one field of the state: none may carry over
+                if not wide and (((pu >> shift) if k < 4 else (pu & b_mask)) + np.uint64(n + 1)
+                                 >= np.uint64(a_mask if k < 4 else b_mask)):
+                    status = WIDEN
+                    break
+                pn = pu + step_bits[np.uint64(k)] * state_type(n + 1)
+                ng = state_g(pn, shift, a_mask, b_mask)
+                pj = gs[np.uint64(jp)]
+                if pj == zero or (pj < closed_bit and ng < state_g(pj, shift, a_mask, b_mask)):
+                    gs[np.uint64(jp)] = pn
+                    jx = ux + (n + 1) * dx
+                    jy = uy + (n + 1) * dy
+                    if jx < lo[np.uint64(jy)]:
+                        lo[np.uint64(jy)] = jx
+                    if jx > hi[np.uint64(jy)]:
+                        hi[np.uint64(jy)] = jx
+                    rmin = min(rmin, jy)
+                    rmax = max(rmax, jy)
+                    f = ng + heuristic(H_OCTILE, jx, jy, gx, gy)
+                    if f <= fcur + TIE:
+                        if top == cap_stack:
+                            status = OVERFLOW
+                            break
+                        stack[np.uint64(top)] = jp * 16 + k
+                        top += 1
+                        continue
+                    if free_node >= 0:
+                        nd = free_node
+                        free_node = nxt[np.uint64(nd)]
+                    elif bump < cap_pool:
+                        nd = bump
+                        bump += 1
+                    else:
                         status = OVERFLOW
                         break
-                    stack[np.uint64(top)] = jp * 16 + k
-                    top += 1
-                    continue
-                if free_node >= 0:
-                    nd = free_node
-                    free_node = nxt[np.uint64(nd)]
-                elif bump < cap_pool:
-                    nd = bump
-                    bump += 1
-                else:
-                    status = OVERFLOW
-                    break
-                key[np.uint64(nd)] = f
-                cell[np.uint64(nd)] = jp * 16 + k
-                a = np.int64(f * inv_width)
-                if a < cur + N_BUCKETS:
-                    if head[np.uint64(a & wrap)] < 0 or f < low[np.uint64(a & wrap)]:
-                        low[np.uint64(a & wrap)] = f
-                    nxt[np.uint64(nd)] = head[np.uint64(a & wrap)]
-                    head[np.uint64(a & wrap)] = nd
-                    ring += 1
-                else:
-                    nxt[np.uint64(nd)] = over
-                    over = nd
-                    over_min = min(over_min, a)
-        if status == OVERFLOW:
-            break
-    extent[0] = min(extent[0], rmin)
-    extent[1] = max(extent[1], rmax)
-    return status, expanded
+                    key[np.uint64(nd)] = f
+                    cell[np.uint64(nd)] = jp * 16 + k
+                    a = np.int64(f * inv_width)
+                    if a < cur + N_BUCKETS:
+                        if head[np.uint64(a & wrap)] < 0 or f < low[np.uint64(a & wrap)]:
+                            low[np.uint64(a & wrap)] = f
+                        nxt[np.uint64(nd)] = head[np.uint64(a & wrap)]
+                        head[np.uint64(a & wrap)] = nd
+                        ring += 1
+                    else:
+                        nxt[np.uint64(nd)] = over
+                        over = nd
+                        over_min = min(over_min, a)
+            if status == OVERFLOW or status == WIDEN:
+                break
+        extent[0] = min(extent[0], rmin)
+        extent[1] = max(extent[1], rmax)
+        return status, expanded
+
+    return jps
 
 
 @njit(cache=True)
-def _jump_predecessor(moves, S, gs, v):
+def _jump_predecessor(moves, S, gs, v, steps, value_mask):
     """A reached cell c on a straight or diagonal run of legal moves into v
-    with ``|gs[c]| + L * step == |gs[v]|`` after L steps (the same float
-    product JPS added), or -1 if there is none."""
-    gv = abs(gs[np.uint64(v)])
+    with ``state(c) + L * steps[k] == state(v)`` after L moves k (packed states
+    without their closed bit, :func:`state_layout`: what JPS added), or -1 if
+    there is none."""
+    pv = gs[np.uint64(v)] & value_mask
     for k in range(8):
         d = _DX[np.uint64(k)] + _DY[np.uint64(k)] * S
-        step = _STEP[np.uint64(k)]
+        step = steps[k]
+        added = step - step  # L moves k, in the state's own integer type (L * step would be a float in 64 bits)
         c = v
-        L = 0
         while True:
             c -= d
-            L += 1
+            added += step
             if (moves[np.uint64(c)] >> k) & 1 == 0:  # c cannot step toward v (blocked cells have no moves)
                 break
-            gc = gs[np.uint64(c)]
-            if gc != 0.0 and abs(gc) + L * step == gv:
+            pc = gs[np.uint64(c)] & value_mask
+            if pc != 0 and pc + added == pv:
                 return c
     return -1
 
 
 @njit(cache=True)
-def trace_jumps(moves, S, gs, start, goal):
+def trace_jumps(moves, S, gs, start, goal, steps, value_mask):
     """Cells (x, y) from start to goal of the path JPS found, every cell of
-    each jump filled in, read from ``gs`` alone (JPS keeps no parents).
+    each jump filled in, read from its packed state ``gs`` alone (JPS keeps no
+    parents; ``steps`` and ``value_mask``: :func:`trace_back_args`).
 
-    As :func:`trace_back` for A*: a jump point's g was set as its jump
-    origin's g plus L equal steps along a run of legal moves, and that origin
+    As :func:`trace_back` for A*: a jump point's state was set as its jump
+    origin's plus L moves along a run of legal moves, and that origin
     is closed (unchanged) at the end, so walking back along each of the
-    eight runs into v finds a reached cell with exactly that sum; any cell
-    that matches lies on a path of cost g[v], so the walk returns a path of
-    the cost JPS found. It ends since g falls at every jump. Empty if the walk
-    breaks (a bug in the search).
+    eight runs into v finds a reached cell with exactly that sum, in whole
+    numbers; any cell that matches lies on a path of cost g[v], so the walk
+    returns a path of the cost JPS found. It ends since each jump removes
+    moves. Empty if the walk breaks (a bug in the search).
     """
     count = 1
     v = goal
     while v != start:
-        p = _jump_predecessor(moves, S, gs, v)
+        p = _jump_predecessor(moves, S, gs, v, steps, value_mask)
         if p < 0:
             return np.empty((0, 2), dtype=np.int64)
         count += max(abs(v % S - p % S), abs(v // S - p // S))
@@ -1008,13 +1029,13 @@ def trace_jumps(moves, S, gs, start, goal):
     out[m, 0] = v % S - 1
     out[m, 1] = v // S - 1
     while v != start:
-        p = _jump_predecessor(moves, S, gs, v)
+        p = _jump_predecessor(moves, S, gs, v, steps, value_mask)
         vx, vy, px, py = v % S, v // S, p % S, p // S
-        steps = max(abs(vx - px), abs(vy - py))
-        for k in range(steps - 1, -1, -1):  # the cells from just after p back to p
+        steps_between = max(abs(vx - px), abs(vy - py))
+        for k in range(steps_between - 1, -1, -1):  # the cells from just after p back to p
             m -= 1
-            out[m, 0] = px + (vx - px) * k // steps - 1
-            out[m, 1] = py + (vy - py) * k // steps - 1
+            out[m, 0] = px + (vx - px) * k // steps_between - 1
+            out[m, 1] = py + (vy - py) * k // steps_between - 1
         v = p
     return out
 

@@ -113,9 +113,9 @@ class GridSearcher:
     Queries lease one from the grid's :class:`SearcherPool`, so threads planning
     on the same grid never share it; a searcher is reused by later queries,
     so only the first query on a grid (per concurrent thread) pays for its
-    arrays. ``state`` holds all of A*'s and Dijkstra's per-cell state, packed
+    arrays. ``state`` holds all of A*'s, Dijkstra's and JPS's per-cell state, packed
     in 32 bits (``kernels.state_layout``; ``state_wide``, 64, for a path too
-    long for that), ``g`` JPS's and Theta*'s (one float64 per cell), Theta*
+    long for that), ``g`` Theta*'s (one float64 per cell), which also
     adds ``parent``: each allocated when first used. ``lo``, ``hi`` and
     ``extent`` record what the last query wrote in ``written``, which the next
     clears (``kernels.clear_touched``), whichever array it uses.
@@ -160,8 +160,10 @@ class GridSearcher:
             self.parent = np.empty(self.moves.size, dtype=np.int32)
         while True:
             if algorithm == "jps":
-                status, expanded = K.jps(self.moves, self.stride, a, b, self._writing("g"), self.lo, self.hi,
-                                         self.extent, self.key, self.cell, self.next, self.head, self.stack)
+                state = self._writing("state_wide" if self.wide else "state")
+                status, expanded = jps_kernel(self.wide)(self.moves, self.stride, a, b, state, self.lo, self.hi,
+                                                         self.extent, self.key, self.cell, self.next, self.head,
+                                                         self.stack)
             else:
                 any_angle = algorithm == "theta_star"
                 wide = self.wide and not any_angle
@@ -194,10 +196,10 @@ class GridSearcher:
         """The path the last search (from ``a``, which reached ``b``) found, as cells (x, y)."""
         if algorithm == "theta_star":
             return K.trace_path(self.parent, b, self.stride)
+        wide = self.written is self.state_wide
         if algorithm == "jps":
-            cells = K.trace_jumps(self.moves, self.stride, self.g, a, b)
+            cells = K.trace_jumps(self.moves, self.stride, self.written, a, b, *_TRACE_BACK[wide])
         else:
-            wide = self.written is self.state_wide
             cells = K.trace_back(self.moves, self.stride, self.written, a, b, connectivity, *_TRACE_BACK[wide])
         if len(cells) == 0:  # impossible after a successful search (kernels.trace_back); never report it as found
             raise RuntimeError(f"grid search state broken: no predecessor chain from {b} back to {a}")
@@ -212,6 +214,12 @@ class GridSearcher:
 def astar_kernel(connectivity: int, hcode: int, any_angle: bool, wide: bool = False):
     """The compiled A* variant for these settings (see ``kernels.make_astar``)."""
     return K.make_astar(connectivity, hcode, any_angle, wide)
+
+
+@functools.lru_cache(maxsize=None)
+def jps_kernel(wide: bool = False):
+    """JPS compiled for the narrow or wide state (see ``kernels.make_jps``)."""
+    return K.make_jps(wide)
 
 
 #: kernels.trace_back's last two arguments, for the narrow (False) and wide (True) state

@@ -110,6 +110,8 @@ def test_state_layout_adds_moves_exactly():
         closed_mask, g = K.state_costs(np.array([0, state, state | closed], dtype=dtype))
         assert closed_mask.tolist() == [False, False, True]
         assert g[0] == math.inf and g[1] == g[2] == 2 + 3 * math.sqrt(2)
+    closed_mask, g = K.state_costs(np.array([0.0, 3.5, -3.5]))  # Theta*'s float64: g + 1, negative once closed
+    assert closed_mask.tolist() == [False, False, True] and g.tolist() == [math.inf, 2.5, 2.5]
 
 
 @pytest.mark.parametrize("algorithm", ["astar", "jps", "theta_star"])

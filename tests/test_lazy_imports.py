@@ -44,6 +44,19 @@ def test_navlab_help_loads_no_verb():
     assert not [m for m in modules if m.startswith("navlab.cli.") and m != "navlab.cli.common"]
 
 
+def test_bench_help_loads_no_statistics():
+    """`navlab bench --help` reads the suites' descriptions only: it took 1.4 s importing scipy.stats through
+    navlab.bench's runner (newcomer run, session 19)."""
+    code = ("from navlab.cli import main\n"
+            "try:\n    main(['bench', '--help'])\nexcept SystemExit:\n    pass")
+    modules = loaded_after(code)
+    assert "navlab.bench.suites" in modules and heavy(modules, ("scipy", "numba", "navlab.bench.runner")) == []
+    import navlab.bench
+    from navlab.bench.runner import run_experiment
+
+    assert navlab.bench.run_experiment is run_experiment and set(navlab.bench._LAZY) <= set(dir(navlab.bench))
+
+
 def test_the_lazy_names_are_the_real_ones():
     import navlab
     from navlab.planning import plan

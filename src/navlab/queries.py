@@ -131,7 +131,7 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     """A grid algorithm on ``world``'s conservative raster (a map: its own
     cells), joined to the exact start and goal by checked straight legs."""
     from .endpoints import attach
-    from .grid.planner import plan as grid_plan, unknown_hint
+    from .grid.planner import as_searched, plan as grid_plan, unknown_hint
     from .grid.rasterize import rasterize
 
     t0 = time.perf_counter()
@@ -142,7 +142,7 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     rasterize_s = time.perf_counter() - t0
     passable = ~grid.blocked
     checker = world.checker()
-    out_params = {"algorithm": algorithm, "resolution": grid.resolution, **settings}
+    out_params = {"algorithm": algorithm, "resolution": grid.resolution, **as_searched(algorithm, **settings)}
     stats: Dict[str, Any] = {"grid": f"{grid.width}x{grid.height}", "rasterize_s": rasterize_s}
     ends = np.array([world.start, world.goal], dtype=float)
     own = [tuple(int(v) for v in c) for c in grid.world_to_cell(ends)]

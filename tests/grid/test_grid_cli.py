@@ -48,7 +48,7 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
     assert res.exit_code == 0 and json.loads(res.stdout)["params"]["heuristic"] == "octile"
     assert res.stderr.splitlines() == [
         "note: jps searches with its own heuristic (octile): --heuristic manhattan is not used",
-        "note: --weight applies to astar only: jps ran unweighted"]
+        "note: a weight applies to astar only: jps ran unweighted (--weight 3 is not used)"]
     res = run("grid", "plan", DATA / "arena.map", *query, "--algorithm", "dijkstra", "--heuristic", "euclidean")
     assert res.stderr == "note: dijkstra searches with no heuristic: --heuristic euclidean is not used\n"
     for given in (("--algorithm", "astar", "--heuristic", "manhattan", "--weight", 3), ("--algorithm", "jps"),
@@ -60,6 +60,16 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
     summary = json.loads(run("grid", "scen", DATA / "arena.map.scen", "--algorithm", "dijkstra", "--limit", 5,
                              "--json").stdout)["summary"]
     assert summary["heuristic"] == "none"
+    # navlab plan's --param, and the params a result reports (they said heuristic 'manhattan', weight 3)
+    res = run("plan", DATA / "arena.map", "--planner", "jps", "--start", 1.5, 11.5, "--goal", 12.5, 35.5,
+              "--param", "heuristic=manhattan", "--param", "weight=3", "--json")
+    assert json.loads(res.stdout)["params"]["heuristic"] == "octile" and json.loads(res.stdout)["params"]["weight"] == 1
+    assert res.stderr.splitlines() == [
+        "note: jps searches with its own heuristic (octile): --param heuristic=manhattan is not used",
+        "note: a weight applies to astar only: jps ran unweighted (--param weight=3 is not used)"]
+    res = run("plan", DATA / "arena.map", "--planner", "astar", "--start", 1.5, 11.5, "--goal", 12.5, 35.5,
+              "--param", "heuristic=manhattan", "--param", "weight=3", "--json")
+    assert json.loads(res.stdout)["params"]["weight"] == 3 and res.stderr == ""
 
 
 @needs_data

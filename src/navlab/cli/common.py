@@ -195,6 +195,24 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
     return out
 
 
+def note_unused_grid_settings(algorithm: str, given: Dict[str, Any], spelled) -> None:
+    """A line on stderr for each grid setting in ``given`` (``heuristic``, ``weight``: those the user
+    gave) that ``algorithm`` does not use: Dijkstra, JPS and Theta* have their own heuristic and only A*
+    takes a weight (the result's params say what the search used). ``spelled(key, value)`` is how the
+    user wrote it (``--heuristic manhattan``, ``--param heuristic=manhattan``). Rather than a run that
+    silently searched without them (newcomer run, session 19)."""
+    from ..grid.planner import OWN_HEURISTIC
+
+    own = OWN_HEURISTIC.get(algorithm)
+    if "heuristic" in given and own is not None and given["heuristic"] != own:
+        uses = "no heuristic" if own == "none" else f"its own heuristic ({own})"
+        click.echo(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used",
+                   err=True)
+    if "weight" in given and algorithm != "astar" and given["weight"] != 1:
+        click.echo(f"note: a weight applies to astar only: {algorithm} ran unweighted "
+                   f"({spelled('weight', given['weight'])} is not used)", err=True)
+
+
 def check_output_file(path: str, flag: str) -> None:
     """Refuse, before any work, an output file whose folder is missing or not writable."""
     import os

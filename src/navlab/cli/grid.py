@@ -11,7 +11,7 @@ import click
 import numpy as np
 
 from ..errors import ParameterError
-from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import
+from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import, note_unused_grid_settings
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -67,7 +67,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         grid = grid.inflate(check_length("--robot-radius", inflate))
     kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,
                   weight=weight, allow_unknown=allow_unknown)
-    note_unused_settings(algorithm, heuristic, weight)
+    note_unused_settings(algorithm, heuristic=heuristic, weight=weight)
     before_first_kernel()  # numba loads for the search below anyway
     if in_world:
         result = plan_world(grid, start, goal, **kwargs)
@@ -99,19 +99,13 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         sys.exit(1)
 
 
-def note_unused_settings(algorithm: str, heuristic: str, weight: float = 1.0) -> None:
-    """A line on stderr for each of ``--heuristic`` and ``--weight`` given on the command line that
-    ``algorithm`` does not use (Dijkstra, JPS and Theta* have their own heuristic; only A* weighs it),
-    rather than a run that silently searched without them."""
-    from ..grid.planner import OWN_HEURISTIC
-
-    given = click.get_current_context().get_parameter_source
-    own = OWN_HEURISTIC.get(algorithm)
-    if own is not None and given("heuristic") == click.core.ParameterSource.COMMANDLINE and heuristic != own:
-        uses = "no heuristic" if own == "none" else f"its own heuristic ({own})"
-        click.echo(f"note: {algorithm} searches with {uses}: --heuristic {heuristic} is not used", err=True)
-    if algorithm != "astar" and given("weight") == click.core.ParameterSource.COMMANDLINE and weight != 1.0:
-        click.echo(f"note: --weight applies to astar only: {algorithm} ran unweighted", err=True)
+def note_unused_settings(algorithm: str, **values) -> None:
+    """:func:`~navlab.cli.common.note_unused_grid_settings` for those of ``values`` (``heuristic``,
+    ``weight``) given on the command line, not left at their defaults."""
+    source = click.get_current_context().get_parameter_source
+    given = {k: v for k, v in values.items() if source(k) == click.core.ParameterSource.COMMANDLINE}
+    note_unused_grid_settings(algorithm, given, lambda key, value: f"--{key} {value:g}" if key == "weight"
+                              else f"--{key} {value}")
 
 
 def fail(message: str) -> None:
@@ -148,7 +142,7 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
             fail(f"{path}: no such file. Moving AI scenarios and maps come from movingai.com/benchmarks "
                  "(a .map and its .map.scen side by side; the README's examples use the five in "
                  "../shared/data/movingai beside a navlab checkout)")
-    note_unused_settings(algorithm, heuristic)
+    note_unused_settings(algorithm, heuristic=heuristic)
     total = len(read_scen(scen_path)[::every][:limit])
     with progress_bar(total, "scenarios", quiet) as bar:
         out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every,

@@ -10,7 +10,8 @@ import click
 
 from ..errors import ParameterError
 from ..wording import counted
-from .common import Count, PointOrPoseOption, before_first_kernel, before_numba_import, parse_params
+from .common import (Count, PointOrPoseOption, before_first_kernel, before_numba_import, note_unused_grid_settings,
+                     parse_params)
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -93,6 +94,9 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
                                  f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
         if is_pose_query(planner, settings):
             check_radius_not_dropped(world, robot_radius, settings, planner)
+        elif is_grid_planner(planner):
+            note_unused_grid_settings(planner, {k: settings[k] for k in ("heuristic", "weight") if k in settings},
+                                      lambda key, value: f"--param {key}={value}")
         result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
     if plot:
         from ..viz import plot_plan

@@ -290,6 +290,19 @@ def _cell(value, what: str) -> Tuple[int, int]:
 STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells", "warmup_s")
 
 
+def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:
+    """``settings`` with the ``heuristic`` and ``weight`` among them as ``algorithm`` searches with them:
+    Dijkstra, JPS and Theta* have their own heuristic (:data:`OWN_HEURISTIC`) and only A* a weight. What a
+    result's params report (they said 'manhattan' and 3.0 for a Dijkstra search given them, which used
+    neither)."""
+    out = dict(settings)
+    if "heuristic" in out:
+        out["heuristic"] = OWN_HEURISTIC.get(algorithm, out["heuristic"])
+    if "weight" in out and algorithm != "astar":
+        out["weight"] = 1.0
+    return out
+
+
 def search_heuristic(algorithm: str, hcode: int) -> int:
     """The heuristic code ``algorithm``'s kernel searches with, given ``hcode`` for A*: its
     :data:`OWN_HEURISTIC`'s, so the code and the name the params report cannot disagree."""
@@ -437,11 +450,8 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
         raise ParameterError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
     if algorithm == "jps" and connectivity != 8:
         raise ParameterError("jps needs connectivity 8")
-    # the heuristic and weight the search used: Dijkstra, JPS and Theta* have their own and no weight (the
-    # params said 'manhattan' and 3.0 for a Dijkstra search given them, which used neither)
-    params: Dict[str, Any] = {"algorithm": algorithm, "heuristic": OWN_HEURISTIC.get(algorithm, heuristic),
-                              "connectivity": connectivity, "smooth": smooth,
-                              "weight": weight if algorithm == "astar" else 1.0, "allow_unknown": allow_unknown}
+    params: Dict[str, Any] = {"algorithm": algorithm, **as_searched(algorithm, heuristic=heuristic, weight=weight),
+                              "connectivity": connectivity, "smooth": smooth, "allow_unknown": allow_unknown}
     s_cell, g_cell = _cell(start, "start"), _cell(goal, "goal")
     pool = pool_for(grid, allow_unknown)
     for label, cell, status in (("start", s_cell, Status.INVALID_START), ("goal", g_cell, Status.INVALID_GOAL)):

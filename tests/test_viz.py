@@ -5,6 +5,8 @@ axes, the legend's box against every drawn point, axis labels present, a
 GIF's frames, size and moving obstacles.
 """
 
+import math
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -156,7 +158,9 @@ def test_grid_plot_into_axes_has_labels_and_the_raw_path():
 def test_a_grid_larger_than_its_axes_keeps_every_thin_wall():
     """Drawn cell by cell, a big grid was sampled down to the axes' pixels, which skipped whole columns of
     cells: a maze's one-cell walls showed as stripes (newcomer run, session 19). Now blocks of cells are
-    drawn each as dark as its darkest cell, and the axes still span exactly the map."""
+    drawn by their mean darkness (square-rooted), so a one-cell wall darkens its block's column, a maze
+    whose corridors are narrower than a block is not drawn black (each block as dark as its darkest cell
+    did that: review, session 19), and the axes still span exactly the map."""
     from navlab.grid import OccupancyGrid
     from navlab.viz import draw_grid
 
@@ -169,14 +173,22 @@ def test_a_grid_larger_than_its_axes_keeps_every_thin_wall():
     image = ax.get_images()[0].get_array()
     box = ax.get_window_extent()
     assert image.shape[1] <= box.width and image.shape[0] <= box.height  # no column of the image is skipped
-    dark_columns = (image == 0).any(axis=0)
-    assert np.count_nonzero(dark_columns) == 101 and (image == 0).all(axis=0).sum() == 100
+    k = -(-4000 // image.shape[1])  # cells per block
+    wall = 255 * (1 - math.sqrt(1 / k))  # a block one wall cell wide, all its rows
+    dark_columns = (image < 255).any(axis=0)
+    assert np.count_nonzero(dark_columns) == 101 and np.count_nonzero((image <= wall + 1).all(axis=0)) == 100
     assert ax.get_xlim() == (1.0, 1.0 + 4000 * 0.05) and ax.get_ylim() == (-2.0, -2.0 + 600 * 0.05)
     world = navlab.World.from_grid(grid, (1.1, -1.9), (2.0, -1.9))  # a map under a world's shapes too
     ax3 = plt.subplots(figsize=(7, 7))[1]
     draw_world(ax3, world)
     shade = ax3.get_images()[0].get_array()
     assert shade.shape[1] <= box.width and np.count_nonzero((shade < 255).any(axis=0)) == 101
+    dense = np.zeros((3000, 3000), bool)  # walls and one-cell corridors alternating: blocks half wall
+    dense[:, ::2] = True
+    ax4 = plt.subplots(figsize=(7, 7))[1]
+    draw_grid(ax4, OccupancyGrid(dense))
+    half = ax4.get_images()[0].get_array()
+    assert 0 < half.min() and half.max() < 255  # grey all over: neither black nor white
     small = OccupancyGrid(blocked[:20, :30])  # a grid smaller than its axes: cell by cell, as before
     ax2 = plt.subplots()[1]
     draw_grid(ax2, small)

@@ -76,9 +76,9 @@ def sawtooth(width: int, amplitude: int = 20) -> np.ndarray:
 
 @pytest.mark.parametrize("blocked, moves", [(np.zeros((1, 40_000), bool), "straight"), (sawtooth(76_000), "diagonal")])
 def test_a_path_too_long_for_the_narrow_state_is_searched_wide(blocked, moves):
-    """The 32-bit state counts up to 32 766 straight and 65 534 diagonal moves (kernels.state_layout); a
+    """The 32-bit state counts up to 32 766 straight and 65 535 diagonal moves (kernels.state_layout); a
     longer path stops the search, which runs again in 64 bits: scipy's distance (to its own rounding over
-    10⁵ additions), and later queries on that searcher start wide."""
+    10⁵ additions), and later queries on that grid start wide, without the narrow array."""
     free = np.argwhere(~blocked)
     start, goal = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
     width = blocked.shape[1]
@@ -91,11 +91,23 @@ def test_a_path_too_long_for_the_narrow_state_is_searched_wide(blocked, moves):
                                                                                 else 65_534)
         assert got.success and got.cost == pytest.approx(truth, rel=1e-11)
         legal_steps(grid, got.cells, 8)
-        (s,) = pool_for(grid, False)._idle
-        assert s.wide and not np.any(s.state)  # the narrow attempt's writes were cleared
+        pool = pool_for(grid, False)
+        (s,) = pool._idle
+        assert pool.grid.needs_wide and s.state.size == 0  # the narrow attempt's array went
     short = plan(grid, start, tuple(int(v) for v in free[40][::-1]))
     assert short.success and short.cost == plan(OccupancyGrid(blocked), start, tuple(free[40][::-1])).cost
     assert s.written is s.state_wide
+
+
+@pytest.mark.parametrize("algorithm, connectivity", [("astar", 8), ("jps", 8), ("dijkstra", 8), ("astar", 4)])
+def test_the_narrow_state_holds_exactly_32766_straight_moves(algorithm, connectivity):
+    """The documented bound, to the move: a corridor path of 32 766 moves is searched narrow, one of 32 767
+    widens (each on a fresh grid), and both cost their length exactly."""
+    for moves, widens in ((32_766, False), (32_767, True)):
+        grid = OccupancyGrid(np.zeros((1, moves + 1), bool))
+        got = plan(grid, (0, 0), (moves, 0), algorithm=algorithm, connectivity=connectivity)
+        assert got.success and got.cost == moves and len(got.cells) == moves + 1
+        assert pool_for(grid, False).grid.needs_wide is widens, moves
 
 
 def test_state_layout_adds_moves_exactly():

@@ -42,7 +42,7 @@ def heuristic(code, ax, ay, bx, by):
 
 TIE = 1e-9  # f values closer than this are equal (distinct a + b√2 lengths differ by far more)
 OVERFLOW = -1
-#: an A* or Dijkstra search whose path outgrew the 32-bit state (:func:`state_layout`): rerun it wide
+#: an A*, Dijkstra or JPS search whose path outgrew the 32-bit state (:func:`state_layout`): rerun it wide
 WIDEN = -2
 ALL_BITS = np.uint64(0xFFFFFFFFFFFFFFFF)
 # The kernels spell out their open-list pops and pushes inline rather than
@@ -170,11 +170,12 @@ def state_layout(wide: bool):
     straight moves + 1 (so no reached cell is 0) and ``b`` its diagonal moves, its g + 1 being
     ``a + b·√2``, and ``closed`` or-ed in once it is expanded.
 
-    Narrow (uint32: a < 2¹⁵, b < 2¹⁶) is the default: half the bytes of a float64, so a search's
-    state takes half the cache lines and a first query maps half the pages (random4096 A*
-    0.91x the time of the float64 state on a fresh grid, 0.96x repeated; in-process A/B). A
-    path with more moves than that stops the search (:data:`WIDEN`) and it runs again wide
-    (uint64: a < 2³¹, b < 2³², more than the 10⁸ cells of the largest grid)."""
+    Narrow (uint32: a < 2¹⁵, b < 2¹⁶: up to 32 766 straight and 65 535 diagonal moves) is the
+    default: half the bytes of a float64, so a search's state takes half the cache lines and a first
+    query maps half the pages (random4096 A* 0.91x the time of the float64 state on a fresh grid,
+    0.93x repeated; in-process A/B). A path with more moves than that (a big maze's) stops the search
+    (:data:`WIDEN`, :func:`would_carry`) and it runs again wide (uint64: a < 2³¹, b < 2³², more than
+    the 10⁸ cells of the largest grid)."""
     if wide:
         return np.uint64, np.uint64(32), np.uint64(0x7FFFFFFF), np.uint64(0xFFFFFFFF), np.uint64(1 << 63)
     return np.uint32, np.uint32(16), np.uint32(0x7FFF), np.uint32(0xFFFF), np.uint32(1 << 31)
@@ -185,6 +186,14 @@ def state_steps(wide: bool) -> np.ndarray:
     one straight move (``1 << shift``) or one diagonal (1)."""
     state_type, shift = state_layout(wide)[:2]
     return np.array([state_type(1) << shift] * 4 + [state_type(1)] * 4, dtype=state_type)
+
+
+@njit(cache=True, inline="always")
+def would_carry(field, moves, mask) -> bool:
+    """Whether adding ``moves`` to a packed field now holding ``field`` passes its ``mask`` (would carry
+    into the next field: :func:`state_layout`). In uint64 whatever the state's width (numba makes a
+    float of a uint64 mixed with an int64)."""
+    return np.uint64(field) + np.uint64(moves) > np.uint64(mask)
 
 
 @njit(cache=True, inline="always")
@@ -436,7 +445,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     state_type, shift, a_mask, b_mask, closed_bit = state_layout(wide)
     zero = state_type(0)
     a_one = state_type(1) << shift  # the start: no moves yet (a = 0 + 1)
-    a_room, b_room = a_mask - state_type(1), b_mask - state_type(1)  # a cell past either could carry over
     step_bits = state_steps(wide)
 
     @njit(cache=True)
@@ -536,9 +544,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 pu = gs[np.uint64(u)]
                 if pu >= closed_bit:  # closed already (as above)
                     continue
-                if not wide and ((pu & b_mask) >= b_room or (pu >> shift) >= a_room):
-                    status = WIDEN  # a move from here could carry into the next field
-                    break
                 gs[np.uint64(u)] = pu | closed_bit
                 gu = state_g(pu, shift, a_mask, b_mask)
             expanded += 1
@@ -559,6 +564,10 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 hi[np.uint64(uy)] = ux
             if u == goal:
                 status = 1
+                break
+            if not any_angle and not wide and (would_carry(pu >> shift, 1, a_mask) or would_carry(pu & b_mask, 1,
+                                                                                                   b_mask)):
+                status = WIDEN  # a move from here would carry into the next field
                 break
             grandparent = parent[u] if any_angle else u  # Theta*: the parent a child may inherit
             mu = np.int64(moves[np.uint64(u)])
@@ -922,8 +931,8 @@ def make_jps(wide: bool = False):
                 if jp < 0:
                     continue
                 # a jump is n + 1 equal moves, added to one field of the state: none may carry over
-                if not wide and (((pu >> shift) if k < 4 else (pu & b_mask)) + np.uint64(n + 1)
-                                 >= np.uint64(a_mask if k < 4 else b_mask)):
+                if not wide and (would_carry(pu >> shift, n + 1, a_mask) if k < 4 else
+                                 would_carry(pu & b_mask, n + 1, b_mask)):
                     status = WIDEN
                     break
                 pn = pu + step_bits[np.uint64(k)] * state_type(n + 1)

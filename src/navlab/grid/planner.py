@@ -85,6 +85,11 @@ class PaddedGrid:
         # what the A* kernels get for ``free`` when they are not Theta*, the only one whose line of sight reads it
         self.no_free = np.zeros(1, dtype=np.uint8)
         self.no_free.flags.writeable = False
+        # Set once a search on this grid outgrew the narrow packed state (kernels.WIDEN): every later
+        # search on it, by any searcher, starts wide rather than search in vain first (on a 3002² maze
+        # corner to corner that was 1.4-2.5x the time). It changes no answer: both widths hold the same
+        # whole numbers, so their searches are the same; the one thing here that changes.
+        self.needs_wide = False
 
     @functools.cached_property
     def free(self) -> np.ndarray:
@@ -114,8 +119,8 @@ class GridSearcher:
     on the same grid never share it; a searcher is reused by later queries,
     so only the first query on a grid (per concurrent thread) pays for its
     arrays. ``state`` holds all of A*'s, Dijkstra's and JPS's per-cell state, packed
-    in 32 bits (``kernels.state_layout``; ``state_wide``, 64, for a path too
-    long for that), ``g`` Theta*'s (one float64 per cell), which also
+    in 32 bits (``kernels.state_layout``; ``state_wide``, 64, on a grid where a
+    path was too long for that: ``PaddedGrid.needs_wide``), ``g`` Theta*'s (one float64 per cell), which also
     adds ``parent``: each allocated when first used. ``lo``, ``hi`` and
     ``extent`` record what the last query wrote in ``written``, which the next
     clears (``kernels.clear_touched``), whichever array it uses.
@@ -132,7 +137,6 @@ class GridSearcher:
         self.state_wide = np.zeros(0, dtype=K.state_layout(True)[0])
         self.g = np.zeros(0)
         self.written = self.g  # the array the records below describe (all the others are zero)
-        self.wide = False  # a query on this searcher outgrew the narrow state: later ones start wide
         self.parent = np.empty(0, dtype=np.int32)
         self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
         self.hi = np.full(rows, -1, dtype=np.int64)
@@ -159,22 +163,22 @@ class GridSearcher:
         if algorithm == "theta_star" and self.parent.size == 0:
             self.parent = np.empty(self.moves.size, dtype=np.int32)
         while True:
+            wide = self.grid.needs_wide
             if algorithm == "jps":
-                state = self._writing("state_wide" if self.wide else "state")
-                status, expanded = jps_kernel(self.wide)(self.moves, self.stride, a, b, state, self.lo, self.hi,
-                                                         self.extent, self.key, self.cell, self.next, self.head,
-                                                         self.stack)
+                state = self._writing("state_wide" if wide else "state")
+                status, expanded = jps_kernel(wide)(self.moves, self.stride, a, b, state, self.lo, self.hi,
+                                                    self.extent, self.key, self.cell, self.next, self.head, self.stack)
             else:
                 any_angle = algorithm == "theta_star"
-                wide = self.wide and not any_angle
+                wide = wide and not any_angle
                 kernel = astar_kernel(connectivity, hcode, any_angle, wide)
                 free = self.grid.free if any_angle else self.grid.no_free
                 state = self._writing("g" if any_angle else "state_wide" if wide else "state")
                 status, expanded = kernel(free, self.moves, self.stride, a, b, weight, state, self.parent, self.lo,
                                           self.hi, self.extent, self.key, self.cell, self.next,
                                           self.head, self.stack)
-            if status == K.WIDEN:
-                self.wide = True  # (a rare grid: a path of over 32 766 straight or 65 534 diagonal moves)
+            if status == K.WIDEN:  # a path of over 32 766 straight or 65 535 diagonal moves (a big maze's)
+                self.grid.needs_wide = True
             elif status == K.OVERFLOW:
                 self.grow()
             else:
@@ -190,6 +194,8 @@ class GridSearcher:
         if array is not self.written:
             K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
             self.written = array
+        if name == "state_wide" and self.state.size:  # once wide, never narrow again: its bytes go
+            self.state = np.zeros(0, dtype=self.state.dtype)
         return array
 
     def cells(self, algorithm: str, connectivity: int, a: int, b: int) -> np.ndarray:

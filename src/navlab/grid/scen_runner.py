@@ -51,7 +51,8 @@ def compare(sc: Scenario, result, any_angle: bool) -> Dict[str, Any]:
     length minus the optimum (signed; what the worst rows are ranked by).
     """
     row: Dict[str, Any] = {"start": list(sc.start), "goal": list(sc.goal), "optimal": sc.optimal,
-                           "optimal_text": sc.optimal_text, "status": result.status.name, "length": None, "exact_length": None, "excess": None,
+                           "optimal_text": sc.optimal_text, "status": result.status.name, "length": None,
+                           "exact_length": None, "excess": None,
                            "match": False, "expanded": result.stats["expanded"], "time_s": result.stats["time_s"]}
     if not result.success:
         return row

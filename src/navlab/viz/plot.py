@@ -92,9 +92,15 @@ def draw_map(ax, grid, allow_unknown: bool = False, occupied: float = 0.35) -> N
 
 def cell_image(ax, grid, free: int, unknown: int, blocked: int):
     """``(image, k)``: a grid's cells as grey levels (uint8, row 0 first), in blocks of k × k cells when
-    it has more cells across than ``ax`` has pixels, each block as dark as its darkest cell (``free``
-    fills the last blocks past the grid's far edges). Drawn cell by cell, such a grid was sampled down
-    to the axes' pixels, which skips whole rows and columns: a maze's one-cell walls showed as stripes."""
+    it has more cells across than ``ax`` has pixels.
+
+    A block's darkness (below ``free``) is its cells' mean darkness, raised to the power ½ against the
+    darkest level (``blocked``): a block all blocked is as dark as one blocked cell, a one-cell wall
+    across a block of 8 shows at 35 % of that, not at the 12 % a plain mean gives, and corridors
+    narrower than a block stay lighter than walls. (Drawn cell by cell, the image was sampled down to
+    the axes' pixels, which skips whole rows and columns: a maze's one-cell walls showed as stripes;
+    each block's darkest cell instead turned a maze with corridors narrower than a block black.) The
+    last blocks past the grid's far edges are filled with ``free``."""
     image = np.full(grid.blocked.shape, free, dtype=np.uint8)
     image[grid.unknown] = unknown
     image[grid.blocked] = blocked
@@ -103,9 +109,11 @@ def cell_image(ax, grid, free: int, unknown: int, blocked: int):
     if k == 1:
         return image, 1
     h, w = image.shape
-    padded = np.full((-(-h // k) * k, -(-w // k) * k), free, dtype=np.uint8)
-    padded[:h, :w] = image
-    return padded.reshape(padded.shape[0] // k, k, padded.shape[1] // k, k).min(axis=(1, 3)), k
+    dark = np.zeros((-(-h // k) * k, -(-w // k) * k), dtype=np.float32)
+    dark[:h, :w] = free - image
+    mean = dark.reshape(dark.shape[0] // k, k, dark.shape[1] // k, k).mean(axis=(1, 3))
+    darkest = float(free - blocked)
+    return np.rint(free - darkest * np.sqrt(mean / darkest)).astype(np.uint8), k
 
 
 def draw_world(ax, world, show_inflation: bool = True, moving: bool = True) -> None:

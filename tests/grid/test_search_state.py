@@ -99,6 +99,54 @@ def test_a_path_too_long_for_the_narrow_state_is_searched_wide(blocked, moves):
     assert s.written is s.state_wide
 
 
+@pytest.mark.parametrize("heuristic, weight", [("octile", 1.0), ("euclidean", 1.0), ("manhattan", 3.0),
+                                               ("octile", 40.0)])
+def test_a_search_that_outgrows_the_narrow_state_goes_on_wide(monkeypatch, heuristic, weight):
+    """A* and Dijkstra go on where the narrow search stopped, in the wide state (kernels.widen_state, the
+    kernel's resume), rather than start over; optimal at weight 1 (scipy's distance), within the weight
+    times the optimum (and √2 more for Manhattan) otherwise, legal either way."""
+    moved = []
+    widen = K.widen_state
+    monkeypatch.setattr(K, "widen_state", lambda *args: moved.append(1) or widen(*args))
+    blocked = sawtooth(76_000)
+    free = np.argwhere(~blocked)
+    start, goal = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+    width = blocked.shape[1]
+    truth = scipy_dijkstra(explicit_graph(blocked, 8), indices=start[1] * width + start[0])[goal[1] * width + goal[0]]
+    got = plan(OccupancyGrid(blocked), start, goal, heuristic=heuristic, weight=weight)
+    legal_steps(OccupancyGrid(blocked), got.cells, 8)
+    assert moved == [1] and got.success
+    if weight == 1.0:
+        assert got.cost == pytest.approx(truth, rel=1e-11)
+    else:
+        assert truth - 1e-6 <= got.cost <= weight * truth * (math.sqrt(2) if heuristic == "manhattan" else 1.0)
+
+
+@pytest.mark.parametrize("room", ["for no open cell", "for its open cells only"])
+def test_a_resumed_search_out_of_room_starts_over_wide(monkeypatch, room):
+    """Open lists too small for a resumed search, whether for the open cells the stopped search hands on
+    or for what follows: they grow and the search starts over wide (a resumed search that ran out of
+    room may have half-expanded a cell). An open grid, so the octile distance is the truth."""
+    grid = OccupancyGrid(np.zeros((60, 40_000), bool))
+    pool = pool_for(grid, False)
+    with pool.lease() as s:
+        pass
+    widen, cramped = K.widen_state, []
+
+    def widen_then_cramp(narrow, wide, *records):
+        widen(narrow, wide, *records)
+        open_cells = int(np.count_nonzero((wide != 0) & (wide < np.uint64(1 << 63))))
+        s._pool(2 if room == "for no open cell" else open_cells)
+        s.stack = s.stack[:2]  # (a same-f stack of two: the open cells all fit, what follows does not)
+        cramped.append(open_cells)
+
+    monkeypatch.setattr(K, "widen_state", widen_then_cramp)
+    got = plan(grid, (0, 0), (39_999, 59))
+    assert len(cramped) == 1 and cramped[0] > 2 and pool.grid.needs_wide and s.stack.size > 2  # it grew
+    assert got.success and got.cost == pytest.approx(39_999 - 59 + 59 * math.sqrt(2), rel=1e-12)
+    legal_steps(grid, got.cells, 8)
+
+
 @pytest.mark.parametrize("algorithm, connectivity", [("astar", 8), ("jps", 8), ("dijkstra", 8), ("astar", 4)])
 def test_the_narrow_state_holds_exactly_32766_straight_moves(algorithm, connectivity):
     """The documented bound, to the move: a corridor path of 32 766 moves is searched narrow, one of 32 767

@@ -214,26 +214,50 @@ def state_costs(state: np.ndarray):
 
 
 @njit(cache=True)
+def touched_span(r, lo, hi, extent, S):
+    """The flat indices ``range(first, last)`` of padded row ``r`` a query may have written: every
+    cell within one of a recorded cell (each row's recorded columns in ``lo``/``hi``, its rows in
+    ``extent``), which covers everything a search writes (expanded cells and their neighbours; JPS
+    records its jump points). Rows ``extent[0] - 1`` to ``extent[1] + 1`` hold them all."""
+    a = S
+    b = -1
+    for q in range(max(r - 1, extent[0]), min(r + 1, extent[1]) + 1):
+        a = min(a, lo[q])
+        b = max(b, hi[q])
+    return r * S + a - 1, r * S + b + 2
+
+
+@njit(cache=True)
 def clear_touched(gs, S, lo, hi, extent):
-    """Zero the state a query wrote: every cell within one of a recorded cell
-    (each row's recorded columns in ``lo``/``hi``, its rows in ``extent``),
-    which covers everything a search writes (expanded cells and their
-    neighbours; JPS records its jump points). Leaves the records empty."""
+    """Zero the state a query wrote (:func:`touched_span`). Leaves the records empty."""
     r0 = extent[0]
     r1 = extent[1]
     for r in range(r0 - 1, r1 + 2):
-        a = S
-        b = -1
-        for q in range(max(r - 1, r0), min(r + 1, r1) + 1):
-            a = min(a, lo[q])
-            b = max(b, hi[q])
-        for v in range(r * S + a - 1, r * S + b + 2):
+        first, last = touched_span(r, lo, hi, extent, S)
+        for v in range(first, last):
             gs[v] = 0
     for q in range(r0, r1 + 1):
         lo[q] = S
         hi[q] = -1
     extent[0] = lo.shape[0]
     extent[1] = -1
+
+
+@njit(cache=True)
+def widen_state(narrow, wide, S, lo, hi, extent):
+    """Move what a query wrote in the narrow packed state into the wide one (:func:`state_layout`),
+    zeroing the narrow cells: the region :func:`clear_touched` would clear. The records stay: they now
+    describe ``wide``, in which the stopped search can go on (``make_astar``'s ``resume``)."""
+    shift32, shift64 = np.uint32(16), np.uint64(32)
+    a_mask, b_mask, closed32, closed64 = np.uint32(0x7FFF), np.uint32(0xFFFF), np.uint32(1 << 31), np.uint64(1 << 63)
+    for r in range(extent[0] - 1, extent[1] + 2):
+        first, last = touched_span(r, lo, hi, extent, S)
+        for v in range(first, last):
+            p = narrow[v]
+            if p != 0:
+                moved = (np.uint64((p >> shift32) & a_mask) << shift64) | np.uint64(p & b_mask)
+                wide[v] = moved | closed64 if p & closed32 else moved
+                narrow[v] = 0
 
 
 # -- legal moves ---------------------------------------------------------------
@@ -400,6 +424,11 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
 
     ``gs`` is the packed state of :func:`state_layout` (uint32, or uint64 with
     ``wide``), or for Theta* a float64 per cell (its g is a sum of square roots).
+    With ``resume`` (A* and Dijkstra, wide) the kernel goes on with a search the
+    narrow state stopped (WIDEN), its state moved into ``gs`` by
+    :func:`widen_state`: the records are kept, and every cell reached and not
+    closed is opened again with all its moves; it returns WIDEN when their
+    keys do not fit the bucket window (the caller starts over).
 
     The returned kernel ``astar(free, moves, S, start, goal, weight, gs,
     parent, lo, hi, extent, key, cell, nxt, head, stack)`` (``moves``: the
@@ -448,8 +477,10 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     step_bits = state_steps(wide)
 
     @njit(cache=True)
-    def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack):
-        clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
+    def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack,
+              resume=False):
+        if not resume:
+            clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
         gx = goal % S
         gy = goal // S
         mask = N_BUCKETS - 1
@@ -464,17 +495,54 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
         size = 0
         cap_pool = key.shape[0]
         cap_stack = stack.shape[0]
-        if any_angle:
-            gs[np.uint64(start)] = 1.0
-            parent[start] = start
-        else:
-            gs[np.uint64(start)] = a_one
-        fcur = 1.0 + weight * heuristic(hcode, start % S, start // S, gx, gy)  # keys are (g + 1) + weight * h
-        cb = np.int64(fcur * inv_width) & mask
-        stack[np.uint64(0)] = start * 256 + 255  # open entries: cell * 256 + the moves it may expand
-        top = 1
         expanded = 0
         status = 0
+        if not any_angle and resume:
+            # Go on with a search the narrow state stopped (WIDEN), its state moved here (widen_state): every
+            # cell reached and not closed is open again, each expanding all its moves. Its keys must fit the
+            # window above the least (as a running search's do, with a consistent heuristic); else (WIDEN)
+            # the caller starts over.
+            fcur = math.inf
+            fmax = -math.inf
+            for v in range((extent[0] - 1) * S, (extent[1] + 2) * S):  # the rows the search wrote in
+                pv = gs[np.uint64(v)]
+                if pv != zero and pv < closed_bit:
+                    f = state_g(pv, shift, a_mask, b_mask) + weight * heuristic(hcode, v % S, v // S, gx, gy)
+                    fcur = min(fcur, f)
+                    fmax = max(fmax, f)
+            if fcur == math.inf or (fmax - fcur) * inv_width > N_BUCKETS - 3:
+                return WIDEN, 0
+            for v in range((extent[0] - 1) * S, (extent[1] + 2) * S):
+                pv = gs[np.uint64(v)]
+                if pv != zero and pv < closed_bit:
+                    f = state_g(pv, shift, a_mask, b_mask) + weight * heuristic(hcode, v % S, v // S, gx, gy)
+                    if bump == cap_pool:
+                        return OVERFLOW, 0
+                    n = bump
+                    bump += 1
+                    key[np.uint64(n)] = f
+                    cell[np.uint64(n)] = v * 256 + 255
+                    b = np.int64(f * inv_width) & mask
+                    hb = head[np.uint64(b)]
+                    if hb < 0 or f < low[np.uint64(b)]:
+                        low[np.uint64(b)] = f
+                    nxt[np.uint64(n)] = hb
+                    head[np.uint64(b)] = n
+                    occupied[np.uint64(b >> 6)] |= np.uint64(1) << np.uint64(b & 63)
+                    size += 1
+            cb = np.int64(fcur * inv_width) & mask
+            fcur = -math.inf  # (the first pop takes the lowest bucket's least key)
+            top = 0
+        else:
+            if any_angle:
+                gs[np.uint64(start)] = 1.0
+                parent[start] = start
+            else:
+                gs[np.uint64(start)] = a_one
+            fcur = 1.0 + weight * heuristic(hcode, start % S, start // S, gx, gy)  # keys are (g + 1) + weight * h
+            cb = np.int64(fcur * inv_width) & mask
+            stack[np.uint64(0)] = start * 256 + 255  # open entries: cell * 256 + the moves it may expand
+            top = 1
         while size > 0 or top > 0:
             if top == 0:  # the next non-empty bucket (circularly from cb): its smallest keys go on the stack
                 word = cb >> 6
@@ -544,6 +612,10 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 pu = gs[np.uint64(u)]
                 if pu >= closed_bit:  # closed already (as above)
                     continue
+                if not wide and u != goal and (would_carry(pu >> shift, 1, a_mask) or would_carry(pu & b_mask, 1,
+                                                                                                  b_mask)):
+                    status = WIDEN  # a move from here would carry into the next field; u stays open (resume)
+                    break
                 gs[np.uint64(u)] = pu | closed_bit
                 gu = state_g(pu, shift, a_mask, b_mask)
             expanded += 1
@@ -564,10 +636,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 hi[np.uint64(uy)] = ux
             if u == goal:
                 status = 1
-                break
-            if not any_angle and not wide and (would_carry(pu >> shift, 1, a_mask) or would_carry(pu & b_mask, 1,
-                                                                                                   b_mask)):
-                status = WIDEN  # a move from here would carry into the next field
                 break
             grandparent = parent[u] if any_angle else u  # Theta*: the parent a child may inherit
             mu = np.int64(moves[np.uint64(u)])

@@ -158,10 +158,12 @@ class GridSearcher:
 
     def search(self, algorithm: str, a: int, b: int, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
         """One query from flat index ``a`` to ``b``, rerun with larger open
-        lists until they suffice, and with the wide state if its path
-        outgrew the narrow one: (status, expanded) as the kernels return."""
+        lists until they suffice, and in the wide state if its path
+        outgrew the narrow one (A* and Dijkstra go on where they stopped, JPS
+        starts over): (status, expanded) as the kernels return."""
         if algorithm == "theta_star" and self.parent.size == 0:
             self.parent = np.empty(self.moves.size, dtype=np.int32)
+        resume, before = False, 0  # (expanded by the narrow search a resumed one goes on from)
         while True:
             wide = self.grid.needs_wide
             if algorithm == "jps":
@@ -173,26 +175,40 @@ class GridSearcher:
                 wide = wide and not any_angle
                 kernel = astar_kernel(connectivity, hcode, any_angle, wide)
                 free = self.grid.free if any_angle else self.grid.no_free
-                state = self._writing("g" if any_angle else "state_wide" if wide else "state")
+                state = self.written if resume else self._writing("g" if any_angle else "state_wide" if wide
+                                                                  else "state")
                 status, expanded = kernel(free, self.moves, self.stride, a, b, weight, state, self.parent, self.lo,
                                           self.hi, self.extent, self.key, self.cell, self.next,
-                                          self.head, self.stack)
-            if status == K.WIDEN:  # a path of over 32 766 straight or 65 535 diagonal moves (a big maze's)
+                                          self.head, self.stack, resume)
+            if status == K.WIDEN and not resume and not wide and algorithm != "jps":
+                # a path of over 32 766 straight or 65 535 diagonal moves (a big maze's): the stopped search's
+                # state moves to the wide array, where it goes on (a 300x300-cell maze: 1.3x the time when it
+                # started over)
                 self.grid.needs_wide = True
+                narrow = self.state
+                self._writing("state_wide", keep_records=True)
+                K.widen_state(narrow, self.state_wide, self.stride, self.lo, self.hi, self.extent)
+                resume, before = True, expanded
+            elif status == K.WIDEN:  # JPS, or a resumed search whose open keys did not fit: start over wide
+                self.grid.needs_wide = True
+                resume, before = False, 0
             elif status == K.OVERFLOW:
-                self.grow()
+                self.grow()  # (a resumed search that ran out of room may have half-expanded a cell: start over)
+                resume, before = False, 0
             else:
-                return status, expanded
+                return status, before + expanded
 
-    def _writing(self, name: str) -> np.ndarray:
+    def _writing(self, name: str, keep_records: bool = False) -> np.ndarray:
         """The state array ``name`` (allocated at first use), once what the last query wrote in another
-        is cleared: only ``written`` ever holds anything but zeros."""
+        is cleared (``keep_records``: left for the caller to move, :func:`kernels.widen_state`, and the
+        records then describe ``name``): only ``written`` ever holds anything but zeros."""
         array = getattr(self, name)
         if array.size == 0:
             array = np.zeros(self.moves.size, dtype=array.dtype)
             setattr(self, name, array)
         if array is not self.written:
-            K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
+            if not keep_records:
+                K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
             self.written = array
         if name == "state_wide" and self.state.size:  # once wide, never narrow again: its bytes go
             self.state = np.zeros(0, dtype=self.state.dtype)

@@ -201,14 +201,14 @@ def note_unused_grid_settings(algorithm: str, given: Dict[str, Any], spelled) ->
     takes a weight (the result's params say what the search used). ``spelled(key, value)`` is how the
     user wrote it (``--heuristic manhattan``, ``--param heuristic=manhattan``). Rather than a run that
     silently searched without them (newcomer run, session 19)."""
-    from ..grid.planner import OWN_HEURISTIC
+    from ..grid.planner import as_searched
 
-    own = OWN_HEURISTIC.get(algorithm)
-    if "heuristic" in given and own is not None and given["heuristic"] != own:
-        uses = "no heuristic" if own == "none" else f"its own heuristic ({own})"
+    used = as_searched(algorithm, **given)  # the rule the search and its params follow
+    if "heuristic" in given and used["heuristic"] != given["heuristic"]:
+        uses = "no heuristic" if used["heuristic"] == "none" else f"its own heuristic ({used['heuristic']})"
         click.echo(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used",
                    err=True)
-    if "weight" in given and algorithm != "astar" and given["weight"] != 1:
+    if "weight" in given and used["weight"] != given["weight"]:
         click.echo(f"note: a weight applies to astar only: {algorithm} ran unweighted "
                    f"({spelled('weight', given['weight'])} is not used)", err=True)
 

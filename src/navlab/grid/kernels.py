@@ -164,6 +164,11 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 # whole grid.
 
 
+#: the packed state's (shift, a_mask, b_mask, closed) for each width (:func:`state_layout`)
+NARROW_LAYOUT = (np.uint32(16), np.uint32(0x7FFF), np.uint32(0xFFFF), np.uint32(1 << 31))
+WIDE_LAYOUT = (np.uint64(32), np.uint64(0x7FFFFFFF), np.uint64(0xFFFFFFFF), np.uint64(1 << 63))
+
+
 def state_layout(wide: bool):
     """How A*, Dijkstra and JPS pack a cell's state: ``(dtype, shift, a_mask, b_mask, closed)``, numpy
     scalars of the state's dtype. A reached cell holds ``(a << shift) | b`` with ``a`` the path's
@@ -176,9 +181,7 @@ def state_layout(wide: bool):
     0.93x repeated; in-process A/B). A path with more moves than that (a big maze's) stops the search
     (:data:`WIDEN`, :func:`would_carry`) and it runs again wide (uint64: a < 2³¹, b < 2³², more than
     the 10⁸ cells of the largest grid)."""
-    if wide:
-        return np.uint64, np.uint64(32), np.uint64(0x7FFFFFFF), np.uint64(0xFFFFFFFF), np.uint64(1 << 63)
-    return np.uint32, np.uint32(16), np.uint32(0x7FFF), np.uint32(0xFFFF), np.uint32(1 << 31)
+    return (np.uint64, *WIDE_LAYOUT) if wide else (np.uint32, *NARROW_LAYOUT)
 
 
 def state_steps(wide: bool) -> np.ndarray:
@@ -248,8 +251,8 @@ def widen_state(narrow, wide, S, lo, hi, extent):
     """Move what a query wrote in the narrow packed state into the wide one (:func:`state_layout`),
     zeroing the narrow cells: the region :func:`clear_touched` would clear. The records stay: they now
     describe ``wide``, in which the stopped search can go on (``make_astar``'s ``resume``)."""
-    shift32, shift64 = np.uint32(16), np.uint64(32)
-    a_mask, b_mask, closed32, closed64 = np.uint32(0x7FFF), np.uint32(0xFFFF), np.uint32(1 << 31), np.uint64(1 << 63)
+    shift32, a_mask, b_mask, closed32 = NARROW_LAYOUT
+    shift64, closed64 = WIDE_LAYOUT[0], WIDE_LAYOUT[3]
     for r in range(extent[0] - 1, extent[1] + 2):
         first, last = touched_span(r, lo, hi, extent, S)
         for v in range(first, last):
@@ -499,23 +502,20 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
         status = 0
         if not any_angle and resume:
             # Go on with a search the narrow state stopped (WIDEN), its state moved here (widen_state): every
-            # cell reached and not closed is open again, each expanding all its moves. Its keys must fit the
-            # window above the least (as a running search's do, with a consistent heuristic); else (WIDEN)
-            # the caller starts over.
+            # cell reached and not closed is open again, each expanding all its moves (the push below is
+            # the loop's, spelled out as the loop's is). Their keys must fit the window above the least (as a
+            # running search's do, with a consistent heuristic); else (WIDEN) the caller starts over.
             fcur = math.inf
             fmax = -math.inf
-            for v in range((extent[0] - 1) * S, (extent[1] + 2) * S):  # the rows the search wrote in
-                pv = gs[np.uint64(v)]
-                if pv != zero and pv < closed_bit:
+            for r in range(extent[0] - 1, extent[1] + 2):
+                first, last = touched_span(r, lo, hi, extent, S)
+                for v in range(first, last):
+                    pv = gs[np.uint64(v)]
+                    if pv == zero or pv >= closed_bit:
+                        continue
                     f = state_g(pv, shift, a_mask, b_mask) + weight * heuristic(hcode, v % S, v // S, gx, gy)
                     fcur = min(fcur, f)
                     fmax = max(fmax, f)
-            if fcur == math.inf or (fmax - fcur) * inv_width > N_BUCKETS - 3:
-                return WIDEN, 0
-            for v in range((extent[0] - 1) * S, (extent[1] + 2) * S):
-                pv = gs[np.uint64(v)]
-                if pv != zero and pv < closed_bit:
-                    f = state_g(pv, shift, a_mask, b_mask) + weight * heuristic(hcode, v % S, v // S, gx, gy)
                     if bump == cap_pool:
                         return OVERFLOW, 0
                     n = bump
@@ -530,6 +530,8 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                     head[np.uint64(b)] = n
                     occupied[np.uint64(b >> 6)] |= np.uint64(1) << np.uint64(b & 63)
                     size += 1
+            if fcur == math.inf or (fmax - fcur) * inv_width > N_BUCKETS - 3:
+                return WIDEN, 0
             cb = np.int64(fcur * inv_width) & mask
             fcur = -math.inf  # (the first pop takes the lowest bucket's least key)
             top = 0

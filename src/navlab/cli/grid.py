@@ -158,6 +158,8 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
 
 def scen_report(s) -> str:
     """The summary of ``navlab grid scen`` as text: counts, times, the worst five."""
+    from ..grid.scen import printed_decimals
+
     fmt = lambda v: "-" if v is None else f"{v:.8g}"  # noqa: E731
     # Dijkstra uses no heuristic, so none is named beside it
     searched = s["algorithm"] if s["heuristic"] == "none" else f"{s['algorithm']} ({s['heuristic']})"
@@ -173,10 +175,9 @@ def scen_report(s) -> str:
         lines.append(f"  worst {len(s['worst'])} (length - optimum):")
         for w in s["worst"]:
             # the length at the stored optimum's own printed digits, which it is compared at
-            text = w["optimal_text"]
-            decimals = len(text.split(".")[1]) if "." in text else 0
-            got = "-" if w["length"] is None else f"{w['length']:.{decimals}f}"
-            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {text}, "
+            digits = printed_decimals(w["optimal_text"])
+            got = "-" if w["length"] is None else f"{w['length']:.{digits}f}"
+            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {w['optimal_text']}, "
                          f"got {got} ({w['status']}, {'match' if w['match'] else 'MISMATCH'}, "
                          f"excess {fmt(w['excess'])})")
     return "\n".join(lines)

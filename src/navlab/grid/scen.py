@@ -26,9 +26,12 @@ class Scenario:
 
     def tolerance(self) -> float:
         """One unit in the last printed digit."""
-        text = self.optimal_text
-        decimals = len(text.split(".")[1]) if "." in text else 0
-        return 10.0 ** -decimals
+        return 10.0 ** -printed_decimals(self.optimal_text)
+
+
+def printed_decimals(text: str) -> int:
+    """How many digits a number printed as ``text`` has after its point."""
+    return len(text.split(".")[1]) if "." in text else 0
 
 
 def read_scen(path) -> List[Scenario]:

@@ -62,7 +62,8 @@ OWN_HEURISTIC = {"dijkstra": "none", "jps": "octile", "theta_star": "euclidean"}
 
 class PaddedGrid:
     """A grid's legal moves (``kernels.legal_moves``) and passable cells, each
-    with a blocked border one cell wide, flattened: read-only, shared by every query.
+    with a blocked border one cell wide, flattened: read-only, shared by every query
+    (but for ``needs_wide``, a hint on the state's width that changes no answer).
 
     ``moves`` is built at once, straight from ``blocked`` (and ``unknown``
     cells, also closed unless None), and is all A*, Dijkstra and JPS read;

@@ -73,6 +73,29 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
 
 
 @needs_data
+def test_a_weight_past_greedy_is_refused_and_a_refused_setting_gets_no_note():
+    """(final newcomer run, session 19: at weight 1e306 weight × heuristic overflowed to inf and A* returned
+    665.6 against the optimum's 392.8; jps given --weight -1 printed 'jps ran unweighted', then the error)"""
+    import navlab
+    from navlab.grid import load_map, plan
+
+    res = run("grid", "plan", DATA / "Berlin_1_256.map", "--start", 5, 5, "--goal", 250, 250, "--weight", 1e306)
+    assert res.exit_code == 2 and res.stderr.startswith("Error: weight must be at most 1e+06")
+    with pytest.raises(ValueError, match="weight must be at most 1e"):
+        plan(load_map(DATA / "Berlin_1_256.map"), (5, 5), (250, 250), weight=1e7)
+    with pytest.raises(ValueError, match="weight must be at most 1e"):
+        navlab.plan(DATA / "Berlin_1_256.map", planner="astar", start=(5.5, 5.5), goal=(250.5, 250.5), weight=1e7)
+    greedy = plan(load_map(DATA / "Berlin_1_256.map"), (5, 5), (250, 250), weight=1e6)
+    assert greedy.success and greedy.cost < 1e6  # the largest weight still searches
+    res = run("grid", "plan", DATA / "den312d.map", "--start", 10, 11, "--goal", 21, 70, "--algorithm", "jps",
+              "--weight", -1)
+    assert res.exit_code == 2 and "note:" not in res.stderr and "weight must be" in res.stderr
+    res = run("plan", DATA / "den312d.map", "--planner", "dijkstra", "--start", 10.5, 11.5, "--goal", 21.5, 70.5,
+              "--param", "weight=nan")
+    assert res.exit_code == 2 and "note:" not in res.stderr
+
+
+@needs_data
 def test_scen_prints_the_length_at_the_stored_optimums_digits():
     """(a row read 'stored 20.313709, got 20.313708 (EXACT, match, ...)': the file stores 20.31370850)"""
     res = run("grid", "scen", DATA / "random-32-32-10-random-1.scen", "--algorithm", "dijkstra")

@@ -67,7 +67,6 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         grid = grid.inflate(check_length("--robot-radius", inflate))
     kwargs = dict(algorithm=algorithm, heuristic=heuristic, connectivity=int(connectivity), smooth=smooth,
                   weight=weight, allow_unknown=allow_unknown)
-    note_unused_settings(algorithm, heuristic=heuristic, weight=weight)
     before_first_kernel()  # numba loads for the search below anyway
     if in_world:
         result = plan_world(grid, start, goal, **kwargs)
@@ -76,6 +75,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         cells = ((int(start[0]), int(start[1])), (int(goal[0]), int(goal[1])))
         result = plan(grid, *cells, **kwargs)
         ends = grid.cell_to_world(np.array(cells, dtype=float))
+    note_unused_settings(algorithm, heuristic=heuristic, weight=weight)  # (once they passed the planner's checks)
     if plot:
         from ..viz.grid_plot import plot_grid_plan
 
@@ -142,11 +142,11 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
             fail(f"{path}: no such file. Moving AI scenarios and maps come from movingai.com/benchmarks "
                  "(a .map and its .map.scen side by side; the README's examples use the five in "
                  "../shared/data/movingai beside a navlab checkout)")
-    note_unused_settings(algorithm, heuristic=heuristic)
     total = len(read_scen(scen_path)[::every][:limit])
     with progress_bar(total, "scenarios", quiet) as bar:
         out = run_scenarios(scen_path, map_path, algorithm, heuristic, limit, every,
                             progress=lambda done: bar.update(done - bar.n))
+    note_unused_settings(algorithm, heuristic=heuristic)
     s = out["summary"]
     if as_json:
         click.echo(json.dumps(out))

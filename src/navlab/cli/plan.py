@@ -92,12 +92,13 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
             # one line through the CLI's error handler (exit 2), naming the flag
             raise ParameterError(f"{_FLAGS[exc.field].split()[0]} is required: {source} is a map and has no "
                                  f"{exc.field} (give {_FLAGS[exc.field]} in metres)") from None
-        if is_pose_query(planner, settings):
+        pose_query = is_pose_query(planner, settings)
+        if pose_query:
             check_radius_not_dropped(world, robot_radius, settings, planner)
-        elif is_grid_planner(planner):
+        result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
+        if not pose_query and is_grid_planner(planner):  # (once they passed the planner's checks)
             note_unused_grid_settings(planner, {k: settings[k] for k in ("heuristic", "weight") if k in settings},
                                       lambda key, value: f"--param {key}={value}")
-        result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
     if plot:
         from ..viz import plot_plan
 

@@ -41,7 +41,6 @@ from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
 from .occupancy import OccupancyGrid, check_grid
-from .settings import MAX_WEIGHT, too_heavy
 
 HEURISTICS: Registry[int] = Registry("heuristic")
 for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),
@@ -312,6 +311,18 @@ def _cell(value, what: str) -> Tuple[int, int]:
 
 #: The stats every grid Result carries, whatever its status (inf where there is no path).
 STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells", "warmup_s")
+
+
+#: the largest A* weight: past it the search orders nodes by the heuristic alone already (greedy
+#: best-first), and at 1e306 weight × heuristic overflowed to inf, which ordered nothing (a Berlin
+#: query cost 665.6 against 394.5 at 1e305: final newcomer run, session 19)
+MAX_WEIGHT = 1e6
+
+
+def too_heavy(weight) -> str:
+    """The message for a weight past :data:`MAX_WEIGHT`."""
+    return (f"weight must be at most {MAX_WEIGHT:g} (beyond it A* is greedy best-first already), "
+            f"got {shown(weight)}")
 
 
 def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:

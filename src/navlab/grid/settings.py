@@ -15,17 +15,6 @@ from typing import Any, Dict
 from ..errors import ParameterError
 from ..limits import MAX_COORDINATE, MIN_LENGTH, is_finite_real, shown
 
-#: the largest A* weight: past it the search orders nodes by the heuristic alone already (greedy
-#: best-first), and at 1e306 weight × heuristic overflowed to inf, which ordered nothing (a Berlin
-#: query cost 665.6 against 394.5 at 1e305: final newcomer run, session 19)
-MAX_WEIGHT = 1e6
-
-
-def too_heavy(weight) -> str:
-    """The message for a weight past :data:`MAX_WEIGHT`."""
-    return (f"weight must be at most {MAX_WEIGHT:g} (beyond it A* is greedy best-first already), "
-            f"got {shown(weight)}")
-
 
 def _name(key: str, value: Any, valid) -> str:
     if not isinstance(value, str) or value not in valid:
@@ -49,7 +38,7 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     """``params`` with every grid setting it has checked (values unchanged
     but for integral floats of ``connectivity``); unknown keys pass through
     (the caller reports them). Raises ``ParameterError`` naming the setting."""
-    from .planner import GRID_ALGORITHMS, HEURISTICS
+    from .planner import GRID_ALGORITHMS, HEURISTICS, MAX_WEIGHT, too_heavy
 
     out = dict(params)
     if "heuristic" in out:

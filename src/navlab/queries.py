@@ -9,6 +9,7 @@ planner and its sampler by name.
 
 from __future__ import annotations
 
+import inspect
 import time
 from typing import Any, Dict
 
@@ -127,6 +128,17 @@ def tree_query(world, planner: str, sampler: str, seed: Any, params: dict) -> Re
     return result
 
 
+def _with_defaults(grid_plan, settings: dict) -> dict:
+    """``settings`` with the grid planner's defaults for those not given (heuristic, connectivity, smooth,
+    weight), so a result's params say every setting it ran with (they listed only the given ones); a
+    weight as a float (3 and 3.0 alike)."""
+    used = {name: p.default for name, p in inspect.signature(grid_plan).parameters.items()
+            if name in ("heuristic", "connectivity", "smooth", "weight")}
+    used.update(settings)
+    used["weight"] = float(used["weight"])
+    return used
+
+
 def grid_query(world, algorithm: str, params: dict) -> Result:
     """A grid algorithm on ``world``'s conservative raster (a map: its own
     cells), joined to the exact start and goal by checked straight legs."""
@@ -137,12 +149,13 @@ def grid_query(world, algorithm: str, params: dict) -> Result:
     t0 = time.perf_counter()
     settings = dict(params)
     resolution = settings.pop("resolution", None)
-    settings.pop("allow_unknown", None)  # already applied to the world
+    allow_unknown = settings.pop("allow_unknown", False)  # already applied to the world
     grid = rasterize(world, resolution)
     rasterize_s = time.perf_counter() - t0
     passable = ~grid.blocked
     checker = world.checker()
-    out_params = {"algorithm": algorithm, "resolution": grid.resolution, **as_searched(algorithm, **settings)}
+    out_params = {"algorithm": algorithm, "resolution": grid.resolution,
+                  **as_searched(algorithm, **_with_defaults(grid_plan, settings)), "allow_unknown": allow_unknown}
     stats: Dict[str, Any] = {"grid": f"{grid.width}x{grid.height}", "rasterize_s": rasterize_s}
     ends = np.array([world.start, world.goal], dtype=float)
     own = [tuple(int(v) for v in c) for c in grid.world_to_cell(ends)]

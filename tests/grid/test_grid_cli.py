@@ -73,6 +73,36 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
 
 
 @needs_data
+def test_heuristic_none_is_accepted_and_a_result_lists_every_setting_it_ran_with():
+    """(newcomer run, session 19: Dijkstra's params said heuristic 'none', but heuristic=none was refused;
+    navlab plan --json listed only the settings given, and a weight as 3 when given, 1.0 by default)"""
+    import navlab
+    from navlab.grid import load_map, plan
+
+    grid = load_map(DATA / "den312d.map")
+    none = plan(grid, (10, 11), (21, 70), heuristic="none")
+    dijkstra = plan(grid, (10, 11), (21, 70), algorithm="dijkstra")
+    octile = plan(grid, (10, 11), (21, 70))
+    assert none.cost == dijkstra.cost == octile.cost and none.params["heuristic"] == "none"
+    assert none.stats["expanded"] == dijkstra.stats["expanded"] > octile.stats["expanded"]  # no guidance
+    assert plan(grid, (10, 11), (21, 70), heuristic="none", weight=5).params["weight"] == 1.0
+    query = ("--start", 10.5, 11.5, "--goal", 21.5, 70.5)
+    res = run("plan", DATA / "den312d.map", "--planner", "astar", *query, "--param", "heuristic=none",
+              "--param", "weight=3", "--json")
+    assert res.exit_code == 0 and json.loads(res.stdout)["params"]["weight"] == 1.0
+    assert res.stderr == ("note: a weight scales the heuristic, and there is none: astar ran unweighted "
+                          "(--param weight=3 is not used)\n")
+    res = run("grid", "plan", DATA / "den312d.map", "--start", 10, 11, "--goal", 21, 70, "--algorithm", "dijkstra",
+              "--heuristic", "none")
+    assert res.exit_code == 0 and res.stderr == ""
+    defaults = navlab.plan(DATA / "den312d.map", planner="astar", start=(10.5, 11.5), goal=(21.5, 70.5)).params
+    assert {k: defaults[k] for k in ("heuristic", "connectivity", "smooth", "weight", "allow_unknown")} == {
+        "heuristic": "octile", "connectivity": 8, "smooth": False, "weight": 1.0, "allow_unknown": False}
+    given = navlab.plan(DATA / "den312d.map", planner="astar", start=(10.5, 11.5), goal=(21.5, 70.5), weight=3).params
+    assert type(given["weight"]) is float and given["weight"] == 3.0
+
+
+@needs_data
 def test_a_weight_past_greedy_is_refused_and_a_refused_setting_gets_no_note():
     """(final newcomer run, session 19: at weight 1e306 weight × heuristic overflowed to inf and A* returned
     665.6 against the optimum's 392.8; jps given --weight -1 printed 'jps ran unweighted', then the error)"""

@@ -209,8 +209,10 @@ def note_unused_grid_settings(algorithm: str, given: Dict[str, Any], spelled) ->
         click.echo(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used",
                    err=True)
     if "weight" in given and used["weight"] != given["weight"]:
-        click.echo(f"note: a weight applies to astar only: {algorithm} ran unweighted "
-                   f"({spelled('weight', given['weight'])} is not used)", err=True)
+        why = "a weight scales the heuristic, and there is none" if algorithm == "astar" else \
+            "a weight applies to astar only"
+        click.echo(f"note: {why}: {algorithm} ran unweighted ({spelled('weight', given['weight'])} is not used)",
+                   err=True)
 
 
 def check_output_file(path: str, flag: str) -> None:

@@ -20,7 +20,9 @@ def grid_group() -> None:
 
 
 ALGORITHMS = ["astar", "dijkstra", "jps", "theta_star"]
-HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
+HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan", "none"]
+HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manhattan is not admissible with "
+                  "8-connectivity: its paths can be longer than the optimum).")
 
 
 @grid_group.command("plan")
@@ -31,7 +33,7 @@ HEURISTICS = ["octile", "euclidean", "chebyshev", "manhattan"]
 @click.option("--world", "in_world", is_flag=True, help="Start and goal are world coordinates in metres.")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
 @click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
-              help="A* heuristic (manhattan is not admissible with 8-connectivity).")
+              help=HEURISTIC_HELP)
 @click.option("--connectivity", type=click.Choice(["4", "8"]), default="8", show_default=True)
 @click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A* (>= 1).")
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
@@ -119,7 +121,8 @@ def fail(message: str) -> None:
 @click.option("--map", "map_path", type=click.Path(dir_okay=False), default=None,
               help="The .map file (default: the scenario's map name next to FILE.scen).")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
-@click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True)
+@click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
+              help=HEURISTIC_HELP)
 @click.option("--limit", type=Count(), default=None, help="Only the first N scenarios.")
 @click.option("--every", type=Count(), default=1, show_default=True, help="Only every k-th scenario.")
 @click.option("--json", "as_json", is_flag=True, help="Print the summary and every scenario as JSON.")

@@ -43,8 +43,9 @@ from . import kernels as K
 from .occupancy import OccupancyGrid, check_grid
 
 HEURISTICS: Registry[int] = Registry("heuristic")
+# "none" is A* without a heuristic (uniform-cost search, Dijkstra's order): the name Dijkstra's results report
 for _name, _code in (("manhattan", K.H_MANHATTAN), ("euclidean", K.H_EUCLIDEAN),
-                     ("chebyshev", K.H_CHEBYSHEV), ("octile", K.H_OCTILE)):
+                     ("chebyshev", K.H_CHEBYSHEV), ("octile", K.H_OCTILE), ("none", K.H_ZERO)):
     HEURISTICS.register(_name)(_code)
 
 GRID_ALGORITHMS: Registry[str] = Registry("grid algorithm")
@@ -329,12 +330,12 @@ def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:
     """``settings`` with the ``heuristic`` and ``weight`` among them as ``algorithm`` searches with them:
     Dijkstra, JPS and Theta* have their own heuristic (:data:`OWN_HEURISTIC`) and only A* a weight. What a
     result's params report (they said 'manhattan' and 3.0 for a Dijkstra search given them, which used
-    neither)."""
+    neither), and A* with heuristic ``none`` no weight."""
     out = dict(settings)
     if "heuristic" in out:
         out["heuristic"] = OWN_HEURISTIC.get(algorithm, out["heuristic"])
-    if "weight" in out and algorithm != "astar":
-        out["weight"] = 1.0
+    if "weight" in out and (algorithm != "astar" or out.get("heuristic") == "none"):
+        out["weight"] = 1.0  # (a weight times no heuristic is none either)
     return out
 
 
@@ -418,8 +419,8 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     start, goal : (int, int)
         Cells as (x, y) = (column, row).
     algorithm : {"astar", "dijkstra", "jps", "theta_star"}
-    heuristic : {"octile", "euclidean", "chebyshev", "manhattan"}
-        For ``astar`` (JPS uses octile, Theta* Euclidean, Dijkstra none, whatever this says; the
+    heuristic : {"octile", "euclidean", "chebyshev", "manhattan", "none"}
+        For ``astar`` (``none``: no heuristic, uniform-cost search) (JPS uses octile, Theta* Euclidean, Dijkstra none, whatever this says; the
         result's ``params`` name the one used, :data:`OWN_HEURISTIC`).
     connectivity : {4, 8}
         8 allows diagonal moves only when both orthogonal neighbours are free.

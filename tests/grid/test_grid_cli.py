@@ -220,3 +220,17 @@ def test_a_bad_robot_radius_is_named_by_its_flag(tmp_path, radius, words):
     res = run("grid", "plan", str(tmp_path / "open.yaml"), "--start", "0", "0", "--goal", "7", "4",
               "--robot-radius", radius)
     assert res.exit_code == 2 and f"Error: {words}" in res.output
+
+
+def test_a_cell_is_echoed_as_written(tmp_path):
+    """(newcomer run, session 19: --start was parsed as a float, so cell 2**63 - 1 came back as 2**63)"""
+    out = tmp_path / "maze.yaml"
+    assert run("grid", "maze", "--cells", 4, 4, "--out", out).exit_code == 0
+    res = run("grid", "plan", out, "--start", 2**63 - 1, 0, "--goal", 1, 1)
+    assert res.exit_code == 1 and f"start cell ({2**63 - 1}, 0) is outside" in res.stdout
+    res = run("grid", "plan", out, "--start", 10**30, 0, "--goal", 1, 1)
+    assert res.exit_code == 1 and f"start cell ({10**30}, 0) is outside" in res.stdout
+    for start, message in (("1.5", "cells are integers; use --world for metres, got 1.5 2"),
+                           ("nan", "must be finite numbers, got nan 2"), ("x", "'x' is not a number")):
+        res = run("grid", "plan", out, "--start", start, 2, "--goal", 1, 1)
+        assert res.exit_code == 2 and message in res.stderr

@@ -55,6 +55,23 @@ class SuggestingChoice(click.Choice):
             self.fail(f"{exc.message} Did you mean {close[0]!r}?", param, ctx)
 
 
+class ExactNumber(click.ParamType):
+    """A number as written: a whole number stays an exact int, anything else a float (as float,
+    cell 2**63 - 1 came back in messages as 2**63)."""
+
+    name = "number"
+
+    def convert(self, value, param, ctx):
+        if isinstance(value, (int, float)) and not isinstance(value, bool):
+            return value
+        for kind in (int, float):
+            try:
+                return kind(value)
+            except (TypeError, ValueError):
+                pass
+        self.fail(f"{value!r} is not a number", param, ctx)
+
+
 class Count(click.ParamType):
     """A whole number from ``low`` up, also written as a float (``1e5``, ``2000.0``), as
     ``--param max_iter=1e5`` and experiment files take it (:func:`navlab.limits.check_count`)."""

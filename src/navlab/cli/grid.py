@@ -11,7 +11,8 @@ import click
 import numpy as np
 
 from ..errors import ParameterError
-from .common import Count, SuggestingGroup, before_first_kernel, before_numba_import, note_unused_grid_settings
+from .common import (Count, ExactNumber, SuggestingGroup, before_first_kernel, before_numba_import,
+                     note_unused_grid_settings)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -27,9 +28,10 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
 
 @grid_group.command("plan")
 @click.argument("map_path", metavar="MAP", type=click.Path(dir_okay=False))
-@click.option("--start", nargs=2, type=float, required=True, metavar="X Y",
+@click.option("--start", nargs=2, type=ExactNumber(), required=True, metavar="X Y",
               help="Start cell (or metres with --world).")
-@click.option("--goal", nargs=2, type=float, required=True, metavar="X Y", help="Goal cell (or metres with --world).")
+@click.option("--goal", nargs=2, type=ExactNumber(), required=True, metavar="X Y",
+              help="Goal cell (or metres with --world).")
 @click.option("--world", "in_world", is_flag=True, help="Start and goal are world coordinates in metres.")
 @click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
 @click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
@@ -52,13 +54,14 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     """Plan a path on MAP between two cells (x = column, y = row)."""
     before_numba_import()
     from ..grid import load_map, plan, plan_world
-    from ..limits import check_length
+    from ..limits import check_length, shown
 
     for label, v in (("--start", start), ("--goal", goal)):
-        if not all(math.isfinite(c) for c in v):
-            raise ParameterError(f"{label} must be finite numbers, got {v[0]:g} {v[1]:g}")
-        if not in_world and any(c != int(c) for c in v):
-            raise ParameterError(f"{label}: cells are integers; use --world for metres, got {v[0]:g} {v[1]:g}")
+        got = " ".join(shown(c) if isinstance(c, int) else f"{c:g}" for c in v)
+        if not all(isinstance(c, int) or math.isfinite(c) for c in v):
+            raise ParameterError(f"{label} must be finite numbers, got {got}")
+        if not in_world and any(isinstance(c, float) and c != int(c) for c in v):
+            raise ParameterError(f"{label}: cells are integers; use --world for metres, got {got}")
     from ..world.sources import source_kind
 
     if source_kind(map_path) == "world_file":

@@ -59,7 +59,7 @@ def test_grid_settings_from_the_command_line(param):
     ("claims: [{text: x, lower: [1], higher: astar}]", "claim lower must be a group name or a list of them"),
     ("grid: {1: [2]}", "grid: keys must be names, got 1"),
     ("params: {weight: !!binary aGVsbG8=}", "params.weight: binary data is not an experiment value"),
-    ("grid: {weight: [2001-01-01]}", "grid.weight\\[0\\]: a date is not an experiment value"),
+    ("grid: {weight: [!!timestamp 2001-01-01]}", "grid.weight\\[0\\]: a date is not an experiment value"),
     ("params: {weight: !!set {a}}", "params.weight: a set is not an experiment value"),
     ("study: {title: [1]}", "study.title must be text"),
 ])
@@ -367,7 +367,7 @@ def test_a_goal_bias_base_that_is_no_sampler_names_the_field():
     (["sim", "one_obstacle", "--max-time", "1", "--robot", "diff", "--controller", "dwa", "--controller-param",
       "sim_granularity=1e-9"], "give rollouts of up to 2.2e+08 steps, more than 10000"),
     (["grid", "maze", "--cells", "3", "3", "--out", ""], "'': not a file name for the map's YAML"),
-    (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=[2001-01-01]", "--trials", "1"],
+    (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=[!!timestamp 2001-01-01]", "--trials", "1"],
      "the command line: grid.expand_dis[0]: a date is not an experiment value"),
     (["bench", "--suite", "smoke", "--out", ""], "--out must name a folder, got ''"),  # it wrote into '.'
 ])

@@ -117,14 +117,14 @@ def test_bad_world_files_from_the_command_line(tmp_path):
 
 
 @pytest.mark.parametrize("value", ["9" * 400, ".inf", ".nan", "-.inf", "[1, [2, [3]]]", "{a: {b: 1}}", "2020-01-01",
-                                   "!!binary aGVsbG8=", "", "'text'"])
+                                   "!!timestamp 2020-01-01", "!!binary aGVsbG8=", "null", "'text'"])
 def test_parse_params_passes_any_yaml_value_on(value):
     # the validators of the planner or sampler reject what is out of range, naming the parameter
     assert list(parse_params((f" k ={value}",))) == ["k"]
     assert parse_params(("k=" + "9" * 400,)) == {"k": int("9" * 400)}
 
 
-@pytest.mark.parametrize("item", ["novalue", "=1", " =1", "k=[1, 2", "k=!!python/object:os.system x", "k=" + "[" * 3000])
+@pytest.mark.parametrize("item", ["novalue", "=1", " =1", "k=", "k= ", "k=[1, 2", "k=!!python/object:os.system x", "k=" + "[" * 3000])
 def test_parse_params_bad_items_are_usage_errors(item):
     with pytest.raises(click.BadParameter):
         parse_params((item,))

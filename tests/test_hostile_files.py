@@ -144,3 +144,36 @@ def test_merge_keys_may_still_override():
     doc = parse_yaml(b"base: &b {x: 1, y: 2}\nother:\n  <<: *b\n  x: 3\n", "f", ValueError)
     assert doc["other"] == {"x": 3, "y": 2}
     assert np.isclose(doc["base"]["x"], 1)
+
+
+@pytest.mark.parametrize("text, value", [
+    ("010", 10), ("0x1F", 31), ("0o17", 15), ("-0", 0), ("+12", 12), ("1e-3", 0.001), ("-1E+2", -100.0),
+    (".5", 0.5), ("1.", 1.0), (".inf", np.inf), ("-.Inf", -np.inf), ("true", True), ("FALSE", False),
+    ("~", None), ("null", None),
+    # YAML 1.1 (PyYAML) read these as 60, 3, 1000, True, False, 8 and a date; YAML 1.2 and Nav2's yaml-cpp as text
+    ("1:00", "1:00"), ("0b11", "0b11"), ("1_000", "1_000"), ("yes", "yes"), ("off", "off"),
+    ("0o8", "0o8"), ("2024-01-01", "2024-01-01"),
+])
+def test_plain_scalars_are_typed_as_yaml_1_2_reads_them(text, value):
+    """(a session 17 left-alone: --param max_iter=010 ran 8 iterations, and 1:00 was 60)"""
+    from navlab.yamlio import load_value, parse_yaml
+
+    for read in (load_value(text), parse_yaml(f"v: {text}\n".encode(), "f", ValueError)["v"],
+                 parse_yaml(f"v: [{text}]\n".encode(), "f", ValueError)["v"][0]):
+        assert type(read) is type(value) and (read == value or (read is None and value is None))
+
+
+def test_files_and_params_read_numbers_alike(files):
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    path = files / "m.yaml"
+    path.write_text(MAP_YAML.replace("resolution: 0.1", "resolution: 1e-1").replace("negate: 0", "negate: 00"))
+    assert load_map(path).resolution == 0.1
+    res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=010", "--json"])
+    assert res.exit_code in (0, 1) and '"max_iter": 10' in res.stdout
+    res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=1:00"])
+    assert res.exit_code == 2 and "max_iter" in res.stderr and "'1:00'" in res.stderr
+    res = CliRunner().invoke(main, ["plan", "trap", "--planner", "astar", "--param", "heuristic="])
+    assert res.exit_code == 2 and "'heuristic' has no value (write heuristic=null for none)" in res.stderr

@@ -11,14 +11,22 @@ World files, map_server YAML and experiment files are read by one function,
   of aliased polygons expanded to 10.8 GB);
 - a key given twice in one mapping is an error naming it and its line
   (``trials: 2`` then ``trials: 1000000`` silently kept the second);
-- nesting too deep for the parser is an error, not a ``RecursionError``.
+- nesting too deep for the parser is an error, not a ``RecursionError``;
+- plain scalars are typed by YAML 1.2's core schema, as Nav2's yaml-cpp and
+  ROS 2 read them, not by PyYAML's YAML 1.1 rules: ``1e-3`` is a number,
+  ``010`` is ten (not eight), and ``1:00``, ``0b11``, ``1_000``, ``yes``,
+  ``off`` and ``2024-01-01`` are text (1.1 read them as 60, 3, 1000, true,
+  false and a date).
 
-It imports nothing from navlab: callers pass the error type to raise.
+:func:`load_value` reads one value (a ``--param`` value, a ROS parameter's
+text) by the same rules. It imports nothing from navlab: callers pass the
+error type to raise.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import stat
 from pathlib import Path
 from typing import Any, Dict, Optional, Type, Union
@@ -56,9 +64,41 @@ def _unique_mapping(loader, node) -> Dict[Any, Any]:
     return {loader.construct_object(k, deep=True): loader.construct_object(v, deep=True) for k, v in node.value}
 
 
+#: YAML 1.2 core schema's plain scalars (https://yaml.org/spec/1.2.2/#1032-tag-resolution)
+_CORE = (("bool", r"true|True|TRUE|false|False|FALSE", "tTfF"),
+         ("int", r"[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+", "-+0123456789"),
+         ("float", r"[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN)",
+          "-+0123456789."),
+         ("null", r"~|null|Null|NULL|", ["~", "n", "N", ""]))
+_RETYPED = {f"tag:yaml.org,2002:{name}" for name in ("bool", "int", "float", "null", "timestamp")}
+
+
+def _core_int(loader, node) -> int:
+    text = loader.construct_scalar(node)
+    if text[:2] in ("0o", "0x"):
+        return int(text[2:], 8 if text[1] == "o" else 16)
+    return int(text)  # (decimal even with leading zeros: 010 is ten)
+
+
+def _core_float(loader, node) -> float:
+    text = loader.construct_scalar(node)
+    return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))
+
+
+def _core_bool(loader, node) -> bool:
+    return loader.construct_scalar(node).lower() == "true"
+
+
 def _loader_class(base: type) -> type:
     cls = type(f"Strict{base.__name__}", (base,), {})
     cls.add_constructor("tag:yaml.org,2002:map", _unique_mapping)
+    # YAML 1.2's core schema in place of PyYAML's 1.1 resolvers for these tags (the others stay)
+    cls.yaml_implicit_resolvers = {first: [(tag, rx) for tag, rx in rules if tag not in _RETYPED]
+                                   for first, rules in base.yaml_implicit_resolvers.items()}
+    for name, pattern, first in _CORE:
+        cls.add_implicit_resolver(f"tag:yaml.org,2002:{name}", re.compile(f"^(?:{pattern})$"), list(first))
+    for name, construct in (("int", _core_int), ("float", _core_float), ("bool", _core_bool)):
+        cls.add_constructor(f"tag:yaml.org,2002:{name}", construct)
     return cls
 
 
@@ -131,6 +171,24 @@ def parse_yaml(raw: bytes, where: str, error: Type[Exception], what: str = "file
         loader.dispose()
 
 
+def load_value(text: str, max_nodes: int = MAX_NODES) -> Any:
+    """One YAML value from ``text``, read as :func:`parse_yaml` reads a file (YAML 1.2 core schema, each key
+    once, aliases bounded); raises ``yaml.YAMLError`` (or ``ValueError`` for an integer too long for
+    ``int()``, ``RecursionError`` for nesting too deep)."""
+    loader = _LOADERS[yaml.SafeLoader](text)
+    try:
+        node = loader.get_single_node()
+        if node is None:
+            return None
+        size = expanded_size(node)
+        if size > max_nodes:
+            raise yaml.YAMLError(f"expands to {size:,} YAML nodes (aliases counted at each use), more than "
+                                 f"{max_nodes:,}")
+        return loader.construct_document(node)
+    finally:
+        loader.dispose()
+
+
 def regular_file(path: Union[str, os.PathLike], where: str, error: Type[Exception], what: str = "file") -> int:
     """The size of ``path`` if it is a regular file; ``error(message)`` for a
     missing path, a folder, or a FIFO, device or socket (which would block or never end)."""
@@ -185,4 +243,4 @@ def _one_line(exc: Exception) -> str:
     return " ".join(str(exc).split())[:300]
 
 
-__all__ = ["MAX_NODES", "expanded_size", "parse_yaml", "read_bounded", "read_yaml", "regular_file"]
+__all__ = ["MAX_NODES", "expanded_size", "load_value", "parse_yaml", "read_bounded", "read_yaml", "regular_file"]

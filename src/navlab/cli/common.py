@@ -166,30 +166,20 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
                            "(run with NAVLAB_DEBUG=1 for the traceback)")
 
 
-#: a number in exponent notation without a dot (1e-3), which YAML 1.1 (PyYAML) reads as a string
-_EXPONENT_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)[eE][+-]?\d+")
-
-
-def _exponent_numbers(value: Any) -> Any:
-    """``value`` with strings like ``1e-3`` (alone or in a list) read as the
-    numbers every user means by them (YAML 1.2 and Nav2's yaml-cpp agree)."""
-    if isinstance(value, str) and _EXPONENT_NUMBER.fullmatch(value.strip()):
-        return float(value)
-    if isinstance(value, list):
-        return [_exponent_numbers(v) for v in value]
-    return value
-
-
 def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any]:
-    """``key=value`` pairs; values are read as YAML (numbers, lists, mappings).
+    """``key=value`` pairs; values are read as YAML (numbers, lists, mappings), by the rules of every
+    YAML file navlab reads (:func:`navlab.yamlio.load_value`: YAML 1.2's core schema, so ``1e-3`` is a
+    number and ``010`` ten, as Nav2's yaml-cpp reads them).
 
     Values are passed on as read (a huge integer, ``.inf``, a list): the
     planner's or sampler's own checks reject what is out of range, with a
-    message naming the parameter.
+    message naming the parameter. An empty value is refused here (it read as None).
     """
     if not items:
         return {}
     import yaml  # only when a --param is given: PyYAML's import is ~25 ms of a planning command's start
+
+    from ..yamlio import load_value
 
     out: Dict[str, Any] = {}
     for item in items:
@@ -199,8 +189,10 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
             raise click.BadParameter(f"'{key}' is given twice", param_hint=flag)
         if not sep or not key:
             raise click.BadParameter(f"expected key=value, got {item!r}", param_hint=flag)
+        if not value.strip():
+            raise click.BadParameter(f"'{key}' has no value (write {key}=null for none)", param_hint=flag)
         try:
-            out[key] = _exponent_numbers(yaml.safe_load(value))
+            out[key] = load_value(value)
         except yaml.YAMLError as exc:
             raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
                                      param_hint=flag) from None

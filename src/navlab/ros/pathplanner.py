@@ -71,9 +71,11 @@ class PathPlanner(NavlabNode):
         ``-p 'weights:="{goal: 0.1, uniform: 0.9}"'``."""
         import yaml
 
+        from ..yamlio import load_value
+
         try:
-            value = yaml.safe_load(text)
-        except yaml.YAMLError as exc:
+            value = load_value(text)
+        except (yaml.YAMLError, ValueError, RecursionError) as exc:
             raise ParameterError(f"parameter {name}: cannot read {text!r} as a YAML mapping ({exc})") from None
         if not isinstance(value, dict):
             raise ParameterError(f"parameter {name}: {text!r} is not a YAML mapping")

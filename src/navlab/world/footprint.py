@@ -170,12 +170,14 @@ class Footprint:
 
 
 def _parse_text(text: str) -> Any:
-    """``"[[x, y], ...]"`` (ROS parameter style) or a number, as YAML reads it."""
+    """``"[[x, y], ...]"`` (ROS parameter style) or a number, as YAML reads it (:func:`navlab.yamlio.load_value`)."""
     import yaml
 
+    from ..yamlio import load_value
+
     try:
-        return yaml.safe_load(text)
-    except yaml.YAMLError:
+        return load_value(text)
+    except (yaml.YAMLError, ValueError, RecursionError):
         raise FootprintError(f"footprint: cannot read {text[:60]!r}: expected [[x, y], ...] or a radius") from None
 
 

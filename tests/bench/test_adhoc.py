@@ -87,3 +87,21 @@ def test_counted_says_one_in_the_singular():
     from navlab.wording import counted
 
     assert [counted(n, "run") for n in (0, 1, 2)] == ["0 runs", "1 run", "2 runs"]
+
+
+def test_grid_settings_a_planner_does_not_use_are_noted_once(tmp_path):
+    """(newcomer run, session 19: navlab bench ran jps cells labelled heuristic=manhattan without a word;
+    navlab plan and grid plan already noted it)"""
+    args = ["bench", "--world", "trap", "--planner", "astar", "--planner", "jps", "--planner", "dijkstra",
+            "--grid", "heuristic=[octile,manhattan]", "--param", "weight=2", "--trials", "1", "-q", "--no-plots",
+            "--executor", "serial", "--out", str(tmp_path / "out")]
+    res = CliRunner().invoke(main, args)
+    assert res.exit_code == 0, res.output
+    assert [line for line in res.stderr.splitlines() if line.startswith("note:")] == [
+        "note: a weight applies to astar only: jps ran unweighted (weight=2 is not used)",
+        "note: jps searches with its own heuristic (octile): heuristic=manhattan is not used",
+        "note: dijkstra searches with no heuristic: heuristic=octile is not used",
+        "note: a weight applies to astar only: dijkstra ran unweighted (weight=2 is not used)",
+        "note: dijkstra searches with no heuristic: heuristic=manhattan is not used"]
+    args = args[:5] + args[9:]  # astar alone: it uses both
+    assert "note:" not in CliRunner().invoke(main, args[:-1] + [str(tmp_path / "out2")]).stderr

@@ -13,7 +13,7 @@ import yaml
 
 from ..bench.suites import suite_help
 from ..wording import counted
-from .common import Count, parse_params
+from .common import Count, note_unused_grid_settings, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
 EXIT_INTERRUPTED = 130
@@ -195,6 +195,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if show:
         click.echo(yaml.safe_dump(data, sort_keys=False))
         return
+    note_unused_settings(exp)
     folder = out or f"bench-results/{exp.name}"
     if not (experiment or suite) and not out and not resume:
         click.echo(f"results go to {folder} (--out DIR to choose; the same flags again with --resume continue it)",
@@ -304,6 +305,25 @@ def _as_world(world: str, start, goal):
         raise click.UsageError(f"--start and --goal are for maps (map_server YAML, Moving AI .map); {world!r} "
                                "has its own start and goal")
     return {"map": world, "queries": [[*start, *goal]]}
+
+
+def note_unused_settings(exp) -> None:
+    """A note on stderr for each grid planner given a ``heuristic`` or ``weight`` it does not use
+    (:func:`~navlab.cli.common.note_unused_grid_settings`), once per planner and value: its trials
+    labelled with the value given run the search without it (the rows' ``params_used`` say what ran)."""
+    from ..bench.experiment import routed_params
+    from ..grid.planner import GRID_ALGORITHMS
+
+    seen = set()
+    for cell in exp.cells():
+        if cell.planner.name not in GRID_ALGORITHMS:  # (tree, OMPL and pose planners)
+            continue
+        own = routed_params(cell.planner.name, cell.params, cell.planner.params)
+        for key in ("heuristic", "weight"):
+            once = (cell.planner.name, key, repr(own.get(key)))
+            if key in own and once not in seen:
+                seen.add(once)
+                note_unused_grid_settings(cell.planner.name, {key: own[key]}, lambda k, value: f"{k}={value}")
 
 
 def _adhoc_name(data) -> str:

@@ -108,6 +108,10 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "x:=2"], "set the start's x and y together"),
     (["ros", "sim", "-p", "world:=trap"],  # rclpy ignored -p without --ros-args, and said "sim needs a world"
      "ROS parameters follow --ros-args: navlab ros sim --ros-args -p NAME:=VALUE ... (see '"),
+    # a name the node has no parameter for: rclpy dropped it unread (the planner nodes already refused it)
+    (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "real_time_factr:=10"],
+     "unknown parameter 'real_time_factr' for the sim node; its parameters: world, robot,"),
+    (["ros", "goto_waypoint", "--ros-args", "-p", "reach_radios:=0.5"], "Did you mean 'reach_radius'?"),
     (["ros", "potential_field_navigator", "--ros-args", "-p", "scan_timeout:=-1.0"],
      "parameter scan_timeout must be at least 0"),
     (["ros", "map_server", "--ros-args", "-p", "yaml_filename:=MAP", "-p", "topic_name:=bad topic!"],

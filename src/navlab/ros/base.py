@@ -83,6 +83,10 @@ class NavlabNode(Node):
 
     def __init__(self, name: str, **kwargs: Any) -> None:
         super().__init__(name, **kwargs)
+        if not kwargs.get("automatically_declare_parameters_from_overrides"):
+            # (a node that declares every override hands the others on to its planner or controller, which
+            # checks them: passed_settings)
+            self._refuse_unknown_parameters()
         self.params: Dict[str, Any] = {}
         for p in self.PARAMETERS:
             # dynamic typing, then our own check: `-p x:=1` for a float must work
@@ -90,6 +94,18 @@ class NavlabNode(Node):
                 self.declare_parameter(p.name, p.default, ParameterDescriptor(description=p.description,
                                                                              dynamic_typing=True))
             self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
+
+    def _refuse_unknown_parameters(self) -> None:
+        """Refuse a ``-p NAME:=VALUE`` (or a params file's entry for this node) that names none of its
+        parameters: rclpy drops such a value unread, so a typo (``-p real_time_factr:=10``) ran on the
+        default without a word, where the path planner nodes already refused it."""
+        overrides = getattr(self, "_parameter_overrides", None) or {}  # rclpy's -p values (no public getter)
+        own = [p.name for p in self.PARAMETERS]
+        for name in overrides:
+            if name in own or name in ROS_OWN or name.startswith("qos_overrides."):
+                continue
+            raise ParameterError(f"unknown parameter '{name}' for the {self.get_name()} node; its parameters: "
+                                 f"{', '.join(own) or 'none'}." + suggest(name, own))
 
     def passed_settings(self, convert: Optional[Callable[[str, Any], Any]] = None) -> Dict[str, Any]:
         """The ``-p NAME:=VALUE`` parameters that are neither the node's own nor ROS's

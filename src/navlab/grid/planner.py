@@ -420,8 +420,8 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         Cells as (x, y) = (column, row).
     algorithm : {"astar", "dijkstra", "jps", "theta_star"}
     heuristic : {"octile", "euclidean", "chebyshev", "manhattan", "none"}
-        For ``astar`` (``none``: no heuristic, uniform-cost search) (JPS uses octile, Theta* Euclidean, Dijkstra none, whatever this says; the
-        result's ``params`` name the one used, :data:`OWN_HEURISTIC`).
+        For ``astar``; ``none`` is no heuristic (uniform-cost search). JPS uses octile, Theta* Euclidean and
+        Dijkstra none, whatever this says; the result's ``params`` name the one used (:data:`OWN_HEURISTIC`).
     connectivity : {4, 8}
         8 allows diagonal moves only when both orthogonal neighbours are free.
     smooth : bool

@@ -274,8 +274,8 @@ class SearcherPool:
 
 
 #: what opens unknown cells to a search, as a reason names it
-OPENS_UNKNOWN = ("allow_unknown=true opens unknown cells: --param allow_unknown=true to navlab plan, --allow-unknown "
-                 "to navlab grid plan")
+OPENS_UNKNOWN = ("allow_unknown=true opens unknown cells (navlab plan --param allow_unknown=true; navlab grid plan "
+                 "--allow-unknown)")
 
 
 def unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
@@ -283,7 +283,7 @@ def unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
     if allow_unknown or not grid.unknown.any():
         return ""
     return (f"; the map's {int(np.count_nonzero(grid.unknown & ~grid.blocked))} unknown cells were closed to the "
-            f"search ({OPENS_UNKNOWN})")
+            f"search: {OPENS_UNKNOWN}")
 
 
 def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
@@ -497,7 +497,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
         if not pool.grid.is_free(*cell):
-            kind = f"unknown ({OPENS_UNKNOWN})" \
+            kind = f"unknown: {OPENS_UNKNOWN}" \
                 if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")

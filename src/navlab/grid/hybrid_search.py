@@ -30,10 +30,17 @@ Two choices make it fast without changing which nodes it expands:
   A Dubins solve costs little more than putting it off, so Dubins keys are
   computed when the child is queued;
 - **dense state index**: a state's node is found through a per-cell block of
-  ``bins`` slots, allocated the first time the cell is reached (no hash map).
+  slots, allocated the first time the cell is reached (no hash map): a slot
+  for each heading bin the search can reach (an arc turns k bins, so a
+  quarter of them at 72 bins and k = 4), a quarter of the memory to miss.
 
-And one choice keeps numba from slowing it down: the loop (:func:`_expand`)
-never replaces an array. Numba reference-counts an array variable that a loop
+And a few choices keep numba from slowing it down: the loop (:func:`_expand`)
+indexes its arrays through ``np.uint64`` where the index cannot be negative
+(numba wraps a signed index around the array's length first: a few
+instructions an access, and registers for the lengths); :func:`_open`, called
+for each child, is inlined by numba (called, it counted the references of the
+heap's three arrays, with locked atomic adds, every time); and the loop never
+replaces an array. Numba reference-counts an array variable that a loop
 may reassign on every pass, with locked atomic adds (12 % of the
 PythonRobotics demo query when the arrays grew inside the loop), so the loop
 returns when one needs room and :func:`search` grows it between two calls.
@@ -129,12 +136,25 @@ def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, 
 # ---------------------------------------------------------------------------
 # the priority queue: a binary heap of (key, node, entry) ordered by (key, node)
 # ---------------------------------------------------------------------------
+_ONE = np.uint64(1)
+
+
+@njit(cache=True, inline="always")
+def _U(i):
+    """``i`` (>= 0) as an index numba does not wrap around the array's length (it does a signed one:
+    a few instructions an access, and registers for the lengths)."""
+    return np.uint64(i)
+
+
 @njit(cache=True)
 def _push(hkey, hnode, hentry, size, key, node, entry) -> None:
-    """Add (key, node, entry) to the heap of ``size`` entries held in the three arrays."""
-    i = size
-    while i > 0:
-        up = (i - 1) >> 1
+    """Add (key, node, entry) to the heap of ``size`` entries held in the three arrays.
+
+    Indexed through ``np.uint64`` (as the grid kernels): numba wraps a signed index around the array's
+    length first, which costs each access a few instructions and the loop registers for the lengths."""
+    i = np.uint64(size)
+    while i != 0:
+        up = (i - _ONE) >> _ONE
         if hkey[up] < key or (hkey[up] == key and hnode[up] <= node):
             break
         hkey[i], hnode[i], hentry[i] = hkey[up], hnode[up], hentry[up]
@@ -145,27 +165,37 @@ def _push(hkey, hnode, hentry, size, key, node, entry) -> None:
 @njit(cache=True)
 def _pop(hkey, hnode, hentry, size):
     """Remove the first (smallest key, then smallest node) of ``size`` (> 0) entries: (key, node, entry),
-    the order of heapq's (key, node) tuples."""
+    the order of heapq's (key, node) tuples.
+
+    Bottom-up, as heapq's ``_siftup``: the hole at the root goes down to a leaf along the lesser children,
+    one comparison a level, and the last entry goes in it and up past the entries no less than it. The
+    path is ordered, so that puts every entry where the usual sift-down (two comparisons a level) does.
+    Indexed through ``np.uint64``, as :func:`_push`."""
     key, node, entry = hkey[0], hnode[0], hentry[0]
-    size -= 1
-    lk, ln, le = hkey[size], hnode[size], hentry[size]
-    i = 0
-    while True:
-        child = 2 * i + 1
-        if child >= size:
-            break
-        if child + 1 < size and (hkey[child + 1] < hkey[child] or
-                                 (hkey[child + 1] == hkey[child] and hnode[child + 1] < hnode[child])):
-            child += 1
-        if lk < hkey[child] or (lk == hkey[child] and ln <= hnode[child]):
-            break
+    last = np.uint64(size - 1)
+    lk, ln, le = hkey[last], hnode[last], hentry[last]
+    i = np.uint64(0)
+    child = _ONE
+    while child < last:
+        right = child + _ONE
+        if right < last:
+            kr, kc = hkey[right], hkey[child]
+            if kr < kc or (kr == kc and hnode[right] < hnode[child]):
+                child = right
         hkey[i], hnode[i], hentry[i] = hkey[child], hnode[child], hentry[child]
         i = child
+        child = i + i + _ONE
+    while i != 0:
+        up = (i - _ONE) >> _ONE
+        if hkey[up] < lk or (hkey[up] == lk and hnode[up] < ln):
+            break
+        hkey[i], hnode[i], hentry[i] = hkey[up], hnode[up], hentry[up]
+        i = up
     hkey[i], hnode[i], hentry[i] = lk, ln, le
     return key, node, entry
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _open(hkey, hnode, hentry, size, eg, ex, ey, elazy, entry, node, g, x, y, theta, field, reverse, gx, gy, gtheta,
           radius) -> None:
     """Queue ``node`` (pose x, y, θ at cost g; ``field`` the holonomic heuristic at its cell) as ``entry``: keyed
@@ -255,8 +285,9 @@ def _analytic(blocked, res, x, y, theta, gx, gy, gtheta, radius, reverse, ds, th
 
 def new_scratch(bins: int):
     """Empty scratch arrays for :func:`search`: nodes (x, y, bin, g, parent, primitive, closed, rejected),
-    the state index (cell -> block, blocks of ``bins`` nodes, each block's cell) and the queue's entries
-    (g, x, y, lazy) and heap (key, node, entry); the state index is sized for the map at the first search."""
+    the state index (cell -> block, blocks of node numbers, each block's cell) and the queue's entries
+    (g, x, y, lazy) and heap (key, node, entry); the state index is sized for the map, and the blocks' width
+    set to the headings the search reaches, at the first search."""
     cap = 1024
     return (np.empty(cap), np.empty(cap), np.empty(cap, dtype=np.int64), np.empty(cap),
             np.empty(cap, dtype=np.int64), np.empty(cap, dtype=np.int64), np.zeros(cap, dtype=np.bool_),
@@ -341,11 +372,36 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
     nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, eg, ex, ey, elazy, hkey, \
         hnode, hentry = scratch
     cap, ecap = nx.shape[0], eg.shape[0]
-    # discrete state -> node: a block of `bins` node numbers per cell reached (all -1 between queries)
+    # discrete state -> node: a block of node numbers per cell reached (all -1 between queries)
     if block_of.shape[0] < h * w:
         block_of = np.full(h * w, -1, dtype=np.int32)  # int32: half what the field takes a cell
-    if blocks.shape[1] != bins:
-        blocks = np.full((64, bins), -1, dtype=np.int32)
+    # the heading bins the search can reach: the start nodes' and those the primitives turn them to, again
+    # and again (an arc turns k bins: at 72 bins and k = 4, a quarter of them). A cell's block has a slot
+    # for each of these alone, in the order of the bins: a quarter of the memory, so more of it is cached
+    slot_of = np.full(bins, -1, dtype=np.int64)
+    todo = np.empty(bins, dtype=np.int64)
+    top = 0
+    for i in range(sbin.shape[0]):
+        if slot_of[sbin[i]] < 0:
+            slot_of[sbin[i]] = 0
+            todo[top] = sbin[i]
+            top += 1
+    while top > 0:
+        top -= 1
+        b = todo[top]
+        for j in range(pdbin.shape[0]):
+            b2 = (b + pdbin[j]) % bins
+            if slot_of[b2] < 0:
+                slot_of[b2] = 0
+                todo[top] = b2
+                top += 1
+    width = 0
+    for b in range(bins):
+        if slot_of[b] == 0:
+            slot_of[b] = width
+            width += 1
+    if blocks.shape[1] != width:
+        blocks = np.full((64, width), -1, dtype=np.int32)
         block_cell = np.empty(64, dtype=np.int64)
     akinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     alens = np.zeros(MAX_SEGMENTS)
@@ -363,7 +419,7 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
             block_of[cell] = nblocks
             block_cell[nblocks] = cell
             nblocks += 1
-        blocks[block_of[cell], sbin[i]] = count
+        blocks[block_of[cell], slot_of[sbin[i]]] = count
         nx[count], ny[count], nb[count], ng[count], nparent[count], nprim_of[count] = sx[i], sy[i], sbin[i], sg[i], \
             -1, -1
         closed[count] = rejected[count] = False  # (scratch arrays hold the last query's values)
@@ -379,8 +435,8 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
                         pdx, pdy, pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells,
                         pose_start, ds, vertices, disc, exact_grow, fstate, fdist, fcells, fsize, fcursor,
                         penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng,
-                        nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, eg, ex, ey, elazy, hkey,
-                        hnode, hentry, akinds, alens, one_kind, one_len, counters, closest)
+                        nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, slot_of, eg, ex, ey, elazy,
+                        hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest)
         if event == _GROW:  # room for every child of the pending node
             count, nentries = counters[_COUNT], counters[_NENTRIES]
             if count + nprim > cap:
@@ -434,20 +490,27 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
 def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len, pdx, pdy,
             pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, vertices, disc,
             exact_grow, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic,
-            analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, eg, ex,
-            ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest) -> int:
+            analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, slot_of,
+            eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest) -> int:
     """:func:`search`'s loop over its arrays, which it fills but never replaces: pop, expand, push, until
     the goal is reached (``_FOUND``, the node in ``counters[_GOAL_NODE]``) or nothing is left to expand
     (``_EXHAUSTED``), or an array must grow first: ``_GROW`` (room for a node's children), ``_SWEPT`` (a
     primitive's swept cells are not listed yet), ``_FIELD`` (the field's buckets are full). Then
     ``counters[_PENDING]`` is the node being expanded and ``counters[_PENDING_CHILD]`` the child to
-    resume at: the children before it are done, and nothing of that child was written yet."""
+    resume at: the children before it are done, and nothing of that child was written yet. A state's node
+    is ``blocks[block_of[cell], slot_of[bin]]`` (:func:`search`)."""
     h, w = blocked.shape
     fstride = w + 2
     nprim = prim_kind.shape[0]
     seg = np.zeros(MAX_SEGMENTS)
     best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     best_lens = np.zeros(MAX_SEGMENTS)
+    child_bin = np.empty((bins, nprim), dtype=np.int64)  # a child's heading bin: no division in the loop
+    child_slot = np.empty((bins, nprim), dtype=np.int64)  # and its slot in a block (search)
+    for bb in range(bins):
+        for j in range(nprim):
+            child_bin[bb, j] = (bb + pdbin[j]) % bins
+            child_slot[bb, j] = slot_of[child_bin[bb, j]]
     straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
     count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
     expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
@@ -468,14 +531,15 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
         if v < 0:
             key, v, e = _pop(hkey, hnode, hentry, hsize)
             hsize -= 1
-            if closed[v]:
+            if closed[_U(v)]:
                 v = -1
                 continue
+            e = _U(e)
             if elazy[e]:
                 elazy[e] = False
-                theta = theta0 + nb[v] * step
+                theta = theta0 + nb[_U(v)] * step
                 # settled at the push
-                field = fdist[_field_index(ex[e], ey[e], res, fstride)]
+                field = fdist[_U(_field_index(ex[e], ey[e], res, fstride))]
                 # the order needs the key only against the next entry's. An upper bound on the Reeds–Shepp
                 # length no more than the field, or below the next key less g, settles that this entry is
                 # first: its true key is its key, or below the next one. The same-side words bound it at a
@@ -503,9 +567,9 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                             hsize += 1
                             v = -1
                             continue
-            closed[v] = True
+            closed[_U(v)] = True
             expansions += 1
-            x, y, b = nx[v], ny[v], nb[v]
+            x, y, b = nx[_U(v)], ny[_U(v)], nb[_U(v)]
             theta = theta0 + b * step
             # the goal's state (its cell, a heading within ``slack`` bins): where the search ends without the
             # analytic expansion, and where it always tries one with it (a schedule that seldom comes round, a
@@ -538,8 +602,13 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
             if expansions >= max_expansions:
                 break
             first = 0
-        x, y, b = nx[v], ny[v], nb[v]
+        uv = _U(v)
+        x, y, b = nx[uv], ny[uv], nb[uv]
+        ub = _U(b)
         theta = theta0 + b * step
+        g = ng[uv]
+        # the primitive the node was reached by drove in reverse (a change of direction costs change_pen)
+        was_backwards = nprim_of[uv] >= 0 and prim_len[_U(nprim_of[uv])] < 0
         children = nprim - first  # room for each child still to come, first
         if count + children > nx.shape[0] or nblocks + children > blocks.shape[0] or \
                 nentries + children > eg.shape[0]:
@@ -547,26 +616,29 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
             break
         cx, cy = int(floor_div(x, res)), int(floor_div(y, res))
         for j in range(first, nprim):
-            x2, y2 = x + pdx[b, j], y + pdy[b, j]
-            b2 = (b + pdbin[j]) % bins
+            uj = _U(j)
+            x2, y2 = x + pdx[ub, uj], y + pdy[ub, uj]
+            b2 = child_bin[ub, uj]
             cx2, cy2 = int(floor_div(x2, res)), int(floor_div(y2, res))
             if cx2 < 0 or cy2 < 0 or cx2 >= w or cy2 >= h:
                 continue
-            length = abs(prim_len[j])
-            cost = length * (straight_pen if prim_kind[j] == 2 else turn_pen)
-            backwards = prim_len[j] < 0
+            plen = prim_len[uj]
+            length = abs(plen)
+            cost = length * (straight_pen if prim_kind[uj] == 2 else turn_pen)
+            backwards = plen < 0
             if backwards:
                 cost *= reverse_pen
-            if nprim_of[v] >= 0 and (prim_len[nprim_of[v]] < 0) != backwards:
+            if was_backwards != backwards and nprim_of[uv] >= 0:
                 cost += change_pen
-            g2 = ng[v] + cost
+            g2 = g + cost
             cell = cy2 * w + cx2
-            blk = block_of[cell]
-            u = blocks[blk, b2] if blk >= 0 else -1
-            if u >= 0 and (closed[u] or ng[u] <= g2):
+            blk = block_of[_U(cell)]
+            slot = child_slot[ub, uj]  # (>= 0: the bins a node reaches are those it can)
+            u = blocks[_U(blk), _U(slot)] if blk >= 0 else -1
+            if u >= 0 and (closed[_U(u)] or ng[_U(u)] <= g2):
                 continue
             # the collision check last: it is the dearest test, and it decides nothing a cheaper one rejected
-            k = b * nprim + j
+            k = _U(b * nprim + j)
             if swept_lo[k] < 0:
                 first = j
                 event = _SWEPT
@@ -583,12 +655,12 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                                   pose_cells, pose_start, clear, clear_disc, vertices, disc, exact_grow):
                     continue
             fv = (cy2 + 1) * fstride + cx2 + 1
-            if fstate[fv] & (PASSABLE | SETTLED) == PASSABLE and fsize[0] + fsize[1] + fsize[2] > fcursor[1] and \
+            if fstate[_U(fv)] & (PASSABLE | SETTLED) == PASSABLE and fsize[0] + fsize[1] + fsize[2] > fcursor[1] and \
                     not field_settle_within(fstate, fdist, fcells, fsize, fcursor, fstride, res, fv):
                 first = j  # the wave goes on (seldom once past the start), once its buckets have room
                 event = _FIELD
                 break
-            field = fdist[fv]
+            field = fdist[_U(fv)]
             if u < 0:
                 if blk < 0:
                     blk = nblocks
@@ -597,10 +669,11 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                     block_cell[blk] = cell
                 u = count
                 count += 1
-                blocks[blk, b2] = u
-                closed[u] = False
-                rejected[u] = False  # (the node arrays grow uninitialised)
-            nx[u], ny[u], nb[u], ng[u], nparent[u], nprim_of[u] = x2, y2, b2, g2, v, j
+                blocks[_U(blk), _U(slot)] = u
+                closed[_U(u)] = False
+                rejected[_U(u)] = False  # (the node arrays grow uninitialised)
+            uu = _U(u)
+            nx[uu], ny[uu], nb[uu], ng[uu], nparent[uu], nprim_of[uu] = x2, y2, b2, g2, v, j
             _open(hkey, hnode, hentry, hsize, eg, ex, ey, elazy, nentries, u, g2, x2, y2, theta0 + b2 * step, field,
                   reverse, gx, gy, gtheta, radius)
             hsize += 1

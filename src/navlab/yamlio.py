@@ -153,37 +153,36 @@ def parse_yaml(raw: bytes, where: str, error: Type[Exception], what: str = "file
         raise error(f"{where}: not a UTF-8 text file (byte {exc.start}); a {what} is YAML text") from None
     base = yaml.CSafeLoader if hasattr(yaml, "CSafeLoader") and _nesting(raw, text) <= _C_PARSER_MAX_NESTING \
         else yaml.SafeLoader
-    loader = _LOADERS[base](text)
+    def too_many(size: int) -> Exception:
+        return error(f"{where}: expands to {size:,} YAML nodes (aliases counted at each use), more than the "
+                     f"{max_nodes:,} a {what} may have")
+
     try:
-        node = loader.get_single_node()
-        if node is None:
-            return None
-        size = expanded_size(node)
-        if size > max_nodes:
-            raise error(f"{where}: expands to {size:,} YAML nodes (aliases counted at each use), more than the "
-                        f"{max_nodes:,} a {what} may have")
-        return loader.construct_document(node)
+        return _bounded(_LOADERS[base](text), max_nodes, too_many)
     except yaml.YAMLError as exc:
         raise error(f"{where}: not valid YAML: {_one_line(exc)}") from None
     except RecursionError:
         raise error(f"{where}: nested too deeply to be a {what}") from None
-    finally:
-        loader.dispose()
 
 
 def load_value(text: str, max_nodes: int = MAX_NODES) -> Any:
     """One YAML value from ``text``, read as :func:`parse_yaml` reads a file (YAML 1.2 core schema, each key
     once, aliases bounded); raises ``yaml.YAMLError`` (or ``ValueError`` for an integer too long for
     ``int()``, ``RecursionError`` for nesting too deep)."""
-    loader = _LOADERS[yaml.SafeLoader](text)
+    return _bounded(_LOADERS[yaml.SafeLoader](text), max_nodes, lambda size: yaml.YAMLError(
+        f"expands to {size:,} YAML nodes (aliases counted at each use), more than {max_nodes:,}"))
+
+
+def _bounded(loader, max_nodes: int, too_many) -> Any:
+    """The loader's one document, built only if it expands to at most ``max_nodes`` nodes
+    (:func:`expanded_size`; else ``too_many(size)`` is raised)."""
     try:
         node = loader.get_single_node()
         if node is None:
             return None
         size = expanded_size(node)
         if size > max_nodes:
-            raise yaml.YAMLError(f"expands to {size:,} YAML nodes (aliases counted at each use), more than "
-                                 f"{max_nodes:,}")
+            raise too_many(size)
         return loader.construct_document(node)
     finally:
         loader.dispose()

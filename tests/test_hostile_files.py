@@ -169,11 +169,52 @@ def test_files_and_params_read_numbers_alike(files):
     from navlab.cli import main
 
     path = files / "m.yaml"
-    path.write_text(MAP_YAML.replace("resolution: 0.1", "resolution: 1e-1").replace("negate: 0", "negate: 00"))
-    assert load_map(path).resolution == 0.1
+    path.write_text(MAP_YAML.replace("resolution: 0.1", "resolution: 1e-1").replace("origin: [0, 0, 0]",
+                                                                                    "origin: [010, '-2e-1', 0]"))
+    grid = load_map(path)
+    assert grid.resolution == 0.1 and tuple(grid.origin[:2]) == (10.0, -0.2)  # (YAML 1.1: x = 8)
     res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=010", "--json"])
     assert res.exit_code in (0, 1) and '"max_iter": 10' in res.stdout
     res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=1:00"])
     assert res.exit_code == 2 and "max_iter" in res.stderr and "'1:00'" in res.stderr
     res = CliRunner().invoke(main, ["plan", "trap", "--planner", "astar", "--param", "heuristic="])
     assert res.exit_code == 2 and "'heuristic' has no value (write heuristic=null for none)" in res.stderr
+
+
+@pytest.mark.parametrize("text, message", [
+    ("!!bool yes", "'yes' is not true or false"), ("!!int 0b1", "'0b1' is not an integer"),
+    ("!!int -0x1F", "'-0x1F' is not an integer"), ("!!float abc", "'abc' is not a number"),
+    ("9" * 5000, "is not an integer navlab reads (5000 digits)"),
+])
+def test_a_tagged_or_huge_scalar_that_is_not_its_type_is_a_yaml_error_with_its_place(files, text, message):
+    """(review, session 20: !!bool garbage read as False, and !!int 0b1 or a 5000-digit integer in a world file was
+    an internal ValueError)"""
+    path = files / "w.yaml"
+    path.write_text(WORLD + f"robot_radius: {text}\nobstacles: []\n")
+    with pytest.raises(WorldFormatError, match=f"not valid YAML: .*{message[:20]}.*line 4"):
+        read_world(path)
+
+
+@pytest.mark.parametrize("written, read", [("'5e-2'", 0.05), ("'-3'", -3.0), ("'.inf'", None), ("1_000", None),
+                                           ("'1_000'", None), ("'infinity'", None), ("'0x10'", None)])
+def test_a_quoted_number_is_a_number_and_other_text_is_refused(files, written, read):
+    """Fields that took YAML 1.1's strings as numbers take a quoted number (as Nav2's yaml-cpp does), and
+    refuse what YAML 1.2 does not write as a number (review, session 20: 1_000 and 'infinity' passed)."""
+    from navlab.yamlcore import number_text
+
+    value = number_text(written.strip("'"))
+    assert value == read if read is not None else (isinstance(value, str) or value == float("inf"))
+    path = files / "m.yaml"
+    path.write_text(MAP_YAML.replace("resolution: 0.1", f"resolution: {written}"))
+    if read is not None and read > 0:
+        assert load_map(path).resolution == read
+    else:
+        with pytest.raises(MapFormatError, match="resolution"):
+            load_map(path)
+    path = files / "w.yaml"
+    path.write_text(f"bounds: {{x: [-10, 10], y: [0, 10]}}\nstart: [1, 1]\ngoal: [{written}, 9]\nobstacles: []\n")
+    if read is not None and abs(read) < 10:
+        assert navlab.load_world(str(path)).goal[0] == read
+    else:
+        with pytest.raises(WorldFormatError, match=r"goal\[0\]"):
+            navlab.load_world(str(path))

@@ -34,6 +34,8 @@ from typing import Any, Dict, Optional, Type, Union
 import numpy as np
 import yaml
 
+from .yamlcore import CORE, CORE_PATTERN
+
 #: most nodes a document may expand to (scalars, sequences and mappings, aliases counted at each use);
 #: a 2 MiB file without aliases has fewer than this
 MAX_NODES = 1_000_000
@@ -64,29 +66,41 @@ def _unique_mapping(loader, node) -> Dict[Any, Any]:
     return {loader.construct_object(k, deep=True): loader.construct_object(v, deep=True) for k, v in node.value}
 
 
-#: YAML 1.2 core schema's plain scalars (https://yaml.org/spec/1.2.2/#1032-tag-resolution)
-_CORE = (("bool", r"true|True|TRUE|false|False|FALSE", "tTfF"),
-         ("int", r"[-+]?[0-9]+|0o[0-7]+|0x[0-9a-fA-F]+", "-+0123456789"),
-         ("float", r"[-+]?(?:\.[0-9]+|[0-9]+(?:\.[0-9]*)?)(?:[eE][-+]?[0-9]+)?|[-+]?\.(?:inf|Inf|INF)|\.(?:nan|NaN|NAN)",
-          "-+0123456789."),
-         ("null", r"~|null|Null|NULL|", ["~", "n", "N", ""]))
 _RETYPED = {f"tag:yaml.org,2002:{name}" for name in ("bool", "int", "float", "null", "timestamp")}
 
 
+def _tagged_error(node, text: str, what: str) -> yaml.constructor.ConstructorError:
+    return yaml.constructor.ConstructorError(None, None, f"{text[:40]!r} is not {what}", node.start_mark)
+
+
 def _core_int(loader, node) -> int:
+    """An int as YAML 1.2's core schema writes one (also under an explicit ``!!int`` tag, which
+    YAML 1.1 let through as 0b1, 1_000 or 1:00)."""
     text = loader.construct_scalar(node)
-    if text[:2] in ("0o", "0x"):
-        return int(text[2:], 8 if text[1] == "o" else 16)
-    return int(text)  # (decimal even with leading zeros: 010 is ten)
+    if not CORE_PATTERN["int"].fullmatch(text):
+        raise _tagged_error(node, text, "an integer (YAML 1.2: digits, 0o octal or 0x hexadecimal)")
+    try:
+        if text[:2] in ("0o", "0x"):
+            return int(text[2:], 8 if text[1] == "o" else 16)
+        return int(text)  # (decimal even with leading zeros: 010 is ten)
+    except ValueError:  # Python's int() limit (4 300 digits): no planner setting is that large
+        raise _tagged_error(node, text, f"an integer navlab reads ({len(text)} digits)") from None
 
 
 def _core_float(loader, node) -> float:
     text = loader.construct_scalar(node)
-    return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))
+    if not (CORE_PATTERN["float"].fullmatch(text) or CORE_PATTERN["int"].fullmatch(text)):
+        raise _tagged_error(node, text, "a number")
+    if text[:2] in ("0o", "0x"):
+        return float(_core_int(loader, node))  # (an int past the largest float is refused there, by length)
+    return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))  # (digits alone: float() reads them)
 
 
 def _core_bool(loader, node) -> bool:
-    return loader.construct_scalar(node).lower() == "true"
+    text = loader.construct_scalar(node)
+    if not CORE_PATTERN["bool"].fullmatch(text):
+        raise _tagged_error(node, text, "true or false")
+    return text.lower() == "true"
 
 
 def _loader_class(base: type) -> type:
@@ -95,7 +109,7 @@ def _loader_class(base: type) -> type:
     # YAML 1.2's core schema in place of PyYAML's 1.1 resolvers for these tags (the others stay)
     cls.yaml_implicit_resolvers = {first: [(tag, rx) for tag, rx in rules if tag not in _RETYPED]
                                    for first, rules in base.yaml_implicit_resolvers.items()}
-    for name, pattern, first in _CORE:
+    for name, pattern, first in CORE:
         cls.add_implicit_resolver(f"tag:yaml.org,2002:{name}", re.compile(f"^(?:{pattern})$"), list(first))
     for name, construct in (("int", _core_int), ("float", _core_float), ("bool", _core_bool)):
         cls.add_constructor(f"tag:yaml.org,2002:{name}", construct)
@@ -166,9 +180,29 @@ def parse_yaml(raw: bytes, where: str, error: Type[Exception], what: str = "file
 
 
 def load_value(text: str, max_nodes: int = MAX_NODES) -> Any:
-    """One YAML value from ``text``, read as :func:`parse_yaml` reads a file (YAML 1.2 core schema, each key
-    once, aliases bounded); raises ``yaml.YAMLError`` (or ``ValueError`` for an integer too long for
-    ``int()``, ``RecursionError`` for nesting too deep)."""
+    """One YAML value from ``text``, read as :func:`parse_yaml` reads a file.
+
+    Parameters
+    ----------
+    text : str
+        A ``--param`` value or a ROS parameter's text (``"{goal: 0.1}"``, ``"[[0, 0], [1, 0]]"``).
+    max_nodes : int
+        The most nodes the value may expand to, aliases counted at each use.
+
+    Returns
+    -------
+    Any
+        The value, plain scalars typed by YAML 1.2's core schema (:mod:`navlab.yamlcore`), each mapping
+        key given once.
+
+    Raises
+    ------
+    yaml.YAMLError
+        Not YAML, a key given twice, a tagged scalar that is not its type, an integer too long to read,
+        or more than ``max_nodes`` nodes.
+    RecursionError
+        Nesting too deep for the parser.
+    """
     return _bounded(_LOADERS[yaml.SafeLoader](text), max_nodes, lambda size: yaml.YAMLError(
         f"expands to {size:,} YAML nodes (aliases counted at each use), more than {max_nodes:,}"))
 

@@ -193,8 +193,8 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
             raise click.BadParameter(f"'{key}' has no value (write {key}=null for none)", param_hint=flag)
         try:
             out[key] = load_value(value)
-        except yaml.YAMLError as exc:
-            raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
+        except yaml.YAMLError as exc:  # (the problem alone: the mark repeats the value just given)
+            raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(getattr(exc, 'problem', None) or exc, 300)}",
                                      param_hint=flag) from None
         except RecursionError:
             raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint=flag) from None

@@ -27,6 +27,7 @@ from ..atomic import atomic_path
 from ..errors import NavlabError, ParameterError
 from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number
 from ..yamlio import read_yaml, regular_file
+from ..yamlcore import number_text
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 PathLike = Union[str, os.PathLike]
@@ -273,12 +274,7 @@ def _number(meta: Dict[str, Any], key: str, source: Path, default: Any = None) -
     value = meta.get(key, default)
     if value is None:
         raise MapFormatError(f"{source}: field '{key}' is missing")
-    if isinstance(value, str):
-        # PyYAML reads YAML 1.1, where 5e-2 (no dot) is a string; yaml-cpp (Nav2) reads it as a number
-        try:
-            value = float(value)
-        except ValueError:
-            pass
+    value = number_text(value)  # a quoted '5e-2' too, as Nav2's yaml-cpp reads it
     try:
         return finite_number(f"field '{key}'", value)
     except ValueError as exc:
@@ -291,11 +287,7 @@ def _origin(meta: Dict[str, Any], source: Path) -> Tuple[float, float, float]:
         raise MapFormatError(f"{source}: field 'origin' must be [x, y, yaw], got {origin!r}")
     out = []
     for label, v in zip(("x", "y", "yaw"), origin):
-        if isinstance(v, str):  # 5e-2: a string to YAML 1.1, a number to Nav2
-            try:
-                v = float(v)
-            except ValueError:
-                pass
+        v = number_text(v)
         try:
             ok = not isinstance(v, bool) and isinstance(v, (int, float)) and math.isfinite(float(v))
         except OverflowError:

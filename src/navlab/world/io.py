@@ -31,6 +31,7 @@ from typing import Any, Callable, Dict, Tuple, Union
 from ..angles import finite_heading
 from ..atomic import write_text_atomic
 from ..limits import check_coordinate, check_length, shown
+from ..yamlcore import number_text
 from ..registry import suggest
 from .footprint import Footprint, FootprintError
 from .errors import WorldFormatError  # noqa: F401  (defined apart so the SDF reader can raise it too)
@@ -52,15 +53,10 @@ class _FieldError(ValueError):
         self.field = field
 
 
-# YAML 1.2 (and most tools that write world files) read `1e-3` as a number; PyYAML
-# follows YAML 1.1 and returns the string '1e-3'. Accept such strings as numbers.
-_NUMBER_TEXT = re.compile(r"[-+]?(?:[0-9][0-9_]*(?:\.[0-9_]*)?|\.[0-9_]+)(?:[eE][-+]?[0-9]+)?")
-
-
 def _number(field: str, value: Any) -> float:
-    """A finite coordinate within ±MAX_COORDINATE (see :mod:`navlab.limits`)."""
-    if isinstance(value, str) and _NUMBER_TEXT.fullmatch(value.strip()):
-        value = float(value.replace("_", ""))  # may be inf: check_coordinate says "must be finite"
+    """A finite coordinate within ±MAX_COORDINATE (see :mod:`navlab.limits`); a quoted number
+    (``'1e-3'``) is taken as one (:func:`navlab.yamlcore.number_text`)."""
+    value = number_text(value)  # may be inf: check_coordinate says "must be finite"
     try:
         return check_coordinate(field, value)
     except ValueError as exc:
@@ -70,8 +66,7 @@ def _number(field: str, value: Any) -> float:
 def _heading(field: str, value: Any) -> float:
     """A finite heading [rad] of any size (the World wraps it, and warns beyond ±2π), not a coordinate:
     a file's 1e8 was refused as 'out of range (≤ 1e+07 m)' where the API and the flags take it."""
-    if isinstance(value, str) and _NUMBER_TEXT.fullmatch(value.strip()):
-        value = float(value.replace("_", ""))
+    value = number_text(value)
     try:
         return finite_heading(field, value)
     except ValueError as exc:

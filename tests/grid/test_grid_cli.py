@@ -92,6 +92,8 @@ def test_heuristic_none_is_accepted_and_a_result_lists_every_setting_it_ran_with
     assert res.exit_code == 0 and json.loads(res.stdout)["params"]["weight"] == 1.0
     assert res.stderr == ("note: a weight scales the heuristic, and there is none: astar ran unweighted "
                           "(--param weight=3 is not used)\n")
+    res = run("grid", "scen", DATA / "arena.map.scen", "--heuristic", "none", "--limit", 5)
+    assert res.stdout.startswith("arena: 5 scenarios, astar (none),") and "5 match, 0 do not" in res.stdout
     res = run("grid", "plan", DATA / "den312d.map", "--start", 10, 11, "--goal", 21, 70, "--algorithm", "dijkstra",
               "--heuristic", "none")
     assert res.exit_code == 0 and res.stderr == ""

@@ -509,7 +509,7 @@ def _check_unique_cells(exp: Experiment) -> None:
             raise ExperimentError(f"'{what}' names {', '.join(map(repr, twice))} twice: each cell runs once "
                                   f"(use 'trials' for more runs)")
     for key, values in exp.grid.items():
-        hashes = [stable_hash(v) for v in values]
+        hashes = [stable_hash(_as_written_alike(v)) for v in values]
         for v, h in zip(values, hashes):
             if hashes.count(h) > 1:
                 raise ExperimentError(f"grid '{key}' lists {v!r} twice: each cell runs once (use 'trials' for "
@@ -518,6 +518,17 @@ def _check_unique_cells(exp: Experiment) -> None:
     if len(set(ids)) != len(ids):
         twice = next(c.label for c in exp.cells() if ids.count(c.cell_id) > 1)
         raise ExperimentError(f"the cell {twice} is named twice: each cell runs once")
+
+
+def _as_written_alike(value: Any) -> Any:
+    """A number as the same float however written (weight 1 and 1.0 ran two identical cells: newcomer run,
+    session 20); an integer no float equals, and anything else, as it is."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        return value
+    try:
+        return float(value) if float(value) == value else value
+    except OverflowError:  # (an integer past the largest float)
+        return value
 
 
 def _check_claim_groups(exp: Experiment) -> None:

@@ -6,14 +6,14 @@ import difflib
 import os
 import shlex
 import sys
-from typing import List, Optional
+from typing import Dict, List, Optional
 
 import click
 import yaml
 
 from ..bench.suites import suite_help
 from ..wording import counted
-from .common import Count, note_unused_grid_settings, parse_params
+from .common import Count, parse_params, unused_grid_settings
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
 EXIT_INTERRUPTED = 130
@@ -309,21 +309,20 @@ def _as_world(world: str, start, goal):
 
 def note_unused_settings(exp) -> None:
     """A note on stderr for each grid planner given a ``heuristic`` or ``weight`` it does not use
-    (:func:`~navlab.cli.common.note_unused_grid_settings`), once per planner and value: its trials
-    labelled with the value given run the search without it (the rows' ``params_used`` say what ran)."""
+    (:func:`~navlab.cli.common.unused_grid_settings`), each line once: its trials labelled with the value
+    given run the search without it (the rows' ``params_used`` say what ran)."""
     from ..bench.experiment import routed_params
     from ..grid.planner import GRID_ALGORITHMS
 
-    seen = set()
+    lines: Dict[str, None] = {}  # (ordered, each once)
     for cell in exp.cells():
         if cell.planner.name not in GRID_ALGORITHMS:  # (tree, OMPL and pose planners)
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
-        for key in ("heuristic", "weight"):
-            once = (cell.planner.name, key, repr(own.get(key)))
-            if key in own and once not in seen:
-                seen.add(once)
-                note_unused_grid_settings(cell.planner.name, {key: own[key]}, lambda k, value: f"{k}={value}")
+        given = {key: own[key] for key in ("heuristic", "weight") if key in own}
+        lines.update(dict.fromkeys(unused_grid_settings(cell.planner.name, given, lambda k, value: f"{k}={value}")))
+    for line in lines:
+        click.echo(line, err=True)
 
 
 def _adhoc_name(data) -> str:

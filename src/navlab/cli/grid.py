@@ -167,8 +167,8 @@ def scen_report(s) -> str:
     from ..grid.scen import printed_decimals
 
     fmt = lambda v: "-" if v is None else f"{v:.8g}"  # noqa: E731
-    # Dijkstra uses no heuristic, so none is named beside it
-    searched = s["algorithm"] if s["heuristic"] == "none" else f"{s['algorithm']} ({s['heuristic']})"
+    # Dijkstra uses no heuristic, so none is named beside it (A* given none says so: newcomer run, session 20)
+    searched = s["algorithm"] if s["algorithm"] == "dijkstra" else f"{s['algorithm']} ({s['heuristic']})"
     lines = [f"{s['map']}: {s['scenarios']} scenarios, {searched}, "
              f"length {s['comparison']}: {s['matches']} match, {s['mismatches']} do not"
              + (f", {s['invalid']} invalid (start or goal blocked or outside the map)" if s["invalid"] else "")]

@@ -145,3 +145,20 @@ def test_json_summaries_carry_null_where_a_number_is_missing():
     summary = {"error_odom_m": float("inf"), "rate_hz": float("nan"), "goal": [1.5, float("-inf")], "count": 0}
     assert json.loads(json.dumps(_strict_json(summary)), parse_constant=pytest.fail) == {
         "error_odom_m": None, "rate_hz": None, "goal": [1.5, None], "count": 0}
+
+
+def test_a_params_files_shared_section_may_name_other_nodes_parameters(tmp_path):
+    """A ``/**`` section, shared by several nodes, names parameters some of them do not have: a warning, not an
+    exit (review, session 20: goto_waypoint refused real_time_factor, the sim's); the same name typed with -p
+    is refused."""
+    params = tmp_path / "shared.yaml"
+    params.write_text("/**:\n  ros__parameters:\n    use_sim_time: false\n    reach_radius: 0.3\n"
+                      "    real_time_factor: 2.0\n")
+    proc = run_isolated(["timeout", "-s", "INT", "12", *navlab_cmd("ros", "goto_waypoint", "--ros-args",
+                                                                  "--params-file", str(params))], timeout=60)
+    assert proc.returncode == 124, proc.stderr  # ran until timeout stopped it
+    assert "unknown parameter 'real_time_factor' for the goto_waypoint node" in proc.stderr
+    assert "Ignored (from a params file)" in proc.stderr and "Traceback" not in proc.stderr
+    proc = run_isolated(navlab_cmd("ros", "goto_waypoint", "--ros-args", "--params-file", str(params), "-p",
+                                   "real_time_factor:=2.0"), timeout=60)
+    assert proc.returncode == 2 and "unknown parameter 'real_time_factor'" in proc.stderr

@@ -71,6 +71,23 @@ def coerce(param: Param, value: Any) -> Any:
     return value
 
 
+def command_line_parameters(argv: Sequence[str]) -> set:
+    """The names ``argv`` sets with ``-p NAME:=VALUE`` (or ``--param``, or ``-p NODE:NAME:=VALUE``) inside
+    its ``--ros-args`` sections, where ROS reads them."""
+    names, inside, expect = set(), False, False
+    for token in argv:
+        if token == "--ros-args":
+            inside = True
+        elif token == "--":
+            inside = False
+        elif inside and expect:
+            names.add(token.split(":=", 1)[0].rsplit(":", 1)[-1])
+            expect = False
+        elif inside and token in ("-p", "--param"):
+            expect = True
+    return names
+
+
 #: parameters every rclpy node has, or that configure ROS itself: never a planner's or controller's setting
 ROS_OWN = frozenset({"use_sim_time", "start_type_description_service"})
 
@@ -96,16 +113,21 @@ class NavlabNode(Node):
             self.params[p.name] = coerce(p, self.get_parameter(p.name).value)
 
     def _refuse_unknown_parameters(self) -> None:
-        """Refuse a ``-p NAME:=VALUE`` (or a params file's entry for this node) that names none of its
-        parameters: rclpy drops such a value unread, so a typo (``-p real_time_factr:=10``) ran on the
-        default without a word, where the path planner nodes already refused it."""
+        """Refuse a ``-p NAME:=VALUE`` on the command line that names none of the node's parameters: rclpy
+        drops such a value unread, so a typo (``-p real_time_factr:=10``) ran on the default without a word,
+        where the path planner nodes already refused it. One from a params file is a warning: a file's
+        ``/**`` section, shared by several nodes, names parameters of the others (review, session 20)."""
         overrides = getattr(self, "_parameter_overrides", None) or {}  # rclpy's -p values (no public getter)
         own = [p.name for p in self.PARAMETERS]
+        typed = command_line_parameters(sys.argv)
         for name in overrides:
             if name in own or name in ROS_OWN or name.startswith("qos_overrides."):
                 continue
-            raise ParameterError(f"unknown parameter '{name}' for the {self.get_name()} node; its parameters: "
-                                 f"{', '.join(own) or 'none'}." + suggest(name, own))
+            message = (f"unknown parameter '{name}' for the {self.get_name()} node; its parameters: "
+                       f"{', '.join(own) or 'none'}." + suggest(name, own))
+            if name in typed:
+                raise ParameterError(message)
+            self.log("warn", f"{message} Ignored (from a params file).")
 
     def passed_settings(self, convert: Optional[Callable[[str, Any], Any]] = None) -> Dict[str, Any]:
         """The ``-p NAME:=VALUE`` parameters that are neither the node's own nor ROS's

@@ -2,6 +2,7 @@
 aliases, duplicate keys, FIFOs and deep nesting, for world files, maps and experiments."""
 
 import os
+import re
 import threading
 
 import numpy as np
@@ -219,3 +220,16 @@ def test_a_quoted_number_is_a_number_and_other_text_is_refused(files, written, r
     else:
         with pytest.raises(WorldFormatError, match=r"goal\[0\]"):
             navlab.load_world(str(path))
+
+
+def test_whole_numbers_written_as_floats_count_in_experiment_files(tmp_path):
+    """(review, session 20: with YAML 1.2, trials: 1e1 is 10.0, and was refused as 'must be a positive integer')"""
+    path = tmp_path / "e.yaml"
+    path.write_text("worlds: [trap]\nplanners: [rrt]\ntrials: 1e1\nseed: 1e3\nbudget: {max_iter: 1e3}\n")
+    exp = load_experiment(str(path))
+    assert (exp.trials, exp.seed, exp.budget["max_iter"]) == (10, 1000, 1000) and type(exp.trials) is int
+    for bad, message in (("trials: 1.5", "'trials' must be a positive integer, got 1.5"),
+                         ("trials: 1e300", "'trials' must be a positive integer, got 1e+300")):
+        path.write_text(f"worlds: [trap]\nplanners: [rrt]\n{bad}\n")
+        with pytest.raises(ExperimentError, match=re.escape(message)):
+            load_experiment(str(path))

@@ -418,6 +418,10 @@ def validate(exp: Experiment) -> None:
             if planner.name not in POSE_PLANNERS:
                 is_grid_planner(planner.name)  # unknown names: "did you mean", both kinds listed
 
+    # a whole number written as a float (trials: 1e1, a number to YAML 1.2) is that integer, as --trials 1e1 is
+    exp.trials, exp.seed = _whole(exp.trials), _whole(exp.seed)
+    if "max_iter" in exp.budget:
+        exp.budget["max_iter"] = _whole(exp.budget["max_iter"])
     if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
         raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
     # Counted before the cells are built: a grid of 8 parameters × 10 values is 10⁸ cells.
@@ -518,6 +522,14 @@ def _check_unique_cells(exp: Experiment) -> None:
     if len(set(ids)) != len(ids):
         twice = next(c.label for c in exp.cells() if ids.count(c.cell_id) > 1)
         raise ExperimentError(f"the cell {twice} is named twice: each cell runs once")
+
+
+def _whole(value: Any) -> Any:
+    """A float that is a whole number as that int (``1e1`` → 10), anything else as it is (the checks name it;
+    past 2⁶³ no count is meant, and the float reads better in their messages than 300 digits)."""
+    if isinstance(value, float) and value.is_integer() and abs(value) < 2.0 ** 63:
+        return int(value)
+    return value
 
 
 def _as_written_alike(value: Any) -> Any:

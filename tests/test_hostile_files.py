@@ -180,7 +180,7 @@ def test_files_and_params_read_numbers_alike(files):
     res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=1:00"])
     assert res.exit_code == 2 and "max_iter" in res.stderr and "'1:00'" in res.stderr
     res = CliRunner().invoke(main, ["plan", "trap", "--planner", "astar", "--param", "heuristic="])
-    assert res.exit_code == 2 and "'heuristic' has no value (write heuristic=null for none)" in res.stderr
+    assert res.exit_code == 2 and "'heuristic' has no value: give one after '=' (or leave the --param out for the default)" in res.stderr
 
 
 @pytest.mark.parametrize("text, message", [

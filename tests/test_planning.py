@@ -156,7 +156,9 @@ def test_a_grid_planner_stopped_by_unknown_cells_says_so(planner):
     world = World.from_grid(OccupancyGrid(np.zeros((10, 10), bool), unknown=unknown), (1.5, 1.5), (8.5, 8.5))
     closed = navlab.plan(world, planner=planner)
     assert closed.status is Status.FAILED and "10 unknown cells were closed" in closed.reason
-    assert "--param allow_unknown=true" in closed.reason
+    assert closed.reason.endswith("the map's 10 unknown cells were closed to the search: allow_unknown=true opens "
+                                  "them, as --param allow_unknown=true to navlab plan or --allow-unknown to navlab "
+                                  "grid plan")
     assert navlab.plan(world, planner=planner, allow_unknown=True).success
     walled = navlab.plan(World.from_grid(OccupancyGrid(unknown), (1.5, 1.5), (8.5, 8.5)), planner=planner)
     assert walled.status is Status.FAILED and "unknown" not in walled.reason

@@ -96,7 +96,7 @@ def test_a_failure_on_unknown_cells_says_allow_unknown_opens_them():
     costs[:, 9:11] = NO_INFORMATION
     cm = Costmap(costs, 0.1)
     none, _, reason = plan_on_costmap(cm, (0.25, 0.55), (1.75, 0.55))
-    assert none is None and reason.endswith("the costmap's 20 unknown cells were closed to it (allow_unknown=true "
-                                            "opens them)")
+    assert none is None and reason.endswith("the costmap's 20 unknown cells were closed to it: allow_unknown=true "
+                                            "opens them")
     path, _, reason = plan_on_costmap(cm, (0.25, 0.55), (1.75, 0.55), allow_unknown=True)
     assert path is not None and reason == ""

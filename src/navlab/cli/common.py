@@ -190,7 +190,8 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
         if not sep or not key:
             raise click.BadParameter(f"expected key=value, got {item!r}", param_hint=flag)
         if not value.strip():
-            raise click.BadParameter(f"'{key}' has no value (write {key}=null for none)", param_hint=flag)
+            raise click.BadParameter(f"'{key}' has no value: give one after '=' (or leave the --param out for "
+                                     f"the default)", param_hint=flag)
         try:
             out[key] = load_value(value)
         except yaml.YAMLError as exc:  # (the problem alone: the mark repeats the value just given)

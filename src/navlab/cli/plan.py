@@ -40,9 +40,10 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
                    "--param expand_dis=1.0 --param goal_sample_rate=0.05 (navlab list shows each part's); "
                    "the integration sampler: --param 'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, "
                    "boundary: 0.3}'; grid: resolution=0.05 heuristic=octile connectivity=8 smooth=true "
-                   "allow_unknown=true; astar on a costmap: costmap=true inflation_radius=0.55 "
-                   "cost_scaling_factor=3.0 cost_travel_multiplier=2.0 allow_unknown=true (resolution: a geometric "
-                   "world's cell size, default 0.05 m; a map keeps its own).")
+                   "allow_unknown=true (resolution: a geometric world's cell size, default 1/200 of its longer "
+                   "side; a map keeps its own); astar on a costmap: costmap=true inflation_radius=0.55 "
+                   "cost_scaling_factor=3.0 cost_travel_multiplier=2.0 allow_unknown=true (its cells 0.05 m on a "
+                   "geometric world unless resolution= says).")
 @click.option("--json", "as_json", is_flag=True,
               help="Print status, cost, path, stats and all parameters as JSON (without the cost trace).")
 @click.option("--trace", is_flag=True, help="With --json: include the per-iteration cost trace.")

@@ -165,7 +165,7 @@ def plan_on_costmap(costmap, start_xy, goal_xy, cost_travel_multiplier: float = 
         stats["expanded"] = int(expanded)
     if not math.isfinite(total):
         unknown = 0 if allow_unknown else int(np.count_nonzero(costs == NO_INFORMATION))
-        closed = f"; the costmap's {unknown} unknown cells were closed to it (allow_unknown=true opens them)" \
+        closed = f"; the costmap's {unknown} unknown cells were closed to it: allow_unknown=true opens them" \
             if unknown else ""
         return None, math.inf, "no path through cells below INSCRIBED cost" + closed
     chain = [goal]

@@ -274,8 +274,8 @@ class SearcherPool:
 
 
 #: what opens unknown cells to a search, as a reason names it
-OPENS_UNKNOWN = ("allow_unknown=true opens unknown cells (navlab plan --param allow_unknown=true; navlab grid plan "
-                 "--allow-unknown)")
+OPENS_UNKNOWN = ("allow_unknown=true opens them, as --param allow_unknown=true to navlab plan or --allow-unknown to "
+                 "navlab grid plan")
 
 
 def unknown_hint(grid: OccupancyGrid, allow_unknown: bool) -> str:
@@ -497,7 +497,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is outside the {grid.width}x{grid.height} grid")
         if not pool.grid.is_free(*cell):
-            kind = f"unknown: {OPENS_UNKNOWN}" \
+            kind = f"unknown; {OPENS_UNKNOWN}" \
                 if grid.unknown[cell[1], cell[0]] and not grid.blocked[cell[1], cell[0]] else "blocked"
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")

@@ -63,3 +63,24 @@ def test_shown_survives_a_list_nested_thousands_deep():
         inner.append([])
         inner = inner[0]
     assert shown(deep) == "[a list nested too deeply to show]"
+
+
+def test_a_number_too_long_to_write_out_is_shown_by_its_digits():
+    """(review, session 20: str() refuses integers past 4 300 digits, so a message about a 5 000-digit --param value
+    was an internal ValueError)"""
+    import random
+
+    from navlab.limits import digit_count, shown
+
+    rng = random.Random(3)
+    for n in [0, 1, 9, 10, 99, 100, 10**20 - 1, 10**20, -(10**30)] + [rng.randrange(1, 10 ** rng.randint(1, 400))
+                                                                     for _ in range(500)]:
+        assert digit_count(n) == len(str(abs(n)))
+    assert (digit_count(10**5000 - 1), digit_count(10**5000)) == (5000, 5001)
+    assert shown(10**5000) == "an integer of 5001 digits"
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=0x" + "f" * 5000])
+    assert res.exit_code == 2 and "max_iter must be a whole number" in res.stderr and "digits" in res.stderr

@@ -34,7 +34,9 @@ def finite_heading(what: str, value) -> float:
     except OverflowError:  # 10**400, Fraction(10**400, 3)
         heading = math.inf
     if math.isinf(heading) and abs(value) != math.inf:  # finite in its own type: np.longdouble('1e4000') too
-        shown = f"an integer of {len(str(abs(value)))} digits" if isinstance(value, numbers.Integral) else \
+        from .limits import digit_count  # (numpy's import only on this error's path)
+
+        shown = f"an integer of {digit_count(value)} digits" if isinstance(value, numbers.Integral) else \
             "a number beyond float's range"
         raise ParameterError(f"{what} must be a finite heading in radians, got {shown}")
     if not math.isfinite(heading):

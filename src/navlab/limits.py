@@ -65,9 +65,17 @@ def shown(value: Any, limit: int = SHOWN_LENGTH) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
+def digit_count(value: int) -> int:
+    """The decimal digits of ``value``, without writing it out (``str()`` refuses past 4 300 digits: an
+    internal ValueError where a message meant to say how long the number was; review, session 20)."""
+    n = abs(int(value))
+    digits = max(1, int(n.bit_length() * 0.30102999566398120) + 1)  # log10(2): exact or one too many
+    return digits - 1 if digits > 1 and 10 ** (digits - 1) > n else digits
+
+
 def _one_value(value: Any) -> str:
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and abs(int(value)) >= 10 ** 20:
-        return f"an integer of {len(str(abs(int(value))))} digits"
+        return f"an integer of {digit_count(value)} digits"
     try:
         return " ".join(repr(value).split())  # a numpy array's repr spans lines
     except RecursionError:  # a list nested thousands deep
@@ -110,7 +118,7 @@ def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX
     if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
         span = f"from {low} to {high:.3g}" if high is not None and high > 1e6 else \
             f"from {low} to {high}" if high is not None else f"of at least {low}"
-        shown = f"a number of {len(str(abs(value)))} digits" if isinstance(value, int) and abs(value) >= 10 ** 20 \
+        shown = f"a number of {digit_count(value)} digits" if isinstance(value, int) and abs(value) >= 10 ** 20 \
             else repr(value)
         raise ParameterError(f"{name} must be a whole number {span}, got {shown}")
     return value

@@ -375,6 +375,11 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
     # discrete state -> node: a block of node numbers per cell reached (all -1 between queries)
     if block_of.shape[0] < h * w:
         block_of = np.full(h * w, -1, dtype=np.int32)  # int32: half what the field takes a cell
+    nprim = prim_kind.shape[0]
+    child_bin = np.empty((bins, nprim), dtype=np.int64)  # a child's heading bin [parent's bin, primitive]:
+    for bb in range(bins):  # no division in the loop
+        for j in range(nprim):
+            child_bin[bb, j] = (bb + pdbin[j]) % bins
     # the heading bins the search can reach: the start nodes' and those the primitives turn them to, again
     # and again (an arc turns k bins: at 72 bins and k = 4, a quarter of them). A cell's block has a slot
     # for each of these alone, in the order of the bins: a quarter of the memory, so more of it is cached
@@ -389,8 +394,8 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
     while top > 0:
         top -= 1
         b = todo[top]
-        for j in range(pdbin.shape[0]):
-            b2 = (b + pdbin[j]) % bins
+        for j in range(nprim):
+            b2 = child_bin[b, j]
             if slot_of[b2] < 0:
                 slot_of[b2] = 0
                 todo[top] = b2
@@ -400,6 +405,10 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
         if slot_of[b] == 0:
             slot_of[b] = width
             width += 1
+    child_slot = np.empty((bins, nprim), dtype=np.int64)  # and its slot in a block
+    for bb in range(bins):
+        for j in range(nprim):
+            child_slot[bb, j] = slot_of[child_bin[bb, j]]
     if blocks.shape[1] != width:
         blocks = np.full((64, width), -1, dtype=np.int32)
         block_cell = np.empty(64, dtype=np.int64)
@@ -429,14 +438,13 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
     counters[_COUNT] = counters[_NENTRIES] = counters[_HSIZE] = count
     counters[_NBLOCKS] = nblocks
     counters[_PENDING] = counters[_GOAL_NODE] = -1
-    nprim = prim_kind.shape[0]
     while True:
         event = _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len,
                         pdx, pdy, pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells,
                         pose_start, ds, vertices, disc, exact_grow, fstate, fdist, fcells, fsize, fcursor,
                         penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng,
-                        nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, slot_of, eg, ex, ey, elazy,
-                        hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest)
+                        nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, child_bin, child_slot, eg, ex,
+                        ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest)
         if event == _GROW:  # room for every child of the pending node
             count, nentries = counters[_COUNT], counters[_NENTRIES]
             if count + nprim > cap:
@@ -490,27 +498,23 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
 def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len, pdx, pdy,
             pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, vertices, disc,
             exact_grow, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic,
-            analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, slot_of,
-            eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest) -> int:
+            analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell,
+            child_bin, child_slot, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters,
+            closest) -> int:
     """:func:`search`'s loop over its arrays, which it fills but never replaces: pop, expand, push, until
     the goal is reached (``_FOUND``, the node in ``counters[_GOAL_NODE]``) or nothing is left to expand
     (``_EXHAUSTED``), or an array must grow first: ``_GROW`` (room for a node's children), ``_SWEPT`` (a
     primitive's swept cells are not listed yet), ``_FIELD`` (the field's buckets are full). Then
     ``counters[_PENDING]`` is the node being expanded and ``counters[_PENDING_CHILD]`` the child to
     resume at: the children before it are done, and nothing of that child was written yet. A state's node
-    is ``blocks[block_of[cell], slot_of[bin]]`` (:func:`search`)."""
+    is ``blocks[block_of[cell], slot]``, a child's bin and slot ``child_bin`` and ``child_slot`` [parent's
+    bin, primitive] (:func:`search`)."""
     h, w = blocked.shape
     fstride = w + 2
     nprim = prim_kind.shape[0]
     seg = np.zeros(MAX_SEGMENTS)
     best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     best_lens = np.zeros(MAX_SEGMENTS)
-    child_bin = np.empty((bins, nprim), dtype=np.int64)  # a child's heading bin: no division in the loop
-    child_slot = np.empty((bins, nprim), dtype=np.int64)  # and its slot in a block (search)
-    for bb in range(bins):
-        for j in range(nprim):
-            child_bin[bb, j] = (bb + pdbin[j]) % bins
-            child_slot[bb, j] = slot_of[child_bin[bb, j]]
     straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
     count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
     expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
@@ -633,7 +637,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
             g2 = g + cost
             cell = cy2 * w + cx2
             blk = block_of[_U(cell)]
-            slot = child_slot[ub, uj]  # (>= 0: the bins a node reaches are those it can)
+            slot = child_slot[ub, uj]  # (>= 0: a child's bin is in the reachable set, by construction)
             u = blocks[_U(blk), _U(slot)] if blk >= 0 else -1
             if u >= 0 and (closed[_U(u)] or ng[_U(u)] <= g2):
                 continue

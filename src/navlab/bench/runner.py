@@ -302,7 +302,7 @@ def breakdown_lines(run: BenchRun, total_s: Optional[float] = None) -> List[str]
     workers = p.get("workers", 1)
     parts.append(f"trials {p.get('trials', 0):.1f} s on {counted(workers, 'worker')} "
                  f"(trial CPU {p.get('trial_cpu_s', 0):.1f} s, warm-up {p.get('warmup_s', 0):.1f} s summed over "
-                 f"workers, {p.get('repeats', 0)} noise repeats)")
+                 f"workers, {counted(p.get('repeats', 0), 'noise repeat')})")
     parts.append(f"plots {p.get('plots', 0):.1f} s")
     parts.append(f"summary and report {p.get('report', 0):.1f} s")
     return ["time: " + "; ".join(parts)]

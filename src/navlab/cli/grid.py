@@ -11,6 +11,7 @@ import click
 import numpy as np
 
 from ..errors import ParameterError
+from ..wording import counted
 from .common import (Count, ExactNumber, SuggestingGroup, before_first_kernel, before_numba_import,
                      note_unused_grid_settings)
 
@@ -93,7 +94,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     else:
         click.echo(f"{grid.name}: {algorithm}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
         if result.success:
-            click.echo(f"  {len(result.cells)} waypoints, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
+            click.echo(f"  {counted(len(result.cells), 'waypoint')}, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
         if result.stats.get("warmup_s"):  # a failed first use compiled as long as a successful one
             click.echo(f"  warm-up (compiling / loading kernels, not planning) "

@@ -139,7 +139,7 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
         what += " (costmap)"
     click.echo(f"{world.name}: {what}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
     if len(result.path):
-        click.echo(f"  cost {result.cost:.4f} m, {len(result.path)} waypoints")
+        click.echo(f"  cost {result.cost:.4f} m, {counted(len(result.path), 'waypoint')}")
     if "iterations" in s:
         first = s.get("first_solution_iteration")
         click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "

@@ -100,6 +100,10 @@ def test_heuristic_none_is_accepted_and_a_result_lists_every_setting_it_ran_with
     defaults = navlab.plan(DATA / "den312d.map", planner="astar", start=(10.5, 11.5), goal=(21.5, 70.5)).params
     assert {k: defaults[k] for k in ("heuristic", "connectivity", "smooth", "weight", "allow_unknown")} == {
         "heuristic": "octile", "connectivity": 8, "smooth": False, "weight": 1.0, "allow_unknown": False}
+    assert plan(grid, (10, 11), (21, 70), smooth=True, smooth_method="supercover").params["smooth_method"] == \
+        "supercover"  # (newcomer run, session 20: grid.plan's params left it out)
+    listed = run("list").stdout
+    assert "heuristic='none', connectivity=8" in listed and "smooth_method" not in listed  # navlab plan's settings
     given = navlab.plan(DATA / "den312d.map", planner="astar", start=(10.5, 11.5), goal=(21.5, 70.5), weight=3).params
     assert type(given["weight"]) is float and given["weight"] == 3.0
 

@@ -70,11 +70,15 @@ def _tree_planners() -> Iterator[str]:
 
 
 def _grid_planners() -> Iterator[str]:
-    from ..grid.planner import GRID_ALGORITHMS, HEURISTICS, plan
+    from ..grid.planner import GRID_ALGORITHMS, HEURISTICS, as_searched, plan
 
-    shared = _params(plan, skip=_GRID_QUERY)
+    # what navlab plan takes (smooth_method is grid.plan's alone: navlab plan smooths by supercover), with each
+    # algorithm's own heuristic and weight where it has them (dijkstra was listed with heuristic='octile')
+    defaults = {k: v for k, v in parameters_of(plan).items() if k not in _GRID_QUERY + ("smooth_method",)}
     for name in GRID_ALGORITHMS:
-        yield from _entry(name, first_paragraph(GRID_ALGORITHMS.get(name)), shared)
+        own = {**defaults, **as_searched(name, **{k: defaults[k] for k in ("heuristic", "weight")})}
+        yield from _entry(name, first_paragraph(GRID_ALGORITHMS.get(name)),
+                          ", ".join(f"{k}={v!r}" for k, v in own.items()))
     yield from _entry("(heuristics)", f"for astar's heuristic=: {', '.join(HEURISTICS)}")
     yield from _entry("(costmap)", "astar with costmap=true plans on a Nav2-style costmap (docs/grid.md), with "
                                    "inflation_radius=0.55, cost_scaling_factor=3.0, cost_travel_multiplier=2.0, "

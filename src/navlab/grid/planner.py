@@ -489,7 +489,8 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
     if algorithm == "jps" and connectivity != 8:
         raise ParameterError("jps needs connectivity 8")
     params: Dict[str, Any] = {"algorithm": algorithm, **as_searched(algorithm, heuristic=heuristic, weight=weight),
-                              "connectivity": connectivity, "smooth": smooth, "allow_unknown": allow_unknown}
+                              "connectivity": connectivity, "smooth": smooth, "allow_unknown": allow_unknown,
+                              "smooth_method": smooth_method}
     s_cell, g_cell = _cell(start, "start"), _cell(goal, "goal")
     pool = pool_for(grid, allow_unknown)
     for label, cell, status in (("start", s_cell, Status.INVALID_START), ("goal", g_cell, Status.INVALID_GOAL)):

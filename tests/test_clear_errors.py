@@ -51,7 +51,7 @@ def test_grid_settings_from_the_command_line(param):
     ("grid: {resolution: [1.0e-300]}", "resolution must be between"),
     ("params: [1]", "'params' must be a mapping"),
     ("params: {heuristic: 0}", "heuristic must be one of"),
-    ("budget: {max_iter: 1.0e+12}", "max_iter must be a positive integer"),
+    ("budget: {max_iter: 2.5}", "max_iter must be a positive integer"),  # (1.0e+12, a whole number, is taken)
     ("claims: [{text: x, metric: cost, lower: nothere, higher: astar}]", "nothere"),
     # YAML values no experiment can hold were internal errors in a trial or the results file (an attack on
     # the command, session 17)

@@ -187,6 +187,8 @@ def test_files_and_params_read_numbers_alike(files):
     ("!!bool yes", "'yes' is not true or false"), ("!!int 0b1", "'0b1' is not an integer"),
     ("!!int -0x1F", "'-0x1F' is not an integer"), ("!!float abc", "'abc' is not a number"),
     ("9" * 5000, "is not an integer navlab reads (5000 digits)"),
+    # (attack, session 20: hexadecimal has no digit limit in Python, so the next message to show one failed)
+    ("0x" + "f" * 5000, "is not an integer navlab reads (5002 digits)"), ("!!null 5", "'5' is not null"),
 ])
 def test_a_tagged_or_huge_scalar_that_is_not_its_type_is_a_yaml_error_with_its_place(files, text, message):
     """(review, session 20: !!bool garbage read as False, and !!int 0b1 or a 5000-digit integer in a world file was
@@ -233,3 +235,22 @@ def test_whole_numbers_written_as_floats_count_in_experiment_files(tmp_path):
         path.write_text(f"worlds: [trap]\nplanners: [rrt]\n{bad}\n")
         with pytest.raises(ExperimentError, match=re.escape(message)):
             load_experiment(str(path))
+
+
+def test_values_past_what_a_message_can_show_are_refused_in_one_line(files):
+    """(attack, session 20: !!float of a 300-digit hexadecimal was an internal OverflowError, a 400-digit trials
+    made its own message fail, and negate: true read as 1 inverted the map)"""
+    path = files / "w.yaml"
+    path.write_text(WORLD.replace("bounds: [0, 10, 0, 10]", "bounds: {x: [0, 10], y: [0, 10]}")
+                    + "robot_radius: !!float 0x" + "f" * 300 + "\nobstacles: []\n")
+    with pytest.raises(WorldFormatError, match="robot_radius"):
+        read_world(path)
+    path = files / "e.yaml"
+    path.write_text("worlds: [trap]\nplanners: [rrt]\ntrials: " + "9" * 400 + "\n")
+    with pytest.raises(ExperimentError, match="'trials': an integer of 400 digits trials in each of 1 cells is a "
+                                              "number of 400 digits trials, more than"):
+        load_experiment(str(path))
+    path = files / "m.yaml"
+    path.write_text(MAP_YAML.replace("negate: 0", "negate: true"))
+    with pytest.raises(MapFormatError, match="field 'negate' must be 0 or 1, got True"):
+        load_map(path)

@@ -25,6 +25,7 @@ error type to raise.
 
 from __future__ import annotations
 
+import math
 import os
 import re
 import stat
@@ -39,6 +40,8 @@ from .yamlcore import CORE, CORE_PATTERN
 #: most nodes a document may expand to (scalars, sequences and mappings, aliases counted at each use);
 #: a 2 MiB file without aliases has fewer than this
 MAX_NODES = 1_000_000
+#: the largest integer read, in bits: about 4 300 decimal digits, Python's limit for writing one out
+MAX_INT_BITS = 14_000
 #: nesting beyond this is parsed by PyYAML's own parser: libyaml's recursion has no limit and crashes the
 #: process (a segmentation fault) on ~100 000 nested "[" or "- ", where Python raises RecursionError
 _C_PARSER_MAX_NESTING = 64
@@ -80,11 +83,13 @@ def _core_int(loader, node) -> int:
     if not CORE_PATTERN["int"].fullmatch(text):
         raise _tagged_error(node, text, "an integer (YAML 1.2: digits, 0o octal or 0x hexadecimal)")
     try:
-        if text[:2] in ("0o", "0x"):
-            return int(text[2:], 8 if text[1] == "o" else 16)
-        return int(text)  # (decimal even with leading zeros: 010 is ten)
-    except ValueError:  # Python's int() limit (4 300 digits): no planner setting is that large
-        raise _tagged_error(node, text, f"an integer navlab reads ({len(text)} digits)") from None
+        value = int(text[2:], 8 if text[1] == "o" else 16) if text[:2] in ("0o", "0x") else int(text)
+    except ValueError:  # Python's int() limit (4 300 decimal digits): no setting is that large
+        value = None
+    # hexadecimal and octal have no such limit, but str() of the value does: every message showing it would fail
+    if value is None or value.bit_length() > MAX_INT_BITS:
+        raise _tagged_error(node, text, f"an integer navlab reads ({len(text)} digits)")
+    return value  # (decimal even with leading zeros: 010 is ten)
 
 
 def _core_float(loader, node) -> float:
@@ -92,8 +97,16 @@ def _core_float(loader, node) -> float:
     if not (CORE_PATTERN["float"].fullmatch(text) or CORE_PATTERN["int"].fullmatch(text)):
         raise _tagged_error(node, text, "a number")
     if text[:2] in ("0o", "0x"):
-        return float(_core_int(loader, node))  # (an int past the largest float is refused there, by length)
+        value = _core_int(loader, node)
+        return float(value) if value.bit_length() <= 1024 else math.inf  # (past the largest float, as 1e999 reads)
     return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))  # (digits alone: float() reads them)
+
+
+def _core_null(loader, node) -> None:
+    text = loader.construct_scalar(node)
+    if not CORE_PATTERN["null"].fullmatch(text):  # (!!null 5 read as None)
+        raise _tagged_error(node, text, "null")
+    return None
 
 
 def _core_bool(loader, node) -> bool:
@@ -111,7 +124,7 @@ def _loader_class(base: type) -> type:
                                    for first, rules in base.yaml_implicit_resolvers.items()}
     for name, pattern, first in CORE:
         cls.add_implicit_resolver(f"tag:yaml.org,2002:{name}", re.compile(f"^(?:{pattern})$"), list(first))
-    for name, construct in (("int", _core_int), ("float", _core_float), ("bool", _core_bool)):
+    for name, construct in (("int", _core_int), ("float", _core_float), ("bool", _core_bool), ("null", _core_null)):
         cls.add_constructor(f"tag:yaml.org,2002:{name}", construct)
     return cls
 

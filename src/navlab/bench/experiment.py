@@ -30,6 +30,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
+from ..limits import digit_count, shown
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -431,8 +432,8 @@ def validate(exp: Experiment) -> None:
         raise ExperimentError(f"the experiment has {cells:.3g} cells (worlds × planners × samplers × grid values), "
                               f"more than the {MAX_CELLS} a run supports; sweep fewer values")
     if cells * exp.trials > MAX_TRIALS:
-        raise ExperimentError(f"'trials': {exp.trials} trials in each of {cells} cells is {cells * exp.trials:.3g} "
-                              f"trials, more than the {MAX_TRIALS:.0e} a run supports")
+        raise ExperimentError(f"'trials': {shown(exp.trials)} trials in each of {cells} cells is "
+                              f"{_roughly(cells * exp.trials)} trials, more than the {MAX_TRIALS:.0e} a run supports")
     if isinstance(exp.seed, bool) or not isinstance(exp.seed, int) or exp.seed < 0:
         raise ExperimentError(f"'seed' must be a non-negative integer, got {exp.seed!r}")
     for key, values in exp.grid.items():
@@ -522,6 +523,12 @@ def _check_unique_cells(exp: Experiment) -> None:
     if len(set(ids)) != len(ids):
         twice = next(c.label for c in exp.cells() if ids.count(c.cell_id) > 1)
         raise ExperimentError(f"the cell {twice} is named twice: each cell runs once")
+
+
+def _roughly(count: int) -> str:
+    """A count in three digits (``1.2e+09``), or its digits when past a float (a 400-digit ``trials`` made
+    the message itself fail: attack, session 20)."""
+    return f"{count:.3g}" if count.bit_length() <= 1000 else f"a number of {digit_count(count)} digits"
 
 
 def _whole(value: Any) -> Any:

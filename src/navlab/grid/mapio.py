@@ -353,7 +353,7 @@ def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
     if not (0.0 <= free_t <= occ_t <= 1.0):
         raise MapFormatError(f"{src}: thresholds need 0 <= free_thresh ({free_t}) <= occupied_thresh ({occ_t}) <= 1")
     negate = meta.get("negate", 0)
-    if negate not in (0, 1) or isinstance(negate, float):
+    if negate not in (0, 1) or isinstance(negate, (float, bool)):  # (true read as 1 inverted the map)
         raise MapFormatError(f"{src}: field 'negate' must be 0 or 1, got {negate!r}")
     mode = meta.get("mode", "trinary")
     if mode not in MAP_MODES:

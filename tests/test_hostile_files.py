@@ -254,3 +254,17 @@ def test_values_past_what_a_message_can_show_are_refused_in_one_line(files):
     path.write_text(MAP_YAML.replace("negate: 0", "negate: true"))
     with pytest.raises(MapFormatError, match="field 'negate' must be 0 or 1, got True"):
         load_map(path)
+
+
+def test_map_field_messages_show_long_values_short(files):
+    """(attack, session 20: a 100 000-character mode or a 400-digit threshold was echoed whole, and a threshold
+    too large for a float said 'field 'free_thresh' is too large (|field 'free_thresh'| ≤ 1e+07)')"""
+    path = files / "m.yaml"
+    for field, value, message in (("mode", "'" + "a" * 100_000 + "'", "field 'mode' must be trinary, scale or raw, got"),
+                                  ("free_thresh", "9" * 400, "field 'free_thresh' must be a finite number, got an "
+                                                             "integer of 400 digits")):
+        path.write_text(MAP_YAML.replace("free_thresh: 0.196", "free_thresh: 0.196" if field == "mode" else
+                                         f"free_thresh: {value}") + (f"mode: {value}\n" if field == "mode" else ""))
+        with pytest.raises(MapFormatError, match=re.escape(message)) as info:
+            load_map(path)
+        assert len(str(info.value)) < 400

@@ -27,13 +27,13 @@ def finite_number(name: str, value: Any) -> float:
     """``value`` as a float if it is a finite real number (Python or numpy;
     not a bool, not a string), else ParameterError naming ``name``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
-        raise ParameterError(f"{name} must be a number, got {value!r}")
+        raise ParameterError(f"{name} must be a number, got {shown(value)}")
     try:
         v = float(value)
-    except OverflowError:
-        raise ParameterError(f"{name} is too large (|{name}| ≤ {MAX_COORDINATE:g})") from None
+    except OverflowError:  # (the value's own bound, if any, is its caller's to say)
+        raise ParameterError(f"{name} must be a finite number, got {shown(value)}") from None
     if not math.isfinite(v):
-        raise ParameterError(f"{name} must be finite, got {value!r}")
+        raise ParameterError(f"{name} must be finite, got {shown(value)}")
     return v
 
 

@@ -25,7 +25,7 @@ import yaml
 
 from ..atomic import atomic_path
 from ..errors import NavlabError, ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number, shown
 from ..yamlio import read_yaml, regular_file
 from ..yamlcore import number_text
 from .occupancy import MAX_CELLS, OccupancyGrid
@@ -284,7 +284,7 @@ def _number(meta: Dict[str, Any], key: str, source: Path, default: Any = None) -
 def _origin(meta: Dict[str, Any], source: Path) -> Tuple[float, float, float]:
     origin = meta.get("origin", [0.0, 0.0, 0.0])
     if not (isinstance(origin, list) and len(origin) == 3):
-        raise MapFormatError(f"{source}: field 'origin' must be [x, y, yaw], got {origin!r}")
+        raise MapFormatError(f"{source}: field 'origin' must be [x, y, yaw], got {shown(origin)}")
     out = []
     for label, v in zip(("x", "y", "yaw"), origin):
         v = number_text(v)
@@ -293,7 +293,7 @@ def _origin(meta: Dict[str, Any], source: Path) -> Tuple[float, float, float]:
         except OverflowError:
             ok = False
         if not ok:
-            raise MapFormatError(f"{source}: field 'origin' {label} must be a finite number, got {v!r}")
+            raise MapFormatError(f"{source}: field 'origin' {label} must be a finite number, got {shown(v)}")
         if label != "yaw" and abs(float(v)) > MAX_COORDINATE:
             raise MapFormatError(f"{source}: field 'origin' {label} = {float(v):g} is out of range "
                                  f"(|{label}| <= {MAX_COORDINATE:g} m)")
@@ -306,7 +306,7 @@ def _image_path(meta: Dict[str, Any], source: Path) -> Path:
         raise MapFormatError(f"{source}: field 'image' is missing")
     name = meta["image"]
     if not isinstance(name, str) or not name.strip():
-        raise MapFormatError(f"{source}: field 'image' must be a file name, got {name!r}")
+        raise MapFormatError(f"{source}: field 'image' must be a file name, got {shown(name)}")
     image = Path(name)
     image = image if image.is_absolute() else source.parent / image
     if image.is_dir():
@@ -346,7 +346,7 @@ def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
     resolution = _number(meta, "resolution", src)
     if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
         raise MapFormatError(f"{src}: field 'resolution' must be between {MIN_LENGTH:g} and {MAX_COORDINATE:g} "
-                             f"m per cell, got {meta['resolution']!r}")
+                             f"m per cell, got {shown(meta['resolution'])}")
     origin = _origin(meta, src)
     occ_t = _number(meta, "occupied_thresh", src, 0.65)
     free_t = _number(meta, "free_thresh", src, 0.196)
@@ -354,10 +354,10 @@ def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
         raise MapFormatError(f"{src}: thresholds need 0 <= free_thresh ({free_t}) <= occupied_thresh ({occ_t}) <= 1")
     negate = meta.get("negate", 0)
     if negate not in (0, 1) or isinstance(negate, (float, bool)):  # (true read as 1 inverted the map)
-        raise MapFormatError(f"{src}: field 'negate' must be 0 or 1, got {negate!r}")
+        raise MapFormatError(f"{src}: field 'negate' must be 0 or 1, got {shown(negate)}")
     mode = meta.get("mode", "trinary")
     if mode not in MAP_MODES:
-        raise MapFormatError(f"{src}: field 'mode' must be trinary, scale or raw, got {mode!r}")
+        raise MapFormatError(f"{src}: field 'mode' must be trinary, scale or raw, got {shown(mode)}")
     pixels = _read_image(image)
     if rule == "nav2":
         values = nav2_cell_values(pixels.gray, pixels.alpha, mode, bool(negate), occ_t, free_t)

@@ -180,6 +180,7 @@ def parse_yaml(raw: bytes, where: str, error: Type[Exception], what: str = "file
         raise error(f"{where}: not a UTF-8 text file (byte {exc.start}); a {what} is YAML text") from None
     base = yaml.CSafeLoader if hasattr(yaml, "CSafeLoader") and _nesting(raw, text) <= _C_PARSER_MAX_NESTING \
         else yaml.SafeLoader
+
     def too_many(size: int) -> Exception:
         return error(f"{where}: expands to {size:,} YAML nodes (aliases counted at each use), more than the "
                      f"{max_nodes:,} a {what} may have")

@@ -116,7 +116,8 @@ def test_bad_value_names_its_field(tmp_path, edit, field):
 
 def test_huge_integer_in_the_file_names_the_field(tmp_path):
     path = write(tmp_path, ZIGZAG.replace("robot_radius: 0.0", "robot_radius: " + "9" * 400))
-    with pytest.raises(WorldFormatError, match=r"field 'robot_radius' is too large"):
+    with pytest.raises(WorldFormatError, match=r"field 'robot_radius' must be a finite number, got an integer of 400 "
+                                               r"digits"):
         navlab.load_world(path)
 
 

@@ -147,8 +147,8 @@ def test_the_overall_line_names_each_world_once_and_says_what_every_world_showed
     # which comparison decided each world (a newcomer could not tell from the line, session 17)
     assert line == ("contradicted in clutter (boundary vs integration: 18/20 vs 20/20 solved; boundary vs gaussian: "
                     "18/20 vs 20/20 solved), squarefield (boundary vs integration: 9/20 vs 20/20 solved; boundary vs "
-                    "gaussian: 9/20 vs 20/20 solved); not shown for too few solved trials in trap (boundary solved 0/20, "
-                    "integration 20/20; boundary solved 0/20, gaussian 20/20)")
+                    "gaussian: 9/20 vs 20/20 solved); not shown in trap (boundary solved 0/20, integration 20/20; "
+                    "boundary solved 0/20, gaussian 20/20): a verdict needs 5 solved trials on each side")
     one = overall_verdicts([both[1], _verdict("clutter", "not shown")])[TIME["text"]]
     assert one == "contradicted in clutter (boundary vs gaussian: 18/20 vs 20/20 solved)"
     line = overall_verdicts([_verdict("clutter", "confirmed"), _verdict("trap", "not shown")])[TIME["text"]]

@@ -405,8 +405,10 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         if rest:  # ("not shown in any of" every world, and then too few to judge in them, said it twice)
             parts.append(f"not shown in {'' if judged or unsolved else 'any of '}{', '.join(rest)}")
         if unsolved:
-            # "not shown", as the report's per-world table says it (the line's own wording for it confused)
-            parts.append(f"not shown for too few solved trials in {unsolved}")
+            # "not shown", as the report's per-world table says it (the line's own wording for it confused),
+            # with the rule: "too few solved trials" read as a failure where 2 of 2 trials had solved (newcomer
+            # run, session 20)
+            parts.append(f"not shown in {unsolved}: a verdict needs {MIN_SOLVED} solved trials on each side")
         lines[claim] = "; ".join(parts)
     return lines
 

@@ -162,3 +162,14 @@ def test_a_params_files_shared_section_may_name_other_nodes_parameters(tmp_path)
     proc = run_isolated(navlab_cmd("ros", "goto_waypoint", "--ros-args", "--params-file", str(params), "-p",
                                    "real_time_factor:=2.0"), timeout=60)
     assert proc.returncode == 2 and "unknown parameter 'real_time_factor'" in proc.stderr
+
+
+def test_the_path_planner_notes_grid_settings_its_algorithm_does_not_use():
+    """(newcomer run, session 20: -p heuristic:=none -p weight:=2 ran astar unweighted without a word; the CLI verbs
+    note it)"""
+    proc = run_isolated(["timeout", "-s", "INT", "12", *navlab_cmd("ros", "pathplanner", "--ros-args", "-p",
+                                                                  "algorithm:=astar", "-p", "heuristic:=none", "-p",
+                                                                  "weight:=2")], timeout=60)
+    assert proc.returncode == 124, proc.stderr
+    assert "note: a weight scales the heuristic, and there is none: astar ran unweighted (-p weight:=2 is not used)" \
+        in proc.stderr and "astar ready" in proc.stderr

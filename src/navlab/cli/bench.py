@@ -13,7 +13,7 @@ import yaml
 
 from ..bench.suites import suite_help
 from ..wording import counted
-from .common import Count, parse_params, unused_grid_settings
+from .common import Count, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
 EXIT_INTERRUPTED = 130
@@ -309,10 +309,10 @@ def _as_world(world: str, start, goal):
 
 def note_unused_settings(exp) -> None:
     """A note on stderr for each grid planner given a ``heuristic`` or ``weight`` it does not use
-    (:func:`~navlab.cli.common.unused_grid_settings`), each line once: its trials labelled with the value
+    (:func:`~navlab.grid.planner.unused_settings`), each line once: its trials labelled with the value
     given run the search without it (the rows' ``params_used`` say what ran)."""
     from ..bench.experiment import routed_params
-    from ..grid.planner import GRID_ALGORITHMS
+    from ..grid.planner import GRID_ALGORITHMS, unused_settings
 
     lines: Dict[str, None] = {}  # (ordered, each once)
     for cell in exp.cells():
@@ -320,7 +320,7 @@ def note_unused_settings(exp) -> None:
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
         given = {key: own[key] for key in ("heuristic", "weight") if key in own}
-        lines.update(dict.fromkeys(unused_grid_settings(cell.planner.name, given, lambda k, value: f"{k}={value}")))
+        lines.update(dict.fromkeys(unused_settings(cell.planner.name, given, lambda k, value: f"{k}={value}")))
     for line in lines:
         click.echo(line, err=True)
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 import os
 import re
-from typing import Any, Dict, List, Optional, Tuple
+from typing import Any, Dict, Optional, Tuple
 
 import click
 
@@ -206,29 +206,11 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
 
 
 def note_unused_grid_settings(algorithm: str, given: Dict[str, Any], spelled) -> None:
-    """Each of :func:`unused_grid_settings`' lines on stderr."""
-    for line in unused_grid_settings(algorithm, given, spelled):
+    """Each of :func:`navlab.grid.planner.unused_settings`' lines on stderr."""
+    from ..grid.planner import unused_settings
+
+    for line in unused_settings(algorithm, given, spelled):
         click.echo(line, err=True)
-
-
-def unused_grid_settings(algorithm: str, given: Dict[str, Any], spelled) -> List[str]:
-    """A note for each grid setting in ``given`` (``heuristic``, ``weight``: those the user
-    gave) that ``algorithm`` does not use: Dijkstra, JPS and Theta* have their own heuristic, only A*
-    takes a weight, and A* with heuristic ``none`` none (the result's params say what the search used).
-    ``spelled(key, value)`` is how the user wrote it (``--heuristic manhattan``, ``--param
-    heuristic=manhattan``). Rather than a run that silently searched without them (newcomer run, session 19)."""
-    from ..grid.planner import as_searched
-
-    used = as_searched(algorithm, **given)  # the rule the search and its params follow
-    lines = []
-    if "heuristic" in given and used["heuristic"] != given["heuristic"]:
-        uses = "no heuristic" if used["heuristic"] == "none" else f"its own heuristic ({used['heuristic']})"
-        lines.append(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used")
-    if "weight" in given and used["weight"] != given["weight"]:
-        why = "a weight scales the heuristic, and there is none" if algorithm == "astar" else \
-            "a weight applies to astar only"
-        lines.append(f"note: {why}: {algorithm} ran unweighted ({spelled('weight', given['weight'])} is not used)")
-    return lines
 
 
 def check_output_file(path: str, flag: str) -> None:

@@ -30,7 +30,7 @@ import math
 import numbers
 import threading
 import time
-from typing import Any, Dict, Iterator, Optional, Tuple
+from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 import numpy as np
 
@@ -337,6 +337,24 @@ def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:
     if "weight" in out and (algorithm != "astar" or out.get("heuristic") == "none"):
         out["weight"] = 1.0  # (a weight times no heuristic is none either)
     return out
+
+
+def unused_settings(algorithm: str, given: Dict[str, Any], spelled) -> List[str]:
+    """A note for each grid setting in ``given`` (``heuristic``, ``weight``: those the user
+    gave) that ``algorithm`` does not use: Dijkstra, JPS and Theta* have their own heuristic, only A*
+    takes a weight, and A* with heuristic ``none`` none (the result's params say what the search used).
+    ``spelled(key, value)`` is how the user wrote it (``--heuristic manhattan``, ``--param
+    heuristic=manhattan``). Rather than a run that silently searched without them (newcomer run, session 19)."""
+    used = as_searched(algorithm, **given)  # the rule the search and its params follow
+    lines = []
+    if "heuristic" in given and used["heuristic"] != given["heuristic"]:
+        uses = "no heuristic" if used["heuristic"] == "none" else f"its own heuristic ({used['heuristic']})"
+        lines.append(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used")
+    if "weight" in given and used["weight"] != given["weight"]:
+        why = "a weight scales the heuristic, and there is none" if algorithm == "astar" else \
+            "a weight applies to astar only"
+        lines.append(f"note: {why}: {algorithm} ran unweighted ({spelled('weight', given['weight'])} is not used)")
+    return lines
 
 
 def search_heuristic(algorithm: str, hcode: int) -> int:

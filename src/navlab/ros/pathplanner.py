@@ -47,9 +47,11 @@ class PathPlanner(NavlabNode):
         super().__init__(self.NODE_NAME, automatically_declare_parameters_from_overrides=True, **kwargs)
         p = self.params
         self.tree = None
+        settings = self.planner_params()
         self.core = GoalPlanner(self.log, p["algorithm"], p["sampler"],
                                 p["seed"], p["inflation_radius"], p["allow_unknown"],
-                                on_tree=self.keep_tree if p["publish_tree"] else None, **self.planner_params())
+                                on_tree=self.keep_tree if p["publish_tree"] else None, **settings)
+        self.note_unused_settings(p["algorithm"], settings)
         self.publisher = self.create_publisher(Path, "plan", PLAN_QOS)
         self.tree_publisher = self.create_publisher(MarkerArray, "plan_tree", DEFAULT_QOS)
         self.create_subscription(GridMsg, "map", self.on_map, MAP_QOS)
@@ -57,6 +59,16 @@ class PathPlanner(NavlabNode):
         self.create_subscription(Odometry, "odom", self.on_odom, DEFAULT_QOS)
         # said once, so a user (and a launcher) can tell a node that is up from one still starting
         self.log("info", f"{p['algorithm']} ready: plans on /map from /odom to each /goal_pose")
+
+    def note_unused_settings(self, algorithm: str, settings: Dict[str, Any]) -> None:
+        """A warning for each grid setting the grid algorithm does not use, as the command line notes them
+        (jps given a heuristic, astar a weight with heuristic none: the node ran without them silently)."""
+        from ..grid.planner import GRID_ALGORITHMS, unused_settings
+
+        if algorithm in GRID_ALGORITHMS:
+            given = {key: settings[key] for key in ("heuristic", "weight") if key in settings}
+            for line in unused_settings(algorithm, given, lambda key, value: f"-p {key}:={value}"):
+                self.log("warn", line)
 
     def planner_params(self) -> Dict[str, Any]:
         """The settings given on the command line for the planner (a mapping such as

@@ -9,7 +9,6 @@ planner and its sampler by name.
 
 from __future__ import annotations
 
-import inspect
 import time
 from typing import Any, Dict
 
@@ -132,7 +131,7 @@ def _with_defaults(grid_plan, settings: dict) -> dict:
     """``settings`` with the grid planner's defaults for those not given (heuristic, connectivity, smooth,
     weight), so a result's params say every setting it ran with (they listed only the given ones); a
     weight as a float (3 and 3.0 alike)."""
-    used = {name: p.default for name, p in inspect.signature(grid_plan).parameters.items()
+    used = {name: default for name, default in parameters_of(grid_plan).items()
             if name in ("heuristic", "connectivity", "smooth", "weight")}
     used.update(settings)
     used["weight"] = float(used["weight"])

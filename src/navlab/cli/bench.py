@@ -319,8 +319,7 @@ def note_unused_settings(exp) -> None:
         if cell.planner.name not in GRID_ALGORITHMS:  # (tree, OMPL and pose planners)
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
-        given = {key: own[key] for key in ("heuristic", "weight") if key in own}
-        lines.update(dict.fromkeys(unused_settings(cell.planner.name, given, lambda k, value: f"{k}={value}")))
+        lines.update(dict.fromkeys(unused_settings(cell.planner.name, own, lambda k, value: f"{k}={value}")))
     for line in lines:
         click.echo(line, err=True)
 

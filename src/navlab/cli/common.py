@@ -195,21 +195,22 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
         try:
             out[key] = load_value(value)
         except yaml.YAMLError as exc:  # (the problem alone: the mark repeats the value just given)
-            raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(getattr(exc, 'problem', None) or exc, 300)}",
+            problem = getattr(exc, "problem", None) or exc
+            raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(problem, 300)}",
                                      param_hint=flag) from None
         except RecursionError:
             raise click.BadParameter(f"the value of '{key}' is nested too deeply", param_hint=flag) from None
-        except ValueError as exc:  # PyYAML's int(): a number of more than 4 300 digits
+        except ValueError as exc:  # (a constructor of PyYAML's own that raises one)
             raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
                                      param_hint=flag) from None
     return out
 
 
-def note_unused_grid_settings(algorithm: str, given: Dict[str, Any], spelled) -> None:
+def note_unused_grid_settings(algorithm: str, settings: Dict[str, Any], spelled) -> None:
     """Each of :func:`navlab.grid.planner.unused_settings`' lines on stderr."""
     from ..grid.planner import unused_settings
 
-    for line in unused_settings(algorithm, given, spelled):
+    for line in unused_settings(algorithm, settings, spelled):
         click.echo(line, err=True)
 
 

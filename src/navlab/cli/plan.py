@@ -98,8 +98,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
             check_radius_not_dropped(world, robot_radius, settings, planner)
         result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
         if not pose_query and is_grid_planner(planner):  # (once they passed the planner's checks)
-            note_unused_grid_settings(planner, {k: settings[k] for k in ("heuristic", "weight") if k in settings},
-                                      lambda key, value: f"--param {key}={value}")
+            note_unused_grid_settings(planner, settings, lambda key, value: f"--param {key}={value}")
     if plot:
         from ..viz import plot_plan
 

@@ -339,12 +339,14 @@ def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:
     return out
 
 
-def unused_settings(algorithm: str, given: Dict[str, Any], spelled) -> List[str]:
-    """A note for each grid setting in ``given`` (``heuristic``, ``weight``: those the user
-    gave) that ``algorithm`` does not use: Dijkstra, JPS and Theta* have their own heuristic, only A*
-    takes a weight, and A* with heuristic ``none`` none (the result's params say what the search used).
-    ``spelled(key, value)`` is how the user wrote it (``--heuristic manhattan``, ``--param
-    heuristic=manhattan``). Rather than a run that silently searched without them (newcomer run, session 19)."""
+def unused_settings(algorithm: str, settings: Dict[str, Any], spelled) -> List[str]:
+    """A note for each of the ``heuristic`` and ``weight`` in ``settings`` (those the user gave; any
+    other key is passed over) that ``algorithm`` does not use: Dijkstra, JPS and Theta* have their own
+    heuristic, only A* takes a weight, and A* with heuristic ``none`` none (the result's params say what
+    the search used). ``spelled(key, value)`` is how the user wrote it (``--heuristic manhattan``,
+    ``--param heuristic=manhattan``). Rather than a run that silently searched without them (newcomer
+    run, session 19)."""
+    given = {key: settings[key] for key in ("heuristic", "weight") if key in settings}
     used = as_searched(algorithm, **given)  # the rule the search and its params follow
     lines = []
     if "heuristic" in given and used["heuristic"] != given["heuristic"]:

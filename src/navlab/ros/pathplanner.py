@@ -66,8 +66,7 @@ class PathPlanner(NavlabNode):
         from ..grid.planner import GRID_ALGORITHMS, unused_settings
 
         if algorithm in GRID_ALGORITHMS:
-            given = {key: settings[key] for key in ("heuristic", "weight") if key in settings}
-            for line in unused_settings(algorithm, given, lambda key, value: f"-p {key}:={value}"):
+            for line in unused_settings(algorithm, settings, lambda key, value: f"-p {key}:={value}"):
                 self.log("warn", line)
 
     def planner_params(self) -> Dict[str, Any]:

@@ -189,6 +189,8 @@ def test_files_and_params_read_numbers_alike(files):
     ("9" * 5000, "is not an integer navlab reads (5000 digits)"),
     # (attack, session 20: hexadecimal has no digit limit in Python, so the next message to show one failed)
     ("0x" + "f" * 5000, "is not an integer navlab reads (5002 digits)"), ("!!null 5", "'5' is not null"),
+    # (re-read of session 20's change: PyYAML's own date constructor raised AttributeError and ValueError)
+    ("!!timestamp foo", "'foo' is not a date"), ("!!timestamp 2024-13-45", "'2024-13-45' is not a date"),
 ])
 def test_a_tagged_or_huge_scalar_that_is_not_its_type_is_a_yaml_error_with_its_place(files, text, message):
     """(review, session 20: !!bool garbage read as False, and !!int 0b1 or a 5000-digit integer in a world file was

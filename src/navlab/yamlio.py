@@ -116,6 +116,15 @@ def _core_bool(loader, node) -> bool:
     return text.lower() == "true"
 
 
+def _core_timestamp(loader, node):
+    """A date under an explicit ``!!timestamp`` tag (plain dates are text in YAML 1.2), read by PyYAML;
+    text that is no date is a YAML error (PyYAML raised AttributeError or ValueError: internal errors)."""
+    try:
+        return yaml.constructor.SafeConstructor.construct_yaml_timestamp(loader, node)
+    except (AttributeError, ValueError, TypeError):
+        raise _tagged_error(node, loader.construct_scalar(node), "a date") from None
+
+
 def _loader_class(base: type) -> type:
     cls = type(f"Strict{base.__name__}", (base,), {})
     cls.add_constructor("tag:yaml.org,2002:map", _unique_mapping)
@@ -124,7 +133,8 @@ def _loader_class(base: type) -> type:
                                    for first, rules in base.yaml_implicit_resolvers.items()}
     for name, pattern, first in CORE:
         cls.add_implicit_resolver(f"tag:yaml.org,2002:{name}", re.compile(f"^(?:{pattern})$"), list(first))
-    for name, construct in (("int", _core_int), ("float", _core_float), ("bool", _core_bool), ("null", _core_null)):
+    for name, construct in (("int", _core_int), ("float", _core_float), ("bool", _core_bool), ("null", _core_null),
+                            ("timestamp", _core_timestamp)):
         cls.add_constructor(f"tag:yaml.org,2002:{name}", construct)
     return cls
 

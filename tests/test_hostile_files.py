@@ -239,6 +239,30 @@ def test_whole_numbers_written_as_floats_count_in_experiment_files(tmp_path):
             load_experiment(str(path))
 
 
+@pytest.mark.parametrize("written, flags, message", [
+    ("trials: 2.5", ["--trials", "1"], "'trials' must be a positive integer, got 2.5 (--trials replaces it"),
+    ("budget: {max_iter: '1:00'}", ["--max-iter", "10"], "budget max_iter must be a positive integer, got '1:00' "
+                                                         "(--max-iter replaces it"),
+    ("budget: {max_time: .nan}", ["--max-time", "1"], "budget max_time must be a positive number, got nan "
+                                                      "(--max-time replaces it"),
+    ("seed: -1", ["--seed", "3"], "'seed' must be a non-negative integer, got -1 (--seed replaces it"),
+])
+def test_a_flag_does_not_hide_a_bad_value_it_replaces_in_the_file(tmp_path, written, flags, message):
+    """(newcomer check, session 20: --trials 1 ran a file holding trials: 2.5, which the next run without the flag
+    refused)"""
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    path = tmp_path / "e.yaml"
+    path.write_text(f"worlds: [trap]\nplanners: [rrt]\n{written}\n")
+    result = CliRunner().invoke(main, ["bench", str(path), *flags, "--show"])
+    assert result.exit_code == 2 and message in result.output, result.output
+    path.write_text("worlds: [trap]\nplanners: [rrt]\ntrials: 3\nseed: 1\nbudget: {max_iter: 50, max_time: 2}\n")
+    result = CliRunner().invoke(main, ["bench", str(path), *flags, "--show"])
+    assert result.exit_code == 0, result.output  # a valid value is replaced without a word
+
+
 def test_values_past_what_a_message_can_show_are_refused_in_one_line(files):
     """(attack, session 20: !!float of a 300-digit hexadecimal was an internal OverflowError, a 400-digit trials
     made its own message fail, and negate: true read as 1 inverted the map)"""

@@ -419,12 +419,7 @@ def validate(exp: Experiment) -> None:
             if planner.name not in POSE_PLANNERS:
                 is_grid_planner(planner.name)  # unknown names: "did you mean", both kinds listed
 
-    # a whole number written as a float (trials: 1e1, a number to YAML 1.2) is that integer, as --trials 1e1 is
-    exp.trials, exp.seed = _whole(exp.trials), _whole(exp.seed)
-    if "max_iter" in exp.budget:
-        exp.budget["max_iter"] = _whole(exp.budget["max_iter"])
-    if isinstance(exp.trials, bool) or not isinstance(exp.trials, int) or exp.trials < 1:
-        raise ExperimentError(f"'trials' must be a positive integer, got {exp.trials!r}")
+    exp.trials = check_trials(exp.trials)
     # Counted before the cells are built: a grid of 8 parameters × 10 values is 10⁸ cells.
     cells = len(exp.worlds) * len(exp.planners) * max(len(exp.samplers), 1) * math.prod(
         len(v) for v in exp.grid.values())
@@ -434,17 +429,14 @@ def validate(exp: Experiment) -> None:
     if cells * exp.trials > MAX_TRIALS:
         raise ExperimentError(f"'trials': {shown(exp.trials)} trials in each of {cells} cells is "
                               f"{_roughly(cells * exp.trials)} trials, more than the {MAX_TRIALS:.0e} a run supports")
-    if isinstance(exp.seed, bool) or not isinstance(exp.seed, int) or exp.seed < 0:
-        raise ExperimentError(f"'seed' must be a non-negative integer, got {exp.seed!r}")
+    exp.seed = check_seed(exp.seed)
     for key, values in exp.grid.items():
         if not values:
             raise ExperimentError(f"grid parameter '{key}' has no values: the grid is empty")
-    max_iter = exp.budget.get("max_iter")
-    if max_iter is not None and (isinstance(max_iter, bool) or not isinstance(max_iter, int) or max_iter < 1):
-        raise ExperimentError(f"budget max_iter must be a positive integer, got {max_iter!r}")
-    max_time = exp.budget.get("max_time")
-    if max_time is not None and (not isinstance(max_time, (int, float)) or max_time <= 0):
-        raise ExperimentError(f"budget max_time must be a positive number, got {max_time!r}")
+    if exp.budget.get("max_iter") is not None:
+        exp.budget["max_iter"] = check_max_iter(exp.budget["max_iter"])
+    if exp.budget.get("max_time") is not None:
+        check_max_time(exp.budget["max_time"])
     labels = [p.title for p in exp.planners]
     if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
         raise ExperimentError("two planners or two samplers share a label; give them distinct 'label's")
@@ -529,6 +521,40 @@ def _roughly(count: int) -> str:
     """A count in three digits (``1.2e+09``), or its digits when past a float (a 400-digit ``trials`` made
     the message itself fail: attack, session 20)."""
     return f"{count:.3g}" if count.bit_length() <= 1000 else f"a number of {digit_count(count)} digits"
+
+
+# The count fields' checks, each returning the value as validate() keeps it; the command line's
+# --trials, --seed, --max-iter and --max-time run them on a file's value before replacing it.
+# A whole number written as a float (trials: 1e1, a number to YAML 1.2) is that integer, as --trials 1e1 is.
+def check_trials(value: Any) -> int:
+    """``trials``: a positive integer."""
+    value = _whole(value)
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise ExperimentError(f"'trials' must be a positive integer, got {value!r}")
+    return value
+
+
+def check_seed(value: Any) -> int:
+    """``seed``: a non-negative integer."""
+    value = _whole(value)
+    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
+        raise ExperimentError(f"'seed' must be a non-negative integer, got {value!r}")
+    return value
+
+
+def check_max_iter(value: Any) -> int:
+    """``budget: {max_iter}``: a positive integer."""
+    value = _whole(value)
+    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
+        raise ExperimentError(f"budget max_iter must be a positive integer, got {value!r}")
+    return value
+
+
+def check_max_time(value: Any) -> float:
+    """``budget: {max_time}``: a positive number [s]."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
+        raise ExperimentError(f"budget max_time must be a positive number, got {value!r}")
+    return value
 
 
 def _whole(value: Any) -> Any:

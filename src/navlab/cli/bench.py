@@ -6,7 +6,7 @@ import difflib
 import os
 import shlex
 import sys
-from typing import Dict, List, Optional
+from typing import Any, Dict, List, Optional
 
 import click
 import yaml
@@ -133,7 +133,8 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
       navlab bench --suite barn --data ../shared/data/barn --controller dwa_barn --controller rpp
     """
     from ..bench import load_experiment, run_experiment
-    from ..bench.experiment import ExperimentError, check_plain, experiment_data
+    from ..bench.experiment import (ExperimentError, check_max_iter, check_max_time, check_plain, check_seed,
+                                    check_trials, experiment_data)
     from ..bench.runner import Interrupted, breakdown_lines
 
     if resume and overwrite:
@@ -174,15 +175,14 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if not isinstance(budget, dict):
         raise click.UsageError(f"{where}: 'budget' must be a mapping (max_iter, max_time), got {budget!r}")
     budget = dict(budget)
-    if max_iter is not None:
-        budget["max_iter"] = max_iter
-    if max_time is not None:
-        budget["max_time"] = max_time
+    for holder, field, flag, value, check in ((budget, "max_iter", "--max-iter", max_iter, check_max_iter),
+                                              (budget, "max_time", "--max-time", max_time, check_max_time),
+                                              (data, "trials", "--trials", trials, check_trials),
+                                              (data, "seed", "--seed", seed, check_seed)):
+        if value is not None:
+            _check_replaced(where, holder.get(field), flag, check)
+            holder[field] = value
     data["budget"] = budget
-    if trials is not None:
-        data["trials"] = trials
-    if seed is not None:
-        data["seed"] = seed
     if not (experiment or suite):
         # an experiment made of flags: named by what it runs, so two different ones never share a folder
         # (its values checked first: the name hashes them, and a date was an internal TypeError there)
@@ -249,6 +249,19 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         click.echo(line)
     if run.errors:
         sys.exit(1)
+
+
+def _check_replaced(where: str, written: Any, flag: str, check) -> None:
+    """A file's value that ``flag`` replaces must still be valid: a typo in the file (``trials: 2.5``)
+    would otherwise pass unseen this time and stop the next run, without the flag."""
+    from ..bench.experiment import ExperimentError
+
+    if written is None:
+        return
+    try:
+        check(written)
+    except ExperimentError as exc:
+        raise ExperimentError(f"{where}: {exc} ({flag} replaces it this time; correct it in the file)") from None
 
 
 def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor, jobs, scheduler, resume,

@@ -71,6 +71,29 @@ def test_a_key_given_twice_is_refused_naming_it(files, reader, error, base):
         reader(path)
 
 
+def test_keys_written_differently_but_equal_are_named_as_written(tmp_path):
+    """(newcomer check, session 20: {true: 1, 1: 2} was "key '1' is given twice", the user never wrote 1 twice)"""
+    path = tmp_path / "e.yaml"
+    for written, message in (("{true: 1, 1: 2}", "keys 'true' and '1' are one key (equal values) (first on line 3)"),
+                             ("{1: 1, 1.0: 2}", "keys '1' and '1.0' are one key"),
+                             ("{1: 1, 1: 2}", "key '1' is given twice (first on line 3)")):
+        path.write_text(f"worlds: [trap]\nplanners: [rrt]\nparams: {written}\n")
+        with pytest.raises(ExperimentError, match=re.escape(message)):
+            load_experiment(str(path))
+
+
+def test_messages_name_a_top_level_key_and_show_dates_as_written(tmp_path):
+    """(newcomer check, session 20: "e.yaml: : keys must be names", and datetime.date(2001, 1, 1) for a date)"""
+    path = tmp_path / "e.yaml"
+    for written, message in (("1: 2", "e.yaml: keys must be names, got 1"),
+                             ("trials: !!timestamp 2001-01-01", "got 2001-01-01 (a date)"),
+                             ("seed: !!timestamp 2001-01-01 10:00:00", "got 2001-01-01 10:00:00 (a date)")):
+        path.write_text(f"worlds: [trap]\nplanners: [rrt]\n{written}\n")
+        with pytest.raises(ExperimentError, match=re.escape(message)) as caught:
+            load_experiment(str(path))
+        assert "datetime" not in str(caught.value)
+
+
 def test_trials_given_twice_no_longer_starts_a_million_trials(tmp_path):
     path = tmp_path / "e.yaml"
     path.write_text("worlds: [trap]\nplanners: [rrt]\ntrials: 2\ntrials: 1000000\n")

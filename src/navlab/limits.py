@@ -12,6 +12,7 @@ checked against these at the boundary (world and map files, the CLI, the
 
 from __future__ import annotations
 
+import datetime
 import math
 import os
 from typing import Any, Optional
@@ -76,6 +77,8 @@ def digit_count(value: int) -> int:
 def _one_value(value: Any) -> str:
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and abs(int(value)) >= 10 ** 20:
         return f"an integer of {digit_count(value)} digits"
+    if isinstance(value, datetime.date):  # (a !!timestamp in a file): as written, not datetime.date(2001, 1, 1)
+        return f"{value.isoformat(sep=' ') if isinstance(value, datetime.datetime) else value.isoformat()} (a date)"
     try:
         return " ".join(repr(value).split())  # a numpy array's repr spans lines
     except RecursionError:  # a list nested thousands deep

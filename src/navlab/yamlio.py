@@ -61,10 +61,15 @@ def _unique_mapping(loader, node) -> Dict[Any, Any]:
             raise yaml.constructor.ConstructorError(None, None, "a mapping key must be plain text or a number",
                                                     key_node.start_mark) from None
         if key in written:
+            first = written[key]
+            if isinstance(first.value, str) and isinstance(key_node.value, str) and first.value != key_node.value:
+                # written differently, equal as values (true and 1, 1 and 1.0): name both as written
+                what = f"keys '{first.value}' and '{key_node.value}' are one key (equal values)"
+            else:
+                what = f"key '{key}' is given twice"
             raise yaml.constructor.ConstructorError(
-                None, None, f"key '{key}' is given twice (first on line {written[key].line + 1}); keep one",
-                key_node.start_mark)
-        written[key] = key_node.start_mark
+                None, None, f"{what} (first on line {first.start_mark.line + 1}); keep one", key_node.start_mark)
+        written[key] = key_node
     loader.flatten_mapping(node)
     return {loader.construct_object(k, deep=True): loader.construct_object(v, deep=True) for k, v in node.value}
 

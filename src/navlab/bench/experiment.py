@@ -268,7 +268,7 @@ def check_plain(value: Any, path: str = "") -> None:
     if isinstance(value, dict):
         for key, item in value.items():
             if not isinstance(key, str):
-                raise ExperimentError(f"{path}: keys must be names, got {key!r}")
+                raise ExperimentError(f"{path + ': ' if path else ''}keys must be names, got {shown(key)}")
             check_plain(item, f"{path}.{key}" if path else key)
     elif isinstance(value, (list, tuple)):
         for i, item in enumerate(value):
@@ -277,7 +277,7 @@ def check_plain(value: Any, path: str = "") -> None:
         kind = {"bytes": "binary data", "date": "a date", "datetime": "a date and time", "set": "a set"}.get(
             type(value).__name__, f"a {type(value).__name__}")
         raise ExperimentError(f"{path}: {kind} is not an experiment value (names, numbers, true/false, lists "
-                              f"and mappings are), got {value!r}")
+                              f"and mappings are), got {shown(value)}")
 
 
 def _from_dict(data: Dict[str, Any]) -> Experiment:

@@ -98,15 +98,16 @@ def test_grid_settings_a_planner_does_not_use_are_noted_once(tmp_path):
     res = CliRunner().invoke(main, args)
     assert res.exit_code == 0, res.output
     assert [line for line in res.stderr.splitlines() if line.startswith("note:")] == [
-        "note: a weight applies to astar only: jps ran unweighted (weight=2 is not used)",
+        "note: jps searches unweighted (only astar takes a weight): weight=2 is not used",
         "note: jps searches with its own heuristic (octile): heuristic=manhattan is not used",
         "note: dijkstra searches with no heuristic: heuristic=octile is not used",
-        "note: a weight applies to astar only: dijkstra ran unweighted (weight=2 is not used)",
+        "note: dijkstra searches unweighted (only astar takes a weight): weight=2 is not used",
         "note: dijkstra searches with no heuristic: heuristic=manhattan is not used"]
     res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "astar", "--grid", "heuristic=[octile,none]",
                                     "--param", "weight=2", "--trials", "1", "-q", "--no-plots", "--executor", "serial",
                                     "--out", str(tmp_path / "none")])
     assert res.exit_code == 0 and res.stderr.splitlines() == [  # (review, session 20: it said nothing)
-        "note: a weight scales the heuristic, and there is none: astar ran unweighted (weight=2 is not used)"]
+        "note: astar searches unweighted (a weight scales the heuristic, and heuristic none has none): weight=2 is "
+        "not used"]
     args = args[:5] + args[9:]  # astar alone: it uses both
     assert "note:" not in CliRunner().invoke(main, args[:-1] + [str(tmp_path / "out2")]).stderr

@@ -48,7 +48,7 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
     assert res.exit_code == 0 and json.loads(res.stdout)["params"]["heuristic"] == "octile"
     assert res.stderr.splitlines() == [
         "note: jps searches with its own heuristic (octile): --heuristic manhattan is not used",
-        "note: a weight applies to astar only: jps ran unweighted (--weight 3 is not used)"]
+        "note: jps searches unweighted (only astar takes a weight): --weight 3 is not used"]
     res = run("grid", "plan", DATA / "arena.map", *query, "--algorithm", "dijkstra", "--heuristic", "euclidean")
     assert res.stderr == "note: dijkstra searches with no heuristic: --heuristic euclidean is not used\n"
     for given in (("--algorithm", "astar", "--heuristic", "manhattan", "--weight", 3), ("--algorithm", "jps"),
@@ -66,7 +66,7 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
     assert json.loads(res.stdout)["params"]["heuristic"] == "octile" and json.loads(res.stdout)["params"]["weight"] == 1
     assert res.stderr.splitlines() == [
         "note: jps searches with its own heuristic (octile): --param heuristic=manhattan is not used",
-        "note: a weight applies to astar only: jps ran unweighted (--param weight=3 is not used)"]
+        "note: jps searches unweighted (only astar takes a weight): --param weight=3 is not used"]
     res = run("plan", DATA / "arena.map", "--planner", "astar", "--start", 1.5, 11.5, "--goal", 12.5, 35.5,
               "--param", "heuristic=manhattan", "--param", "weight=3", "--json")
     assert json.loads(res.stdout)["params"]["weight"] == 3 and res.stderr == ""
@@ -90,8 +90,8 @@ def test_heuristic_none_is_accepted_and_a_result_lists_every_setting_it_ran_with
     res = run("plan", DATA / "den312d.map", "--planner", "astar", *query, "--param", "heuristic=none",
               "--param", "weight=3", "--json")
     assert res.exit_code == 0 and json.loads(res.stdout)["params"]["weight"] == 1.0
-    assert res.stderr == ("note: a weight scales the heuristic, and there is none: astar ran unweighted "
-                          "(--param weight=3 is not used)\n")
+    assert res.stderr == ("note: astar searches unweighted (a weight scales the heuristic, and heuristic none has "
+                          "none): --param weight=3 is not used\n")
     res = run("grid", "scen", DATA / "arena.map.scen", "--heuristic", "none", "--limit", 5)
     assert res.stdout.startswith("arena: 5 scenarios, astar (none),") and "5 match, 0 do not" in res.stdout
     res = run("grid", "plan", DATA / "den312d.map", "--start", 10, 11, "--goal", 21, 70, "--algorithm", "dijkstra",

@@ -171,5 +171,6 @@ def test_the_path_planner_notes_grid_settings_its_algorithm_does_not_use():
                                                                   "algorithm:=astar", "-p", "heuristic:=none", "-p",
                                                                   "weight:=2")], timeout=60)
     assert proc.returncode == 124, proc.stderr
-    assert "note: a weight scales the heuristic, and there is none: astar ran unweighted (-p weight:=2 is not used)" \
+    assert ("note: astar searches unweighted (a weight scales the heuristic, and heuristic none has none): "
+            "-p weight:=2 is not used") \
         in proc.stderr and "astar ready" in proc.stderr

@@ -38,7 +38,8 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
 @click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
               help=HEURISTIC_HELP)
 @click.option("--connectivity", type=click.Choice(["4", "8"]), default="8", show_default=True)
-@click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A* (>= 1).")
+@click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A*: the heuristic times this (>= 1; 1 finds shortest "
+              "paths). Only astar with a heuristic takes one (a note says so otherwise).")
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
 @click.option("--robot-radius", "--inflate", "inflate", type=float, default=0.0, show_default=True,
               help="The robot's radius [m]: a cell is blocked when its centre is within it of a blocked cell's "

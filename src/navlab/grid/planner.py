@@ -353,9 +353,10 @@ def unused_settings(algorithm: str, settings: Dict[str, Any], spelled) -> List[s
         uses = "no heuristic" if used["heuristic"] == "none" else f"its own heuristic ({used['heuristic']})"
         lines.append(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used")
     if "weight" in given and used["weight"] != given["weight"]:
-        why = "a weight scales the heuristic, and there is none" if algorithm == "astar" else \
-            "a weight applies to astar only"
-        lines.append(f"note: {why}: {algorithm} ran unweighted ({spelled('weight', given['weight'])} is not used)")
+        # (worded as the heuristic's note, in the present: the ROS planner says it at start-up, before any plan)
+        why = "a weight scales the heuristic, and heuristic none has none" if algorithm == "astar" else \
+            "only astar takes a weight"
+        lines.append(f"note: {algorithm} searches unweighted ({why}): {spelled('weight', given['weight'])} is not used")
     return lines
 
 

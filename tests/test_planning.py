@@ -193,6 +193,23 @@ def test_an_unknown_setting_is_an_unknown_name_for_every_kind_of_query(world, pa
         navlab.plan(world, **params)
 
 
+@pytest.mark.parametrize("world, params, hint", [
+    ("trap", {"planner": "rrt_star", "smooth": True},
+     "'smooth' is a setting of the grid planners (astar, dijkstra, jps, theta_star) and planner hybrid_astar, not of "
+     "planner rrt_star with the uniform sampler."),
+    ("trap", {"planner": "astar", "expand_dis": 1.0},
+     "'expand_dis' is a setting of planners growth_ratio_rrt, informed_rrt_star, rrt and rrt_star, not of planner "
+     "astar."),
+    ("parking", {"planner": "hybrid_astar", "sigma": 1.0},
+     "'sigma' is a setting of the gaussian and integration samplers, not of planner hybrid_astar."),
+])
+def test_a_setting_of_another_planner_is_named_as_such_not_guessed_at(world, params, hint):
+    """(newcomer check, session 20: smooth=true with rrt_star was asked "Did you mean 'motion'?")"""
+    with pytest.raises(UnknownNameError) as caught:
+        navlab.plan(world, **params)
+    assert str(caught.value).endswith(hint) and "Did you mean" not in str(caught.value)
+
+
 def test_a_sampler_with_a_grid_planner_is_refused():
     with pytest.raises(ValueError, match="draws no samples"):
         navlab.plan("trap", planner="astar", sampler="gaussian")

@@ -23,23 +23,17 @@ import numpy as np
 from .errors import ParameterError
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
+from .setting_names import HYBRID_PARAMS, POSE_PLANNERS  # noqa: F401 (here since they were first)
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
 MOTIONS = ("holonomic", "dubins", "reeds_shepp")
 #: the motions of a car-like robot, all that Hybrid A* plans for
 CAR_MOTIONS = MOTIONS[1:]
-#: planners that plan between poses for a curvature-bounded robot
-POSE_PLANNERS = ("hybrid_astar",)
 #: tree planners that also plan between poses when ``motion`` is dubins or reeds_shepp
 TREE_POSE_PLANNERS = ("rrt", "rrt_star", "informed_rrt_star")
 #: [m] the turning radius when none is given: Nav2 Smac's ``minimum_turning_radius``
 DEFAULT_TURNING_RADIUS = 0.4
-#: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
-HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
-                 "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
-                 "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
-                 "waypoint_spacing", "exact_retry")
 #: [m] spacing of the poses at which a returned path's footprint is re-checked against the exact world
 VERIFY_SPACING = 0.001
 
@@ -149,8 +143,11 @@ def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str
     settings = dict(params)
     unknown = sorted(set(settings) - set(valid))
     if unknown:
+        from .setting_names import taken_elsewhere
+
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
-                         f"valid: {', '.join(valid)}." + suggest(unknown[0], list(valid) + ["goal_tolerance"]))
+                               f"valid: {', '.join(valid)}." + (taken_elsewhere(unknown[0], planner) or suggest(
+                                   unknown[0], list(valid) + ["goal_tolerance"])))
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),

@@ -20,9 +20,8 @@ from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
 from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
+from .setting_names import GRID_PARAMS, taken_elsewhere
 
-#: settings of the grid algorithms, routed by name like sampler settings
-GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
 #: settings of A* on a Nav2-style costmap (``costmap=True``; see :func:`costmap_query`)
 COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_travel_multiplier", "resolution",
                   "allow_unknown")
@@ -90,7 +89,7 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
             valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
             raise UnknownNameError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
                                    f"valid: {', '.join(valid)}; and for the query: {QUERY_PARAMS_HELP}."
-                                   + suggest(key, valid + list(QUERY_PARAMS)))
+                                   + (taken_elsewhere(key, planner, sampler) or suggest(key, valid + list(QUERY_PARAMS))))
     return to_planner, to_sampler
 
 
@@ -103,7 +102,7 @@ def split_grid_params(planner: str, params: dict) -> dict:
         if key not in GRID_PARAMS:
             raise UnknownNameError(f"unknown parameter '{key}' for grid planner '{planner}'; "
                                    f"valid: {', '.join(GRID_PARAMS)}; and costmap=true for A* on a costmap."
-                                   + suggest(key, list(GRID_PARAMS) + ["costmap"]))
+                                   + (taken_elsewhere(key, planner) or suggest(key, list(GRID_PARAMS) + ["costmap"])))
     return check_grid_settings(params)
 
 

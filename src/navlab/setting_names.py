@@ -1,0 +1,46 @@
+"""Which planners and samplers take a setting: the names of the grid algorithms' and Hybrid A*'s
+settings, and a hint naming who takes a setting a query's planner does not (:func:`taken_elsewhere`).
+
+Apart from :mod:`navlab.queries` and :mod:`navlab.pose_queries`, which both read it, so that neither
+imports the other for it.
+"""
+
+from __future__ import annotations
+
+from .registry import parameters_of
+from .sampling.planners import PLANNERS
+from .sampling.samplers import SAMPLERS
+
+#: settings of the grid algorithms, routed by name like sampler settings
+GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
+#: planners that plan between poses for a curvature-bounded robot
+POSE_PLANNERS = ("hybrid_astar",)
+#: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
+HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
+                 "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
+                 "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
+                 "waypoint_spacing", "exact_retry")
+
+
+def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
+    """A hint naming the planners and samplers that do take ``key`` (`` 'smooth' is a setting of the grid
+    planners (...) and planner hybrid_astar, not of planner rrt_star.``), or "" when none does. Rather than
+    the nearest name: --param smooth=true with rrt_star was asked "Did you mean 'motion'?" (newcomer check,
+    session 20)."""
+    from .grid.planner import GRID_ALGORITHMS  # (not at the top: a tree query never loads the grid search)
+
+    def listed(names):
+        return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+    planners = [name for name in PLANNERS.names() if key in parameters_of(PLANNERS.get(name))]
+    planners += [name for name in POSE_PLANNERS if key in HYBRID_PARAMS]
+    samplers = [name for name in SAMPLERS.names() if key in parameters_of(SAMPLERS.get(name))]
+    takers = [f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})"] if key in GRID_PARAMS else []
+    if planners:
+        takers.append(f"planner{'s' if len(planners) > 1 else ''} {listed(planners)}")
+    if samplers:
+        takers.append(f"the {listed(samplers)} sampler{'s' if len(samplers) > 1 else ''}")
+    if not takers:
+        return ""
+    own = f"planner {planner}" + (f" with the {sampler} sampler" if sampler else "")
+    return f" '{key}' is a setting of {listed(takers)}, not of {own}."

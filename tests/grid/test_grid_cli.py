@@ -1,4 +1,5 @@
 import json
+import re
 from pathlib import Path
 
 import numpy as np
@@ -94,6 +95,8 @@ def test_heuristic_none_is_accepted_and_a_result_lists_every_setting_it_ran_with
                           "none): --param weight=3 is not used\n")
     res = run("grid", "scen", DATA / "arena.map.scen", "--heuristic", "none", "--limit", 5)
     assert res.stdout.startswith("arena: 5 scenarios, astar (none),") and "5 match, 0 do not" in res.stdout
+    # five small queries take well under a second: in ms, not "total 0.000 s" (newcomer check, session 20)
+    assert re.search(r"total \d+\.\d{3} ms\n", res.stdout) and "total 0.000 s" not in res.stdout
     res = run("grid", "plan", DATA / "den312d.map", "--start", 10, 11, "--goal", 21, 70, "--algorithm", "dijkstra",
               "--heuristic", "none")
     assert res.exit_code == 0 and res.stderr == ""

@@ -58,6 +58,9 @@ def numpy_memory_error():
     (IsADirectoryError(errno.EISDIR, "Is a directory", "out"), 2, "Error: out: Is a directory"),
     (PermissionError(errno.EACCES, "Permission denied", "/root/x.png"), 2, "Error: /root/x.png: Permission denied"),
     (OSError(errno.ENOSPC, "No space left on device"), 2, "Error: No space left on device"),
+    # a name too long for the file system is cut to its ends (attack, session 20: 100 KB of one line)
+    (OSError(errno.ENAMETOOLONG, "File name too long", "a" * 100_000 + ".pgm"), 2,
+     "Error: " + "a" * 150 + "..." + "a" * 71 + ".pgm (a name of 100004 characters): File name too long"),
     (MemoryError(), 2, "Error: the request is too large for this machine's memory"),
     (ModuleNotFoundError("No module named 'dask'", name="dask"), 2, "pip install 'navlab[dask]'"),
     (KeyError("time_s"), 1, "Error: internal error: KeyError: 'time_s' (run with NAVLAB_DEBUG=1 for the traceback)"),

@@ -154,8 +154,8 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
     if isinstance(exc, OSError):
         what = exc.strerror or _one_line(exc) or type(exc).__name__
         if exc.filename is not None:
-            name = os.fsdecode(exc.filename)
-            other = f" -> {os.fsdecode(exc.filename2)}" if exc.filename2 is not None else ""
+            name = _short_name(os.fsdecode(exc.filename))
+            other = f" -> {_short_name(os.fsdecode(exc.filename2))}" if exc.filename2 is not None else ""
             return EXIT_USAGE, f"Error: {name}{other}: {what}"
         return EXIT_USAGE, f"Error: {what}"
     from ..errors import NavlabError
@@ -164,6 +164,14 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
         return EXIT_USAGE, f"Error: {_one_line(exc) or type(exc).__name__}"
     return EXIT_INTERNAL, (f"Error: internal error: {type(exc).__name__}: {_one_line(exc, 500)} "
                            "(run with NAVLAB_DEBUG=1 for the traceback)")
+
+
+def _short_name(name: str, limit: int = 300) -> str:
+    """A file name for a one-line message: its start and end when longer than ``limit`` characters (a
+    100 000-character name, too long for the file system, filled 100 KB of one line; attack, session 20)."""
+    if len(name) <= limit:
+        return name
+    return f"{name[:limit // 2]}...{name[-limit // 4:]} (a name of {len(name)} characters)"
 
 
 def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any]:

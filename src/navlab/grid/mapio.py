@@ -309,10 +309,13 @@ def _image_path(meta: Dict[str, Any], source: Path) -> Path:
         raise MapFormatError(f"{source}: field 'image' must be a file name, got {shown(name)}")
     image = Path(name)
     image = image if image.is_absolute() else source.parent / image
-    if image.is_dir():
-        raise MapFormatError(f"{source}: field 'image' names a directory, not an image: {image}")
-    if not image.exists():
-        raise MapFormatError(f"{source}: field 'image': {image}: map image not found")
+    try:
+        if image.is_dir():
+            raise MapFormatError(f"{source}: field 'image' names a directory, not an image: {image}")
+        if not image.exists():
+            raise MapFormatError(f"{source}: field 'image': {image}: map image not found")
+    except OSError as exc:  # (a name too long for the file system, say: named by the field, and cut to a line)
+        raise MapFormatError(f"{source}: field 'image' {shown(name)}: {exc.strerror or exc}") from None
     return image
 
 

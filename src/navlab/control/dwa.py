@@ -81,9 +81,9 @@ import math
 from typing import Optional
 
 import numpy as np
-from numba import njit
 
 from ..errors import ParameterError
+from ..jit import njit
 from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS, RUNNING, STALLED, Command

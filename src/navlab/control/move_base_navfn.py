@@ -39,8 +39,8 @@ import math
 from typing import Optional
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, NO_INFORMATION
 
 #: navfn.h: a free cell's cost, the cost per unit of costmap cost, a wall, and an unassigned potential

@@ -37,9 +37,9 @@ import math
 from typing import Any, Optional
 
 import numpy as np
-from numba import njit
 
 from ..errors import ParameterError
+from ..jit import njit
 from ..limits import check_count
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS

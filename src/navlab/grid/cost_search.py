@@ -24,8 +24,8 @@ import math
 from typing import Optional
 
 import numpy as np
-from numba import njit
 from ..errors import ParameterError
+from ..jit import njit
 
 SQRT2 = math.sqrt(2.0)
 #: Nav2 Smac 2D's default

@@ -76,10 +76,10 @@ import time
 from typing import Any, Dict, Optional
 
 import numpy as np
-from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..errors import ParameterError
+from ..jit import njit
 from ..limits import MAX_COUNT, check_count, check_length, finite_number
 from ..registry import suggest
 from ..result import Result, Status

@@ -22,8 +22,8 @@ from __future__ import annotations
 from typing import Optional, Tuple
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from ..world.footprint_collision import pose_grid_overlap
 
 

@@ -27,7 +27,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from ..jit import njit
 
 PASSABLE, SETTLED = 1, 2
 

@@ -52,8 +52,8 @@ import math
 import threading
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
 from ..sampling.curves import MAX_SEGMENTS, NOP
 from ..sampling.reeds_shepp import _local

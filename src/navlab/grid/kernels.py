@@ -17,9 +17,10 @@ import math
 
 import numpy as np
 from llvmlite import ir
-from numba import njit
 from numba.core import cgutils, types
 from numba.extending import intrinsic
+
+from ..jit import njit
 
 SQRT2 = math.sqrt(2.0)
 H_ZERO, H_MANHATTAN, H_EUCLIDEAN, H_CHEBYSHEV, H_OCTILE = 0, 1, 2, 3, 4

@@ -55,7 +55,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
+
+from ..jit import njit
 
 #: target nodes per cell when the tree has grown to the next rebuild size (on pythonrobotics
 #: at 10⁶ iterations 16 is 25% faster than 4 and as fast as 32 or 64; 1.5 is 2x slower)

@@ -19,10 +19,10 @@ from dataclasses import dataclass
 from typing import Tuple
 
 import numpy as np
-from numba import njit
 
 from ..angles import planned_heading, wrap_angle as _wrap
 from ..errors import ParameterError
+from ..jit import njit
 from ..limits import check_coordinate, check_length
 
 NOP, LEFT, STRAIGHT, RIGHT = 0, 1, 2, 3  #: segment codes in the compiled kernels

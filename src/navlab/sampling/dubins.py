@@ -19,8 +19,8 @@ import math
 from typing import Tuple
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from .curves import LEFT, RIGHT, STRAIGHT, CurvePath, check_pose, check_turning_radius
 
 TWO_PI = 2.0 * math.pi

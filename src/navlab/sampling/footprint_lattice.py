@@ -23,10 +23,10 @@ import threading
 from typing import Optional, Tuple
 
 import numpy as np
-from numba import njit
 from shapely.geometry import Point, Polygon
 
 from ..errors import ParameterError
+from ..jit import njit
 from ..limits import check_length, check_memory, shown
 from ..world.footprint_collision import pose_grid_overlap
 from .curves import NOP, STRAIGHT, advance, trace_word

@@ -25,8 +25,8 @@ import math
 from typing import Tuple
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from .curves import LEFT, MAX_SEGMENTS, NOP, RIGHT, STRAIGHT, CurvePath, check_pose, check_turning_radius
 
 PI = math.pi

@@ -32,8 +32,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from .curves import MAX_SEGMENTS, NOP
 from .reeds_shepp import (_BACKWARDS, _KINDS, HALF_PI, PI, ZERO, _family, _local, _mod_pi, _shortest_into,
                           _tau_omega, _word_length, _write_word)

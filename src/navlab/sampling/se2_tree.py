@@ -30,8 +30,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from . import dubins, reeds_shepp, reeds_shepp_length
 from .curves import MAX_SEGMENTS, NOP, advance
 from .footprint_lattice import NO_EXACT, curve_free

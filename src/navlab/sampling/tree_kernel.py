@@ -35,9 +35,9 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
 from ..arrays import grown
+from ..jit import njit
 from ..world.geometry import segment_free
 from . import bucket_grid as G
 

@@ -8,9 +8,9 @@ import math
 from typing import Any, List, Optional, Tuple, Union
 
 import numpy as np
-from numba import njit
 
 from ..grid.occupancy import OccupancyGrid
+from ..jit import njit
 from ..world import World
 from ..world.geometry import (clearance_batch, pack_geometry, point_segment_dist2, segment_free, segment_polygon_dist2,
                               segment_rect_dist2)

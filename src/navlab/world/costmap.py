@@ -37,9 +37,9 @@ from dataclasses import dataclass, field
 from typing import Any, Optional, Tuple
 
 import numpy as np
-from numba import njit
 
 from ..errors import NavlabError
+from ..jit import njit
 from ..limits import check_length, is_finite_real, shown
 
 FREE_SPACE = 0

@@ -25,8 +25,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from .geometry import point_in_polygon, point_rect_dist2, point_segment_dist2, segments_intersect
 
 #: [m] largest displacement of any footprint point between two tested samples of a step

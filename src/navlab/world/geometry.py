@@ -58,8 +58,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from ..jit import njit
 from .shapes import Circle, Polygon, Rectangle
 
 # Float parameter slots of the geometry tuple's ``params``.

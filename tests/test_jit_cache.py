@@ -1,55 +1,111 @@
-"""navlab.jit: a navlab kernel's cache goes stale when a navlab module it uses changes, not only its own file.
+"""navlab.jit: a navlab kernel's cache goes stale when navlab code or constants it compiles in change, not only
+when its own file does, and stays valid when only Python code around the kernels changes.
 
-numba keys a cache on the function's own source file; a compiled function holds the navlab code it calls, so
-after a change to a callee's module alone (``git pull`` in an editable install) numba ran the old code. Each
-process below starts fresh and shares one cache folder; the change is simulated by replacing the hashes of
-the dependencies (editing navlab's own files is not a test's to do)."""
+numba keys a cache on the function's own source file; a compiled function holds the navlab code it calls and
+the constants it reads, so after a change to a callee's module alone (``git pull`` in an editable install)
+numba ran the old code. Each check runs in fresh processes sharing one cache folder, on a small package of
+navlab modules written for the test (added to ``navlab.__path__``) and edited between runs."""
 
 import json
 import os
+import pathlib
+import re
 import subprocess
 import sys
 import textwrap
 
+import pytest
+
 from navlab import jit
+
+CALLEE = '''
+from .jit import njit
+
+K = {k}  # frozen into the caller's machine code
+
+
+@njit(cache=True)
+def twice(x):
+    return {factor} * x
+'''
+
+AROUND = '''
+def message(x):
+    return "{text}"  # Python code around a kernel: no kernel compiles it in
+'''
+
+CALLER = '''
+from .jit import njit
+from .jitfake_around import message  # noqa: F401
+from .jitfake_callee import K, twice
+
+
+@njit(cache=True)
+def kernel(x):
+    return twice(x) + K
+'''
 
 RUN = textwrap.dedent('''
     import json, sys
-    import navlab.jit as jit
-    if sys.argv[1] == "changed":
-        jit.dependency_hashes = lambda name: (("navlab.sampling.curves", b"another text"),)
-    from navlab.sampling import dubins
-    length = dubins.length(2.0, 0.5, 1.0)
-    stats = dubins.length.stats
-    print(json.dumps({"length": length, "hits": sum(stats.cache_hits.values()),
-                      "misses": sum(stats.cache_misses.values())}))
+    import navlab
+    navlab.__path__.append(sys.argv[1])
+    from navlab import jitfake_caller as caller
+    value = caller.kernel(1)
+    stats = caller.kernel.stats
+    print(json.dumps({"value": value, "loaded": sum(stats.cache_hits.values()),
+                      "compiled": sum(stats.cache_misses.values())}))
 ''')
 
 
-def run(tmp_path, how):
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "cache")}
-    out = subprocess.run([sys.executable, "-c", RUN, how], env=env, capture_output=True, text=True, timeout=600)
+def write(folder, k=10, factor=2, text="hello"):
+    (folder / "jitfake_callee.py").write_text(CALLEE.format(k=k, factor=factor))
+    (folder / "jitfake_around.py").write_text(AROUND.format(text=text))
+    (folder / "jitfake_caller.py").write_text(CALLER)
+
+
+def run(folder):
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(folder / "cache")}
+    out = subprocess.run([sys.executable, "-c", RUN, str(folder)], env=env, capture_output=True, text=True,
+                         timeout=600)
     assert out.returncode == 0, out.stderr
-    return json.loads(out.stdout.splitlines()[-1])
+    result = json.loads(out.stdout.splitlines()[-1])
+    return result["value"], "loaded" if result["loaded"] else "compiled"
 
 
-def test_a_change_in_a_module_a_kernel_uses_makes_its_cache_stale(tmp_path):
-    first, again, changed, after = (run(tmp_path, how) for how in ("same", "same", "changed", "same"))
-    assert (first["misses"], again["hits"], again["misses"]) == (1, 1, 0)  # compiled once, then loaded
-    assert (changed["hits"], changed["misses"]) == (0, 1)  # a dependency changed: compiled again
-    assert (after["hits"], after["misses"]) == (0, 1)  # and back: compiled again, not the other's code
-    assert first["length"] == again["length"] == changed["length"] == after["length"]
+def test_a_kernel_compiles_again_when_code_or_constants_it_holds_change_and_only_then(tmp_path):
+    write(tmp_path)
+    assert run(tmp_path) == (12, "compiled")
+    assert run(tmp_path) == (12, "loaded")
+    write(tmp_path, k=20)  # a constant the kernel reads, imported by name from another module
+    assert run(tmp_path) == (22, "compiled")
+    write(tmp_path, k=20, factor=3)  # a function it calls, in another module
+    assert run(tmp_path) == (23, "compiled")
+    write(tmp_path, k=20, factor=3, text="changed")  # a module it imports but compiles nothing of
+    assert run(tmp_path) == (23, "loaded")
+    write(tmp_path)  # back: compiled again, not the other version's code
+    assert run(tmp_path) == (12, "compiled")
 
 
-def test_the_dependencies_reach_through_modules():
-    """Hybrid A*'s search uses the Reeds–Shepp length through its own imports, and the field's module: the
-    case that ran stale (a change to reeds_shepp_length.py alone, session 20)."""
-    import navlab.grid.hybrid_search  # noqa: F401
+def test_what_hybrid_a_star_search_compiles_in():
+    """The case that ran stale (a change to reeds_shepp_length.py alone, session 20), and what it does not hold
+    (the checks and messages of errors.py and limits.py, which Python code around it uses)."""
+    from navlab.grid import hybrid_search
 
-    names = [name for name, _ in jit.dependency_hashes("navlab.grid.hybrid_search")]
+    reached = set(jit.compiled_in(hybrid_search.search.py_func))
     assert {"navlab.sampling.reeds_shepp_length", "navlab.sampling.dubins", "navlab.grid.hybrid_field",
-            "navlab.grid.floor_cells", "navlab.sampling.curves"} <= set(names)
-    assert "navlab.grid.hybrid_search" not in names and names == sorted(names)
+            "navlab.grid.floor_cells", "navlab.sampling.curves"} <= reached
+    assert not reached & {"navlab.errors", "navlab.limits", "navlab.grid.hybrid_search", "navlab.grid.hybrid_astar"}
+
+
+def test_the_stamp_needs_none_of_numbas_private_hashing(monkeypatch):
+    """(review, session 21: numba's _hash_source_file exists only from 0.68, and navlab takes numba >= 0.59)"""
+    from numba.core import caching
+
+    from navlab.sampling import reeds_shepp
+
+    monkeypatch.delattr(caching, "_hash_source_file", raising=False)
+    hashes = dict(jit.dependency_hashes(reeds_shepp.solve.py_func))
+    assert "navlab.sampling.curves" in hashes and len(hashes["navlab.sampling.curves"]) == 32
 
 
 def test_only_navlab_functions_get_the_dependency_stamp():
@@ -61,5 +117,33 @@ def test_only_navlab_functions_get_the_dependency_stamp():
     def elsewhere(x):
         return x + 1
 
+    assert jit.install()
     assert isinstance(dubins.length._cache._impl.locator, jit.DependencyStampLocator)
     assert not isinstance(elsewhere._cache._impl.locator, jit.DependencyStampLocator)
+
+
+def test_every_navlab_kernel_module_takes_njit_from_navlab_jit():
+    """One imported straight from numba, before anything imported navlab.jit, would be keyed on its own file."""
+    src = pathlib.Path(jit.__file__).parent
+    offenders = [str(path.relative_to(src)) for path in src.rglob("*.py") if path.name != "jit.py"
+                 and re.search(r"^\s*(from numba import .*\bnjit\b|.*\bnumba\.(njit|jit)\()", path.read_text(), re.M)]
+    assert offenders == []
+
+
+@pytest.mark.parametrize("text, expected", [
+    ("from .curves import NOP, LEFT\n", {"NOP": "navlab.sampling.curves", "LEFT": "navlab.sampling.curves"}),
+    ("from ..grid.floor_cells import (floor_div,\n    floor_cells)  # a comment\n",
+     {"floor_div": "navlab.grid.floor_cells", "floor_cells": "navlab.grid.floor_cells"}),
+    ("from numpy import pi\nfrom . import dubins as d\n", {"d": "navlab.sampling"}),
+    ('"""\nfrom the start, scaled by r)\n"""\nfrom .curves import NOP\n', {"NOP": "navlab.sampling.curves"}),
+    ("from .curves import NOP\n\n\ndef f():\n    pass\n\n\nfrom .dubins import length\n",
+     {"NOP": "navlab.sampling.curves"}),  # (navlab imports at the top: the scan stops at the first definition)
+])
+def test_names_imported_by_name_are_traced_to_their_module(tmp_path, monkeypatch, text, expected):
+    path = tmp_path / "jitfake_names.py"
+    path.write_text(text)
+    module = type(sys)("navlab.sampling.jitfake_names")
+    module.__file__ = str(path)
+    monkeypatch.setitem(sys.modules, module.__name__, module)
+    jit._imported_names.cache_clear()
+    assert jit._imported_names(module.__name__) == expected

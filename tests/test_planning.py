@@ -202,6 +202,11 @@ def test_an_unknown_setting_is_an_unknown_name_for_every_kind_of_query(world, pa
      "astar."),
     ("parking", {"planner": "hybrid_astar", "sigma": 1.0},
      "'sigma' is a setting of the gaussian and integration samplers, not of planner hybrid_astar."),
+    ("clutter", {"planner": "rrt_star", "inflation_radius": 0.3},  # (review, session 21: "Did you mean 'turning_radius'?")
+     "'inflation_radius' is a setting of planner astar with costmap=true, not of planner rrt_star with the uniform "
+     "sampler."),
+    ("parking", {"planner": "hybrid_astar", "costmap": True},
+     "'costmap' is a setting of planner astar with costmap=true, not of planner hybrid_astar."),
 ])
 def test_a_setting_of_another_planner_is_named_as_such_not_guessed_at(world, params, hint):
     """(newcomer check, session 20: smooth=true with rrt_star was asked "Did you mean 'motion'?")"""

@@ -20,11 +20,8 @@ from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
 from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
-from .setting_names import GRID_PARAMS, taken_elsewhere
+from .setting_names import COSTMAP_PARAMS, GRID_PARAMS, taken_elsewhere
 
-#: settings of A* on a Nav2-style costmap (``costmap=True``; see :func:`costmap_query`)
-COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_travel_multiplier", "resolution",
-                  "allow_unknown")
 
 
 #: [m] consecutive path points closer than this are one point (a cell centre computed two ways)

@@ -1,18 +1,18 @@
-"""Which planners and samplers take a setting: the names of the grid algorithms' and Hybrid A*'s
-settings, and a hint naming who takes a setting a query's planner does not (:func:`taken_elsewhere`).
+"""Which planners and samplers take a setting: the names of the grid algorithms', A* on a costmap's
+and Hybrid A*'s settings, and a hint naming who takes a setting a query's planner does not
+(:func:`taken_elsewhere`).
 
-Apart from :mod:`navlab.queries` and :mod:`navlab.pose_queries`, which both read it, so that neither
-imports the other for it.
+A module of its own because :mod:`navlab.queries` and :mod:`navlab.pose_queries` both read it: in either
+of them, the other would import it, and the package's imports must not go round in a circle.
 """
 
 from __future__ import annotations
 
-from .registry import parameters_of
-from .sampling.planners import PLANNERS
-from .sampling.samplers import SAMPLERS
-
 #: settings of the grid algorithms, routed by name like sampler settings
 GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
+#: settings of A* on a Nav2-style costmap (``costmap=True``; see :func:`navlab.queries.costmap_query`)
+COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_travel_multiplier", "resolution",
+                  "allow_unknown")
 #: planners that plan between poses for a curvature-bounded robot
 POSE_PLANNERS = ("hybrid_astar",)
 #: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
@@ -27,7 +27,11 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
     planners (...) and planner hybrid_astar, not of planner rrt_star.``), or "" when none does. Rather than
     the nearest name: --param smooth=true with rrt_star was asked "Did you mean 'motion'?" (newcomer check,
     session 20)."""
-    from .grid.planner import GRID_ALGORITHMS  # (not at the top: a tree query never loads the grid search)
+    # (here, not at the top: the hint is for a mistake, and the grid search's module loads its kernels)
+    from .grid.planner import GRID_ALGORITHMS
+    from .registry import parameters_of
+    from .sampling.planners import PLANNERS
+    from .sampling.samplers import SAMPLERS
 
     def listed(names):
         return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
@@ -36,6 +40,8 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
     planners += [name for name in POSE_PLANNERS if key in HYBRID_PARAMS]
     samplers = [name for name in SAMPLERS.names() if key in parameters_of(SAMPLERS.get(name))]
     takers = [f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})"] if key in GRID_PARAMS else []
+    if key in COSTMAP_PARAMS and key not in GRID_PARAMS:
+        takers.append("planner astar with costmap=true")
     if planners:
         takers.append(f"planner{'s' if len(planners) > 1 else ''} {listed(planners)}")
     if samplers:

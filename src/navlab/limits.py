@@ -66,6 +66,14 @@ def shown(value: Any, limit: int = SHOWN_LENGTH) -> str:
     return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
+def short_name(name: str, limit: int = 300) -> str:
+    """A file name for a one-line message: its start and end when longer than ``limit`` characters (a
+    100 000-character name, too long for the file system, filled 100 KB of one line; attack, session 20)."""
+    if len(name) <= limit:
+        return name
+    return f"{name[:limit // 2]}...{name[-limit // 4:]} (a name of {len(name)} characters)"
+
+
 def digit_count(value: int) -> int:
     """The decimal digits of ``value``, without writing it out (``str()`` refuses past 4 300 digits: an
     internal ValueError where a message meant to say how long the number was; review, session 20)."""
@@ -74,11 +82,23 @@ def digit_count(value: int) -> int:
     return digits - 1 if digits > 1 and 10 ** (digits - 1) > n else digits
 
 
+def value_text(value: datetime.date) -> str:
+    """A date (or date and time) in YAML's own spelling, ``2001-12-14 21:59:43.1-05:00``."""
+    if not isinstance(value, datetime.datetime):
+        return value.isoformat()
+    text = value.isoformat(sep=" ")
+    if value.microsecond:  # (isoformat pads to six digits: .100000 where .1 was written)
+        head, _, rest = text.partition(".")
+        digits = rest[:6].rstrip("0")
+        text = f"{head}.{digits}{rest[6:]}"
+    return text
+
+
 def _one_value(value: Any) -> str:
     if isinstance(value, (int, np.integer)) and not isinstance(value, bool) and abs(int(value)) >= 10 ** 20:
         return f"an integer of {digit_count(value)} digits"
     if isinstance(value, datetime.date):  # (a !!timestamp in a file): as written, not datetime.date(2001, 1, 1)
-        return f"{value.isoformat(sep=' ') if isinstance(value, datetime.datetime) else value.isoformat()} (a date)"
+        return f"{value_text(value)} ({'a date and time' if isinstance(value, datetime.datetime) else 'a date'})"
     try:
         return " ".join(repr(value).split())  # a numpy array's repr spans lines
     except RecursionError:  # a list nested thousands deep

@@ -107,7 +107,7 @@ def test_grid_settings_a_planner_does_not_use_are_noted_once(tmp_path):
                                     "--param", "weight=2", "--trials", "1", "-q", "--no-plots", "--executor", "serial",
                                     "--out", str(tmp_path / "none")])
     assert res.exit_code == 0 and res.stderr.splitlines() == [  # (review, session 20: it said nothing)
-        "note: astar searches unweighted (a weight scales the heuristic, and heuristic none has none): weight=2 is "
+        "note: astar with heuristic none searches unweighted (a weight scales the heuristic): weight=2 is "
         "not used"]
     args = args[:5] + args[9:]  # astar alone: it uses both
     assert "note:" not in CliRunner().invoke(main, args[:-1] + [str(tmp_path / "out2")]).stderr

@@ -171,6 +171,6 @@ def test_the_path_planner_notes_grid_settings_its_algorithm_does_not_use():
                                                                   "algorithm:=astar", "-p", "heuristic:=none", "-p",
                                                                   "weight:=2")], timeout=60)
     assert proc.returncode == 124, proc.stderr
-    assert ("note: astar searches unweighted (a weight scales the heuristic, and heuristic none has none): "
+    assert ("note: astar with heuristic none searches unweighted (a weight scales the heuristic): "
             "-p weight:=2 is not used") \
         in proc.stderr and "astar ready" in proc.stderr

@@ -20,6 +20,7 @@ earlier ones.
 
 from __future__ import annotations
 
+import datetime
 import hashlib
 import itertools
 import json
@@ -30,7 +31,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..limits import digit_count, shown
+from ..limits import digit_count, shown, value_text
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -276,8 +277,9 @@ def check_plain(value: Any, path: str = "") -> None:
     elif value is not None and not isinstance(value, (str, bool, int, float)):
         kind = {"bytes": "binary data", "date": "a date", "datetime": "a date and time", "set": "a set"}.get(
             type(value).__name__, f"a {type(value).__name__}")
+        got = value_text(value) if isinstance(value, datetime.date) else shown(value)
         raise ExperimentError(f"{path}: {kind} is not an experiment value (names, numbers, true/false, lists "
-                              f"and mappings are), got {shown(value)}")
+                              f"and mappings are), got {got}")
 
 
 def _from_dict(data: Dict[str, Any]) -> Experiment:
@@ -474,8 +476,7 @@ def validate(exp: Experiment) -> None:
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:
     """A heading-aware planner's own settings are its, or the experiment is refused (with a did-you-mean)."""
-    from ..pose_queries import HYBRID_PARAMS
-    from ..queries import taken_elsewhere
+    from ..setting_names import HYBRID_PARAMS, taken_elsewhere
 
     for key in params:
         if key not in HYBRID_PARAMS:
@@ -528,28 +529,29 @@ def _roughly(count: int) -> str:
 # The count fields' checks, each returning the value as validate() keeps it; the command line's
 # --trials, --seed, --max-iter and --max-time run them on a file's value before replacing it.
 # A whole number written as a float (trials: 1e1, a number to YAML 1.2) is that integer, as --trials 1e1 is.
+def _whole_count(value: Any, what: str, low: int) -> int:
+    """``value`` as a whole number of at least ``low`` (a whole float as its int), else ExperimentError
+    naming ``what``."""
+    value = _whole(value)
+    if isinstance(value, bool) or not isinstance(value, int) or value < low:
+        kind = "a positive integer" if low == 1 else "a non-negative integer"
+        raise ExperimentError(f"{what} must be {kind}, got {shown(value)}")
+    return value
+
+
 def check_trials(value: Any) -> int:
     """``trials``: a positive integer."""
-    value = _whole(value)
-    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise ExperimentError(f"'trials' must be a positive integer, got {value!r}")
-    return value
+    return _whole_count(value, "'trials'", 1)
 
 
 def check_seed(value: Any) -> int:
     """``seed``: a non-negative integer."""
-    value = _whole(value)
-    if isinstance(value, bool) or not isinstance(value, int) or value < 0:
-        raise ExperimentError(f"'seed' must be a non-negative integer, got {value!r}")
-    return value
+    return _whole_count(value, "'seed'", 0)
 
 
 def check_max_iter(value: Any) -> int:
     """``budget: {max_iter}``: a positive integer."""
-    value = _whole(value)
-    if isinstance(value, bool) or not isinstance(value, int) or value < 1:
-        raise ExperimentError(f"budget max_iter must be a positive integer, got {value!r}")
-    return value
+    return _whole_count(value, "budget max_iter", 1)
 
 
 def check_max_time(value: Any) -> float:

@@ -13,7 +13,7 @@ import yaml
 
 from ..bench.suites import suite_help
 from ..wording import counted
-from .common import Count, parse_params
+from .common import Count, PositiveNumber, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
 EXIT_INTERRUPTED = 130
@@ -83,7 +83,7 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--grid", "grid", multiple=True, metavar="KEY=[V1,V2]", help="Parameter grid axis (repeatable).")
 @click.option("--trials", type=Count(), default=None, help="Trials per cell.")
 @click.option("--max-iter", type=Count(), default=None, help="Iteration budget per trial.")
-@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None, help="Time budget per trial [s].")
+@click.option("--max-time", type=PositiveNumber(), default=None, help="Time budget per trial [s].")
 @click.option("--seed", type=Count(low=0), default=None, help="Base seed of the per-trial seeds.")
 @click.option("--executor", type=click.Choice(["process", "serial", "dask"]), default="process", show_default=True,
               help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")

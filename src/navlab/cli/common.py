@@ -72,6 +72,22 @@ class ExactNumber(click.ParamType):
         self.fail(f"{value!r} is not a number", param, ctx)
 
 
+class PositiveNumber(click.ParamType):
+    """A finite number above 0 (click's ``FloatRange(min=0, min_open=True)`` lets ``nan`` and ``inf`` through:
+    ``navlab bench --max-time nan`` was blamed on the experiment file's budget; review, session 21)."""
+
+    name = "number"
+
+    def convert(self, value, param, ctx):
+        try:
+            number = float(value)
+        except (TypeError, ValueError, OverflowError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        if not (math.isfinite(number) and number > 0):
+            self.fail(f"{value!r} is not a positive finite number", param, ctx)
+        return number
+
+
 class Count(click.ParamType):
     """A whole number from ``low`` up, also written as a float (``1e5``, ``2000.0``), as
     ``--param max_iter=1e5`` and experiment files take it (:func:`navlab.limits.check_count`)."""
@@ -154,8 +170,10 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
     if isinstance(exc, OSError):
         what = exc.strerror or _one_line(exc) or type(exc).__name__
         if exc.filename is not None:
-            name = _short_name(os.fsdecode(exc.filename))
-            other = f" -> {_short_name(os.fsdecode(exc.filename2))}" if exc.filename2 is not None else ""
+            from ..limits import short_name
+
+            name = short_name(os.fsdecode(exc.filename))
+            other = f" -> {short_name(os.fsdecode(exc.filename2))}" if exc.filename2 is not None else ""
             return EXIT_USAGE, f"Error: {name}{other}: {what}"
         return EXIT_USAGE, f"Error: {what}"
     from ..errors import NavlabError
@@ -164,14 +182,6 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
         return EXIT_USAGE, f"Error: {_one_line(exc) or type(exc).__name__}"
     return EXIT_INTERNAL, (f"Error: internal error: {type(exc).__name__}: {_one_line(exc, 500)} "
                            "(run with NAVLAB_DEBUG=1 for the traceback)")
-
-
-def _short_name(name: str, limit: int = 300) -> str:
-    """A file name for a one-line message: its start and end when longer than ``limit`` characters (a
-    100 000-character name, too long for the file system, filled 100 KB of one line; attack, session 20)."""
-    if len(name) <= limit:
-        return name
-    return f"{name[:limit // 2]}...{name[-limit // 4:]} (a name of {len(name)} characters)"
 
 
 def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any]:

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..wording import counted
-from .common import (Count, ExactNumber, SuggestingGroup, before_first_kernel, before_numba_import,
+from .common import (Count, ExactNumber, PositiveNumber, SuggestingGroup, before_first_kernel, before_numba_import,
                      note_unused_grid_settings)
 
 
@@ -38,8 +38,9 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
 @click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
               help=HEURISTIC_HELP)
 @click.option("--connectivity", type=click.Choice(["4", "8"]), default="8", show_default=True)
-@click.option("--weight", type=float, default=1.0, show_default=True, help="Weighted A*: the heuristic times this (>= 1; 1 finds shortest "
-              "paths). Only astar with a heuristic takes one (a note says so otherwise).")
+@click.option("--weight", type=float, default=1.0, show_default=True,
+              help="Weighted A*: the heuristic times this (>= 1; 1 finds shortest paths). Only astar with a "
+                   "heuristic takes one (a note says so otherwise).")
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
 @click.option("--robot-radius", "--inflate", "inflate", type=float, default=0.0, show_default=True,
               help="The robot's radius [m]: a cell is blocked when its centre is within it of a blocked cell's "
@@ -205,11 +206,11 @@ def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0)
 @click.option("--cells", nargs=2, type=Count(), default=(10, 10), show_default=True, metavar="W H",
               help="Maze size in cells.")
 @click.option("--seed", type=Count(low=0), default=0, show_default=True)
-@click.option("--cell-size", type=click.FloatRange(min=0, min_open=True), default=0.5, show_default=True,
+@click.option("--cell-size", type=PositiveNumber(), default=0.5, show_default=True,
               help="Distance between cell centres, m.")
-@click.option("--wall", type=click.FloatRange(min=0, min_open=True), default=0.1, show_default=True,
+@click.option("--wall", type=PositiveNumber(), default=0.1, show_default=True,
               help="Wall thickness, m.")
-@click.option("--resolution", type=click.FloatRange(min=0, min_open=True), default=0.05, show_default=True,
+@click.option("--resolution", type=PositiveNumber(), default=0.05, show_default=True,
               help="Map resolution, m per pixel.")
 @click.option("--out", type=click.Path(dir_okay=False), required=True, help="Output map_server YAML (PGM beside it).")
 @click.option("--quiet", is_flag=True, help="No progress bar.")

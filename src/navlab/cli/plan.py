@@ -10,8 +10,8 @@ import click
 
 from ..errors import ParameterError
 from ..wording import counted
-from .common import (Count, PointOrPoseOption, before_first_kernel, before_numba_import, note_unused_grid_settings,
-                     parse_params)
+from .common import (Count, PointOrPoseOption, PositiveNumber, before_first_kernel, before_numba_import,
+                     note_unused_grid_settings, parse_params)
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -32,7 +32,7 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 @click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
               help="Robot radius in metres (overrides the world's; maps: 0).")
 @click.option("--max-iter", type=Count(), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
-@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=None,
+@click.option("--max-time", type=PositiveNumber(), default=None,
               help="Time limit in seconds (starts after warm-up).")
 @click.option("--seed", type=Count(low=0), default=0, show_default=True, help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random numbers).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",

@@ -25,7 +25,7 @@ import yaml
 
 from ..atomic import atomic_path
 from ..errors import NavlabError, ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number, shown
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number, short_name, shown
 from ..yamlio import read_yaml, regular_file
 from ..yamlcore import number_text
 from .occupancy import MAX_CELLS, OccupancyGrid
@@ -315,7 +315,7 @@ def _image_path(meta: Dict[str, Any], source: Path) -> Path:
         if not image.exists():
             raise MapFormatError(f"{source}: field 'image': {image}: map image not found")
     except OSError as exc:  # (a name too long for the file system, say: named by the field, and cut to a line)
-        raise MapFormatError(f"{source}: field 'image' {shown(name)}: {exc.strerror or exc}") from None
+        raise MapFormatError(f"{source}: field 'image': {short_name(name)}: {exc.strerror or exc}") from None
     return image
 
 

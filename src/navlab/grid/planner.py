@@ -354,9 +354,9 @@ def unused_settings(algorithm: str, settings: Dict[str, Any], spelled) -> List[s
         lines.append(f"note: {algorithm} searches with {uses}: {spelled('heuristic', given['heuristic'])} is not used")
     if "weight" in given and used["weight"] != given["weight"]:
         # (worded as the heuristic's note, in the present: the ROS planner says it at start-up, before any plan)
-        why = "a weight scales the heuristic, and heuristic none has none" if algorithm == "astar" else \
-            "only astar takes a weight"
-        lines.append(f"note: {algorithm} searches unweighted ({why}): {spelled('weight', given['weight'])} is not used")
+        who, why = ("astar with heuristic none", "a weight scales the heuristic") if algorithm == "astar" else \
+            (algorithm, "only astar takes a weight")
+        lines.append(f"note: {who} searches unweighted ({why}): {spelled('weight', given['weight'])} is not used")
     return lines
 
 

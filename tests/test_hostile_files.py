@@ -274,8 +274,15 @@ def test_whole_numbers_written_as_floats_count_in_experiment_files(tmp_path):
     ("trials: 2.5", ["--trials", "1"], "'trials' must be a positive integer, got 2.5 (--trials replaces it"),
     ("budget: {max_iter: '1:00'}", ["--max-iter", "10"], "budget max_iter must be a positive integer, got '1:00' "
                                                          "(--max-iter replaces it"),
-    ("budget: {max_time: .nan}", ["--max-time", "1"], "budget max_time must be a positive number, got nan "
-                                                      "(--max-time replaces it"),
+    ("budget: {max_time: .nan}", ["--max-time", "1"], "budget max_time must be a positive finite number [s], got "
+                                                      "nan (--max-time replaces it"),
+    # (attack, session 21: values past the limits passed when a flag replaced them)
+    ("trials: 99999999999999999999999999", ["--trials", "1"], "'trials' must be at most 100000 (what a run "
+                                                             "supports), got an integer of 26 digits (--trials replaces it"),
+    ("budget: {max_iter: 99999999999999999999999999}", ["--max-iter", "5"], "budget max_iter must be at most "
+                                                                            "4.61e+18, got an integer of 26 digits"),
+    ("budget: {max_time: .inf}", ["--max-time", "1"], "budget max_time must be a positive finite number [s], got inf"),
+    ("seed: 99999999999999999999999999", ["--seed", "3"], "'seed' must be at most 4.61e+18, got an integer of 26"),
     ("seed: -1", ["--seed", "3"], "'seed' must be a non-negative integer, got -1 (--seed replaces it"),
 ])
 def test_a_flag_does_not_hide_a_bad_value_it_replaces_in_the_file(tmp_path, written, flags, message):
@@ -294,6 +301,14 @@ def test_a_flag_does_not_hide_a_bad_value_it_replaces_in_the_file(tmp_path, writ
     assert result.exit_code == 0, result.output  # a valid value is replaced without a word
 
 
+def test_null_trials_and_seed_are_not_given():
+    """(attack, session 21: trials: null was "'trials' must be a positive integer, got None"; the budget's
+    fields already took null as not given)"""
+    exp = load_experiment({"worlds": ["trap"], "planners": ["rrt"], "trials": None, "seed": None,
+                           "budget": {"max_iter": None}})
+    assert (exp.trials, exp.seed, exp.budget) == (20, 0, {})
+
+
 def test_values_past_what_a_message_can_show_are_refused_in_one_line(files):
     """(attack, session 20: !!float of a 300-digit hexadecimal was an internal OverflowError, a 400-digit trials
     made its own message fail, and negate: true read as 1 inverted the map)"""
@@ -304,8 +319,7 @@ def test_values_past_what_a_message_can_show_are_refused_in_one_line(files):
         read_world(path)
     path = files / "e.yaml"
     path.write_text("worlds: [trap]\nplanners: [rrt]\ntrials: " + "9" * 400 + "\n")
-    with pytest.raises(ExperimentError, match="'trials': an integer of 400 digits trials in each of 1 cells is a "
-                                              "number of 400 digits trials, more than"):
+    with pytest.raises(ExperimentError, match=r"'trials' must be at most 100000 \(what a run supports\), got an integer of 400 digits"):
         load_experiment(str(path))
     path = files / "m.yaml"
     path.write_text(MAP_YAML.replace("negate: 0", "negate: true"))

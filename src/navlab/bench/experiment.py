@@ -31,7 +31,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..limits import digit_count, shown, value_text
+from ..limits import MAX_COUNT, digit_count, is_finite_real, shown, value_text
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -330,8 +330,9 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         params=_mapping(data.get("params"), "params"),
         grid=grid,
         budget={k: v for k, v in budget.items() if v is not None},
-        trials=data.get("trials", 20),
-        seed=data.get("seed", 0),
+        # (null: not given, as for the budget's fields; it was "must be a positive integer, got None")
+        trials=20 if data.get("trials") is None else data["trials"],
+        seed=0 if data.get("seed") is None else data["seed"],
         claims=[_claim(c) for c in data.get("claims") or []],
     )
 
@@ -529,35 +530,40 @@ def _roughly(count: int) -> str:
 # The count fields' checks, each returning the value as validate() keeps it; the command line's
 # --trials, --seed, --max-iter and --max-time run them on a file's value before replacing it.
 # A whole number written as a float (trials: 1e1, a number to YAML 1.2) is that integer, as --trials 1e1 is.
-def _whole_count(value: Any, what: str, low: int) -> int:
-    """``value`` as a whole number of at least ``low`` (a whole float as its int), else ExperimentError
-    naming ``what``."""
+def _whole_count(value: Any, what: str, low: int, high: Optional[int]) -> int:
+    """``value`` as a whole number from ``low`` to ``high`` (None: no bound; a whole float as its int), else
+    ExperimentError naming ``what``."""
     value = _whole(value)
     if isinstance(value, bool) or not isinstance(value, int) or value < low:
         kind = "a positive integer" if low == 1 else "a non-negative integer"
         raise ExperimentError(f"{what} must be {kind}, got {shown(value)}")
+    if high is not None and value > high:
+        raise ExperimentError(f"{what} must be at most {high:.3g}, got {shown(value)}")
     return value
 
 
 def check_trials(value: Any) -> int:
-    """``trials``: a positive integer."""
-    return _whole_count(value, "'trials'", 1)
+    """``trials``: a positive integer, at most :data:`MAX_TRIALS` (in all cells together, :func:`validate`)."""
+    value = _whole_count(value, "'trials'", 1, None)
+    if value > MAX_TRIALS:
+        raise ExperimentError(f"'trials' must be at most {MAX_TRIALS} (what a run supports), got {shown(value)}")
+    return value
 
 
 def check_seed(value: Any) -> int:
-    """``seed``: a non-negative integer."""
-    return _whole_count(value, "'seed'", 0)
+    """``seed``: a non-negative integer that numpy's generators and navlab's counts take (as ``--seed``)."""
+    return _whole_count(value, "'seed'", 0, MAX_COUNT)
 
 
 def check_max_iter(value: Any) -> int:
-    """``budget: {max_iter}``: a positive integer."""
-    return _whole_count(value, "budget max_iter", 1)
+    """``budget: {max_iter}``: a positive integer navlab's compiled loops can count to (as ``--max-iter``)."""
+    return _whole_count(value, "budget max_iter", 1, MAX_COUNT)
 
 
 def check_max_time(value: Any) -> float:
-    """``budget: {max_time}``: a positive number [s]."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0:
-        raise ExperimentError(f"budget max_time must be a positive number, got {value!r}")
+    """``budget: {max_time}``: a positive finite number [s]."""
+    if not is_finite_real(value) or not value > 0:
+        raise ExperimentError(f"budget max_time must be a positive finite number [s], got {shown(value)}")
     return value
 
 

@@ -215,6 +215,23 @@ def test_a_setting_of_another_planner_is_named_as_such_not_guessed_at(world, par
     assert str(caught.value).endswith(hint) and "Did you mean" not in str(caught.value)
 
 
+@pytest.mark.parametrize("world, params, hint", [
+    ("trap", {"planner": "rrt", "smoth": True},
+     " Did you mean 'smooth'? 'smooth' is a setting of the grid planners (astar, dijkstra, jps, theta_star) and "
+     "planner hybrid_astar, not of planner rrt with the uniform sampler."),
+    ("trap", {"planner": "astar", "expnd_dis": 1.0},
+     " Did you mean 'expand_dis'? 'expand_dis' is a setting of planners growth_ratio_rrt, informed_rrt_star, rrt and "
+     "rrt_star, not of planner astar."),
+    ("trap", {"planner": "rrt_star", "expnd_dis": 1.0}, ". Did you mean 'expand_dis'?"),
+    ("parking", {"planner": "hybrid_astar", "turning_radus": 1.0}, ". Did you mean 'turning_radius'?"),
+])
+def test_a_typo_is_matched_against_every_planners_settings(world, params, hint):
+    """(attack, session 21: smoth=true with rrt was asked "Did you mean 'motion'?", its own nearest setting)"""
+    with pytest.raises(UnknownNameError) as caught:
+        navlab.plan(world, **params)
+    assert str(caught.value).endswith(hint)
+
+
 def test_a_sampler_with_a_grid_planner_is_refused():
     with pytest.raises(ValueError, match="draws no samples"):
         navlab.plan("trap", planner="astar", sampler="gaussian")

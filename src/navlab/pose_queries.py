@@ -143,11 +143,11 @@ def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str
     settings = dict(params)
     unknown = sorted(set(settings) - set(valid))
     if unknown:
-        from .setting_names import taken_elsewhere
+        from .setting_names import setting_hint
 
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
-                               f"valid: {', '.join(valid)}." + (taken_elsewhere(unknown[0], planner) or suggest(
-                                   unknown[0], list(valid) + ["goal_tolerance"])))
+                               f"valid: {', '.join(valid)}."
+                               + setting_hint(unknown[0], planner, list(valid) + ["goal_tolerance"]))
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),

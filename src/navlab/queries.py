@@ -20,7 +20,7 @@ from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
 from .sampling.samplers import SAMPLERS, GoalBiasSampler, Sampler, make_sampler
-from .setting_names import COSTMAP_PARAMS, GRID_PARAMS, taken_elsewhere
+from .setting_names import COSTMAP_PARAMS, GRID_PARAMS, setting_hint
 
 
 
@@ -86,7 +86,7 @@ def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:
             valid = sorted(planner_keys | sampler_keys | {"goal_sample_rate"})
             raise UnknownNameError(f"unknown parameter '{key}' for planner '{planner}' with sampler '{sampler}'; "
                                    f"valid: {', '.join(valid)}; and for the query: {QUERY_PARAMS_HELP}."
-                                   + (taken_elsewhere(key, planner, sampler) or suggest(key, valid + list(QUERY_PARAMS))))
+                                   + setting_hint(key, planner, valid + list(QUERY_PARAMS), sampler))
     return to_planner, to_sampler
 
 
@@ -99,7 +99,7 @@ def split_grid_params(planner: str, params: dict) -> dict:
         if key not in GRID_PARAMS:
             raise UnknownNameError(f"unknown parameter '{key}' for grid planner '{planner}'; "
                                    f"valid: {', '.join(GRID_PARAMS)}; and costmap=true for A* on a costmap."
-                                   + (taken_elsewhere(key, planner) or suggest(key, list(GRID_PARAMS) + ["costmap"])))
+                                   + setting_hint(key, planner, list(GRID_PARAMS) + ["costmap"]))
     return check_grid_settings(params)
 
 

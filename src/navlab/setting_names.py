@@ -22,6 +22,35 @@ HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_u
                  "waypoint_spacing", "exact_retry")
 
 
+def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
+    """The hint after an unknown setting ``key`` of ``planner`` (whose settings are ``valid``): who takes it
+    (:func:`taken_elsewhere`), else the nearest setting name, its own or another's, with who takes that.
+    "smoth" given to rrt_star was asked "Did you mean 'motion'?", its own nearest name (attack, session 21).
+    """
+    import difflib
+
+    elsewhere = taken_elsewhere(key, planner, sampler)
+    if elsewhere or not isinstance(key, str):
+        return elsewhere
+    close = difflib.get_close_matches(key, list(valid) + _every_setting(), n=1, cutoff=0.5)
+    if not close:
+        return ""
+    return f" Did you mean '{close[0]}'?" + ("" if close[0] in valid else taken_elsewhere(close[0], planner, sampler))
+
+
+def _every_setting() -> list:
+    """Every setting name some planner, sampler or query takes."""
+    from .registry import parameters_of
+    from .sampling.planners import PLANNERS
+    from .sampling.samplers import SAMPLERS
+
+    names = set(GRID_PARAMS) | set(COSTMAP_PARAMS) | set(HYBRID_PARAMS)
+    for registry in (PLANNERS, SAMPLERS):
+        for name in registry.names():
+            names |= set(parameters_of(registry.get(name)))
+    return sorted(names - {"sampler", "self"})
+
+
 def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
     """A hint naming the planners and samplers that do take ``key`` (`` 'smooth' is a setting of the grid
     planners (...) and planner hybrid_astar, not of planner rrt_star.``), or "" when none does. Rather than

@@ -477,13 +477,12 @@ def validate(exp: Experiment) -> None:
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:
     """A heading-aware planner's own settings are its, or the experiment is refused (with a did-you-mean)."""
-    from ..setting_names import HYBRID_PARAMS, taken_elsewhere
+    from ..setting_names import HYBRID_PARAMS, setting_hint
 
     for key in params:
         if key not in HYBRID_PARAMS:
             raise ExperimentError(f"unknown parameter '{key}' for planner '{planner}'; valid: "
-                                  f"{', '.join(HYBRID_PARAMS)}."
-                                  + (taken_elsewhere(key, planner) or suggest(key, list(HYBRID_PARAMS))))
+                                  f"{', '.join(HYBRID_PARAMS)}." + setting_hint(key, planner, HYBRID_PARAMS))
 
 
 def _check_shared_params_used(exp: Experiment, used: set) -> None:

@@ -162,6 +162,11 @@ def test_a_tree_planner_that_fails_still_reports_its_tree():
     (dict(algorithm="rrt_star", max_time=-1.0), "max_time"),
     (dict(algorithm="rrt_star", seed="x"), "seed must be a non-negative whole number"),
     (dict(algorithm="rrt_star", sampler="integration", weights=5), "weights"),
+    # names navlab.plan takes itself (attack, session 21: "plan() got multiple values for keyword argument")
+    (dict(algorithm="astar", planner="rrt"), "parameter 'planner' is not a planner setting: the node's parameter is 'algorithm'"),
+    (dict(algorithm="rrt_star", robot_radius=0.2), "parameter 'robot_radius' is not a planner setting: the "
+                                                   "node's parameter is 'inflation_radius'"),
+    (dict(algorithm="rrt_star", goal=[1, 1]), "parameter 'goal' is not a planner setting: goals come on /goal_pose"),
 ])
 def test_unknown_names_and_bad_values_are_refused_at_start_up(settings, message):
     with pytest.raises(ValueError, match=message):

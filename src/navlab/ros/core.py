@@ -56,6 +56,12 @@ def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, 
     return plan(world, planner=algorithm, seed=seed, **extra, **params)
 
 
+#: names navlab.plan takes itself, which a planner setting must not be: what the node calls them instead
+_NOT_SETTINGS = {"planner": "the node's parameter is 'algorithm'", "world": "the node plans on /map",
+                 "start": "the start is the latest /odom pose", "goal": "goals come on /goal_pose",
+                 "robot_radius": "the node's parameter is 'inflation_radius' (robot radius + margin)"}
+
+
 class GoalPlanner:
     """Plans a path from the latest pose to each goal on the latest map, with
     any registered planner: the grid searches (seed 002's A*, Dijkstra, JPS,
@@ -103,6 +109,9 @@ class GoalPlanner:
                  on_tree: Optional[Callable[[np.ndarray, np.ndarray], None]] = None, **params: Any) -> None:
         if not (inflation_radius >= 0 and math.isfinite(inflation_radius)):
             raise ParameterError(f"inflation_radius must be a non-negative number of metres, got {inflation_radius!r}")
+        reserved = sorted(set(params) & set(_NOT_SETTINGS))  # (plan() got "multiple values": attack, session 21)
+        if reserved:
+            raise ParameterError(f"parameter '{reserved[0]}' is not a planner setting: {_NOT_SETTINGS[reserved[0]]}")
         hybrid = algorithm in POSE_PLANNERS
         self.tree_planner = not hybrid and not is_grid_planner(algorithm)  # unknown names: "did you mean"
         #: plans between poses (hybrid_astar, or a tree planner with motion dubins / reeds_shepp): the goal's and

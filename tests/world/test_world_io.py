@@ -193,6 +193,15 @@ def test_unknown_field_suggests(tmp_path):
         navlab.load_world(write(tmp_path, yaml.safe_dump(data)))
 
 
+@pytest.mark.parametrize("key, shown", [("null", "null"), ("~", "null"), ("true", "true"), ("1", "1")])
+def test_a_key_that_is_no_name_is_shown_as_written_without_a_guess(tmp_path, key, shown):
+    """(attack, session 21: null: 1 was "field 'None': unknown field ... Did you mean 'name'?")"""
+    with pytest.raises(WorldFormatError) as caught:
+        navlab.load_world(write(tmp_path, ZIGZAG + f"\n{key}: 1\n"))
+    message = str(caught.value)
+    assert f"field '{shown}': unknown field; valid: " in message and "Did you mean" not in message
+
+
 def test_not_yaml_and_missing_file(tmp_path):
     with pytest.raises(WorldFormatError, match="not valid YAML"):
         navlab.load_world(write(tmp_path, "a: [1, 2"))

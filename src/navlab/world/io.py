@@ -116,9 +116,14 @@ def _mapping(field: str, value: Any, keys: Dict[str, bool]) -> Dict[str, Any]:
     valid = sorted(keys)
     for key in value:
         if not isinstance(key, str) or key not in keys:
-            name = str(key)
-            raise _FieldError(f"{field}.{name}" if field else name,
-                              f"unknown field; valid: {', '.join(valid)}." + suggest(name, valid))
+            # a key that is no name (null, true, 1) as the file writes it, and nothing guessed for it: null was
+            # "field 'None': ... Did you mean 'name'?" (attack, session 21)
+            if key is None or isinstance(key, bool):
+                name = {None: "null", True: "true", False: "false"}[key]
+            else:
+                name = str(key)
+            raise _FieldError(f"{field}.{name}" if field else name, f"unknown field; valid: {', '.join(valid)}."
+                              + (suggest(name, valid) if isinstance(key, str) else ""))
     for key, required in keys.items():
         if required and key not in value:
             raise _FieldError(f"{field}.{key}" if field else key, "missing (required)")

@@ -15,6 +15,7 @@ from __future__ import annotations
 import datetime
 import math
 import os
+import re
 from typing import Any, Optional
 
 import numpy as np
@@ -67,11 +68,14 @@ def shown(value: Any, limit: int = SHOWN_LENGTH) -> str:
 
 
 def short_name(name: str, limit: int = 300) -> str:
-    """A file name for a one-line message: its start and end when longer than ``limit`` characters (a
-    100 000-character name, too long for the file system, filled 100 KB of one line; attack, session 20)."""
-    if len(name) <= limit:
-        return name
-    return f"{name[:limit // 2]}...{name[-limit // 4:]} (a name of {len(name)} characters)"
+    """A file name for a one-line message: control characters escaped (``\\n``: a name holding newlines
+    printed 74 lines), and its start and end only when longer than ``limit`` characters (a 100 000-character
+    name, too long for the file system, filled 100 KB of one line; attacks, sessions 20 and 21)."""
+    size = len(name)
+    if size > limit:
+        name = f"{name[:limit // 2]}...{name[-limit // 4:]}"
+    name = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], name)
+    return name if size <= limit else f"{name} (a name of {size} characters)"
 
 
 def digit_count(value: int) -> int:

@@ -252,3 +252,11 @@ def test_scen_report_gives_the_total_in_ms_below_a_second(total, shown):
                "matches": 5, "mismatches": 0, "invalid": 0, "statuses": {"EXACT": 5}, "time_median_ms": 0.03,
                "time_p95_ms": 0.04, "time_total_s": total, "worst": []}
     assert scen_report(summary).splitlines()[2] == f"  time per query: median 0.030 ms, p95 0.040 ms, {shown}"
+
+
+def test_a_scenario_file_name_is_cut_to_one_short_line():
+    """(attack, session 21: a 60 000-character name printed in full, one with newlines on 5 001 lines)"""
+    for name in ("é" * 60_000 + ".scen", "a\nb" * 5000 + ".scen"):
+        res = run("grid", "scen", name)
+        assert res.exit_code == 2 and res.output.count("\n") == 1 and len(res.output) < 800, res.output[:300]
+        assert "characters): no such file" in res.output

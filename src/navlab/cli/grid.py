@@ -145,10 +145,12 @@ def grid_scen(scen_path, map_path, algorithm, heuristic, limit, every, as_json, 
     """
     from ..grid.scen import read_scen
     from ..grid.scen_runner import run_scenarios
+    from ..limits import short_name
 
     for path in (scen_path, map_path):
         if path is not None and not os.path.exists(path):
-            fail(f"{path}: no such file. Moving AI scenarios and maps come from movingai.com/benchmarks "
+            fail(f"{short_name(os.fsdecode(path))}: no such file. Moving AI scenarios and maps come from "
+                 "movingai.com/benchmarks "
                  "(a .map and its .map.scen side by side; the README's examples use the five in "
                  "../shared/data/movingai beside a navlab checkout)")
     total = len(read_scen(scen_path)[::every][:limit])

@@ -376,3 +376,24 @@ def test_a_costmap_query_reports_its_allow_unknown(given):
     extra = {} if given is None else {"allow_unknown": given}
     r = navlab.plan("trap", planner="astar", costmap=True, **extra)
     assert r.status is Status.EXACT and r.params["allow_unknown"] is bool(given)
+
+
+@pytest.mark.parametrize("world, params, message", [
+    ("parking", {"planner": "hybrid_astar", "expand_dis": 1.0}, "unknown parameter 'expand_dis'"),
+    ("parking", {"planner": "hybrid_astar", "heading_bins": 3}, "heading_bins must be a whole number"),
+    ("parking", {"planner": "hybrid_astar", "turning_radius": -1.0}, "turning_radius must be positive"),
+    ("trap_car", {"planner": "rrt_star", "motion": "reeds_shepp", "heading_bins": 2}, "heading_bins"),
+    ("trap", {"planner": "rrt_star", "expand_dis": -1.0}, "expand_dis must be positive"),
+    ("trap", {"planner": "rrt", "sampler": "gaussian", "sigma": -1.0}, "sigma"),
+])
+def test_bad_settings_are_refused_before_any_kernel_loads(monkeypatch, world, params, message):
+    """(newcomer run, session 21: on a first use these waited 23-94 s for every kernel to compile first)"""
+    import navlab.planning as planning
+
+    def no_warm_up(*args, **kwargs):
+        raise AssertionError("the kernels were loaded before the settings were checked")
+
+    monkeypatch.setattr(planning, "_warm", no_warm_up)
+    monkeypatch.setattr(planning, "warm_pose_planner", no_warm_up)
+    with pytest.raises((navlab.ParameterError, UnknownNameError), match=message):
+        navlab.plan(world, **params)

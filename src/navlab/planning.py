@@ -34,6 +34,7 @@ from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_
                       planner_names, split_grid_params, split_params, tree_query)
 from .result import Result, Status
 from .registry import parameters_of
+from .sampling.planners import make_planner
 from .sampling.samplers import SAMPLERS
 
 
@@ -195,7 +196,10 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     else:
         sampler = sampler or "uniform"
         SAMPLERS.get(sampler)
-        split_params(planner, sampler, params)  # unknown names fail before any file is read
+        # unknown names and bad values fail before any file is read or kernel loaded (a first compile takes a
+        # while: expand_dis=-1 waited 23 s for it; newcomer run, session 21)
+        to_planner, to_sampler = split_params(planner, sampler, params)
+        make_planner(planner, sampler=build_sampler(sampler, to_sampler), **to_planner)
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, goal_tolerance=goal_tolerance,
                         allow_unknown=allow_unknown)
     if allow_unknown is not None and world.occupancy is None and not grid:
@@ -238,7 +242,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
                robot_radius: Optional[float], params: Dict[str, Any]) -> Result:
     """A planner between poses (see :mod:`navlab.pose_queries`): Hybrid A*,
     or a tree planner (``sampler`` given) with Dubins or Reeds–Shepp steering."""
-    from .pose_queries import check_radius_not_dropped, hybrid_query, tree_pose_query
+    from .pose_queries import check_pose_query, check_radius_not_dropped, hybrid_query, tree_pose_query
     from .world.sources import load_source
 
     goal_tolerance = params.pop("goal_tolerance", None)
@@ -251,6 +255,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
                         allow_unknown=params.get("allow_unknown"))
     check_radius_not_dropped(world, robot_radius, params, planner)
+    check_pose_query(world, planner, params)  # before the kernels load (a first compile takes minutes)
     t0 = time.perf_counter()
     warm_pose_planner(planner if sampler is None else "se2_tree")
     warmup_s = time.perf_counter() - t0

@@ -181,6 +181,33 @@ def _verified(world, footprint, result: Result, map_checked: bool = False) -> Re
     return result
 
 
+def check_pose_query(world, planner: str, params: Dict[str, Any]) -> None:
+    """Refuse a heading-aware query's bad settings as :func:`hybrid_query` and :func:`tree_pose_query` would,
+    without planning: names, motion, turning radius, footprint, and Hybrid A*'s own settings or a tree's
+    heading bins (its other settings its planner checks). Before the kernels load: a typo waited for their
+    first compile (80 s; newcomer run, session 21)."""
+    if planner in POSE_PLANNERS:
+        from .grid.hybrid_astar import check_settings
+
+        check_settings(**_query(world, planner, params, HYBRID_PARAMS)[1])
+    else:
+        _tree_heading_bins(_query(world, planner, params, _tree_pose_params())[1].get("heading_bins", 72))
+
+
+def _tree_pose_params() -> Tuple[str, ...]:
+    """The settings of a tree planner between poses."""
+    from .sampling.se2_planners import SE2_TREE_PARAMS
+
+    return ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
+
+
+def _tree_heading_bins(bins: Any) -> int:
+    """A tree's ``heading_bins`` (the footprint lattice's), checked."""
+    if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or not 4 <= bins <= 1440:
+        raise ParameterError(f"heading_bins must be a whole number from 4 to 1440, got {bins!r}")
+    return bins
+
+
 def hybrid_query(world, params: Dict[str, Any]) -> Result:
     """Hybrid A* between the world's start and goal poses, on its map or on a
     raster of its shapes (cells any obstacle touches are blocked), the path
@@ -222,13 +249,10 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
     against the exact world."""
     from .sampling.curves import LETTERS, CurvePath
     from .sampling.footprint_lattice import check_turning_scale, lattice_for, robot_outline
-    from .sampling.se2_planners import SE2_TREE_PARAMS, plan_se2_tree
+    from .sampling.se2_planners import plan_se2_tree
 
-    valid = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
-    common, settings = _query(world, planner, params, valid)
-    bins = settings.pop("heading_bins", 72)
-    if isinstance(bins, bool) or not isinstance(bins, (int, np.integer)) or not 4 <= bins <= 1440:
-        raise ParameterError(f"heading_bins must be a whole number from 4 to 1440, got {bins!r}")
+    common, settings = _query(world, planner, params, _tree_pose_params())
+    bins = _tree_heading_bins(settings.pop("heading_bins", 72))
     t0 = time.perf_counter()
     grid = _pose_grid(world, common["resolution"])
     start, goal = query_poses(world)

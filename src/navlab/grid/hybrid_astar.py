@@ -202,24 +202,18 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     r = check_turning_radius(turning_radius)
     sx, sy, st = check_pose("start", start, degrees_hint=True)
     gx, gy, gt = check_pose("goal", goal, degrees_hint=True)
-    heading_bins = check_count("heading_bins", heading_bins, 4, 1440)  # 72.0 from a YAML file or --param counts
-    for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
-                             ("change_penalty", change_penalty, 0.0)):
-        if finite_number(name, value) < low:
-            raise ParameterError(f"{name} must be at least {low:g}, got {value!r}")
-    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry)):
-        if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
-            raise ParameterError(f"{name} must be true or false, got {value!r}")
+    checked = check_settings(heading_bins=heading_bins, reverse_penalty=reverse_penalty,
+                             change_penalty=change_penalty, non_straight_penalty=non_straight_penalty,
+                             analytic_expansion=analytic_expansion,
+                             analytic_expansion_max_length=analytic_expansion_max_length,
+                             analytic_expansion_ratio=analytic_expansion_ratio, max_expansions=max_expansions,
+                             smooth=smooth, waypoint_spacing=waypoint_spacing, exact_retry=exact_retry)
+    heading_bins, max_expansions = checked["heading_bins"], checked["max_expansions"]
     analytic_max = max(ANALYTIC_MIN_LENGTH, ANALYTIC_RADII * r) if analytic_expansion_max_length is None else \
-        check_length("analytic_expansion_max_length", analytic_expansion_max_length)
-    if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
-                                                                   analytic_expansion_ratio) > 0:
-        raise ParameterError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
-    # beyond any search's reach, so capped rather than refused; int64 for the kernel
-    max_expansions = min(check_count("max_expansions", max_expansions, 1, None), MAX_COUNT)
+        checked["analytic_expansion_max_length"]
     vertices, disc = robot_outline(footprint, robot_radius)
     res = grid.resolution
-    spacing = res if waypoint_spacing is None else check_length("waypoint_spacing", waypoint_spacing, allow_zero=False)
+    spacing = res if waypoint_spacing is None else checked["waypoint_spacing"]
     params: Dict[str, Any] = {"planner": "hybrid_astar", "motion": motion, "turning_radius": r,
                               "heading_bins": int(heading_bins), "reverse_penalty": float(reverse_penalty),
                               "change_penalty": float(change_penalty),
@@ -394,6 +388,37 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     stats["goal_offset_m"] = float(math.hypot(world[-1, 0] - gx, world[-1, 1] - gy))
     stats["goal_heading_offset_rad"] = float(abs(math.remainder(world[-1, 2] - gt, 2.0 * math.pi)))
     return finish(Status.EXACT, "", world, direction, length)
+
+
+def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAULTS["reverse_penalty"],
+                   change_penalty=DEFAULTS["change_penalty"], non_straight_penalty=DEFAULTS["non_straight_penalty"],
+                   analytic_expansion=True, analytic_expansion_max_length=DEFAULTS["analytic_expansion_max_length"],
+                   analytic_expansion_ratio=None, max_expansions=DEFAULTS["max_expansions"], smooth=True,
+                   waypoint_spacing=None, exact_retry=True) -> Dict[str, Any]:
+    """:func:`plan_hybrid`'s settings but the robot, map and poses, checked, as it searches with them:
+    ``heading_bins`` and ``max_expansions`` (capped at :data:`~navlab.limits.MAX_COUNT`) as ints, lengths as
+    floats (None where not given). A ParameterError names the setting.
+
+    Apart from the search so that a query can be refused before its kernels load: a typo waited for their
+    first compile (80 s; newcomer run, session 21)."""
+    out: Dict[str, Any] = {"heading_bins": check_count("heading_bins", heading_bins, 4, 1440)}  # 72.0 counts
+    for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
+                             ("change_penalty", change_penalty, 0.0)):
+        if finite_number(name, value) < low:
+            raise ParameterError(f"{name} must be at least {low:g}, got {value!r}")
+    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry)):
+        if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
+            raise ParameterError(f"{name} must be true or false, got {value!r}")
+    out["analytic_expansion_max_length"] = None if analytic_expansion_max_length is None else \
+        check_length("analytic_expansion_max_length", analytic_expansion_max_length)
+    if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",
+                                                                   analytic_expansion_ratio) > 0:
+        raise ParameterError(f"analytic_expansion_ratio must be positive, got {analytic_expansion_ratio!r}")
+    # beyond any search's reach, so capped rather than refused; int64 for the kernel
+    out["max_expansions"] = min(check_count("max_expansions", max_expansions, 1, None), MAX_COUNT)
+    out["waypoint_spacing"] = None if waypoint_spacing is None else \
+        check_length("waypoint_spacing", waypoint_spacing, allow_zero=False)
+    return out
 
 
 def _pose_args(lattice) -> tuple:

@@ -202,8 +202,9 @@ def say_when_compiling() -> None:
             self._said = True
             stream = sys.stderr
             if stream is not None and stream.isatty():
-                stream.write("compiling navlab's kernels for a first use (once: they are cached afterwards; "
-                             "up to a few minutes on a busy machine) ...\n")
+                # (also after an edit to the code a kernel holds: "for a first use" puzzled a contributor there)
+                stream.write("compiling navlab's kernels for a first use, or code they hold changed (once: they "
+                             "are cached afterwards; up to a few minutes on a busy machine) ...\n")
                 stream.flush()
 
         def on_end(self, ev) -> None:

@@ -109,7 +109,9 @@ def test_more_trials_extend_a_result_set(tmp_path):
 
 def test_incompatible_or_unannounced_reuse_of_a_folder_is_refused(tmp_path):
     run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False, plots=False)
-    with pytest.raises(ExperimentError, match="different experiment.*budget"):
+    # which field, with both values (newcomer run, session 21: "differs in: budget")
+    with pytest.raises(ExperimentError, match=r"different experiment \('tiny'; differs in: budget.max_iter 150 "
+                                              r"there, 151 now\)"):
         run_experiment(load_experiment({**TINY, "budget": {"max_iter": 151}}), tmp_path, progress=False)
     with pytest.raises(ExperimentError, match="--resume"):
         run_experiment(load_experiment(TINY), tmp_path, executor="serial", progress=False)

@@ -25,6 +25,7 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
 from ..errors import ParameterError
+from ..limits import shown
 from ..wording import counted
 from .experiment import DESCRIPTIVE, Experiment, ExperimentError
 
@@ -343,5 +344,20 @@ def _set_aside_bad_rows(path: Path) -> Tuple[List[Dict[str, Any]], int]:
 
 
 def _differences(a: Dict[str, Any], b: Dict[str, Any]) -> List[str]:
-    ignored = set(DESCRIPTIVE)
-    return [k for k in sorted(set(a) | set(b)) if k not in ignored and a.get(k) != b.get(k)]
+    """Each field experiment ``a`` (the folder's) and ``b`` differ in, with both values, a mapping's fields
+    one by one (``budget.max_iter 200 there, 5000 now``): "differs in: budget" left the user to find which
+    (newcomer run, session 21)."""
+    def value(v):
+        return "(not set)" if v is None else shown(v)
+
+    out = []
+    for key in sorted(set(a) | set(b)):
+        old, new = a.get(key), b.get(key)
+        if key in DESCRIPTIVE or old == new:
+            continue
+        if isinstance(old, dict) and isinstance(new, dict):
+            out += [f"{key}.{sub} {value(old.get(sub))} there, {value(new.get(sub))} now"
+                    for sub in sorted(set(old) | set(new), key=str) if old.get(sub) != new.get(sub)]
+        else:
+            out.append(f"{key} {value(old)} there, {value(new)} now")
+    return out

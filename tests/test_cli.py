@@ -248,3 +248,16 @@ def test_a_file_heading_that_the_query_replaces_gets_no_note(tmp_path):
     kept = CliRunner().invoke(main, args + ["--start", "2", "2", "--goal", "16", "8", "-270"])
     notes = [line for line in kept.stderr.splitlines() if line.startswith("note:")]
     assert kept.exit_code == 0 and len(notes) == 2 and "start theta 90 " in notes[1] and "goal theta -270 " in notes[0]
+
+
+def test_the_summary_says_when_goal_bias_wraps_the_sampler():
+    """(newcomer run, session 21: --param goal_sample_rate=0.5 printed "rrt_star + uniform", which docs/sampling.md
+    says it wraps in goal bias)"""
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    out = CliRunner().invoke(main, ["plan", "trap", "--param", "goal_sample_rate=0.5", "--param", "max_iter=300"])
+    assert out.output.startswith("trap: rrt_star + uniform with goal bias 0.5, seed 0: ")
+    out = CliRunner().invoke(main, ["plan", "trap", "--sampler", "goal_bias", "--param", "max_iter=300"])
+    assert out.output.startswith("trap: rrt_star + goal_bias, seed 0: ")

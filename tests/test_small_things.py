@@ -43,3 +43,10 @@ def test_a_missing_scenario_file_says_where_they_come_from(tmp_path):
 
 def test_max_iter_help_states_the_defaults():
     assert "5000 for rrt_star" in navlab_cli("plan", "--help").stdout.replace("\n", " ").replace("  ", " ")
+
+
+def test_durations_read_in_ms_then_seconds():
+    """(newcomer run, session 21: a first use's warm-up printed as "53881 ms")"""
+    from navlab.wording import duration
+
+    assert [duration(t) for t in (0.0412, 9.9994, 10.0, 53.881)] == ["41 ms", "9999 ms", "10.0 s", "53.9 s"]

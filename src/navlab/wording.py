@@ -7,3 +7,9 @@ def counted(n: int, noun: str) -> str:
     """``1 run``, ``4 runs``, ``0 runs``: a count with its noun, singular for one ("1 runs (1 run now)"
     was a BARN summary line until session 18). Regular plurals only."""
     return f"{n} {noun}" + ("" if n == 1 else "s")
+
+
+def duration(seconds: float) -> str:
+    """A duration as people read it: ``41 ms`` below ten seconds, ``53.9 s`` from there (a first use's
+    warm-up printed as "53881 ms"; newcomer run, session 21)."""
+    return f"{seconds * 1000:.0f} ms" if seconds < 10.0 else f"{seconds:.1f} s"

@@ -70,7 +70,7 @@ def test_a_cells_failure_note_says_when_its_reason_is_one_of_several(tmp_path, m
                                     "--executor", "serial", "--no-plots", "--out", "r", "-q"])
     line = next(x for x in res.output.splitlines() if "success 0/3" in x)
     assert "[APPROXIMATE: goal not reached in 5 iterations; the path ends" in line
-    assert line.endswith("; 1 of 3 failed trials, report.md lists the others]"), line
+    assert line.endswith(": 1 of the 3 failures; report.md lists the others' reasons]"), line
 
 
 def test_one_trial_is_counted_in_the_singular(tmp_path, monkeypatch):

@@ -239,8 +239,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
             reason, count = cell["reasons"][0]
             failed = cell["trials"] - cell["successes"]
             # (the first reason alone read as every failure's: 2 failures, 2.1 and 11.5 m short; newcomer run)
+            # ("[...; 1 of 2 failed trials]" read as one trial of two failing: newcomer run, session 21)
             line += f"  [{reason}]" if count == failed else \
-                f"  [{reason}; {count} of {failed} failed trials, report.md lists the others]"
+                f"  [{reason}: {count} of the {failed} failures; report.md lists the others' reasons]"
         click.echo(line)
     for verdict in _overall(summary):
         click.echo(verdict)

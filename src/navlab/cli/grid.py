@@ -11,7 +11,7 @@ import click
 import numpy as np
 
 from ..errors import ParameterError
-from ..wording import counted
+from ..wording import counted, duration
 from .common import (Count, ExactNumber, PositiveNumber, SuggestingGroup, before_first_kernel, before_numba_import,
                      note_unused_grid_settings)
 
@@ -99,8 +99,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
             click.echo(f"  {counted(len(result.cells), 'waypoint')}, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
         if result.stats.get("warmup_s"):  # a failed first use compiled as long as a successful one
-            click.echo(f"  warm-up (compiling / loading kernels, not planning) "
-                       f"{result.stats['warmup_s'] * 1000:.0f} ms")
+            click.echo(f"  warm-up (compiling / loading kernels, not planning) {duration(result.stats['warmup_s'])}")
         if plot:
             click.echo(f"  plot written to {plot}")
     if not result.success:

@@ -9,7 +9,7 @@ import sys
 import click
 
 from ..errors import ParameterError
-from ..wording import counted
+from ..wording import counted, duration
 from .common import (Count, PointOrPoseOption, PositiveNumber, before_first_kernel, before_numba_import,
                      note_unused_grid_settings, parse_params)
 
@@ -134,6 +134,9 @@ def _note_ignored_shape(world, result) -> None:
 def _print_summary(world, result, planner, sampler, seed, plot) -> None:
     s = result.stats
     what = planner if sampler is None else f"{planner} + {sampler}, seed {seed}"
+    rate = result.params.get("goal_sample_rate")
+    if sampler not in (None, "goal_bias") and rate:  # wrapped in goal bias (docs/sampling.md; newcomer run, session 21)
+        what = f"{planner} + {sampler} with goal bias {rate:g}, seed {seed}"
     if result.params.get("costmap"):  # the header said "astar" alone whether or not it planned on a costmap
         what += " (costmap)"
     click.echo(f"{world.name}: {what}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
@@ -160,6 +163,6 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
             line += f", {s['expanded']} cells expanded"
         click.echo(line + f", planning {s['time_s'] * 1000:.1f} ms (rasterising {s.get('rasterize_s', 0) * 1000:.1f} ms)")
     if s.get("warmup_s", 0) > 0.0005:
-        click.echo(f"  warm-up (compiling / loading kernels, not planning) {s['warmup_s'] * 1000:.0f} ms")
+        click.echo(f"  warm-up (compiling / loading kernels, not planning) {duration(s['warmup_s'])}")
     if plot:
         click.echo(f"  plot written to {plot}")

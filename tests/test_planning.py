@@ -379,6 +379,13 @@ def test_a_costmap_query_reports_its_allow_unknown(given):
     ("trap_car", {"planner": "rrt_star", "motion": "reeds_shepp", "heading_bins": 2}, "heading_bins"),
     ("trap", {"planner": "rrt_star", "expand_dis": -1.0}, "expand_dis must be positive"),
     ("trap", {"planner": "rrt", "sampler": "gaussian", "sigma": -1.0}, "sigma"),
+    # a car-like tree's own settings (review, session 21: expand_dis=-1, max_time=-1 and keep_tree='no' ran)
+    ("trap_car", {"planner": "rrt_star", "motion": "reeds_shepp", "expand_dis": -1.0}, "expand_dis must be positive"),
+    ("trap_car", {"planner": "rrt", "motion": "dubins", "max_time": -1.0}, "max_time must be a positive number"),
+    ("trap_car", {"planner": "rrt_star", "motion": "dubins", "keep_tree": "no"}, "keep_tree must be true or false"),
+    ("trap_car", {"planner": "rrt_star", "motion": "dubins", "connect_circle_dist": -2.0},
+     "connect_circle_dist must be positive"),
+    ("parking", {"planner": "hybrid_astar", "resolution": -1.0}, "resolution must be positive"),
 ])
 def test_bad_settings_are_refused_before_any_kernel_loads(monkeypatch, world, params, message):
     """(newcomer run, session 21: on a first use these waited 23-94 s for every kernel to compile first)"""

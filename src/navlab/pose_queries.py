@@ -152,6 +152,10 @@ def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),
               "resolution": settings.pop("resolution", None)}
+    if common["resolution"] is not None:  # (checked when the world was rasterised: after the warm-up)
+        from .limits import check_length
+
+        common["resolution"] = check_length("resolution", common["resolution"], allow_zero=False)
     settings.pop("allow_unknown", None)  # already applied to the world
     return common, settings
 
@@ -184,14 +188,18 @@ def _verified(world, footprint, result: Result, map_checked: bool = False) -> Re
 def check_pose_query(world, planner: str, params: Dict[str, Any]) -> None:
     """Refuse a heading-aware query's bad settings as :func:`hybrid_query` and :func:`tree_pose_query` would,
     without planning: names, motion, turning radius, footprint, and Hybrid A*'s own settings or a tree's
-    heading bins (its other settings its planner checks). Before the kernels load: a typo waited for their
+    heading bins and other settings. Before the kernels load: a typo waited for their
     first compile (80 s; newcomer run, session 21)."""
     if planner in POSE_PLANNERS:
         from .grid.hybrid_astar import check_settings
 
         check_settings(**_query(world, planner, params, HYBRID_PARAMS)[1])
     else:
-        _tree_heading_bins(_query(world, planner, params, _tree_pose_params())[1].get("heading_bins", 72))
+        from .sampling.se2_planners import check_se2_settings
+
+        settings = _query(world, planner, params, _tree_pose_params())[1]
+        _tree_heading_bins(settings.pop("heading_bins", 72))
+        check_se2_settings(settings)
 
 
 def _tree_pose_params() -> Tuple[str, ...]:

@@ -18,7 +18,7 @@ from typing import Any, Dict
 
 import numpy as np
 
-from ..limits import check_count
+from ..limits import check_length
 from ..result import Result, Status, Tree
 from . import se2_tree as K
 from .curves import MAX_SEGMENTS, NOP
@@ -73,6 +73,37 @@ class _TreeArrays:
                                                              np.inf)])
 
 
+def check_se2_settings(settings: Dict[str, Any]) -> Dict[str, Any]:
+    """A car-like tree's settings checked as the holonomic trees check theirs (one set of checks: theirs).
+
+    ``expand_dis=-1``, ``max_time=-1`` and ``keep_tree='no'`` (taken as true) were accepted, and
+    ``expand_dis=0`` fell back to the default (review, session 21).
+
+    Parameters
+    ----------
+    settings : dict
+        Any of :data:`SE2_TREE_PARAMS` (``heading_bins`` is the lattice's, checked by its query).
+
+    Returns
+    -------
+    dict
+        ``settings`` with ``max_iter`` and ``batch_size`` as ints where given.
+
+    Raises
+    ------
+    ParameterError
+        Naming the first bad setting.
+    """
+    from .planners import make_planner
+
+    shared = {k: settings[k] for k in ("expand_dis", "max_iter", "max_time", "batch_size", "keep_tree")
+              if settings.get(k) is not None}
+    checked = make_planner("rrt", **shared)
+    if settings.get("connect_circle_dist") is not None:
+        check_length("connect_circle_dist", settings["connect_circle_dist"], allow_zero=False)
+    return {**settings, **{k: getattr(checked, k) for k in ("max_iter", "batch_size") if k in shared}}
+
+
 def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.ndarray, to_grid, start, goal,
                   motion: str, turning_radius: float, rng, settings: Dict[str, Any]) -> Result:
     """Grow an SE(2) tree from pose ``start`` to pose ``goal`` (grid-frame poses via ``to_grid``).
@@ -93,14 +124,15 @@ def plan_se2_tree(planner: str, world, sampler: Sampler, lattice, blocked: np.nd
         :func:`se2_gamma`), ``batch_size``, ``keep_tree``.
     """
     t0 = time.perf_counter()
+    settings = check_se2_settings(settings)
     b = world.bounds
     diagonal = math.hypot(b.xmax - b.xmin, b.ymax - b.ymin)
-    eta = float(settings.get("expand_dis") or min(0.2 * diagonal, 2.0 * turning_radius))
-    gamma = float(settings.get("connect_circle_dist") or se2_gamma(b))
-    max_iter = DEFAULT_MAX_ITER[planner] if settings.get("max_iter") is None else \
-        check_count("max_iter", settings["max_iter"])
-    max_time = settings.get("max_time")
-    batch = 64 if settings.get("batch_size") is None else check_count("batch_size", settings["batch_size"])
+    given = {k: v for k, v in settings.items() if v is not None}
+    eta = float(given.get("expand_dis", min(0.2 * diagonal, 2.0 * turning_radius)))
+    gamma = float(given.get("connect_circle_dist", se2_gamma(b)))
+    max_iter = given.get("max_iter", DEFAULT_MAX_ITER[planner])
+    max_time = given.get("max_time")
+    batch = given.get("batch_size", 64)
     params = {"expand_dis": eta, "connect_circle_dist": gamma, "max_iter": max_iter, "max_time": max_time,
               "batch_size": batch, "keep_tree": bool(settings.get("keep_tree", False))}
     # arrays grown by doubling from a few thousand nodes: a tree often keeps far fewer nodes than it

@@ -150,6 +150,19 @@ def test_a_tree_planner_that_fails_still_reports_its_tree():
     assert len(nodes) > 1 and nodes[:, 0].max() < 2.0  # it grew, on its own side of the wall
 
 
+def test_every_argument_of_navlab_plan_is_refused_as_a_planner_setting():
+    """(review, session 21: 'source' was missing from the node's list, and plan() got it twice)"""
+    import inspect
+
+    from navlab import planning
+    from navlab.ros.core import _NOT_SETTINGS
+
+    own = [name for name, p in inspect.signature(planning.plan).parameters.items() if p.kind != p.VAR_KEYWORD]
+    assert sorted(_NOT_SETTINGS) == sorted(own)
+    with pytest.raises(ValueError, match="parameter 'source' is not a planner setting: the node plans on /map"):
+        GoalPlanner(Logbook(), algorithm="astar", source="clutter")
+
+
 @pytest.mark.parametrize("settings, message", [
     (dict(algorithm="rrt_star", sampler="integraton"), "Did you mean 'integration'"),
     (dict(algorithm="rrt_star", max_itr=5), "Did you mean 'max_iter'"),

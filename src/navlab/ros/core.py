@@ -56,8 +56,10 @@ def plan_on_map(grid: OccupancyGrid, start, goal, algorithm: str, sampler: str, 
     return plan(world, planner=algorithm, seed=seed, **extra, **params)
 
 
-#: names navlab.plan takes itself, which a planner setting must not be: what the node calls them instead
-_NOT_SETTINGS = {"planner": "the node's parameter is 'algorithm'", "world": "the node plans on /map",
+#: what the node does instead of each of navlab.plan's own arguments, which a planner setting must not be
+#: named after (a test holds this to plan's signature: 'source' was missed once)
+_NOT_SETTINGS = {"source": "the node plans on /map", "planner": "the node's parameter is 'algorithm'",
+                 "sampler": "the node's parameter is 'sampler'", "seed": "the node's parameter is 'seed'",
                  "start": "the start is the latest /odom pose", "goal": "goals come on /goal_pose",
                  "robot_radius": "the node's parameter is 'inflation_radius' (robot radius + margin)"}
 

@@ -217,6 +217,13 @@ EXPAND_DIS_TAKERS = "'expand_dis' is a setting of planners growth_ratio_rrt, inf
      f" Did you mean 'expand_dis'? {EXPAND_DIS_TAKERS}, not of planner astar."),
     ("trap", {"planner": "rrt_star", "expnd_dis": 1.0}, ". Did you mean 'expand_dis'?"),
     ("parking", {"planner": "hybrid_astar", "turning_radus": 1.0}, ". Did you mean 'turning_radius'?"),
+    # a car-like tree's sampler settings are its own, and heading_bins is a car-like tree's (review, session 21)
+    ("trap_car", {"planner": "rrt_star", "motion": "dubins", "sampler": "gaussian", "sigm": 0.2},
+     ". Did you mean 'sigma'?"),
+    ("trap_car", {"planner": "rrt", "motion": "dubins", "goal_sample_rat": 0.2}, ". Did you mean 'goal_sample_rate'?"),
+    ("trap", {"planner": "rrt_star", "heading_bins": 8},
+     "'heading_bins' is a setting of planners informed_rrt_star, rrt and rrt_star with motion=dubins or reeds_shepp "
+     "and planner hybrid_astar, not of planner rrt_star with the uniform sampler."),
 ])
 def test_a_setting_of_another_planner_is_named_as_such_not_guessed_at(world, params, hint):
     """(newcomer check, session 20: smooth=true with rrt_star was asked "Did you mean 'motion'?")"""

@@ -255,7 +255,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
                         allow_unknown=params.get("allow_unknown"))
     check_radius_not_dropped(world, robot_radius, params, planner)
-    check_pose_query(world, planner, params)  # before the kernels load (a first compile takes minutes)
+    check_pose_query(world, planner, params, sampler or "")  # before the kernels load (a first compile: minutes)
     t0 = time.perf_counter()
     warm_pose_planner(planner if sampler is None else "se2_tree")
     warmup_s = time.perf_counter() - t0

@@ -23,15 +23,13 @@ import numpy as np
 from .errors import ParameterError
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
-from .setting_names import HYBRID_PARAMS, POSE_PLANNERS  # noqa: F401 (here since they were first)
+from .setting_names import HYBRID_PARAMS, POSE_PLANNERS, TREE_POSE_PLANNERS  # noqa: F401 (here since they were first)
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
 MOTIONS = ("holonomic", "dubins", "reeds_shepp")
 #: the motions of a car-like robot, all that Hybrid A* plans for
 CAR_MOTIONS = MOTIONS[1:]
-#: tree planners that also plan between poses when ``motion`` is dubins or reeds_shepp
-TREE_POSE_PLANNERS = ("rrt", "rrt_star", "informed_rrt_star")
 #: [m] the turning radius when none is given: Nav2 Smac's ``minimum_turning_radius``
 DEFAULT_TURNING_RADIUS = 0.4
 #: [m] spacing of the poses at which a returned path's footprint is re-checked against the exact world
@@ -136,18 +134,24 @@ def _pose_grid(world, resolution):
     return rasterize(replace(world, robot_radius=0.0), resolution)
 
 
-def _query(world, planner: str, params: Dict[str, Any], valid) -> Tuple[Dict[str, Any], Any]:
-    """The settings shared by every heading-aware query, checked; the rest returned as ``settings``."""
+def _query(world, planner: str, params: Dict[str, Any], valid, sampler: str = "") -> Tuple[Dict[str, Any], Any]:
+    """The settings shared by every heading-aware query, checked; the rest returned as ``settings``.
+    ``sampler``: a tree's, whose settings (taken from ``params`` before) a misspelt name may be meant for."""
     from .sampling.curves import check_turning_radius  # not at the top: navlab plan clutter never steers curves
 
     settings = dict(params)
     unknown = sorted(set(settings) - set(valid))
     if unknown:
+        from .registry import parameters_of
+        from .sampling.samplers import SAMPLERS
         from .setting_names import setting_hint
 
+        # the sampler's settings are this query's too: "sigm" with the gaussian sampler was told 'sigma' was
+        # the gaussian sampler's, "not of planner rrt_star" (review, session 21)
+        also = ["goal_tolerance"] + (["goal_sample_rate", *parameters_of(SAMPLERS.get(sampler))] if sampler else [])
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
                                f"valid: {', '.join(valid)}."
-                               + setting_hint(unknown[0], planner, list(valid) + ["goal_tolerance"]))
+                               + setting_hint(unknown[0], planner, list(valid) + also, sampler))
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),
@@ -185,7 +189,7 @@ def _verified(world, footprint, result: Result, map_checked: bool = False) -> Re
     return result
 
 
-def check_pose_query(world, planner: str, params: Dict[str, Any]) -> None:
+def check_pose_query(world, planner: str, params: Dict[str, Any], sampler: str = "") -> None:
     """Refuse a heading-aware query's bad settings as :func:`hybrid_query` and :func:`tree_pose_query` would,
     without planning: names, motion, turning radius, footprint, and Hybrid A*'s own settings or a tree's
     heading bins and other settings. Before the kernels load: a typo waited for their
@@ -197,7 +201,7 @@ def check_pose_query(world, planner: str, params: Dict[str, Any]) -> None:
     else:
         from .sampling.se2_planners import check_se2_settings
 
-        settings = _query(world, planner, params, _tree_pose_params())[1]
+        settings = _query(world, planner, params, _tree_pose_params(), sampler)[1]
         _tree_heading_bins(settings.pop("heading_bins", 72))
         check_se2_settings(settings)
 

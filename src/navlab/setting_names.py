@@ -15,6 +15,8 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
                   "allow_unknown")
 #: planners that plan between poses for a curvature-bounded robot
 POSE_PLANNERS = ("hybrid_astar",)
+#: tree planners that also plan between poses when ``motion`` is dubins or reeds_shepp
+TREE_POSE_PLANNERS = ("rrt", "rrt_star", "informed_rrt_star")
 #: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
 HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
@@ -61,16 +63,20 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
     from .registry import parameters_of
     from .sampling.planners import PLANNERS
     from .sampling.samplers import SAMPLERS
+    from .sampling.se2_planners import SE2_TREE_PARAMS
 
     def listed(names):
         return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
+    planners_keys = {k for name in PLANNERS.names() for k in parameters_of(PLANNERS.get(name))}
     planners = [name for name in PLANNERS.names() if key in parameters_of(PLANNERS.get(name))]
     planners += [name for name in POSE_PLANNERS if key in HYBRID_PARAMS]
     samplers = [name for name in SAMPLERS.names() if key in parameters_of(SAMPLERS.get(name))]
     takers = [f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})"] if key in GRID_PARAMS else []
     if key in COSTMAP_PARAMS and key not in GRID_PARAMS:
         takers.append("planner astar with costmap=true")
+    if key in SE2_TREE_PARAMS and key not in planners_keys:  # (heading_bins: a car-like tree's lattice)
+        takers.append(f"planners {listed(sorted(TREE_POSE_PLANNERS))} with motion=dubins or reeds_shepp")
     if planners:
         takers.append(f"planner{'s' if len(planners) > 1 else ''} {listed(planners)}")
     if samplers:

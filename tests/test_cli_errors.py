@@ -61,6 +61,7 @@ def numpy_memory_error():
     # a name too long for the file system is cut to its ends (attack, session 20: 100 KB of one line)
     (FileNotFoundError(errno.ENOENT, "No such file or directory", "two\nlines.yaml"), 2,  # (attack, session 21)
      "Error: two\\nlines.yaml: No such file or directory"),
+
     (OSError(errno.ENAMETOOLONG, "File name too long", "a" * 100_000 + ".pgm"), 2,
      "Error: " + "a" * 150 + "..." + "a" * 71 + ".pgm (a name of 100004 characters): File name too long"),
     (MemoryError(), 2, "Error: the request is too large for this machine's memory"),

@@ -280,9 +280,9 @@ def test_whole_numbers_written_as_floats_count_in_experiment_files(tmp_path):
     ("trials: 99999999999999999999999999", ["--trials", "1"], "'trials' must be at most 100000 (what a run "
                                                              "supports), got an integer of 26 digits (--trials replaces it"),
     ("budget: {max_iter: 99999999999999999999999999}", ["--max-iter", "5"], "budget max_iter must be at most "
-                                                                            "4.61e+18, got an integer of 26 digits"),
+                                                                            "4611686018427387904, got an integer of 26 digits"),
     ("budget: {max_time: .inf}", ["--max-time", "1"], "budget max_time must be a positive finite number [s], got inf"),
-    ("seed: 99999999999999999999999999", ["--seed", "3"], "'seed' must be at most 4.61e+18, got an integer of 26"),
+    ("seed: 99999999999999999999999999", ["--seed", "3"], "'seed' must be at most 4611686018427387904, got an integer of 26"),
     ("seed: -1", ["--seed", "3"], "'seed' must be a non-negative integer, got -1 (--seed replaces it"),
 ])
 def test_a_flag_does_not_hide_a_bad_value_it_replaces_in_the_file(tmp_path, written, flags, message):

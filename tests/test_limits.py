@@ -85,3 +85,14 @@ def test_a_number_too_long_to_write_out_is_shown_by_its_digits():
     res = CliRunner().invoke(main, ["plan", "trap", "--planner", "rrt", "--param", "max_iter=" + "9" * 4100])
     assert res.exit_code == 2 and "max_iter must be a whole number from 1 to 4.61e+18, got a number of 4100 digits" \
         in res.stderr
+
+
+def test_a_short_name_keeps_its_limit_with_control_characters_escaped():
+    """(review, session 21: escaped after the cut, 301 control characters came out as 930)"""
+    from navlab.limits import short_name
+
+    assert short_name("a\nb") == "a\\nb"
+    for name in ("\x01" * 301, "\n" * 300, "é" * 10_000):
+        text = short_name(name)
+        assert len(text) <= 300 + 3 + len(f" (a name of {len(name)} characters)") and "\n" not in text
+        assert text.endswith(f" (a name of {len(name)} characters)")

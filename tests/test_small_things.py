@@ -49,4 +49,5 @@ def test_durations_read_in_ms_then_seconds():
     """(newcomer run, session 21: a first use's warm-up printed as "53881 ms")"""
     from navlab.wording import duration
 
-    assert [duration(t) for t in (0.0412, 9.9994, 10.0, 53.881)] == ["41 ms", "9999 ms", "10.0 s", "53.9 s"]
+    assert [duration(t) for t in (0.0412, 9.9994, 9.9996, 10.0, 53.881)] == ["41 ms", "9999 ms", "10.0 s", "10.0 s",
+                                                                             "53.9 s"]

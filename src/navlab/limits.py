@@ -72,10 +72,10 @@ def short_name(name: str, limit: int = 300) -> str:
     printed 74 lines), and its start and end only when longer than ``limit`` characters (a 100 000-character
     name, too long for the file system, filled 100 KB of one line; attacks, sessions 20 and 21)."""
     size = len(name)
-    if size > limit:
-        name = f"{name[:limit // 2]}...{name[-limit // 4:]}"
-    name = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], name)
-    return name if size <= limit else f"{name} (a name of {size} characters)"
+    name = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], name)  # first: the cut keeps the limit
+    if len(name) <= limit:
+        return name
+    return f"{name[:limit // 2]}...{name[-limit // 4:]} (a name of {size} characters)"
 
 
 def digit_count(value: int) -> int:

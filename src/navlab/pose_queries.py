@@ -191,9 +191,26 @@ def _verified(world, footprint, result: Result, map_checked: bool = False) -> Re
 
 def check_pose_query(world, planner: str, params: Dict[str, Any], sampler: str = "") -> None:
     """Refuse a heading-aware query's bad settings as :func:`hybrid_query` and :func:`tree_pose_query` would,
-    without planning: names, motion, turning radius, footprint, and Hybrid A*'s own settings or a tree's
-    heading bins and other settings. Before the kernels load: a typo waited for their
-    first compile (80 s; newcomer run, session 21)."""
+    without planning: names, motion, turning radius, resolution, footprint, and Hybrid A*'s own settings or
+    a tree's heading bins and other settings. Before the kernels load: a typo waited for their first compile
+    (80 s; newcomer run, session 21).
+
+    Parameters
+    ----------
+    world : World
+        The query's world (its footprint and turning radius are the defaults).
+    planner : str
+        ``hybrid_astar`` or a tree planner.
+    params : dict
+        The query's settings, the tree's sampler's already taken out.
+    sampler : str, optional
+        A tree's sampler, whose settings a misspelt name may be meant for.
+
+    Raises
+    ------
+    ParameterError
+        Naming the first bad setting (:class:`~navlab.registry.UnknownNameError` for an unknown one).
+    """
     if planner in POSE_PLANNERS:
         from .grid.hybrid_astar import check_settings
 

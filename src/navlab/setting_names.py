@@ -25,9 +25,25 @@ HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_u
 
 
 def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
-    """The hint after an unknown setting ``key`` of ``planner`` (whose settings are ``valid``): who takes it
-    (:func:`taken_elsewhere`), else the nearest setting name, its own or another's, with who takes that.
-    "smoth" given to rrt_star was asked "Did you mean 'motion'?", its own nearest name (attack, session 21).
+    """The hint after an unknown setting: who takes it (:func:`taken_elsewhere`), else the nearest setting
+    name, the planner's own or another's, with who takes that. "smoth" given to rrt_star was asked "Did you
+    mean 'motion'?", its own nearest name (attack, session 21).
+
+    Parameters
+    ----------
+    key : str
+        The setting given.
+    planner : str
+        The planner it was given to.
+    valid : sequence of str
+        The settings the query takes.
+    sampler : str, optional
+        A tree planner's sampler.
+
+    Returns
+    -------
+    str
+        `` Did you mean 'x'?`` and/or `` 'x' is a setting of ...``, or "" when nothing is near.
     """
     import difflib
 

@@ -10,6 +10,17 @@ def counted(n: int, noun: str) -> str:
 
 
 def duration(seconds: float) -> str:
-    """A duration as people read it: ``41 ms`` below ten seconds, ``53.9 s`` from there (a first use's
-    warm-up printed as "53881 ms"; newcomer run, session 21)."""
-    return f"{seconds * 1000:.0f} ms" if seconds < 10.0 else f"{seconds:.1f} s"
+    """A duration as people read it (a first use's warm-up printed as "53881 ms"; newcomer run, session 21).
+
+    Parameters
+    ----------
+    seconds : float
+
+    Returns
+    -------
+    str
+        Whole milliseconds below ten seconds as rounded (``41 ms``, ``9999 ms``), tenths of a second from
+        there (``10.0 s``, ``53.9 s``).
+    """
+    ms = round(seconds * 1000)
+    return f"{ms} ms" if ms < 10_000 else f"{seconds:.1f} s"

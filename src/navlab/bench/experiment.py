@@ -537,7 +537,7 @@ def _whole_count(value: Any, what: str, low: int, high: Optional[int]) -> int:
         kind = "a positive integer" if low == 1 else "a non-negative integer"
         raise ExperimentError(f"{what} must be {kind}, got {shown(value)}")
     if high is not None and value > high:
-        raise ExperimentError(f"{what} must be at most {high:.3g}, got {shown(value)}")
+        raise ExperimentError(f"{what} must be at most {high}, got {shown(value)}")
     return value
 
 

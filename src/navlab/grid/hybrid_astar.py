@@ -395,12 +395,29 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
                    analytic_expansion=True, analytic_expansion_max_length=DEFAULTS["analytic_expansion_max_length"],
                    analytic_expansion_ratio=None, max_expansions=DEFAULTS["max_expansions"], smooth=True,
                    waypoint_spacing=None, exact_retry=True) -> Dict[str, Any]:
-    """:func:`plan_hybrid`'s settings but the robot, map and poses, checked, as it searches with them:
-    ``heading_bins`` and ``max_expansions`` (capped at :data:`~navlab.limits.MAX_COUNT`) as ints, lengths as
-    floats (None where not given). A ParameterError names the setting.
+    """:func:`plan_hybrid`'s settings but the robot, map and poses, checked as it searches with them.
 
     Apart from the search so that a query can be refused before its kernels load: a typo waited for their
-    first compile (80 s; newcomer run, session 21)."""
+    first compile (80 s; newcomer run, session 21).
+
+    Parameters
+    ----------
+    heading_bins, reverse_penalty, change_penalty, non_straight_penalty, analytic_expansion,
+    analytic_expansion_max_length, analytic_expansion_ratio, max_expansions, smooth, waypoint_spacing,
+    exact_retry
+        As :func:`plan_hybrid` takes them.
+
+    Returns
+    -------
+    dict
+        ``heading_bins`` and ``max_expansions`` (capped at :data:`~navlab.limits.MAX_COUNT`) as ints,
+        ``analytic_expansion_max_length`` and ``waypoint_spacing`` [m] as floats (None where not given).
+
+    Raises
+    ------
+    ParameterError
+        Naming the first bad setting.
+    """
     out: Dict[str, Any] = {"heading_bins": check_count("heading_bins", heading_bins, 4, 1440)}  # 72.0 counts
     for name, value, low in (("reverse_penalty", reverse_penalty, 1.0), ("non_straight_penalty", non_straight_penalty, 1.0),
                              ("change_penalty", change_penalty, 0.0)):

@@ -29,20 +29,29 @@ def twice(x):
     return {factor} * x
 '''
 
+# each in a module of its own, which nothing else of the kernel's reaches
+CONSTANT = "K2 = {k2}  # re-exported by jitfake_reexport, read there through a module alias\n"
+REEXPORT = "from .jitfake_constant import K2  # noqa: F401\n"
+ENUM = "import enum\n\n\nclass Mode(enum.IntEnum):\n    A = 0\n    B = {b}\n"
+SCALE = "SCALE = {scale}  # a default value's\n"
+
 AROUND = '''
 def message(x):
     return "{text}"  # Python code around a kernel: no kernel compiles it in
 '''
 
 CALLER = '''
+from . import jitfake_reexport as R
 from .jit import njit
 from .jitfake_around import message  # noqa: F401
 from .jitfake_callee import K, twice
+from .jitfake_enum import Mode
+from .jitfake_scale import SCALE
 
 
 @njit(cache=True)
-def kernel(x):
-    return twice(x) + K
+def kernel(x, s=SCALE):
+    return twice(x) + K + R.K2 + Mode.B + s
 '''
 
 RUN = textwrap.dedent('''
@@ -57,10 +66,11 @@ RUN = textwrap.dedent('''
 ''')
 
 
-def write(folder, k=10, factor=2, text="hello"):
-    (folder / "jitfake_callee.py").write_text(CALLEE.format(k=k, factor=factor))
-    (folder / "jitfake_around.py").write_text(AROUND.format(text=text))
-    (folder / "jitfake_caller.py").write_text(CALLER)
+def write(folder, k=10, factor=2, k2=100, b=1000, scale=10000, text="hello"):
+    for name, text_ in (("callee", CALLEE.format(k=k, factor=factor)), ("constant", CONSTANT.format(k2=k2)),
+                        ("reexport", REEXPORT), ("enum", ENUM.format(b=b)), ("scale", SCALE.format(scale=scale)),
+                        ("around", AROUND.format(text=text)), ("caller", CALLER)):
+        (folder / f"jitfake_{name}.py").write_text(text_)
 
 
 def run(folder):
@@ -74,16 +84,24 @@ def run(folder):
 
 def test_a_kernel_compiles_again_when_code_or_constants_it_holds_change_and_only_then(tmp_path):
     write(tmp_path)
-    assert run(tmp_path) == (12, "compiled")
-    assert run(tmp_path) == (12, "loaded")
+    assert run(tmp_path) == (11112, "compiled")
+    assert run(tmp_path) == (11112, "loaded")
     write(tmp_path, k=20)  # a constant the kernel reads, imported by name from another module
-    assert run(tmp_path) == (22, "compiled")
+    assert run(tmp_path) == (11122, "compiled")
     write(tmp_path, k=20, factor=3)  # a function it calls, in another module
-    assert run(tmp_path) == (23, "compiled")
-    write(tmp_path, k=20, factor=3, text="changed")  # a module it imports but compiles nothing of
-    assert run(tmp_path) == (23, "loaded")
+    assert run(tmp_path) == (11123, "compiled")
+    # (review, session 21: these three were missed) a constant re-exported by a module read through an alias,
+    # an IntEnum member, a default value
+    write(tmp_path, k=20, factor=3, k2=200)
+    assert run(tmp_path) == (11223, "compiled")
+    write(tmp_path, k=20, factor=3, k2=200, b=2000)
+    assert run(tmp_path) == (12223, "compiled")
+    write(tmp_path, k=20, factor=3, k2=200, b=2000, scale=20000)
+    assert run(tmp_path) == (22223, "compiled")
+    write(tmp_path, k=20, factor=3, k2=200, b=2000, scale=20000, text="changed")  # a module it compiles nothing of
+    assert run(tmp_path) == (22223, "loaded")
     write(tmp_path)  # back: compiled again, not the other version's code
-    assert run(tmp_path) == (12, "compiled")
+    assert run(tmp_path) == (11112, "compiled")
 
 
 def test_what_hybrid_a_star_search_compiles_in():

@@ -106,10 +106,13 @@ def compiled_in(py_func) -> Tuple[str, ...]:
     """The navlab modules, ``py_func``'s own excepted, whose code or constants its compiled code can hold.
 
     Walks what numba compiles in: every global and attribute name the function's code reads, resolved in
-    its globals (and its closure's cells): a navlab dispatcher is followed into its own function, an
-    intrinsic counts its module, a navlab module object counts itself and is followed into the names the
-    code reads from it, and any other value (a number, a tuple, an array) counts the navlab modules that
-    hold it under that name. Python-only helpers around the kernels (messages, checks) are not reached.
+    its globals (and its closure's cells), and its default values: a navlab dispatcher is followed into its
+    own function, an intrinsic or a class (an ``IntEnum``'s members) counts its module, a navlab module
+    object counts itself and is followed into the names the code reads from it, and any other value (a
+    number, a tuple, an array) counts the module the name was imported from into the module it was read
+    in (:func:`_imported_names`). Python-only helpers around the kernels (messages, checks) are not reached.
+    Not seen: a constant computed at import from another module's (``B = other.A * 2``): it counts its own
+    module only.
 
     Parameters
     ----------
@@ -131,28 +134,44 @@ def compiled_in(py_func) -> Tuple[str, ...]:
             continue
         seen.add(id(func))
         names = set(_code_names(func.__code__))
-        scope = func.__globals__
+        scope, home = func.__globals__, func.__module__
         cells = [cell.cell_contents for cell in (func.__closure__ or ()) if _filled(cell)]
-        values = [(name, scope[name]) for name in names if name in scope] + [("", v) for v in cells]
+        # (name, value, the module the name is read in)
+        values = [(name, scope[name], home) for name in names if name in scope] + [("", v, home) for v in cells]
+        values += [(name, scope[name], home) for name in _default_names(func)]
         looked: Set[Tuple[str, int]] = set()
         while values:
-            name, value = values.pop()
+            name, value, where = values.pop()
             if (name, id(value)) in looked:
                 continue
             looked.add((name, id(value)))
             if isinstance(value, types.ModuleType):
                 if _is_navlab(value.__name__):
                     modules.add(value.__name__)
-                    values += [(attr, getattr(value, attr)) for attr in names if hasattr(value, attr)]
+                    values += [(attr, getattr(value, attr), value.__name__) for attr in names
+                               if hasattr(value, attr)]
             elif isinstance(value, Dispatcher):
                 if _is_navlab(value.py_func.__module__):
                     modules.add(value.py_func.__module__)
                     todo.append(value.py_func)
             elif isinstance(value, _Intrinsic):
                 modules.add(getattr(value._defn, "__module__", ""))
+            elif isinstance(value, type):
+                modules.add(getattr(value, "__module__", ""))
             elif name and not callable(value):
-                modules.add(_imported_names(func.__module__).get(name, ""))
+                modules.add(_imported_names(where).get(name, ""))
     return tuple(sorted(name for name in modules if _is_navlab(name) and name != own))
+
+
+def _default_names(func) -> Iterator[str]:
+    """The global names of ``func``'s module that hold one of its default values (``def f(x, s=SCALE)``: the
+    value is frozen in the machine code, and only its name says where it came from)."""
+    defaults = list(func.__defaults__ or ()) + list((func.__kwdefaults__ or {}).values())
+    if not defaults:
+        return
+    for name, value in func.__globals__.items():
+        if any(value is d for d in defaults) and not callable(value) and not isinstance(value, types.ModuleType):
+            yield name
 
 
 def _filled(cell) -> bool:

@@ -88,6 +88,10 @@ def test_the_report_shows_both_readings_of_the_seed_and_which_agrees():
     assert solved == {"Tables I-VI": "no", "conclusion": "yes"}
     cost_row = next(r for r in table if r[3] == "cost")
     assert cost_row[5] is None  # boundary has no solved trial: no cost to put beside the document's
+    # entries for what the run left out (an edited suite) are left out too
+    study["reference"] += [{"world": "clutter", "group": "boundary", "cost": 15.0},
+                           {"world": "trap", "group": "gaussian", "cost": 21.0}]
+    assert reference_table(study, summary) == table
 
 
 def test_a_sweep_of_thousands_of_cells_has_a_bounded_summary():

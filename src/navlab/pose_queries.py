@@ -156,10 +156,11 @@ def _query(world, planner: str, params: Dict[str, Any], valid, sampler: str = ""
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),
               "resolution": settings.pop("resolution", None)}
-    if common["resolution"] is not None:  # (checked when the world was rasterised: after the warm-up)
-        from .limits import check_length
+    if common["resolution"] is not None:  # its sign and kind (the raster's own checks come after the warm-up,
+        from .limits import finite_number  # and say what a tiny one would cost: 6e+300 x 6e+300 cells)
 
-        common["resolution"] = check_length("resolution", common["resolution"], allow_zero=False)
+        if not finite_number("resolution", common["resolution"]) > 0:
+            raise ParameterError(f"resolution must be positive, got {common['resolution']!r}")
     settings.pop("allow_unknown", None)  # already applied to the world
     return common, settings
 

@@ -157,3 +157,19 @@ def test_the_overall_line_names_each_world_once_and_says_what_every_world_showed
     assert one == "contradicted in clutter (boundary vs gaussian: 18/20 vs 20/20 solved)"
     line = overall_verdicts([_verdict("clutter", "confirmed"), _verdict("trap", "not shown")])[TIME["text"]]
     assert line == "confirmed in clutter (20/20 vs 20/20 solved) only; not shown in trap"
+
+
+def test_a_suite_run_with_other_settings_says_so_beside_the_document():
+    """(newcomer run, session 21: a --show template edited to 2 trials of 200 iterations was set beside the
+    document's 20 trials of 5 000 without a word)"""
+    from navlab.bench.experiment import load_experiment
+    from navlab.bench.report import _changed_from_suite
+    from navlab.bench.suites import find_suite
+
+    as_is = load_experiment(find_suite("samplers")(), "suite").to_dict()
+    assert _changed_from_suite(as_is) == ""
+    edited = {**as_is, "trials": 2, "budget": {**as_is["budget"], "max_iter": 200}}
+    assert _changed_from_suite(edited) == (
+        "This run is not the suite 'samplers' as it stands: budget.max_iter 200 here, 5000 in the suite; trials 2 "
+        "here, 20 in the suite. The document's numbers below go with the suite's settings.")
+    assert _changed_from_suite({**edited, "name": "mine"}) == ""  # no suite of that name: nothing to say

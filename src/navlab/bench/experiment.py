@@ -520,6 +520,42 @@ def _check_unique_cells(exp: Experiment) -> None:
         raise ExperimentError(f"the cell {twice} is named twice: each cell runs once")
 
 
+def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,
+                labels: Tuple[str, str] = ("there", "now")) -> List[str]:
+    """Each field two experiments (:meth:`Experiment.to_dict`) differ in, with both values, a mapping's
+    fields one by one: ``budget.max_iter 200 there, 5000 now`` ("differs in: budget" left the user to find
+    which; newcomer run, session 21).
+
+    Parameters
+    ----------
+    a, b : dict
+        The experiments.
+    ignored : sequence of str
+        Fields not compared (by default those that do not change a result set, :data:`DESCRIPTIVE`).
+    labels : (str, str)
+        What ``a``'s and ``b``'s values are called.
+
+    Returns
+    -------
+    list of str
+        One entry per differing field, in the fields' order.
+    """
+    def value(v):
+        return "(not set)" if v is None else shown(v)
+
+    out = []
+    for key in sorted(set(a) | set(b)):
+        old, new = a.get(key), b.get(key)
+        if key in ignored or old == new:
+            continue
+        if isinstance(old, dict) and isinstance(new, dict):
+            out += [f"{key}.{sub} {value(old.get(sub))} {labels[0]}, {value(new.get(sub))} {labels[1]}"
+                    for sub in sorted(set(old) | set(new), key=str) if old.get(sub) != new.get(sub)]
+        else:
+            out.append(f"{key} {value(old)} {labels[0]}, {value(new)} {labels[1]}")
+    return out
+
+
 def _roughly(count: int) -> str:
     """A count in three digits (``1.2e+09``), or its digits when past a float (a 400-digit ``trials`` made
     the message itself fail: attack, session 20)."""

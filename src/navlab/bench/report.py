@@ -32,6 +32,29 @@ def fmt(value: Any, digits: int = 3) -> str:
     return str(value)
 
 
+def _changed_from_suite(experiment: Dict[str, Any]) -> str:
+    """A line saying how this run differs from the built-in suite of its name, whose study it reports
+    against ("" when it does not, or there is no such suite): a --show template edited to 2 trials of 200
+    iterations was set beside the document's 20 of 5 000 without a word (newcomer run, session 21)."""
+    from .experiment import ExperimentError, differences, load_experiment
+    from .suites import find_suite
+
+    name = experiment.get("name", "")
+    make = find_suite(name)
+    if make is None:
+        return ""
+    try:
+        documented = load_experiment(make(), f"suite '{name}'").to_dict()
+    except (ExperimentError, OSError):  # (its data gone since: nothing to compare with)
+        return ""
+    changed = differences(experiment, documented, ignored=("description", "name", "claims", "study"),
+                          labels=("here", "in the suite"))
+    if not changed:
+        return ""
+    return (f"This run is not the suite '{name}' as it stands: {'; '.join(changed)}. The document's numbers "
+            "below go with the suite's settings.")
+
+
 def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[str, Any],
           images: Dict[str, List[str]], elapsed_s: Optional[float], meta: Dict[str, Any]) -> List[Block]:
     """The report's blocks. ``images[world]`` lists image files (relative
@@ -41,6 +64,9 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
     study = experiment.get("study") or {}
     if study.get("title"):
         blocks.append(("p", f"Reproduces {study['title']}."))
+        changed = _changed_from_suite(experiment)
+        if changed:
+            blocks.append(("p", changed))
     if study.get("measured"):
         blocks.append(("p", "What was measured there: " + study["measured"]))
     if experiment.get("description"):

@@ -25,9 +25,8 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
 from ..errors import ParameterError
-from ..limits import shown
 from ..wording import counted
-from .experiment import DESCRIPTIVE, Experiment, ExperimentError
+from .experiment import Experiment, ExperimentError, differences
 
 EXPERIMENT_FILE = "experiment.json"
 RESULTS_FILE = "results.jsonl"
@@ -234,7 +233,7 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
         if old.get("fingerprint") != experiment.fingerprint():
             raise ExperimentError(
                 f"'{folder}' holds results of a different experiment ('{old.get('experiment', {}).get('name')}'; "
-                f"differs in: {', '.join(_differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
+                f"differs in: {', '.join(differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
                 "Use another --out, or --overwrite to discard them.")
         if old_rows and not resume:
             raise ExperimentError(f"'{folder}' already holds {counted(len(old_rows), 'finished run')} of this "
@@ -341,23 +340,3 @@ def _set_aside_bad_rows(path: Path) -> Tuple[List[Dict[str, Any]], int]:
         except OSError as exc:
             raise write_error(side, exc) from None
     return rows, len(rejected)
-
-
-def _differences(a: Dict[str, Any], b: Dict[str, Any]) -> List[str]:
-    """Each field experiment ``a`` (the folder's) and ``b`` differ in, with both values, a mapping's fields
-    one by one (``budget.max_iter 200 there, 5000 now``): "differs in: budget" left the user to find which
-    (newcomer run, session 21)."""
-    def value(v):
-        return "(not set)" if v is None else shown(v)
-
-    out = []
-    for key in sorted(set(a) | set(b)):
-        old, new = a.get(key), b.get(key)
-        if key in DESCRIPTIVE or old == new:
-            continue
-        if isinstance(old, dict) and isinstance(new, dict):
-            out += [f"{key}.{sub} {value(old.get(sub))} there, {value(new.get(sub))} now"
-                    for sub in sorted(set(old) | set(new), key=str) if old.get(sub) != new.get(sub)]
-        else:
-            out.append(f"{key} {value(old)} there, {value(new)} now")
-    return out

@@ -51,6 +51,8 @@ def numpy_memory_error():
     (UnknownNameError("unknown planner 'rrtx'; valid: rrt"), 2, "Error: unknown planner 'rrtx'; valid: rrt"),
     (ParameterError("max_iter must be positive"), 2, "Error: max_iter must be positive"),
     (ParameterError("two\nlines"), 2, "Error: two lines"),
+    # a terminal's escape codes in a file name are shown, not obeyed (newcomer check, session 21)
+    (ParameterError("x\x1b[31mname.yaml: no such file"), 2, "Error: x\\x1b[31mname.yaml: no such file"),
     # a ValueError that is not navlab's own came from no check of navlab's: a defect to report (session 17)
     (ValueError("operands could not be broadcast together"), 1, "Error: internal error: ValueError: operands"),
     (FileNotFoundError(errno.ENOENT, "No such file or directory", "maze.yaml"), 2,

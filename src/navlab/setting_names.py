@@ -10,6 +10,8 @@ from __future__ import annotations
 
 #: settings of the grid algorithms, routed by name like sampler settings
 GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
+#: grid settings astar alone uses (the others search unweighted, with a note)
+ASTAR_ONLY = ("weight",)
 #: settings of A* on a Nav2-style costmap (``costmap=True``; see :func:`navlab.queries.costmap_query`)
 COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_travel_multiplier", "resolution",
                   "allow_unknown")
@@ -88,7 +90,11 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
     planners = [name for name in PLANNERS.names() if key in parameters_of(PLANNERS.get(name))]
     planners += [name for name in POSE_PLANNERS if key in HYBRID_PARAMS]
     samplers = [name for name in SAMPLERS.names() if key in parameters_of(SAMPLERS.get(name))]
-    takers = [f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})"] if key in GRID_PARAMS else []
+    takers = []
+    if key in ASTAR_ONLY:
+        takers.append("planner astar")
+    elif key in GRID_PARAMS:
+        takers.append(f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})")
     if key in COSTMAP_PARAMS and key not in GRID_PARAMS:
         takers.append("planner astar with costmap=true")
     if key in SE2_TREE_PARAMS and key not in planners_keys:  # (heading_bins: a car-like tree's lattice)
@@ -100,4 +106,6 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
     if not takers:
         return ""
     own = f"planner {planner}" + (f" with the {sampler} sampler" if sampler else "")
+    if planner in TREE_POSE_PLANNERS and key in SE2_TREE_PARAMS and key not in planners_keys:
+        own = f"planner {planner} with holonomic motion"  # (what is missing is the motion, not a sampler)
     return f" '{key}' is a setting of {listed(takers)}, not of {own}."

@@ -143,7 +143,10 @@ def debug_enabled() -> bool:
 
 
 def _one_line(text: str, limit: int = 2000) -> str:
+    """``text`` on one line: whitespace runs (line breaks too) as one space, other control characters escaped
+    (a file name holding ESC [31m turned the terminal red; newcomer run, session 21), cut at ``limit``."""
     text = " ".join(str(text).split())
+    text = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], text)
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 

@@ -260,3 +260,16 @@ def test_a_scenario_file_name_is_cut_to_one_short_line():
         res = run("grid", "scen", name)
         assert res.exit_code == 2 and res.output.count("\n") == 1 and len(res.output) < 800, res.output[:300]
         assert "characters): no such file" in res.output
+
+
+def test_a_weighted_path_is_said_to_be_possibly_longer_than_the_shortest():
+    """(newcomer check, session 21: EXACT beside a weight-3 path of 67.46 cells, where the shortest is 51.01, read
+    as the shortest)"""
+    query = ("--start", 1, 11, "--goal", 40, 40)
+    res = run("grid", "plan", DATA / "arena.map", *query, "--weight", 3)
+    assert res.exit_code == 0 and ("  weighted A* (weight 3): at most 3 times the shortest path's length, usually "
+                                   "far less (weight 1 finds the shortest)\n") in res.stdout
+    res = run("grid", "plan", DATA / "arena.map", *query)
+    assert res.exit_code == 0 and "weighted" not in res.stdout
+    res = run("grid", "plan", DATA / "arena.map", *query, "--weight", 3, "--algorithm", "jps")  # searched unweighted
+    assert res.exit_code == 0 and "weighted A*" not in res.stdout

@@ -142,6 +142,17 @@ def debug_enabled() -> bool:
     return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")
 
 
+def weighted_line(params) -> Optional[str]:
+    """The line saying a weighted A* path may be longer than the shortest (weight > 1), or None: EXACT says
+    the goal was reached, and a weight-3 path of 67.46 cells beside a 51.01-cell optimum was read as the
+    shortest (newcomer check, session 21)."""
+    weight = params.get("weight")
+    if not isinstance(weight, (int, float)) or not weight > 1.0:
+        return None
+    return (f"  weighted A* (weight {weight:g}): at most {weight:g} times the shortest path's length, "
+            "usually far less (weight 1 finds the shortest)")
+
+
 def _one_line(text: str, limit: int = 2000) -> str:
     """``text`` on one line: whitespace runs (line breaks too) as one space, other control characters escaped
     (a file name holding ESC [31m turned the terminal red; newcomer run, session 21), cut at ``limit``."""

@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..wording import counted, duration
 from .common import (Count, ExactNumber, PositiveNumber, SuggestingGroup, before_first_kernel, before_numba_import,
-                     note_unused_grid_settings)
+                     note_unused_grid_settings, weighted_line)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -98,6 +98,8 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         if result.success:
             click.echo(f"  {counted(len(result.cells), 'waypoint')}, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
+            if weighted_line(result.params):
+                click.echo(weighted_line(result.params))
         if result.stats.get("warmup_s"):  # a failed first use compiled as long as a successful one
             click.echo(f"  warm-up (compiling / loading kernels, not planning) {duration(result.stats['warmup_s'])}")
         if plot:

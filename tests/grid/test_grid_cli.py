@@ -273,3 +273,7 @@ def test_a_weighted_path_is_said_to_be_possibly_longer_than_the_shortest():
     assert res.exit_code == 0 and "weighted" not in res.stdout
     res = run("grid", "plan", DATA / "arena.map", *query, "--weight", 3, "--algorithm", "jps")  # searched unweighted
     assert res.exit_code == 0 and "weighted A*" not in res.stdout
+    res = run("grid", "plan", DATA / "arena.map", *query, "--heuristic", "manhattan")  # not admissible on 8
+    assert res.exit_code == 0 and "manhattan on 8 connections overestimates a diagonal move" in res.stdout
+    res = run("grid", "plan", DATA / "arena.map", *query, "--heuristic", "manhattan", "--connectivity", 4)
+    assert res.exit_code == 0 and "overestimates" not in res.stdout  # (exact on 4 connections)

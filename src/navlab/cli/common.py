@@ -143,14 +143,18 @@ def debug_enabled() -> bool:
 
 
 def weighted_line(params) -> Optional[str]:
-    """The line saying a weighted A* path may be longer than the shortest (weight > 1), or None: EXACT says
-    the goal was reached, and a weight-3 path of 67.46 cells beside a 51.01-cell optimum was read as the
-    shortest (newcomer check, session 21)."""
+    """The line saying an A* path may be longer than the shortest, from the settings it searched with
+    (a result's params), or None: EXACT says the goal was reached, and a weight-3 path of 67.46 cells beside
+    a 51.01-cell optimum was read as the shortest (newcomer check, session 21)."""
     weight = params.get("weight")
-    if not isinstance(weight, (int, float)) or not weight > 1.0:
-        return None
-    return (f"  weighted A* (weight {weight:g}): at most {weight:g} times the shortest path's length, "
-            "usually far less (weight 1 finds the shortest)")
+    weight = weight if isinstance(weight, (int, float)) else 1.0
+    if params.get("heuristic") == "manhattan" and params.get("connectivity") == 8:
+        return ("  manhattan on 8 connections overestimates a diagonal move (not admissible): the path may be "
+                "longer than the shortest, by no stated bound (octile is exact there)")
+    if weight > 1.0:
+        return (f"  weighted A* (weight {weight:g}): at most {weight:g} times the shortest path's length, "
+                "usually far less (weight 1 finds the shortest)")
+    return None
 
 
 def _one_line(text: str, limit: int = 2000) -> str:

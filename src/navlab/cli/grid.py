@@ -13,7 +13,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..wording import counted, duration
 from .common import (Count, ExactNumber, PositiveNumber, SuggestingGroup, before_first_kernel, before_numba_import,
-                     note_unused_grid_settings, weighted_line)
+                     note_unused_grid_settings)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -57,6 +57,7 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
     """Plan a path on MAP between two cells (x = column, y = row)."""
     before_numba_import()
     from ..grid import load_map, plan, plan_world
+    from ..grid.planner import path_bound_note
     from ..limits import check_length, shown
 
     for label, v in (("--start", start), ("--goal", goal)):
@@ -98,8 +99,9 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
         if result.success:
             click.echo(f"  {counted(len(result.cells), 'waypoint')}, length {result.stats['cost_cells']:.6f} cells = {result.cost:.4f} m, "
                        f"{result.stats['expanded']} expanded, {result.stats['time_s'] * 1000:.2f} ms")
-            if weighted_line(result.params):
-                click.echo(weighted_line(result.params))
+            bound = path_bound_note(result.params)
+            if bound:
+                click.echo(f"  {bound}")
         if result.stats.get("warmup_s"):  # a failed first use compiled as long as a successful one
             click.echo(f"  warm-up (compiling / loading kernels, not planning) {duration(result.stats['warmup_s'])}")
         if plot:

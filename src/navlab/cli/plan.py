@@ -11,7 +11,7 @@ import click
 from ..errors import ParameterError
 from ..wording import counted, duration
 from .common import (Count, PointOrPoseOption, PositiveNumber, before_first_kernel, before_numba_import,
-                     note_unused_grid_settings, parse_params, weighted_line)
+                     note_unused_grid_settings, parse_params)
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -142,8 +142,12 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
     click.echo(f"{world.name}: {what}: {result.status.name}" + (f" ({result.reason})" if result.reason else ""))
     if len(result.path):
         click.echo(f"  cost {result.cost:.4f} m, {counted(len(result.path), 'waypoint')}")
-        if weighted_line(result.params):
-            click.echo(weighted_line(result.params))
+        if "heuristic" in result.params:  # a grid search's (not imported for a tree's)
+            from ..grid.planner import path_bound_note
+
+            bound = path_bound_note(result.params)
+            if bound:
+                click.echo(f"  {bound}")
     if "iterations" in s:
         first = s.get("first_solution_iteration")
         click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "

@@ -360,6 +360,32 @@ def unused_settings(algorithm: str, settings: Dict[str, Any], spelled) -> List[s
     return lines
 
 
+def path_bound_note(params: Dict[str, Any]) -> Optional[str]:
+    """What an A* path's length is known to be against the shortest, from the settings it searched with (a
+    result's params), where it may be longer: EXACT says the goal was reached, and a weight-3 path of 67.46
+    cells beside a 51.01-cell optimum was read as the shortest (newcomer check, session 21).
+
+    Parameters
+    ----------
+    params : dict
+        A grid result's params (``heuristic``, ``connectivity`` and ``weight`` as searched, :func:`as_searched`).
+
+    Returns
+    -------
+    str or None
+        The note, or None when the path is a shortest one.
+    """
+    weight = params.get("weight")
+    weight = weight if isinstance(weight, (int, float)) else 1.0
+    if params.get("heuristic") == "manhattan" and params.get("connectivity") == 8:
+        return ("manhattan on 8 connections overestimates a diagonal move (not admissible): the path may be "
+                "longer than the shortest, by no stated bound (octile is exact there)")
+    if weight > 1.0:
+        return (f"weighted A* (weight {weight:g}): at most {weight:g} times the shortest path's length, "
+                "usually far less (weight 1 finds the shortest)")
+    return None
+
+
 def search_heuristic(algorithm: str, hcode: int) -> int:
     """The heuristic code ``algorithm``'s kernel searches with, given ``hcode`` for A*: its
     :data:`OWN_HEURISTIC`'s, so the code and the name the params report cannot disagree."""

@@ -15,11 +15,11 @@ from __future__ import annotations
 import datetime
 import math
 import os
-import re
 from typing import Any, Optional
 
 import numpy as np
 from .errors import ParameterError
+from .wording import escaped
 
 MAX_COORDINATE = 1.0e7  #: [m] largest |x| or |y| of any point, and largest length
 MIN_LENGTH = 1.0e-9  #: [m] smallest positive length (radius, resolution, tolerance)
@@ -72,7 +72,7 @@ def short_name(name: str, limit: int = 300) -> str:
     printed 74 lines), and its start and end only when longer than ``limit`` characters (a 100 000-character
     name, too long for the file system, filled 100 KB of one line; attacks, sessions 20 and 21)."""
     size = len(name)
-    name = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], name)  # first: the cut keeps the limit
+    name = escaped(name)  # first: the cut keeps the limit
     if len(name) <= limit:
         return name
     return f"{name[:limit // 2]}...{name[-limit // 4:]} (a name of {size} characters)"

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 
 def counted(n: int, noun: str) -> str:
     """``1 run``, ``4 runs``, ``0 runs``: a count with its noun, singular for one ("1 runs (1 run now)"
@@ -24,3 +26,9 @@ def duration(seconds: float) -> str:
     """
     ms = round(seconds * 1000)
     return f"{ms} ms" if ms < 10_000 else f"{seconds:.1f} s"
+
+
+def escaped(text: str) -> str:
+    """``text`` with its control characters written as escapes (``\\n``, ``\\x1b``): a message shows them
+    rather than obeying them (a file name holding ESC [31m turned the terminal red; newcomer run, session 21)."""
+    return re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], text)

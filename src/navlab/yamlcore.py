@@ -20,6 +20,12 @@ CORE = (("bool", r"true|True|TRUE|false|False|FALSE", "tTfF"),
 CORE_PATTERN = {name: re.compile(f"(?:{pattern})") for name, pattern, _ in CORE}
 
 
+def core_float(text: str) -> float:
+    """The float a YAML 1.2 core-schema number (:data:`CORE_PATTERN` ``float`` or decimal ``int``) spells:
+    ``.inf``, ``-.Inf`` and ``.NaN`` as Python reads them."""
+    return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))
+
+
 def number_text(value: Any) -> Any:
     """``value``, or the number a string holds when it is written as YAML 1.2 writes a number (``'5e-2'``:
     the fields that took PyYAML's YAML 1.1 strings as numbers still take a quoted one, as yaml-cpp's
@@ -29,5 +35,5 @@ def number_text(value: Any) -> Any:
         text = value.strip()
         if (CORE_PATTERN["int"].fullmatch(text) and text[:2] not in ("0o", "0x")) or \
                 CORE_PATTERN["float"].fullmatch(text):
-            return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))
+            return core_float(text)
     return value

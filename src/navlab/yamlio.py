@@ -35,7 +35,7 @@ from typing import Any, Dict, Optional, Type, Union
 import numpy as np
 import yaml
 
-from .yamlcore import CORE, CORE_PATTERN
+from .yamlcore import CORE, CORE_PATTERN, core_float
 
 #: most nodes a document may expand to (scalars, sequences and mappings, aliases counted at each use);
 #: a 2 MiB file without aliases has fewer than this
@@ -104,7 +104,7 @@ def _core_float(loader, node) -> float:
     if text[:2] in ("0o", "0x"):
         value = _core_int(loader, node)
         return float(value) if value.bit_length() <= 1024 else math.inf  # (past the largest float, as 1e999 reads)
-    return float(text.lower().replace(".inf", "inf").replace(".nan", "nan"))  # (digits alone: float() reads them)
+    return core_float(text)  # (digits alone: float() reads them)
 
 
 def _core_null(loader, node) -> None:

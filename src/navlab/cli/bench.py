@@ -6,7 +6,7 @@ import difflib
 import os
 import shlex
 import sys
-from typing import Any, Dict, List, Optional
+from typing import Any, Dict, List
 
 import click
 import yaml

@@ -9,6 +9,8 @@ from typing import Any, Dict, Optional, Tuple
 
 import click
 
+from ..wording import escaped
+
 #: exit status for bad input (a malformed file, an unknown name, a value out of range)
 EXIT_USAGE = 2
 #: exit status for an unexpected failure inside navlab (a bug: please report it)
@@ -142,26 +144,10 @@ def debug_enabled() -> bool:
     return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")
 
 
-def weighted_line(params) -> Optional[str]:
-    """The line saying an A* path may be longer than the shortest, from the settings it searched with
-    (a result's params), or None: EXACT says the goal was reached, and a weight-3 path of 67.46 cells beside
-    a 51.01-cell optimum was read as the shortest (newcomer check, session 21)."""
-    weight = params.get("weight")
-    weight = weight if isinstance(weight, (int, float)) else 1.0
-    if params.get("heuristic") == "manhattan" and params.get("connectivity") == 8:
-        return ("  manhattan on 8 connections overestimates a diagonal move (not admissible): the path may be "
-                "longer than the shortest, by no stated bound (octile is exact there)")
-    if weight > 1.0:
-        return (f"  weighted A* (weight {weight:g}): at most {weight:g} times the shortest path's length, "
-                "usually far less (weight 1 finds the shortest)")
-    return None
-
-
 def _one_line(text: str, limit: int = 2000) -> str:
     """``text`` on one line: whitespace runs (line breaks too) as one space, other control characters escaped
     (a file name holding ESC [31m turned the terminal red; newcomer run, session 21), cut at ``limit``."""
-    text = " ".join(str(text).split())
-    text = re.sub(r"[\x00-\x1f\x7f]", lambda m: repr(m.group())[1:-1], text)
+    text = escaped(" ".join(str(text).split()))
     return text if len(text) <= limit else text[: limit - 3] + "..."
 
 

@@ -24,7 +24,6 @@ message names the file and the field.
 from __future__ import annotations
 
 import os
-import re
 from pathlib import Path
 from typing import Any, Callable, Dict, Tuple, Union
 

@@ -26,7 +26,7 @@ medians are printed. navlab's first call loads its compiled kernels and is
 timed apart. Its footprint lattice (the primitives' swept cells, built as
 searches ask for them) is one per robot, whatever the start heading, and kept
 between queries, as the map's tables are: "navlab ms" is a query with the
-robot's lattice kept, "first ms" the same query with it cleared (a robot's
+robot's lattice and Reeds–Shepp distance table kept, "first ms" the same query with them cleared (a robot's
 first query, which builds what it needs).
 """
 
@@ -51,6 +51,7 @@ from navlab.grid.hybrid_certify import first_overlap_exact
 from navlab.grid.maze import maze_walls
 from navlab.grid.occupancy import OccupancyGrid
 from navlab.result import Status
+from navlab.grid.hybrid_table import distance_table
 from navlab.sampling.footprint_lattice import lattice_for
 
 from conditions import load_line, spread
@@ -112,10 +113,18 @@ def points_grid(ox, oy, res: float) -> OccupancyGrid:
     return OccupancyGrid(blocked, resolution=res, origin=(x0 - res / 2, y0 - res / 2, 0.0))
 
 
+def forget_robot() -> None:
+    """Clear what navlab keeps per robot between queries: its footprint lattice (the primitives' swept
+    cells) and its Reeds–Shepp distance table (:mod:`navlab.grid.hybrid_table`), both filled as queries
+    need them. The next query is a robot's first."""
+    lattice_for.cache_clear()
+    distance_table.cache_clear()
+
+
 def run_navlab(grid, start, goal, radius, footprint, options, cleared: bool = True):
     """One navlab query, from a cleared lattice cache unless ``cleared`` is false: (wall time [s], Result)."""
     if cleared:
-        lattice_for.cache_clear()
+        forget_robot()
     t0 = time.perf_counter()
     result = plan_hybrid(grid, start, goal, radius, motion="reeds_shepp", footprint=footprint, **options)
     return time.perf_counter() - t0, result
@@ -169,8 +178,9 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
     margin = math.sqrt(2) * res + res / 4 + math.hypot(car.LF, car.W / 2) * math.sin(math.pi / 72)
     notes = (
         f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} run(s) per query, "
-        "interleaved; navlab ms with the robot's footprint lattice kept from its earlier queries (one "
-        "lattice for every start heading), first ms with it cleared (a robot's first query); the map's "
+        "interleaved; navlab ms with the robot's footprint lattice and Reeds-Shepp distance table kept from its "
+        "earlier queries (one of each for every start heading and goal), first ms with them cleared (a robot's "
+        "first query); the map's "
         "distance tables are cached by content in both; lengths in metres driven (PythonRobotics': the polyline of its x_list, y_list, whose 0.1 m "
         "chords under-measure its arcs a little, so nav<=PyRob allows 1 cm).",
         f"PythonRobotics' collision check: the obstacle points within {bubble:.2f} m of the car's centre "
@@ -184,7 +194,8 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
         f"deg states, {module.XY_GRID_RESOLUTION * 1.5:g} m arcs, {module.N_STEER + 1} steering values, "
         f"heuristic x{module.H_COST:g}, switch-back cost {module.SB_COST:g};",
         f"navlab {res:g} m / 5 deg states (72 bins), three primitives per direction, heuristic x1 "
-        "(the larger of the exact obstacle-free Reeds-Shepp length and an 8-connected field, which exceeds the "
+        "(the larger of the obstacle-free Reeds-Shepp length, from the robot's table at half-cell and 5-degree "
+        "spacing, and an 8-connected field, which exceeds the "
         "straight line by up to 8%: off 45-degree multiples, so not strictly admissible), Reeds-Shepp shortcut smoothing.",
     )
     for note in notes:
@@ -212,10 +223,10 @@ def reference_map(options, runs: int = 5) -> None:
     """navlab alone on a 384 x 384 map at 0.05 m (Nav2 Smac's README quotes 2-20 ms for such maps, 72 bins).
 
     Each run is timed twice, motions interleaved: from a cleared footprint
-    lattice (a robot's first query: the lattice is one per robot, for every
-    start heading) and again with it kept.
-    ``solves`` counts the heuristic values the search's lazy queue computed (Reeds–Shepp motion;
-    Dubins keys are computed as children are queued, so it is 0 there).
+    lattice and distance table (a robot's first query: they are one per robot, for every
+    start heading and goal) and again with them kept.
+    ``solves`` counts the Reeds–Shepp lengths the search's lazy queue solved (not read from the
+    robot's table; Dubins keys are computed as children are queued, so it is 0 there).
     """
     res, n = SMAC_RES, SMAC_CELLS
     grid = OccupancyGrid(three_walls(), resolution=res)
@@ -232,7 +243,7 @@ def reference_map(options, runs: int = 5) -> None:
     results = {}
     for _ in range(runs):
         for motion in motions:
-            lattice_for.cache_clear()
+            forget_robot()
             for times in (cold[motion], warm[motion]):
                 t0 = time.perf_counter()
                 results[motion] = plan_hybrid(grid, start, goal, 0.4, motion=motion, footprint=footprint, **options)
@@ -246,8 +257,9 @@ def reference_map(options, runs: int = 5) -> None:
               f"{1000 * statistics.median(warm[motion]):>9.1f} "
               f"{spread([1000 * t for t in warm[motion]], 1, ' ms'):>16} "
               f"{result.cost:>9.2f} {result.stats['expansions']:>10} {result.stats['heuristics_solved']:>7}")
-    print(f"first ms: a robot's first query (footprint lattice cleared), warm ms: the same query again with it kept; "
-          f"medians of {runs} run(s), wall time; solves: exact heuristic values the lazy queue computed")
+    print(f"first ms: a robot's first query (footprint lattice and distance table cleared), warm ms: the same query "
+          f"again with them kept; medians of {runs} run(s), wall time; solves: Reeds-Shepp lengths the lazy queue "
+          "solved (not read from the table)")
 
 # ---------------------------------------------------------------------------
 # --smac-maps: Nav2 Smac's README figure ("2-20 ms for planning across 147,456 cell maps with 72 angular
@@ -401,9 +413,9 @@ def smac_benchmark(seed: int = SMAC_SEED) -> None:
     """Hybrid A* on the fixed map set against Smac's README figure (2-20 ms, 147 456 cells, 72 bins).
 
     Per query and setting, interleaved setting by setting: ``first`` from a cleared footprint
-    lattice (a robot's first query: it traces the swept cells it needs as it goes; the lattice is one
-    per robot, for every start heading), then ``warm``, the same query again with it kept (a replanning
-    robot's query), then
+    lattice and distance table (a robot's first query: it traces the swept cells and solves the
+    Reeds–Shepp lengths it needs as it goes; both are one per robot, for every start heading and
+    goal), then ``warm``, the same query again with them kept (a replanning robot's query), then
     ``floor``, the same query stopped after one expansion: what every query pays before its search
     (pose checks and the holonomic field from the goal as far as the start's cell, the search settling
     more of it lazily as it reads it: :mod:`navlab.grid.hybrid_field`). The map's
@@ -435,7 +447,7 @@ def smac_benchmark(seed: int = SMAC_SEED) -> None:
         table_s[name] = time.perf_counter() - t
         for start, goal in pairs:
             for label_, motion, options in SMAC_SETTINGS:
-                lattice_for.cache_clear()
+                forget_robot()
                 new_w, new_c, _ = _timed(grid, start, goal, motion, options)
                 warm_w, warm_c, result = _timed(grid, start, goal, motion, options)
                 floor_w, _, _ = _timed(grid, start, goal, motion, options, max_expansions=1)
@@ -519,7 +531,8 @@ def smac_side_by_side(driver: Path, seed: int = SMAC_SEED) -> None:
 
     Per map: navlab's map tables and Smac's plugin set-up (its distance lookup table) are paid
     and timed before the queries, then each Smac process answers the map's first query once
-    untimed. Per query and setting pair: navlab from a cleared footprint lattice ("first"),
+    untimed. Per query and setting pair: navlab from a cleared footprint lattice and distance
+    table ("first"; Smac builds its table at set-up),
     navlab again ("warm", the headline), then Smac's variants (SMAC_VARIANTS). Smac's time is its
     createPlan without the smoother (Smac smooths afterwards; navlab's time includes its own
     shortcut smoothing). Both get Smac's default budget, 10^6 expansions. A failed query counts,
@@ -575,7 +588,7 @@ def smac_side_by_side(driver: Path, seed: int = SMAC_SEED) -> None:
         for q, (start, goal) in enumerate(pairs):
             for label_, motion, shared, _ in SMAC_PAIRS:
                 row = {"map": name, "query": q, "pair": label_}
-                lattice_for.cache_clear()
+                forget_robot()
                 row["new_w"], _, _ = _timed(grid, start, goal, motion, {**shared, **NAVLAB_BUDGET})
                 row["nav_w"], row["nav_c"], result = _timed(grid, start, goal, motion, {**shared, **NAVLAB_BUDGET})
                 row["nav_ok"] = result.status == Status.EXACT
@@ -683,6 +696,8 @@ def main() -> None:
                     help="navlab's analytic_expansion_max_length [m] (default: the planner's, max(3 m, 3 turning radii))")
     ap.add_argument("--analytic-ratio", type=float, metavar="R",
                     help="navlab's analytic_expansion_ratio (Smac's schedule; default: try at every expansion)")
+    ap.add_argument("--exact-distances", action="store_true",
+                    help="navlab's distance_table=false: the Reeds-Shepp distance solved at every pose, no table")
     ap.add_argument("--smac-maps", action="store_true",
                     help="only navlab on the fixed 384 x 384 map set against Nav2 Smac's README figure (2-20 ms)")
     ap.add_argument("--smac-driver", type=Path, metavar="PATH",
@@ -696,9 +711,12 @@ def main() -> None:
         options["analytic_expansion_max_length"] = args.analytic_max
     if args.analytic_ratio is not None:
         options["analytic_expansion_ratio"] = args.analytic_ratio
+    if args.exact_distances:
+        options["distance_table"] = False
     if args.smac_maps and (options or args.repeat is not None or args.quick or args.reference_only):
         ap.error("--smac-maps runs its fixed settings (navlab's defaults and Smac's README ones) once per query: "
-                 "--analytic-max, --analytic-ratio, --repeat, --quick and --reference-only do not apply")
+                 "--analytic-max, --analytic-ratio, --exact-distances, --repeat, --quick and --reference-only do "
+                 "not apply")
     if args.smac_driver is not None and not args.smac_maps:
         ap.error("--smac-driver goes with --smac-maps")
     if args.reference_only and args.quick:

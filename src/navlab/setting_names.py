@@ -23,7 +23,7 @@ TREE_POSE_PLANNERS = ("rrt", "rrt_star", "informed_rrt_star")
 HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
                  "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
-                 "waypoint_spacing", "exact_retry")
+                 "waypoint_spacing", "exact_retry", "distance_table")
 
 
 def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:

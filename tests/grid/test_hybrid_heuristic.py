@@ -13,7 +13,6 @@ from navlab.grid.hybrid_field import holonomic_field
 from navlab.grid.hybrid_search import _heuristic
 from navlab.grid.occupancy import OccupancyGrid
 from navlab.sampling import dubins, reeds_shepp
-from navlab.sampling.curves import MAX_SEGMENTS
 
 
 def random_pairs(rng, n, spread):
@@ -38,16 +37,15 @@ def test_the_heuristic_is_the_larger_of_the_field_and_the_exact_distance(reverse
     radius = 0.6
     exact = (reeds_shepp if reverse else dubins).distances(starts, goals, radius)
     fields = exact * rng.choice([0.5, 1 - 1e-12, 1.0, 1 + 1e-12, 2.0], len(exact))
-    seg, kinds, lengths = np.zeros(MAX_SEGMENTS), np.zeros(MAX_SEGMENTS, np.int64), np.zeros(MAX_SEGMENTS)
-    got = np.array([_heuristic(f, *s, *g, radius, reverse, seg, kinds, lengths)
+    got = np.array([_heuristic(f, *s, *g, radius, reverse)
                     for f, s, g in zip(fields, starts, goals)])
     assert got == pytest.approx(np.maximum(fields, exact), rel=1e-12, abs=1e-12)
     assert (got >= fields).all()
 
 
 def test_no_table_of_exact_distances_at_cell_centres_minus_a_position_slack_is_a_lower_bound():
-    """Why the heuristic is not a Smac-style table with a |Δp| slack: the distances
-    are not Lipschitz in position. A sideways shift of 1 mm costs a Reeds–Shepp
+    """Why the robot's distance table (hybrid_table) rounds, as Smac's does, and is not a lower bound
+    with a |Δp| slack: the distances are not Lipschitz in position. A sideways shift of 1 mm costs a Reeds–Shepp
     path of about 9 cm, and for Dubins a pose 1 mm to the side of the goal needs
     more than half a loop while the goal itself is 0 away. The heading bound
     r·|Δθ| holds for Reeds–Shepp (L+ R− L+ turns on the spot at that cost) but

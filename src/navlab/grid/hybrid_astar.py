@@ -92,6 +92,7 @@ from ..wording import counted
 from .hybrid_certify import first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search
+from . import hybrid_table
 from .occupancy import OccupancyGrid, check_grid
 
 MOTIONS = ("dubins", "reeds_shepp")
@@ -126,7 +127,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                 analytic_expansion_max_length: Optional[float] = DEFAULTS["analytic_expansion_max_length"],
                 analytic_expansion_ratio: Optional[float] = None,
                 max_expansions: int = DEFAULTS["max_expansions"], smooth: bool = True,
-                waypoint_spacing: Optional[float] = None, exact_retry: bool = True) -> Result:
+                waypoint_spacing: Optional[float] = None, exact_retry: bool = True,
+                distance_table: bool = True) -> Result:
     """Plan a car-like robot's path between poses on an occupancy grid (Hybrid A*).
 
     Parameters
@@ -179,14 +181,22 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         side), open again the nodes that had a primitive rejected and go on,
         within ``max_expansions``, checking those exactly (docs/grid.md).
         False: report the exhausted space at once.
+    distance_table : bool
+        Reeds–Shepp motion: read the obstacle-free distance to the goal from
+        the robot's table (:mod:`navlab.grid.hybrid_table`, Nav2 Smac's
+        lookup table: the length from the pose rounded to half a cell and a
+        heading bin, solved the first time a query needs it and kept for the
+        robot's next queries). False: solved at each pose exactly, every
+        time (as the search did before the table, bit for bit).
 
     Returns
     -------
     Result
         ``path`` (N, 3) poses ``(x, y, θ)``, ``direction`` (N,) +1 forward / −1
         reverse, ``cost`` the length driven [m], ``stats`` with ``expansions``,
-        ``nodes``, ``cusps``, ``time_s``, ``heuristics_solved`` (exact distances
-        the lazy queue needed), ``goal_offset_m`` and ``goal_heading_offset_rad``
+        ``nodes``, ``cusps``, ``time_s``, ``heuristics_solved`` (Reeds–Shepp
+        lengths the lazy queue solved, not read from the robot's distance table:
+        fewer on a robot's later queries), ``goal_offset_m`` and ``goal_heading_offset_rad``
         (how far the path's last pose is from the goal: rounding with the
         analytic expansion, up to a cell and k − 1 bins without), ``g``, the search's penalised cost of the
         primitives driven (before the analytic tail and the smoother), and
@@ -207,7 +217,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                              analytic_expansion=analytic_expansion,
                              analytic_expansion_max_length=analytic_expansion_max_length,
                              analytic_expansion_ratio=analytic_expansion_ratio, max_expansions=max_expansions,
-                             smooth=smooth, waypoint_spacing=waypoint_spacing, exact_retry=exact_retry)
+                             smooth=smooth, waypoint_spacing=waypoint_spacing, exact_retry=exact_retry,
+                             distance_table=distance_table)
+    distance_table_on = bool(distance_table)
     heading_bins, max_expansions = checked["heading_bins"], checked["max_expansions"]
     analytic_max = max(ANALYTIC_MIN_LENGTH, ANALYTIC_RADII * r) if analytic_expansion_max_length is None else \
         checked["analytic_expansion_max_length"]
@@ -222,7 +234,8 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                               "analytic_expansion_max_length": analytic_max,
                               "analytic_expansion_ratio": None if analytic_expansion_ratio is None
                               else float(analytic_expansion_ratio), "max_expansions": int(max_expansions),
-                              "smooth": bool(smooth), "exact_retry": bool(exact_retry), "resolution": res}
+                              "smooth": bool(smooth), "exact_retry": bool(exact_retry),
+                              "distance_table": distance_table_on, "resolution": res}
     # the search runs in the grid's own frame: metres from the corner of cell (0, 0), along its axes
     yaw = grid.origin[2]
     c, s = math.cos(yaw), math.sin(yaw)
@@ -296,6 +309,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     if not starts:  # no arc onto the shared lattice is free: search a lattice through the start heading itself
         lattice, common, starts = through_start()
 
+    # the Reeds–Shepp lengths of this robot's earlier queries, kept (a Dubins solve costs little more than a read)
+    distances = hybrid_table.distance_table(r, res, int(heading_bins)) \
+        if motion == "reeds_shepp" and distance_table_on else hybrid_table.NO_TABLE
+
     def run(lattice, starts, budget):
         """The search from ``starts`` on ``lattice`` with ``budget`` expansions: its outputs (search's)."""
         nonlocal field
@@ -312,7 +329,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                 lattice.dy, lattice.dbin, *table, *lattice.swept_args()[:3], lattice.swept_margin, near2, clear,
                 lattice.clear_disc, lattice.pose_cells, lattice.pose_start, lattice.ds, exact_grow(lattice),
                 bool(exact_retry), *field, penalties, analytic_max, int(budget), bool(analytic_expansion),
-                0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio),
+                0.0 if analytic_expansion_ratio is None else float(analytic_expansion_ratio), *distances,
                 _SCRATCH.take(lattice.bins))
         _SCRATCH.keep(scratch)  # the node arrays are views into it: read below, before this thread's next search
         return (*out, retried)
@@ -394,7 +411,7 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
                    change_penalty=DEFAULTS["change_penalty"], non_straight_penalty=DEFAULTS["non_straight_penalty"],
                    analytic_expansion=True, analytic_expansion_max_length=DEFAULTS["analytic_expansion_max_length"],
                    analytic_expansion_ratio=None, max_expansions=DEFAULTS["max_expansions"], smooth=True,
-                   waypoint_spacing=None, exact_retry=True) -> Dict[str, Any]:
+                   waypoint_spacing=None, exact_retry=True, distance_table=True) -> Dict[str, Any]:
     """:func:`plan_hybrid`'s settings but the robot, map and poses, checked as it searches with them.
 
     Apart from the search so that a query can be refused before its kernels load: a typo waited for their
@@ -404,7 +421,7 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
     ----------
     heading_bins, reverse_penalty, change_penalty, non_straight_penalty, analytic_expansion,
     analytic_expansion_max_length, analytic_expansion_ratio, max_expansions, smooth, waypoint_spacing,
-    exact_retry
+    exact_retry, distance_table
         As :func:`plan_hybrid` takes them.
 
     Returns
@@ -423,7 +440,8 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
                              ("change_penalty", change_penalty, 0.0)):
         if finite_number(name, value) < low:
             raise ParameterError(f"{name} must be at least {low:g}, got {value!r}")
-    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry)):
+    for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry),
+                        ("distance_table", distance_table)):
         if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
             raise ParameterError(f"{name} must be true or false, got {value!r}")
     out["analytic_expansion_max_length"] = None if analytic_expansion_max_length is None else \

@@ -60,6 +60,7 @@ from ..sampling.reeds_shepp import _local
 from ..sampling.footprint_lattice import curve_free, free_cells_near, swept_group
 from .floor_cells import floor_div
 from .hybrid_field import PASSABLE, SETTLED, field_cells_grown, field_settle_within
+from .hybrid_table import reeds_shepp_memo, table_pose
 
 #: relative slack under which a Dubins length no longer settles that the Reeds–Shepp one is below the field
 GATE_MARGIN = 1e-9
@@ -101,23 +102,21 @@ def _same_side_settles(x, y, theta, gx, gy, gtheta, radius, field, room) -> bool
 
 
 @njit(cache=True)
-def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
-    """:func:`_heuristic` given the Dubins length ``forward`` [m] already solved."""
+def _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, table, index) -> float:
+    """:func:`_heuristic` given the Dubins length ``forward`` [m] already solved, the Reeds–Shepp length
+    read from or kept in ``table[index]`` (:func:`~navlab.grid.hybrid_table.reeds_shepp_memo`; ``index``
+    −1: solved)."""
     if not reverse:
         return max(field, forward)
     if _above(forward, radius) <= field:
         return field
-    lx, ly, phi = _local(x, y, theta, gx, gy, gtheta, radius)
-    # the Dubins length bounds the shortest word from above: words that cannot beat it are dropped
-    # sooner (the same length, bit for bit; should rounding put the length at the bound, solved in full)
-    length = reeds_shepp_length.length_below(lx, ly, phi, _above(forward, radius) / radius)
-    if length == math.inf:
-        length = reeds_shepp_length.length(lx, ly, phi)
-    return max(field, length * radius)
+    # the Dubins length bounds the shortest word from above: words that cannot beat it are dropped sooner
+    return max(field, reeds_shepp_memo(table, index, x, y, theta, gx, gy, gtheta, radius,
+                                       _above(forward, radius) / radius))
 
 
 @njit(cache=True)
-def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths) -> float:
+def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse) -> float:
     """The larger of ``field`` (the holonomic distance at the node's cell) and the
     exact obstacle-free Dubins / Reeds–Shepp distance from pose (x, y, θ) to the goal.
 
@@ -125,12 +124,13 @@ def _heuristic(field, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, 
     far from the goal the field is usually the larger. Every Dubins path is a
     Reeds–Shepp path, so the Dubins length bounds the Reeds–Shepp length from
     above: when it is no more than the field, the maximum is the field and the
-    Reeds–Shepp solve is skipped. The value is the same as always solving, so
-    the search expands the same nodes; the relative margin keeps rounding in
-    the two closed forms from deciding.
+    Reeds–Shepp solve is skipped. The value is the same as always solving; the
+    relative margin keeps rounding in the two closed forms from deciding. (The
+    search reads the pose rounded to the robot's distance table instead, where
+    it has one: :mod:`~navlab.grid.hybrid_table`.)
     """
     forward = _forward(x, y, theta, gx, gy, gtheta, radius)
-    return _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, seg, kinds, lengths)
+    return _heuristic_from(field, forward, x, y, theta, gx, gy, gtheta, radius, reverse, np.zeros(1), -1)
 
 
 # ---------------------------------------------------------------------------
@@ -199,7 +199,7 @@ def _pop(hkey, hnode, hentry, size):
 def _open(hkey, hnode, hentry, size, eg, ex, ey, elazy, entry, node, g, x, y, theta, field, reverse, gx, gy, gtheta,
           radius) -> None:
     """Queue ``node`` (pose x, y, θ at cost g; ``field`` the holonomic heuristic at its cell) as ``entry``: keyed
-    on the field alone when Reeds–Shepp (the exact distance is solved when it comes up), on the larger of
+    on the field alone when Reeds–Shepp (the distance is found when it comes up), on the larger of
     it and the Dubins distance otherwise (a Dubins solve costs little more than the queue's bookkeeping
     for putting it off; where an upper bound on it is no more than the field, that is the field)."""
     eg[entry], ex[entry], ey[entry], elazy[entry] = g, x, y, reverse
@@ -332,7 +332,7 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
            prim_kind, prim_len, pdx, pdy, pdbin, swept, swept_used, swept_lo, swept_hi, vertices, disc, reach,
            swept_margin, near2, clear, clear_disc, pose_cells, pose_start, ds, exact_grow, exact_retry, fstate,
            fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic, analytic_ratio,
-           scratch):
+           table, spacing, half, scratch):
     """The Hybrid A* loop. Returns (found, node x, y, bin, penalised cost g, parent, primitive, goal node,
     analytic word (kinds, lengths [m]), expansions, heuristics solved, swept cells, rows used).
 
@@ -442,9 +442,10 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
         event = _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len,
                         pdx, pdy, pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells,
                         pose_start, ds, vertices, disc, exact_grow, fstate, fdist, fcells, fsize, fcursor,
-                        penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, nx, ny, nb, ng,
-                        nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, child_bin, child_slot, eg, ex,
-                        ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters, closest)
+                        penalties, analytic_max, max_expansions, use_analytic, analytic_ratio, table, spacing, half,
+                        nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell, child_bin,
+                        child_slot, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters,
+                        closest)
         if event == _GROW:  # room for every child of the pending node
             count, nentries = counters[_COUNT], counters[_NENTRIES]
             if count + nprim > cap:
@@ -498,9 +499,9 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
 def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, prim_kind, prim_len, pdx, pdy,
             pdbin, swept, swept_lo, swept_hi, near2, clear, clear_disc, pose_cells, pose_start, ds, vertices, disc,
             exact_grow, fstate, fdist, fcells, fsize, fcursor, penalties, analytic_max, max_expansions, use_analytic,
-            analytic_ratio, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of, blocks, block_cell,
-            child_bin, child_slot, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind, one_len, counters,
-            closest) -> int:
+            analytic_ratio, table, spacing, half, nx, ny, nb, ng, nparent, nprim_of, closed, rejected, block_of,
+            blocks, block_cell, child_bin, child_slot, eg, ex, ey, elazy, hkey, hnode, hentry, akinds, alens, one_kind,
+            one_len, counters, closest) -> int:
     """:func:`search`'s loop over its arrays, which it fills but never replaces: pop, expand, push, until
     the goal is reached (``_FOUND``, the node in ``counters[_GOAL_NODE]``) or nothing is left to expand
     (``_EXHAUSTED``), or an array must grow first: ``_GROW`` (room for a node's children), ``_SWEPT`` (a
@@ -516,6 +517,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
     best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     best_lens = np.zeros(MAX_SEGMENTS)
     straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
+    gcos, gsin = math.cos(gtheta), math.sin(gtheta)  # the goal's frame, for the distance table
     count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
     expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
     v, first = counters[_PENDING], counters[_PENDING_CHILD]
@@ -544,16 +546,27 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 theta = theta0 + nb[_U(v)] * step
                 # settled at the push
                 field = fdist[_U(_field_index(ex[e], ey[e], res, fstride))]
+                # the distance is the table's at the pose rounded to its lattice (hybrid_table), within its reach
+                index, px, py, pth, qx, qy, qth = table_pose(ex[e], ey[e], theta, gx, gy, gtheta, gcos, gsin,
+                                                             spacing, step, bins, half)
+                if index >= 0 and table[index] > 0.0 and analytic_ratio == 0.0:
+                    # read, not solved: the true key at once (the order is the same as settling it below; Smac's
+                    # schedule reads the key an entry is expanded under, so it takes the path below alone)
+                    f = eg[e] + max(field, table[index])
+                    if f != key:
+                        _push(hkey, hnode, hentry, hsize, f, v, e)
+                        hsize += 1
+                        v = -1
+                        continue
                 # the order needs the key only against the next entry's. An upper bound on the Reeds–Shepp
                 # length no more than the field, or below the next key less g, settles that this entry is
                 # first: its true key is its key, or below the next one. The same-side words bound it at a
                 # tenth of a Dubins solve's cost, and settle most entries; the Dubins length, a tighter
                 # bound, settles more of the rest
-                if hsize > 0 and not _same_side_settles(ex[e], ey[e], theta, gx, gy, gtheta, radius, field,
-                                                        hkey[0] - eg[e]):
-                    forward = _forward(ex[e], ey[e], theta, gx, gy, gtheta, radius)
+                elif hsize > 0 and not _same_side_settles(px, py, pth, qx, qy, qth, radius, field, hkey[0] - eg[e]):
+                    forward = _forward(px, py, pth, qx, qy, qth, radius)
                     if not eg[e] + max(field, _above(forward, radius)) < hkey[0]:
-                        below = eg[e] + max(field, _below_reeds_shepp(ex[e], ey[e], theta, gx, gy, gtheta, radius))
+                        below = eg[e] + max(field, _below_reeds_shepp(px, py, pth, qx, qy, qth, radius))
                         if below > hkey[0]:
                             # a better lower bound already puts it after the next entry: back in the queue,
                             # still unsolved (entries that never come back to the top are never solved)
@@ -562,9 +575,10 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                             hsize += 1
                             v = -1
                             continue
-                        solved += 1
-                        f = eg[e] + _heuristic_from(field, forward, ex[e], ey[e], theta, gx, gy, gtheta, radius,
-                                                    reverse, seg, best_kinds, best_lens)
+                        if _above(forward, radius) > field and (index < 0 or table[index] == 0.0):
+                            solved += 1  # (else the field, or read)
+                        f = eg[e] + _heuristic_from(field, forward, px, py, pth, qx, qy, qth, radius, reverse, table,
+                                                    index)
                         if f != key:
                             # the true key is larger: back in the queue (ties still go by node)
                             _push(hkey, hnode, hentry, hsize, f, v, e)

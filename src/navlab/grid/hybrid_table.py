@@ -27,7 +27,8 @@ right").
 
 The table reaches :data:`REACH_RADII` turning radii (and at least
 :data:`MIN_REACH`) from the goal along each axis, at most :data:`MAX_ENTRIES`
-entries (8 bytes each; the memory is mapped as entries are first written).
+entries (8 bytes each; the memory is mapped 4 KB at a time as entries are
+first written).
 Beyond it the length is solved at the node's own pose, as it is with the table
 off (``distance_table=False``, the exact lengths, bit for bit the search before
 session 22).
@@ -41,6 +42,7 @@ from __future__ import annotations
 
 import functools
 import math
+import mmap
 
 import numpy as np
 
@@ -75,7 +77,21 @@ def distance_table(radius: float, resolution: float, bins: int):
     spacing = resolution / PER_CELL
     half = int(math.ceil(max(MIN_REACH, REACH_RADII * radius) / spacing))
     half = max(1, min(half, int(math.sqrt(MAX_ENTRIES / (2 * bins))) - 1))
-    return np.zeros((2 * half + 1) * (half + 1) * bins), spacing, half
+    return _zeros_in_small_pages((2 * half + 1) * (half + 1) * bins), spacing, half
+
+
+def _zeros_in_small_pages(count: int) -> np.ndarray:
+    """``count`` float64 zeros, mapped 4 KB page by page as they are first written.
+
+    numpy asks the kernel for 2 MB pages for arrays of 4 MB and more, so each entry a query
+    writes faulted in and zeroed 2 MB: 200 entries scattered over a 34 MB table took 14 ms
+    and 39 MB of memory, against 0.6 ms and 0.8 MB in 4 KB pages (session 22)."""
+    if not hasattr(mmap, "MAP_ANONYMOUS"):  # (not POSIX: numpy's own)
+        return np.zeros(count)
+    pages = mmap.mmap(-1, max(count, 1) * 8, flags=mmap.MAP_PRIVATE | mmap.MAP_ANONYMOUS)
+    if hasattr(mmap, "MADV_NOHUGEPAGE"):  # (Linux)
+        pages.madvise(mmap.MADV_NOHUGEPAGE)
+    return np.frombuffer(pages, dtype=np.float64, count=count)
 
 
 @njit(cache=True, inline="always")

@@ -78,10 +78,61 @@ def test_the_table_is_kept_per_robot_and_bounded():
     a = hybrid_table.distance_table(0.4, 0.05, 72)
     assert hybrid_table.distance_table(0.4, 0.05, 72) is a
     assert hybrid_table.distance_table(0.5, 0.05, 72) is not a
-    for radius, res, bins in ((0.4, 0.05, 72), (4.385, 1.0, 72), (1e-3, 1e-3, 1440), (100.0, 0.01, 4)):
+    # the reach: max(10 m, 20 radii) where 2^22 entries hold it (0.4 m on 1 m cells), else what they hold
+    for radius, res, bins, reach in ((0.4, 0.05, 72, 4.225), (4.385, 1.0, 72, 84.5), (0.4, 1.0, 72, 10.0),
+                                     (1e-3, 1e-3, 1440, 0.0185), (100.0, 0.01, 4, 3.615)):
         table, spacing, half = hybrid_table.distance_table.__wrapped__(radius, res, bins)
         assert table.size == (2 * half + 1) * (half + 1) * bins <= hybrid_table.MAX_ENTRIES
-        assert half * spacing >= min(hybrid_table.MIN_REACH, half * spacing)  # capped only by the entries
+        assert spacing == res / 2 and half * spacing == pytest.approx(reach)
+
+
+@pytest.mark.parametrize("res, radius", [(0.07, 0.4), (0.15, 0.4), (0.14, 4.5), (0.05, 0.4), (1.0, 4.385), (0.013, 2.0)])
+def test_poses_at_the_reach_read_an_entry_in_the_table_or_none(res, radius):
+    """Offsets just inside the float limit (half + 0.5)·spacing once rounded to entry half + 1: the next
+    row's entry (j), or past the table's end (i) into memory another robot's table held (review, session
+    22: res 0.07 m, an offset of 5.9325 m; res 0.15 m, nextafter(10.0875, 0)). Every index read is now an
+    entry of the table whose lattice pose lies within half a spacing of the pose, or −1."""
+    bins = 72
+    step = 2 * math.pi / bins
+    table, spacing, half = hybrid_table.distance_table.__wrapped__(radius, res, bins)
+    edge = (half + 0.5) * spacing
+    offsets = [edge, math.nextafter(edge, 0.0), math.nextafter(edge, math.inf), half * spacing,
+               (half - 0.5) * spacing, math.nextafter((half - 0.5) * spacing, 0.0), 0.0, 5.9325, 10.0875]
+    offsets += [math.nextafter(o, 0.0) for o in offsets]
+    for ox in offsets:
+        for oy in offsets:
+            for sx, sy in ((1, 1), (-1, 1), (1, -1), (-1, -1)):
+                x, y = sx * ox, sy * oy
+                index, px, py, pth, *_ = hybrid_table.table_pose(x, y, 0.3, 0.0, 0.0, 0.0, 1.0, 0.0, spacing, step,
+                                                                 bins, half)
+                if index < 0:
+                    assert max(abs(x), abs(y)) >= (half + 0.5) * spacing - 1e-9 * spacing
+                    continue
+                assert 0 <= index < table.size
+                i, j = round(px / spacing), round(py / spacing)
+                assert abs(i) <= half and 0 <= j <= half
+                assert index == ((i + half) * (half + 1) + j) * bins + round(pth / step) % bins
+                assert abs(px - x) <= spacing / 2 + 1e-12 and abs(py - abs(y)) <= spacing / 2 + 1e-12
+
+
+def test_a_query_along_the_reach_leaves_other_entries_and_robots_alone():
+    """The review's query: nodes driven straight at exactly 5.9325 m from the goal (res 0.07 m, the edge
+    of the table's reach) wrote the length of their pose into the entry of a pose 7 cm behind the goal,
+    and a later query near the goal then answered otherwise (1.24527 m in 374 expansions against 1.26301 m
+    in 45 from an empty table)."""
+    grid = OccupancyGrid(np.zeros((100, 100), bool), resolution=0.07)
+    kw = dict(robot_radius=0.1, analytic_expansion=False)
+    near = ((1.87, 1.46, 0.23), (3.1, 1.53, 0.0))
+    hybrid_table.distance_table.cache_clear()
+    alone = _answer(plan_hybrid(grid, *near, 0.4, **kw))
+    hybrid_table.distance_table.cache_clear()
+    other = hybrid_table.distance_table(0.5, 0.05, 72)[0]  # another robot's table, mapped next to it or not
+    plan_hybrid(grid, (3.5, 6.4325, 0.0), (3.5, 0.5, 0.0), 0.4, **kw)
+    table, spacing, half = hybrid_table.distance_table(0.4, 0.07, 72)
+    behind = ((-2 + half) * (half + 1)) * 72  # entry (-2, 0, 0): 0.14 m behind the goal, facing its way
+    assert table[behind] in (0.0, pytest.approx(0.14))
+    assert _answer(plan_hybrid(grid, *near, 0.4, **kw)) == alone
+    assert not other.any()
 
 
 def test_a_query_answers_the_same_from_an_empty_table_a_filled_one_and_with_the_table_off_it_solves_each_time():

@@ -187,7 +187,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         lookup table: the length from the pose rounded to half a cell and a
         heading bin, solved the first time a query needs it and kept for the
         robot's next queries). False: solved at each pose exactly, every
-        time (as the search did before the table, bit for bit).
+        time (the search's answers before the table, bit for bit).
 
     Returns
     -------

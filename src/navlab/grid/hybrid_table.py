@@ -26,16 +26,18 @@ lengths' (whole cells: 28 % more expansions and 1 % longer on "middle to
 right").
 
 The table reaches :data:`REACH_RADII` turning radii (and at least
-:data:`MIN_REACH`) from the goal along each axis, at most :data:`MAX_ENTRIES`
+:data:`MIN_REACH`) from the goal along each axis, unless capped at :data:`MAX_ENTRIES`
 entries (8 bytes each; the memory is mapped 4 KB at a time as entries are
 first written).
 Beyond it the length is solved at the node's own pose, as it is with the table
-off (``distance_table=False``, the exact lengths, bit for bit the search before
-session 22).
+off (``distance_table=False``: the exact lengths, and the same answers, bit for bit,
+as the search before session 22; ``heuristics_solved`` now counts only lengths
+actually solved).
 
-Entries are written by whichever search first needs them; two threads writing
-one write the same 8-byte value, so a reader sees either none (and solves it)
-or that value: answers are the same on any thread and in any order of queries.
+Entries are written by whichever search first needs them, each the length of its
+own lattice pose, so a query's answers are the same on any thread and in any
+order of queries. (The kernels hold the GIL, so two searches never write at
+once; if they did, both would write the same 8-byte value.)
 """
 
 from __future__ import annotations
@@ -50,7 +52,8 @@ from ..jit import njit
 from ..sampling import reeds_shepp_length
 from ..sampling.reeds_shepp import _local
 
-#: [m] the table reaches at least this far from the goal along each axis (Smac's 20 m across)
+#: [m] the table reaches this far from the goal along each axis (Smac's 20 m across), unless
+#: :data:`MAX_ENTRIES` caps it
 MIN_REACH = 10.0
 #: ... and at least this many turning radii: farther off the length exceeds the straight line by a
 #: bounded amount that the holonomic field mostly covers
@@ -110,11 +113,15 @@ def table_pose(x, y, theta, gx, gy, gtheta, gcos, gsin, spacing, step, bins, hal
     rel = theta - gtheta
     if ly < 0.0:
         ly, rel = -ly, -rel
-    limit = (half + 0.5) * spacing
-    if not (abs(lx) < limit and ly < limit):
+    reach = (half + 1) * spacing  # (only keeps the conversions to int in range)
+    if not (abs(lx) < reach and ly < reach):
         return -1, x, y, theta, gx, gy, gtheta
     i = int(math.floor(lx / spacing + 0.5))
     j = int(math.floor(ly / spacing + 0.5))
+    # the rounded entry decides, not the float: ly just below (half + 0.5)·spacing can round to half + 1,
+    # which indexed the next row's entry, or past the table's end into another robot's (review, session 22)
+    if abs(i) > half or j > half:
+        return -1, x, y, theta, gx, gy, gtheta
     k = int(math.floor(rel / step + 0.5)) % bins
     return ((i + half) * (half + 1) + j) * bins + k, i * spacing, j * spacing, k * step, 0.0, 0.0, 0.0
 

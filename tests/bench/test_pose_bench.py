@@ -30,3 +30,20 @@ def test_a_point_planner_asked_for_car_motion_is_refused_before_any_trial():
         from navlab.bench.experiment import validate
 
         validate(exp)
+
+
+@pytest.mark.parametrize("grid, message", [
+    ({"distance_table": ["yes"]}, "distance_table must be true or false, got 'yes'"),
+    ({"exact_retry": [1]}, "exact_retry must be true or false, got 1"),
+    ({"heading_bins": [3]}, "heading_bins must be a whole number from 4 to 1440, got 3"),
+    ({"turning_radius": [-1]}, "turning_radius"),
+])
+def test_a_pose_planners_bad_setting_is_refused_before_any_trial(grid, message):
+    """Hybrid A*'s and the car-like trees' own settings were checked only by each trial, so a bad one ran
+    every trial as an ERROR row, exit 1 (attack, session 22); a grid planner's were refused up front."""
+    with pytest.raises((ExperimentError, ValueError), match=message):
+        load_experiment({**POSES, "grid": grid, "planners": ["hybrid_astar"]})
+    # a car-like tree is told the same of the settings it shares (and that Hybrid A*'s are not its own)
+    message = message if "bins" in message or "radius" in message else "is a setting of planner hybrid_astar, not"
+    with pytest.raises((ExperimentError, ValueError), match=message):
+        load_experiment({**POSES, "grid": grid, "planners": ["rrt_star"]})

@@ -412,9 +412,10 @@ def _mapping(value: Any, field: str) -> Dict[str, Any]:
 
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
-    from ..pose_queries import POSE_PLANNERS, is_pose_query
+    from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
     from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
     from ..sampling.planners import make_planner
+    from ..world.sources import load_source
     from .ompl_planners import check_ompl_name, ompl_available
 
     for planner in exp.planners:
@@ -447,6 +448,7 @@ def validate(exp: Experiment) -> None:
         if world not in exp.maps:
             _check_world(world)
     used: set = set()  # the shared settings some cell's planner takes
+    worlds: Dict[str, Any] = {}  # each world loaded once, for its pose queries' defaults
     for cell in exp.cells():
         used |= set(routed_params(cell.planner.name, cell.params, {}))
         if cell.planner.name in POSE_PLANNERS:
@@ -458,7 +460,13 @@ def validate(exp: Experiment) -> None:
                                       "pip install 'navlab[ompl]'")
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
-        if is_pose_query(cell.planner.name, own):  # a bad motion named; other settings are checked by each trial
+        if is_pose_query(cell.planner.name, own):  # (a bad motion named)
+            if cell.world not in exp.maps:  # its settings refused now, not by every trial as a run of ERROR rows
+                if cell.world not in worlds:  # (attack, session 22: exact_retry: [yes], heading_bins: [3])
+                    worlds[cell.world] = load_source(cell.world)
+                check_pose_query(worlds[cell.world], cell.planner.name,
+                                 {k: v for k, v in own.items() if k != "goal_tolerance"},
+                                 cell.sampler.name if cell.sampler else "")
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)

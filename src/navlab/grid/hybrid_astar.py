@@ -309,7 +309,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     if not starts:  # no arc onto the shared lattice is free: search a lattice through the start heading itself
         lattice, common, starts = through_start()
 
-    # the Reeds–Shepp lengths of this robot's earlier queries, kept (a Dubins solve costs little more than a read)
+    # the Reeds–Shepp lengths of this robot's earlier queries, kept (Dubins keys stay exact: docs/grid.md says why)
     distances = hybrid_table.distance_table(r, res, int(heading_bins)) \
         if motion == "reeds_shepp" and distance_table_on else hybrid_table.NO_TABLE
 

@@ -24,6 +24,10 @@ HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_u
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
                  "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
                  "waypoint_spacing", "exact_retry", "distance_table")
+#: the settings of ``hybrid_astar`` that no other planner takes (an experiment's shared ones go to it alone)
+HYBRID_ONLY = ("reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
+               "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "waypoint_spacing",
+               "exact_retry", "distance_table")
 
 
 def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
@@ -71,7 +75,7 @@ def _every_setting() -> list:
     return sorted(names - {"sampler", "self"})
 
 
-def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
+def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") -> str:
     """A hint naming the planners and samplers that do take ``key`` (`` 'smooth' is a setting of the grid
     planners (...) and planner hybrid_astar, not of planner rrt_star.``), or "" when none does. Rather than
     the nearest name: --param smooth=true with rrt_star was asked "Did you mean 'motion'?" (newcomer check,
@@ -105,7 +109,7 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "") -> str:
         takers.append(f"the {listed(samplers)} sampler{'s' if len(samplers) > 1 else ''}")
     if not takers:
         return ""
-    own = f"planner {planner}" + (f" with the {sampler} sampler" if sampler else "")
+    own = own or f"planner {planner}" + (f" with the {sampler} sampler" if sampler else "")
     if planner in TREE_POSE_PLANNERS and key in SE2_TREE_PARAMS and key not in planners_keys:
         own = f"planner {planner} with holonomic motion"  # (what is missing is the motion, not a sampler)
     return f" '{key}' is a setting of {listed(takers)}, not of {own}."

@@ -187,10 +187,16 @@ def test_report_renders_with_embedded_images(tmp_path):
      "'heading_binz' applies to none"),
     ({"worlds": ["parking"], "planners": [{"name": "hybrid_astar", "heading_binz": 36}]},
      "unknown parameter 'heading_binz' for planner 'hybrid_astar'"),
+    # samplers or a budget that no planner takes, as navlab plan refuses them (ran as if not given: newcomer,
+    # session 22), and who takes a shared setting rather than "Did you mean 'turning_radius'?" for itself
+    ({"worlds": ["parking"], "planners": ["hybrid_astar"], "budget": {}}, r"samplers: none of .* \(hybrid_astar\)"),
+    ({"planners": ["astar", "jps"], "samplers": None}, r"budget: none of .* \(astar, jps\) takes"),
+    ({"planners": ["astar"], "samplers": None, "params": {"turning_radius": 1.0}},
+     "'turning_radius' is a setting of planner hybrid_astar, not of planner astar"),
 ])
 def test_bad_experiments_are_refused_before_anything_runs(change, message):
-    with pytest.raises(ValueError, match=f"(?i){message}"):
-        load_experiment({**TINY, **change})
+    with pytest.raises(ValueError, match=f"(?i){message}"):  # (a field set to None: left out)
+        load_experiment({k: v for k, v in {**TINY, **change}.items() if v is not None})
 
 
 def test_experiment_file_and_cli(tmp_path):
@@ -239,3 +245,15 @@ def test_runs_too_big_to_hold_are_refused_before_building_cells(change, message)
     """An 8-parameter sweep of 10 values once grew to 15 GB before anything ran."""
     with pytest.raises(ExperimentError, match=message):
         load_experiment({**TINY, **change})
+
+
+def test_hybrid_astars_own_shared_settings_go_to_it_alone():
+    """Beside a tree planner, an experiment-wide distance_table went to rrt_star too, which refused it
+    (newcomer, session 22); settings both take (motion, heading_bins) still go to both."""
+    from navlab.bench.experiment import routed_params
+
+    exp = load_experiment({**TINY, "worlds": ["parking"], "planners": ["hybrid_astar", "rrt_star"],
+                           "params": {"motion": "reeds_shepp", "distance_table": False, "heading_bins": 36}})
+    shared = exp.params
+    assert routed_params("hybrid_astar", shared, {}) == shared
+    assert routed_params("rrt_star", shared, {}) == {"motion": "reeds_shepp", "heading_bins": 36}

@@ -141,6 +141,8 @@ class Experiment:
     study: Dict[str, Any] = field(default_factory=dict)
     #: map worlds by name: ``{name, map, robot_radius, queries}`` (see :mod:`navlab.bench.maps`)
     maps: Dict[str, Dict[str, Any]] = field(default_factory=dict)
+    #: whether the document named its samplers (else ``uniform``, for the tree planners if any)
+    samplers_given: bool = True
 
     def cells(self) -> List[Cell]:
         keys = sorted(self.grid)
@@ -320,6 +322,7 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         else:
             worlds.append(str(entry))
     return Experiment(
+        samplers_given=data.get("samplers") is not None,
         study=dict(study),
         name=_plain_name(data.get("name", "experiment")),
         description=str(data.get("description", "")),
@@ -352,11 +355,13 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
     algorithms, the others to tree and OMPL planners), then its own."""
     from ..pose_queries import HYBRID_PARAMS, POSE_PLANNERS
     from ..queries import GRID_PARAMS
+    from ..setting_names import HYBRID_ONLY
 
     if planner in POSE_PLANNERS:  # its own settings (motion, turning_radius, ...)
         return {**{k: v for k, v in shared.items() if k in HYBRID_PARAMS}, **own}
     grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
-    return {**{k: v for k, v in shared.items() if (k in GRID_PARAMS) == grid}, **own}
+    # (Hybrid A*'s own settings went to a tree planner beside it too, which refused them: newcomer, session 22)
+    return {**{k: v for k, v in shared.items() if (k in GRID_PARAMS) == grid and k not in HYBRID_ONLY}, **own}
 
 
 def _check_world(world: str) -> None:
@@ -479,8 +484,23 @@ def validate(exp: Experiment) -> None:
         except ValueError as exc:
             raise ExperimentError(f"budget: {exc}") from None
     _check_shared_params_used(exp, used)
+    _check_taken(exp)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
+
+
+def _check_taken(exp: Experiment) -> None:
+    """Refuse samplers or a budget that none of the experiment's planners takes, as navlab plan refuses
+    them: bench ran hybrid_astar with --sampler gaussian and --max-iter 200 as if neither were given
+    (newcomer, session 22)."""
+    names = ", ".join(sorted({p.name for p in exp.planners}))
+    if exp.samplers_given and not any(samples(p.name) for p in exp.planners):
+        raise ExperimentError(f"samplers: none of this experiment's planners ({names}) draws samples; "
+                              "leave the samplers (--sampler) out")
+    if exp.budget and not any(samples(p.name) or p.name.startswith(OMPL_PREFIX) for p in exp.planners):
+        raise ExperimentError(f"budget: none of this experiment's planners ({names}) takes an iteration or time "
+                              "budget (grid planners search to the end; hybrid_astar takes max_expansions); leave "
+                              "the budget (--max-iter, --max-time) out")
 
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:
@@ -499,12 +519,16 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
     ``heading_binz``) would otherwise run every trial on the defaults."""
     from ..pose_queries import HYBRID_PARAMS
     from ..queries import GRID_PARAMS
+    from ..setting_names import taken_elsewhere
 
     shared = set(exp.params) | set(exp.grid)
     for key in sorted(shared - used):
-        names = ", ".join(sorted({p.name for p in exp.planners}))
-        raise ExperimentError(f"parameter '{key}' applies to none of this experiment's planners ({names})."
-                              + suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS))))
+        planners = sorted({p.name for p in exp.planners})
+        names = ", ".join(planners)
+        # who does take it, rather than the nearest name: that was 'turning_radius' itself (newcomer, session 22)
+        hint = taken_elsewhere(key, planners[0], own=f"planner{'s' if len(planners) > 1 else ''} {names}") or \
+            suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS)))
+        raise ExperimentError(f"parameter '{key}' applies to none of this experiment's planners ({names})." + hint)
 
 
 def _check_unique_cells(exp: Experiment) -> None:

@@ -149,9 +149,13 @@ def _query(world, planner: str, params: Dict[str, Any], valid, sampler: str = ""
         # the sampler's settings are this query's too: "sigm" with the gaussian sampler was told 'sigma' was
         # the gaussian sampler's, "not of planner rrt_star" (review, session 21)
         also = ["goal_tolerance"] + (["goal_sample_rate", *parameters_of(SAMPLERS.get(sampler))] if sampler else [])
-        raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}' with non-holonomic motion; "
+        # (Hybrid A* was told "with non-holonomic motion", which it always is: newcomer, session 22)
+        motion = "" if planner in POSE_PLANNERS else f" with {settings.get('motion', 'reeds_shepp')} motion"
+        budget = f" {planner}'s budget is max_expansions." if planner in POSE_PLANNERS and \
+            unknown[0] in ("max_iter", "max_time") else ""  # (--max-iter: newcomer, session 22)
+        raise UnknownNameError(f"unknown parameter '{unknown[0]}' for planner '{planner}'{motion}; "
                                f"valid: {', '.join(valid)}."
-                               + setting_hint(unknown[0], planner, list(valid) + also, sampler))
+                               + setting_hint(unknown[0], planner, list(valid) + also, sampler) + budget)
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
               "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),

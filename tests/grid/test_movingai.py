@@ -54,6 +54,16 @@ def test_scen_runner_summary():
     assert out["summary"]["time_p95_ms"] >= out["summary"]["time_median_ms"]
 
 
+def test_scen_runner_rows_name_the_scenarios_place_in_the_file():
+    """With every=10 the row of file scenario 10 was numbered 1 (newcomer, session 22)."""
+    scen = DATA / "random-32-32-10-random-1.scen"
+    out = run_scenarios(scen, algorithm="jps", every=10, limit=4)
+    stored = read_scen(scen)
+    assert [row["index"] for row in out["rows"]] == [0, 10, 20, 30]
+    for row in out["rows"]:
+        assert tuple(row["start"]) == tuple(stored[row["index"]].start)
+
+
 def test_movingai_rows_index_blocked_directly():
     grid = load_map(DATA / "arena.map")
     rows = (DATA / "arena.map").read_text().splitlines()[4:]

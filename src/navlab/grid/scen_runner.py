@@ -74,7 +74,8 @@ def run_scenarios(scen_path, map_path: Optional[str] = None, algorithm: str = "a
     like any other and counted by its status (``INVALID_START`` /
     ``INVALID_GOAL``) under ``invalid``, apart from the mismatches.
     ``progress(n)`` is called after each scenario with the number done (for a
-    progress bar). Returns ``{"summary": ..., "rows": [...]}``; the summary
+    progress bar). Returns ``{"summary": ..., "rows": [...]}``, each row's ``index``
+    its scenario's place in the file (from 0, with ``every``); the summary
     counts matches, mismatches, invalid rows and every status, and lists the
     five worst rows (failed first, then by distance from the optimum; for
     any-angle algorithms, by how far they exceed it).
@@ -94,7 +95,8 @@ def run_scenarios(scen_path, map_path: Optional[str] = None, algorithm: str = "a
     rows: List[Dict[str, Any]] = []
     for i, sc in enumerate(scenarios):
         r = plan(grid, sc.start, sc.goal, algorithm=algorithm, heuristic=heuristic)
-        rows.append({"index": i, **compare(sc, r, any_angle)})
+        # the scenario's place in the file (--every K showed file scenario 10 as #1: newcomer, session 22)
+        rows.append({"index": i * every, **compare(sc, r, any_angle)})
         if progress is not None:
             progress(i + 1)
     return {"summary": summarize(rows, grid.name, algorithm, heuristic), "rows": rows}

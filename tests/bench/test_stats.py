@@ -15,7 +15,8 @@ def test_describe_matches_numpy_and_scipy():
     assert d["mean"] == pytest.approx(x.mean()) and d["std"] == pytest.approx(x.std(ddof=1))
     lo, hi = sps.t.interval(0.95, len(x) - 1, loc=x.mean(), scale=sps.sem(x))
     assert d["ci95"] == pytest.approx([lo, hi])
-    assert describe([None, None])["n"] == 0 and describe([3.0])["ci95"] == [3.0, 3.0]
+    assert describe([None, None])["n"] == 0 and describe([3.0])["ci95"] == [None, None]  # one value: no interval
+    assert describe([3.0, 3.0])["ci95"] == [3.0, 3.0]
 
 
 def test_cliffs_delta_equals_the_pairwise_count():

@@ -28,7 +28,7 @@ ALPHA = 0.05
 
 
 def describe(values: Sequence[float]) -> Dict[str, Any]:
-    """n, mean, median, min, max, sample std and the 95% t-interval of the mean."""
+    """n, mean, median, min, max, sample std and the 95% t-interval of the mean (None from one value)."""
     x = np.asarray([v for v in values if v is not None], dtype=float)
     n = len(x)
     if n == 0:
@@ -39,8 +39,10 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
     if n > 1 and std > 0:
         half = float(sps.t.ppf(0.975, n - 1)) * std / math.sqrt(n)
         ci = [mean - half, mean + half]
-    else:
+    elif n > 1:  # every value the same
         ci = [mean, mean]
+    else:  # one value says nothing of the spread: no interval (it was a zero-width one: newcomer, session 22)
+        ci = [None, None]
     return {"n": n, "mean": mean, "median": float(np.median(x)), "min": float(np.min(x)),
             "max": float(np.max(x)), "std": std, "ci95": ci}
 

@@ -101,8 +101,12 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
         takers.append(f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})")
     if key in COSTMAP_PARAMS and key not in GRID_PARAMS:
         takers.append("planner astar with costmap=true")
-    if key in SE2_TREE_PARAMS and key not in planners_keys:  # (heading_bins: a car-like tree's lattice)
-        takers.append(f"planners {listed(sorted(TREE_POSE_PLANNERS))} with motion=dubins or reeds_shepp")
+    # a car-like tree's: its lattice's heading_bins, and the query's motion, turning radius, footprint and raster
+    # (astar was told turning_radius was hybrid_astar's alone: review, session 22)
+    car_tree = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
+    if key in car_tree and key not in planners_keys:
+        takers.append(f"planners {listed(sorted(TREE_POSE_PLANNERS))}"
+                      + ("" if key == "motion" else " with motion=dubins or reeds_shepp"))
     if planners:
         takers.append(f"planner{'s' if len(planners) > 1 else ''} {listed(planners)}")
     if samplers:
@@ -110,6 +114,6 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
     if not takers:
         return ""
     own = own or f"planner {planner}" + (f" with the {sampler} sampler" if sampler else "")
-    if planner in TREE_POSE_PLANNERS and key in SE2_TREE_PARAMS and key not in planners_keys:
+    if planner in TREE_POSE_PLANNERS and key in car_tree and key not in planners_keys:
         own = f"planner {planner} with holonomic motion"  # (what is missing is the motion, not a sampler)
     return f" '{key}' is a setting of {listed(takers)}, not of {own}."

@@ -360,15 +360,21 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
     if planner in POSE_PLANNERS:  # its own settings (motion, turning_radius, ...)
         return {**{k: v for k, v in shared.items() if k in HYBRID_PARAMS}, **own}
     grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
+    # a car-like tree plans on a raster of the world too: it takes the shared resolution and allow_unknown
+    # (beside astar they went to astar alone, the tree ran on its default: review, session 22)
+    motion = {**shared, **own}.get("motion")
+    raster = ("resolution", "allow_unknown") if not grid and motion in ("dubins", "reeds_shepp") else ()
     # (Hybrid A*'s own settings went to a tree planner beside it too, which refused them: newcomer, session 22)
-    return {**{k: v for k, v in shared.items() if (k in GRID_PARAMS) == grid and k not in HYBRID_ONLY}, **own}
+    return {**{k: v for k, v in shared.items()
+               if ((k in GRID_PARAMS) == grid or k in raster) and k not in HYBRID_ONLY}, **own}
 
 
-def _check_world(world: str) -> None:
+def _check_world(world: str):
+    """The world ``world`` names, loaded (or the experiment refused naming it)."""
     from ..world.sources import MissingQueryError, load_source
 
     try:
-        load_source(world)
+        return load_source(world)
     except MissingQueryError:
         raise ExperimentError(f"world '{world}' is a map, which has no start or goal: give it as "
                               f"{{map: {world}, scen: FILE.scen, queries: N}} or "
@@ -420,7 +426,6 @@ def validate(exp: Experiment) -> None:
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
     from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
     from ..sampling.planners import make_planner
-    from ..world.sources import load_source
     from .ompl_planners import check_ompl_name, ompl_available
 
     for planner in exp.planners:
@@ -449,11 +454,11 @@ def validate(exp: Experiment) -> None:
     labels = [p.title for p in exp.planners]
     if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
         raise ExperimentError("two planners or two samplers share a label; give them distinct 'label's")
+    worlds: Dict[str, Any] = {}  # each world loaded once (its pose queries' defaults come from it)
     for world in exp.worlds:
         if world not in exp.maps:
-            _check_world(world)
+            worlds[world] = _check_world(world)
     used: set = set()  # the shared settings some cell's planner takes
-    worlds: Dict[str, Any] = {}  # each world loaded once, for its pose queries' defaults
     for cell in exp.cells():
         used |= set(routed_params(cell.planner.name, cell.params, {}))
         if cell.planner.name in POSE_PLANNERS:
@@ -466,9 +471,8 @@ def validate(exp: Experiment) -> None:
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
         if is_pose_query(cell.planner.name, own):  # (a bad motion named)
-            if cell.world not in exp.maps:  # its settings refused now, not by every trial as a run of ERROR rows
-                if cell.world not in worlds:  # (attack, session 22: exact_retry: [yes], heading_bins: [3])
-                    worlds[cell.world] = load_source(cell.world)
+            if cell.world in worlds:  # its settings refused now, not by every trial as a run of ERROR rows
+                # (attack, session 22: exact_retry: [yes], heading_bins: [3]; map worlds: by each trial still)
                 check_pose_query(worlds[cell.world], cell.planner.name,
                                  {k: v for k, v in own.items() if k != "goal_tolerance"},
                                  cell.sampler.name if cell.sampler else "")
@@ -484,23 +488,8 @@ def validate(exp: Experiment) -> None:
         except ValueError as exc:
             raise ExperimentError(f"budget: {exc}") from None
     _check_shared_params_used(exp, used)
-    _check_taken(exp)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
-
-
-def _check_taken(exp: Experiment) -> None:
-    """Refuse samplers or a budget that none of the experiment's planners takes, as navlab plan refuses
-    them: bench ran hybrid_astar with --sampler gaussian and --max-iter 200 as if neither were given
-    (newcomer, session 22)."""
-    names = ", ".join(sorted({p.name for p in exp.planners}))
-    if exp.samplers_given and not any(samples(p.name) for p in exp.planners):
-        raise ExperimentError(f"samplers: none of this experiment's planners ({names}) draws samples; "
-                              "leave the samplers (--sampler) out")
-    if exp.budget and not any(samples(p.name) or p.name.startswith(OMPL_PREFIX) for p in exp.planners):
-        raise ExperimentError(f"budget: none of this experiment's planners ({names}) takes an iteration or time "
-                              "budget (grid planners search to the end; hybrid_astar takes max_expansions); leave "
-                              "the budget (--max-iter, --max-time) out")
 
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:

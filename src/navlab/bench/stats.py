@@ -28,14 +28,14 @@ ALPHA = 0.05
 
 
 def describe(values: Sequence[float]) -> Dict[str, Any]:
-    """n, mean, median, min, max, sample std and the 95% t-interval of the mean (None from one value)."""
+    """n, mean, median, min, max, sample std and the 95% t-interval of the mean (those two None from one value)."""
     x = np.asarray([v for v in values if v is not None], dtype=float)
     n = len(x)
     if n == 0:
         return {"n": 0, "mean": None, "median": None, "min": None, "max": None, "std": None,
                 "ci95": [None, None]}
     mean = float(np.mean(x))
-    std = float(np.std(x, ddof=1)) if n > 1 else 0.0
+    std = float(np.std(x, ddof=1)) if n > 1 else None  # (one value: no spread, as no interval)
     if n > 1 and std > 0:
         half = float(sps.t.ppf(0.975, n - 1)) * std / math.sqrt(n)
         ci = [mean - half, mean + half]

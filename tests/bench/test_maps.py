@@ -69,6 +69,17 @@ def test_bad_map_worlds_are_refused_before_anything_runs(movingai, world, messag
         load_experiment({"worlds": [world], "planners": ["astar"]})
 
 
+def test_a_resolution_for_a_grid_planner_on_a_map_is_refused_before_any_trial(movingai):
+    """docs/bench.md's maps example gave params: {resolution: 0.05}: every astar and theta_star trial was
+    an ERROR row ("a map is planned on its own cells") (review, session 22)."""
+    world = {"map": str(movingai / "room.map"), "name": "room", "queries": [[1.5, 1.5, 4.5, 1.5]]}
+    with pytest.raises(ExperimentError, match="resolution: world 'room' is a map, planned on its own cells"):
+        load_experiment({"worlds": [world], "planners": ["astar"], "params": {"resolution": 0.05}})
+    exp = load_experiment({"worlds": [world], "planners": ["astar", "rrt_star"], "params": {"expand_dis": 2.0},
+                           "budget": {"max_iter": 100}, "trials": 1})
+    assert len(exp.cells()) == 2
+
+
 def test_a_map_named_as_a_plain_world_says_how_to_give_its_queries(movingai):
     with pytest.raises(ExperimentError, match="is a map, which has no start or goal: give it as"):
         load_experiment({"worlds": [str(movingai / "room.map")], "planners": ["astar"]})

@@ -479,6 +479,10 @@ def validate(exp: Experiment) -> None:
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)
+            if cell.world in exp.maps and own.get("resolution") is not None:
+                # (every trial was an ERROR row, docs/bench.md's own maps example among them: review, session 22)
+                raise ExperimentError(f"resolution: world '{cell.world}' is a map, planned on its own cells; "
+                                      "leave resolution out")
             continue
         params = {**own, **cell.sampler.params, **exp.budget}
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)

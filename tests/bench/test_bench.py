@@ -288,3 +288,20 @@ def test_samplers_or_a_budget_no_planner_takes_get_a_note(tmp_path, args, note):
     assert note in done.output
     shown = CliRunner().invoke(main, ["bench", "--suite", "smoke", "--planner", "astar", "--show"])
     assert shown.exit_code == 0, shown.output
+
+
+def test_an_ompl_planners_settings_and_budget_are_checked_before_any_trial():
+    """Beside hybrid_astar an OMPL planner took its shared turning_radius and refused it in every trial, and
+    one with no budget ran as ERROR rows (review, session 22)."""
+    pytest.importorskip("ompl")
+    from navlab.bench.experiment import routed_params
+
+    assert routed_params("ompl:RRTstar", {"turning_radius": 0.5, "expand_dis": 1.0, "heading_bins": 36}, {}) == \
+        {"expand_dis": 1.0}
+    load_experiment({"worlds": ["trap"], "planners": ["ompl:RRTstar", "hybrid_astar"],
+                     "params": {"turning_radius": 0.5}, "budget": {"max_iter": 100}, "trials": 1})
+    with pytest.raises(ValueError, match="budget: ompl:RRTstar needs max_iter or max_time"):
+        load_experiment({"worlds": ["trap"], "planners": ["ompl:RRTstar"], "trials": 1})
+    with pytest.raises(ValueError, match=r"unknown parameter\(s\) goal_bias for ompl:RRTstar; valid: expand_dis"):
+        load_experiment({"worlds": ["trap"], "planners": [{"name": "ompl:RRTstar", "goal_bias": 0.1}],
+                         "budget": {"max_iter": 100}, "trials": 1})

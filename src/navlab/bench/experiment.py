@@ -359,6 +359,10 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
 
     if planner in POSE_PLANNERS:  # its own settings (motion, turning_radius, ...)
         return {**{k: v for k, v in shared.items() if k in HYBRID_PARAMS}, **own}
+    if planner.startswith(OMPL_PREFIX):  # (it took Hybrid A*'s turning_radius too, and refused it: review,
+        from .ompl_planners import OMPL_PARAMS  # session 22)
+
+        return {**{k: v for k, v in shared.items() if k in OMPL_PARAMS}, **own}
     grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
     # a car-like tree plans on a raster of the world too: it takes the shared resolution and allow_unknown
     # (beside astar they went to astar alone, the tree ran on its default: review, session 22)
@@ -426,7 +430,7 @@ def validate(exp: Experiment) -> None:
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
     from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
     from ..sampling.planners import make_planner
-    from .ompl_planners import check_ompl_name, ompl_available
+    from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
 
     for planner in exp.planners:
         if not planner.name.startswith(OMPL_PREFIX):
@@ -468,6 +472,8 @@ def validate(exp: Experiment) -> None:
             if not ompl_available():
                 raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
                                       "pip install 'navlab[ompl]'")
+            check_ompl_query(cell.planner.name[len(OMPL_PREFIX):],
+                             routed_params(cell.planner.name, cell.params, cell.planner.params), exp.budget)
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
         if is_pose_query(cell.planner.name, own):  # (a bad motion named)

@@ -39,6 +39,22 @@ def check_ompl_name(name: str) -> None:
                                + ", ".join(f"ompl:{n}" for n in OMPL_NAMES) + "." + suggest(name, list(OMPL_NAMES)))
 
 
+#: the settings navlab passes to an OMPL planner (``expand_dis``: its range)
+OMPL_PARAMS = ("expand_dis",)
+
+
+def check_ompl_query(name: str, params: Dict[str, Any], budget: Dict[str, Any]) -> None:
+    """Refuse what :func:`plan_ompl` would refuse, without planning: an OMPL planner's settings other than
+    :data:`OMPL_PARAMS`, and a budget with neither ``max_iter`` nor ``max_time`` (each trial was an
+    ERROR row: review, session 22)."""
+    unknown = sorted(set(params) - set(OMPL_PARAMS))
+    if unknown:
+        raise ParameterError(f"unknown parameter(s) {', '.join(unknown)} for ompl:{name}; valid: "
+                             f"{', '.join(OMPL_PARAMS)}")
+    if budget.get("max_iter") is None and budget.get("max_time") is None:
+        raise ParameterError(f"budget: ompl:{name} needs max_iter or max_time (an OMPL run stops on its budget)")
+
+
 def ompl_available() -> bool:
     try:
         import ompl.geometric  # noqa: F401

@@ -101,6 +101,8 @@ def query_footprint(world, value: Any):
 
     if value is not None:
         return Footprint.from_value(value)
+    if world is None:  # (a bench's check of a map world's settings, before the map is read)
+        return None
     if world.footprint is not None:
         return world.footprint
     return Footprint.disc(world.robot_radius) if world.robot_radius > 0 else None
@@ -157,7 +159,8 @@ def _query(world, planner: str, params: Dict[str, Any], valid, sampler: str = ""
                                f"valid: {', '.join(valid)}."
                                + setting_hint(unknown[0], planner, list(valid) + also, sampler) + budget)
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
-              "turning_radius": check_turning_radius(settings.pop("turning_radius", scene_turning_radius(world))),
+              "turning_radius": check_turning_radius(settings.pop("turning_radius", DEFAULT_TURNING_RADIUS if world is None
+                                                                  else scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),
               "resolution": settings.pop("resolution", None)}
     if common["resolution"] is not None:  # its sign and kind (the raster's own checks come after the warm-up,
@@ -202,8 +205,9 @@ def check_pose_query(world, planner: str, params: Dict[str, Any], sampler: str =
 
     Parameters
     ----------
-    world : World
-        The query's world (its footprint and turning radius are the defaults).
+    world : World or None
+        The query's world (its footprint and turning radius are the defaults); None checks the
+        settings alone (a bench's map world, before its map is read).
     planner : str
         ``hybrid_astar`` or a tree planner.
     params : dict

@@ -80,6 +80,18 @@ def test_a_resolution_for_a_grid_planner_on_a_map_is_refused_before_any_trial(mo
     assert len(exp.cells()) == 2
 
 
+@pytest.mark.parametrize("setting, message", [({"heading_bins": 3}, "heading_bins must be a whole number"),
+                                              ({"distance_table": "yes"}, "distance_table must be true or false"),
+                                              ({"turning_radius": -1}, "turning_radius must be positive")])
+def test_hybrid_astars_bad_settings_on_a_map_world_are_refused_before_any_trial(movingai, setting, message):
+    """On a geometric world they were (attack, session 22); on a map world each trial was an ERROR row
+    (review, session 22)."""
+    world = {"map": str(movingai / "room.map"), "name": "room", "queries": [[1.5, 1.5, 4.5, 1.5]]}
+    with pytest.raises((ExperimentError, ValueError), match=message):
+        load_experiment({"worlds": [world], "planners": [{"name": "hybrid_astar", **setting}]})
+    load_experiment({"worlds": [world], "planners": [{"name": "hybrid_astar", "heading_bins": 36}], "trials": 1})
+
+
 def test_a_map_named_as_a_plain_world_says_how_to_give_its_queries(movingai):
     with pytest.raises(ExperimentError, match="is a map, which has no start or goal: give it as"):
         load_experiment({"worlds": [str(movingai / "room.map")], "planners": ["astar"]})

@@ -477,11 +477,11 @@ def validate(exp: Experiment) -> None:
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
         if is_pose_query(cell.planner.name, own):  # (a bad motion named)
-            if cell.world in worlds:  # its settings refused now, not by every trial as a run of ERROR rows
-                # (attack, session 22: exact_retry: [yes], heading_bins: [3]; map worlds: by each trial still)
-                check_pose_query(worlds[cell.world], cell.planner.name,
-                                 {k: v for k, v in own.items() if k != "goal_tolerance"},
-                                 cell.sampler.name if cell.sampler else "")
+            # its settings refused now, not by every trial as a run of ERROR rows (attack, session 22: exact_retry:
+            # [yes], heading_bins: [3]); a map world's settings alone (review, session 22), its map read by the trials
+            check_pose_query(worlds.get(cell.world), cell.planner.name,
+                             {k: v for k, v in own.items() if k != "goal_tolerance"},
+                             cell.sampler.name if cell.sampler else "")
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)

@@ -305,3 +305,11 @@ def test_an_ompl_planners_settings_and_budget_are_checked_before_any_trial():
     with pytest.raises(ValueError, match=r"unknown parameter\(s\) goal_bias for ompl:RRTstar; valid: expand_dis"):
         load_experiment({"worlds": ["trap"], "planners": [{"name": "ompl:RRTstar", "goal_bias": 0.1}],
                          "budget": {"max_iter": 100}, "trials": 1})
+
+
+def test_a_shared_goal_tolerance_is_the_querys_as_in_navlab_plan():
+    """Refused as "unknown parameter 'goal_tolerance' ... Did you mean 'goal_tolerance'?" though each trial
+    takes it (review, session 22); a bad value is still refused before any trial."""
+    load_experiment({**TINY, "params": {"goal_tolerance": 0.5}})
+    with pytest.raises(ValueError, match="goal_tolerance must be non-negative"):
+        load_experiment({**TINY, "params": {"goal_tolerance": -1}})

@@ -31,7 +31,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..limits import MAX_COUNT, digit_count, is_finite_real, shown, value_text
+from ..limits import MAX_COUNT, check_length, digit_count, is_finite_real, shown, value_text
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -491,6 +491,11 @@ def validate(exp: Experiment) -> None:
                                       "leave resolution out")
             continue
         params = {**own, **cell.sampler.params, **exp.budget}
+        # the query's own setting, as navlab.plan takes it (it was refused here, "valid: ... goal_tolerance. Did
+        # you mean 'goal_tolerance'?", though each trial takes it: review, session 22)
+        if params.get("goal_tolerance") is not None:
+            check_length("goal_tolerance", params["goal_tolerance"])
+        params.pop("goal_tolerance", None)
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
         planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
         try:

@@ -313,3 +313,6 @@ def test_a_shared_goal_tolerance_is_the_querys_as_in_navlab_plan():
     load_experiment({**TINY, "params": {"goal_tolerance": 0.5}})
     with pytest.raises(ValueError, match="goal_tolerance must be non-negative"):
         load_experiment({**TINY, "params": {"goal_tolerance": -1}})
+
+    with pytest.raises(ValueError, match="goal_tolerance: rrt_star between poses ends exactly at the goal pose"):
+        load_experiment({**TINY, "worlds": ["parking"], "params": {"goal_tolerance": 0.5, "motion": "dubins"}})

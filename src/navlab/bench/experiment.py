@@ -363,7 +363,7 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
         from .ompl_planners import OMPL_PARAMS  # session 22)
 
         return {**{k: v for k, v in shared.items() if k in OMPL_PARAMS}, **own}
-    grid = not samples(planner) and not planner.startswith(OMPL_PREFIX)
+    grid = not samples(planner)
     # a car-like tree plans on a raster of the world too: it takes the shared resolution and allow_unknown
     # (beside astar they went to astar alone, the tree ran on its default: review, session 22)
     motion = {**shared, **own}.get("motion")
@@ -479,6 +479,9 @@ def validate(exp: Experiment) -> None:
         if is_pose_query(cell.planner.name, own):  # (a bad motion named)
             # its settings refused now, not by every trial as a run of ERROR rows (attack, session 22: exact_retry:
             # [yes], heading_bins: [3]); a map world's settings alone (review, session 22), its map read by the trials
+            if own.get("goal_tolerance") not in (None, 0, 0.0):  # (as navlab.plan refuses it)
+                raise ExperimentError(f"goal_tolerance: {cell.planner.name} between poses ends exactly at the goal "
+                                      "pose; leave goal_tolerance out")
             check_pose_query(worlds.get(cell.world), cell.planner.name,
                              {k: v for k, v in own.items() if k != "goal_tolerance"},
                              cell.sampler.name if cell.sampler else "")

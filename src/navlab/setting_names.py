@@ -24,10 +24,10 @@ HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_u
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
                  "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
                  "waypoint_spacing", "exact_retry", "distance_table")
-#: the settings of ``hybrid_astar`` that no other planner takes (an experiment's shared ones go to it alone)
-HYBRID_ONLY = ("reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
-               "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "waypoint_spacing",
-               "exact_retry", "distance_table")
+#: the settings of ``hybrid_astar`` that no other planner takes (an experiment's shared ones go to it alone):
+#: all but the grid planners' and those a car-like tree's query takes too
+HYBRID_ONLY = tuple(k for k in HYBRID_PARAMS if k not in GRID_PARAMS and
+                    k not in ("motion", "turning_radius", "footprint", "heading_bins"))
 
 
 def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
@@ -79,7 +79,7 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
     """A hint naming the planners and samplers that do take ``key`` (`` 'smooth' is a setting of the grid
     planners (...) and planner hybrid_astar, not of planner rrt_star.``), or "" when none does. Rather than
     the nearest name: --param smooth=true with rrt_star was asked "Did you mean 'motion'?" (newcomer check,
-    session 20)."""
+    session 20). ``own``: who does not take it, as the sentence ends (else ``planner`` and ``sampler``)."""
     # (here, not at the top: the hint is for a mistake, and the grid search's module loads its kernels)
     from .grid.planner import GRID_ALGORITHMS
     from .registry import parameters_of

@@ -264,8 +264,16 @@ def test_a_car_like_tree_beside_a_grid_planner_takes_the_shared_resolution():
 
     shared = {"resolution": 0.1, "allow_unknown": True}
     assert routed_params("rrt_star", shared, {"motion": "dubins"}) == {**shared, "motion": "dubins"}
-    assert routed_params("rrt_star", shared, {}) == {}
+    assert routed_params("rrt_star", shared, {}) == {"allow_unknown": True}  # (a map's unknown cells, any motion)
     assert routed_params("astar", shared, {}) == shared
+    # a car's settings go to car-like trees and Hybrid A* alone; a goal tolerance to holonomic trees alone
+    # (beside hybrid_astar a holonomic rrt_star was given turning_radius, and refused it: attack, session 22)
+    car = {"turning_radius": 1.0, "footprint": 0.3, "heading_bins": 36, "goal_tolerance": 0.5}
+    assert routed_params("rrt_star", car, {}) == {"goal_tolerance": 0.5}
+    assert routed_params("rrt", car, {"motion": "reeds_shepp"}) == {"turning_radius": 1.0, "footprint": 0.3,
+                                                                   "heading_bins": 36, "motion": "reeds_shepp"}
+    assert routed_params("ompl:PRMstar", {"expand_dis": 1.0}, {}) == {}
+    assert routed_params("ompl:RRT", {"expand_dis": 1.0}, {}) == {"expand_dis": 1.0}
 
 
 @pytest.mark.parametrize("args, note", [
@@ -314,5 +322,30 @@ def test_a_shared_goal_tolerance_is_the_querys_as_in_navlab_plan():
     with pytest.raises(ValueError, match="goal_tolerance must be non-negative"):
         load_experiment({**TINY, "params": {"goal_tolerance": -1}})
 
-    with pytest.raises(ValueError, match="goal_tolerance: rrt_star between poses ends exactly at the goal pose"):
+    with pytest.raises(ValueError, match="'goal_tolerance' applies to none.*one between poses ends exactly at the goal"):
         load_experiment({**TINY, "worlds": ["parking"], "params": {"goal_tolerance": 0.5, "motion": "dubins"}})
+
+
+@pytest.mark.parametrize("change, message", [
+    # the attack of session 22: each passed the checks, then every trial was an ERROR row
+    ({"planners": [{"name": "ompl:PRMstar", "expand_dis": 1.0}]}, r"for ompl:PRMstar; valid: none \(it has no range\)"),
+    ({"planners": [{"name": "ompl:RRT", "expand_dis": -1}]}, "expand_dis must be positive"),
+    ({"worlds": ["parking"], "planners": [{"name": "rrt_star", "motion": "dubins"}],
+      "samplers": [{"name": "gaussian", "sigma": -1}]}, "sigma must be positive"),
+])
+def test_what_a_trial_would_refuse_is_refused_before_any_trial(change, message):
+    if "ompl" in str(change):
+        pytest.importorskip("ompl")
+    with pytest.raises(ValueError, match=message):
+        load_experiment({**TINY, **change})
+
+
+def test_what_navlab_plan_takes_a_bench_takes():
+    """A car-like tree alone with a shared resolution, motion=holonomic, allow_unknown for a holonomic tree:
+    refused, though navlab plan and each trial take them (attack, session 22)."""
+    load_experiment({**TINY, "worlds": ["parking"], "planners": [{"name": "rrt_star", "motion": "dubins"}],
+                     "params": {"resolution": 0.2}})
+    load_experiment({**TINY, "params": {"motion": "holonomic", "allow_unknown": True}})
+    load_experiment({**TINY, "grid": {"motion": ["holonomic", "dubins"]}, "worlds": ["parking"]})
+    with pytest.raises(ValueError, match="allow_unknown must be true or false, got 'yes'"):
+        load_experiment({**TINY, "params": {"allow_unknown": "yes"}})

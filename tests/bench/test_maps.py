@@ -75,6 +75,10 @@ def test_a_resolution_for_a_grid_planner_on_a_map_is_refused_before_any_trial(mo
     world = {"map": str(movingai / "room.map"), "name": "room", "queries": [[1.5, 1.5, 4.5, 1.5]]}
     with pytest.raises(ExperimentError, match="resolution: world 'room' is a map, planned on its own cells"):
         load_experiment({"worlds": [world], "planners": ["astar"], "params": {"resolution": 0.05}})
+    for planner in ("hybrid_astar", {"name": "rrt_star", "motion": "dubins"}):  # (attack, session 22)
+        with pytest.raises(ExperimentError, match="resolution: world 'room' is a map"):
+            load_experiment({"worlds": [world], "planners": [planner], "params": {"resolution": 0.05},
+                             "budget": {"max_iter": 100}})
     exp = load_experiment({"worlds": [world], "planners": ["astar", "rrt_star"], "params": {"expand_dis": 2.0},
                            "budget": {"max_iter": 100}, "trials": 1})
     assert len(exp.cells()) == 2

@@ -360,17 +360,31 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
     if planner in POSE_PLANNERS:  # its own settings (motion, turning_radius, ...)
         return {**{k: v for k, v in shared.items() if k in HYBRID_PARAMS}, **own}
     if planner.startswith(OMPL_PREFIX):  # (it took Hybrid A*'s turning_radius too, and refused it: review,
-        from .ompl_planners import OMPL_PARAMS  # session 22)
+        from .ompl_planners import ompl_params  # session 22)
 
-        return {**{k: v for k, v in shared.items() if k in OMPL_PARAMS}, **own}
-    grid = not samples(planner)
-    # a car-like tree plans on a raster of the world too: it takes the shared resolution and allow_unknown
-    # (beside astar they went to astar alone, the tree ran on its default: review, session 22)
-    motion = {**shared, **own}.get("motion")
-    raster = ("resolution", "allow_unknown") if not grid and motion in ("dubins", "reeds_shepp") else ()
-    # (Hybrid A*'s own settings went to a tree planner beside it too, which refused them: newcomer, session 22)
-    return {**{k: v for k, v in shared.items()
-               if ((k in GRID_PARAMS) == grid or k in raster) and k not in HYBRID_ONLY}, **own}
+        takes = set(ompl_params(planner[len(OMPL_PREFIX):]))
+        return {**{k: v for k, v in shared.items() if k in takes}, **own}
+    if not samples(planner):  # a grid algorithm
+        return {**{k: v for k, v in shared.items() if k in GRID_PARAMS and k not in HYBRID_ONLY}, **own}
+    car = {**shared, **own}.get("motion") in ("dubins", "reeds_shepp")
+
+    def takes(key: str) -> bool:
+        """Whether a tree planner, car-like (``car``) or not, takes the shared setting ``key``: a car-like
+        one plans on a raster (resolution) with a turning radius, footprint and heading bins, and ends
+        exactly at the goal pose; any takes the query's allow_unknown (review and attack, session 22: these
+        went by kind of planner alone, so beside astar a car-like tree lost the resolution, and beside
+        hybrid_astar a holonomic tree was given its turning_radius, and refused it)."""
+        if key in HYBRID_ONLY:  # (Hybrid A*'s alone: beside rrt_star, distance_table went to the tree too)
+            return False
+        if key == "allow_unknown":
+            return True
+        if key in ("resolution", "turning_radius", "footprint", "heading_bins"):
+            return car
+        if key == "goal_tolerance":
+            return not car
+        return key not in GRID_PARAMS
+
+    return {**{k: v for k, v in shared.items() if takes(k)}, **own}
 
 
 def _check_world(world: str):
@@ -429,7 +443,9 @@ def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
     from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
+    from ..registry import parameters_of
     from ..sampling.planners import make_planner
+    from ..sampling.samplers import SAMPLERS
     from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
 
     for planner in exp.planners:
@@ -464,7 +480,8 @@ def validate(exp: Experiment) -> None:
             worlds[world] = _check_world(world)
     used: set = set()  # the shared settings some cell's planner takes
     for cell in exp.cells():
-        used |= set(routed_params(cell.planner.name, cell.params, {}))
+        # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
+        used |= set(routed_params(cell.planner.name, cell.params, cell.planner.params)) & set(cell.params)
         if cell.planner.name in POSE_PLANNERS:
             _check_pose_params(cell.planner.name, cell.planner.params)
         if cell.planner.name.startswith(OMPL_PREFIX):
@@ -476,22 +493,27 @@ def validate(exp: Experiment) -> None:
                              routed_params(cell.planner.name, cell.params, cell.planner.params), exp.budget)
             continue
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
+        if cell.world in exp.maps and own.get("resolution") is not None:
+            # (every trial was an ERROR row, docs/bench.md's own maps example among them: review and attack,
+            # session 22)
+            raise ExperimentError(f"resolution: world '{cell.world}' is a map, planned on its own cells; "
+                                  "leave resolution out")
         if is_pose_query(cell.planner.name, own):  # (a bad motion named)
             # its settings refused now, not by every trial as a run of ERROR rows (attack, session 22: exact_retry:
             # [yes], heading_bins: [3]); a map world's settings alone (review, session 22), its map read by the trials
             if own.get("goal_tolerance") not in (None, 0, 0.0):  # (as navlab.plan refuses it)
                 raise ExperimentError(f"goal_tolerance: {cell.planner.name} between poses ends exactly at the goal "
                                       "pose; leave goal_tolerance out")
-            check_pose_query(worlds.get(cell.world), cell.planner.name,
-                             {k: v for k, v in own.items() if k != "goal_tolerance"},
+            settings = {k: v for k, v in own.items() if k != "goal_tolerance"}
+            if cell.sampler is not None:  # a car-like tree's sampler, as its query builds it (attack, session 22)
+                keys = set(parameters_of(SAMPLERS.get(cell.sampler.name))) | {"goal_sample_rate"}
+                build_sampler(cell.sampler.name, {**{k: settings.pop(k) for k in list(settings) if k in keys},
+                                                  **cell.sampler.params})
+            check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
                              cell.sampler.name if cell.sampler else "")
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)
-            if cell.world in exp.maps and own.get("resolution") is not None:
-                # (every trial was an ERROR row, docs/bench.md's own maps example among them: review, session 22)
-                raise ExperimentError(f"resolution: world '{cell.world}' is a map, planned on its own cells; "
-                                      "leave resolution out")
             continue
         params = {**own, **cell.sampler.params, **exp.budget}
         # the query's own setting, as navlab.plan takes it (it was refused here, "valid: ... goal_tolerance. Did
@@ -499,6 +521,12 @@ def validate(exp: Experiment) -> None:
         if params.get("goal_tolerance") is not None:
             check_length("goal_tolerance", params["goal_tolerance"])
         params.pop("goal_tolerance", None)
+        # and its allow_unknown (a map's unknown cells) and motion=holonomic, as navlab.plan takes them
+        allow_unknown = params.pop("allow_unknown", False)
+        if not isinstance(allow_unknown, (bool, np.bool_)):
+            raise ExperimentError(f"allow_unknown must be true or false, got {allow_unknown!r}")
+        if params.get("motion") == "holonomic":
+            params.pop("motion")
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
         planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
         try:
@@ -535,6 +563,8 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
         # who does take it, rather than the nearest name: that was 'turning_radius' itself (newcomer, session 22)
         hint = taken_elsewhere(key, planners[0], own=f"planner{'s' if len(planners) > 1 else ''} {names}") or \
             suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS)))
+        if key == "goal_tolerance":  # (the query's, which only planners for a point robot take)
+            hint = " A goal tolerance is for planners of a point robot: one between poses ends exactly at the goal pose."
         raise ExperimentError(f"parameter '{key}' applies to none of this experiment's planners ({names})." + hint)
 
 

@@ -20,11 +20,12 @@ IEEE Robotics & Automation Magazine 19(4):72–82, 2012.
 from __future__ import annotations
 
 import time
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
 from ..errors import ParameterError
+from ..limits import check_length
 from ..registry import UnknownNameError, suggest
 from ..result import Result, Status
 from ..sampling.planners import _check_query
@@ -41,16 +42,26 @@ def check_ompl_name(name: str) -> None:
 
 #: the settings navlab passes to an OMPL planner (``expand_dis``: its range)
 OMPL_PARAMS = ("expand_dis",)
+#: the planners of :data:`OMPL_NAMES` that have a range (``setRange``), so take ``expand_dis``
+RANGED = ("RRT", "RRTConnect", "RRTstar", "InformedRRTstar")
+
+
+def ompl_params(name: str) -> Tuple[str, ...]:
+    """The settings OMPL planner ``name`` takes (PRMstar and BITstar have no range)."""
+    return OMPL_PARAMS if name in RANGED else ()
 
 
 def check_ompl_query(name: str, params: Dict[str, Any], budget: Dict[str, Any]) -> None:
     """Refuse what :func:`plan_ompl` would refuse, without planning: an OMPL planner's settings other than
-    :data:`OMPL_PARAMS`, and a budget with neither ``max_iter`` nor ``max_time`` (each trial was an
-    ERROR row: review, session 22)."""
-    unknown = sorted(set(params) - set(OMPL_PARAMS))
+    :func:`ompl_params`, a range that is not a positive length, and a budget with neither ``max_iter`` nor
+    ``max_time`` (each trial was an ERROR row: review and attack, session 22)."""
+    valid = ompl_params(name)
+    unknown = sorted(set(params) - set(valid))
     if unknown:
         raise ParameterError(f"unknown parameter(s) {', '.join(unknown)} for ompl:{name}; valid: "
-                             f"{', '.join(OMPL_PARAMS)}")
+                             f"{', '.join(valid) or 'none (it has no range)'}")
+    if "expand_dis" in params:
+        check_length("expand_dis", params["expand_dis"], allow_zero=False)
     if budget.get("max_iter") is None and budget.get("max_time") is None:
         raise ParameterError(f"budget: ompl:{name} needs max_iter or max_time (an OMPL run stops on its budget)")
 

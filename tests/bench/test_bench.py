@@ -274,6 +274,7 @@ def test_a_car_like_tree_beside_a_grid_planner_takes_the_shared_resolution():
                                                                    "heading_bins": 36, "motion": "reeds_shepp"}
     assert routed_params("ompl:PRMstar", {"expand_dis": 1.0}, {}) == {}
     assert routed_params("ompl:RRT", {"expand_dis": 1.0}, {}) == {"expand_dis": 1.0}
+    assert routed_params("ompl:BITstar", {"goal_tolerance": 0.5}, {}) == {"goal_tolerance": 0.5}
 
 
 @pytest.mark.parametrize("args, note", [
@@ -328,7 +329,9 @@ def test_a_shared_goal_tolerance_is_the_querys_as_in_navlab_plan():
 
 @pytest.mark.parametrize("change, message", [
     # the attack of session 22: each passed the checks, then every trial was an ERROR row
-    ({"planners": [{"name": "ompl:PRMstar", "expand_dis": 1.0}]}, r"for ompl:PRMstar; valid: none \(it has no range\)"),
+    ({"planners": [{"name": "ompl:PRMstar", "expand_dis": 1.0}]},
+     r"for ompl:PRMstar; valid: goal_tolerance \(it has no range\)"),
+    ({"planners": ["ompl:RRTConnect"]}, "budget: ompl:RRTConnect does not count iterations; give it max_time"),
     ({"planners": [{"name": "ompl:RRT", "expand_dis": -1}]}, "expand_dis must be positive"),
     ({"worlds": ["parking"], "planners": [{"name": "rrt_star", "motion": "dubins"}],
       "samplers": [{"name": "gaussian", "sigma": -1}]}, "sigma must be positive"),
@@ -349,3 +352,14 @@ def test_what_navlab_plan_takes_a_bench_takes():
     load_experiment({**TINY, "grid": {"motion": ["holonomic", "dubins"]}, "worlds": ["parking"]})
     with pytest.raises(ValueError, match="allow_unknown must be true or false, got 'yes'"):
         load_experiment({**TINY, "params": {"allow_unknown": "yes"}})
+
+
+def test_an_ompl_planner_plans_with_the_experiments_goal_tolerance_and_records_it(tmp_path):
+    """Beside rrt_star a shared goal_tolerance went to the tree alone; OMPL planned with the world's own,
+    and its row recorded neither its range nor its tolerance (attack, session 22)."""
+    pytest.importorskip("ompl")
+    exp = load_experiment({"worlds": ["trap"], "planners": ["rrt_star", "ompl:RRTstar"], "params": {"goal_tolerance": 2.5},
+                           "budget": {"max_iter": 300}, "trials": 1})
+    rows = run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False).rows
+    ompl = [r for r in rows if r["planner"] == "ompl:RRTstar"][0]
+    assert ompl["params_used"]["goal_tolerance"] == 2.5 and ompl["params_used"]["expand_dis"] > 0

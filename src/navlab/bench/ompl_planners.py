@@ -40,15 +40,17 @@ def check_ompl_name(name: str) -> None:
                                + ", ".join(f"ompl:{n}" for n in OMPL_NAMES) + "." + suggest(name, list(OMPL_NAMES)))
 
 
-#: the settings navlab passes to an OMPL planner (``expand_dis``: its range)
-OMPL_PARAMS = ("expand_dis",)
+#: the settings navlab passes to an OMPL planner (``expand_dis``: its range; ``goal_tolerance``: the query's)
+OMPL_PARAMS = ("expand_dis", "goal_tolerance")
 #: the planners of :data:`OMPL_NAMES` that have a range (``setRange``), so take ``expand_dis``
 RANGED = ("RRT", "RRTConnect", "RRTstar", "InformedRRTstar")
+#: the planners of :data:`OMPL_NAMES` that count iterations (``numIterations``), so stop on ``max_iter``
+COUNTING = ("RRTstar", "InformedRRTstar", "BITstar")
 
 
 def ompl_params(name: str) -> Tuple[str, ...]:
     """The settings OMPL planner ``name`` takes (PRMstar and BITstar have no range)."""
-    return OMPL_PARAMS if name in RANGED else ()
+    return OMPL_PARAMS if name in RANGED else ("goal_tolerance",)
 
 
 def check_ompl_query(name: str, params: Dict[str, Any], budget: Dict[str, Any]) -> None:
@@ -59,11 +61,15 @@ def check_ompl_query(name: str, params: Dict[str, Any], budget: Dict[str, Any]) 
     unknown = sorted(set(params) - set(valid))
     if unknown:
         raise ParameterError(f"unknown parameter(s) {', '.join(unknown)} for ompl:{name}; valid: "
-                             f"{', '.join(valid) or 'none (it has no range)'}")
+                             f"{', '.join(valid)}" + ("" if "expand_dis" in valid else " (it has no range)"))
     if "expand_dis" in params:
         check_length("expand_dis", params["expand_dis"], allow_zero=False)
+    if params.get("goal_tolerance") is not None:
+        check_length("goal_tolerance", params["goal_tolerance"])
     if budget.get("max_iter") is None and budget.get("max_time") is None:
         raise ParameterError(f"budget: ompl:{name} needs max_iter or max_time (an OMPL run stops on its budget)")
+    if budget.get("max_time") is None and name not in COUNTING:
+        raise ParameterError(f"budget: ompl:{name} does not count iterations; give it max_time")
 
 
 def ompl_available() -> bool:
@@ -75,7 +81,7 @@ def ompl_available() -> bool:
 
 
 def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_time: Optional[float] = None,
-              **params: Any) -> Result:
+              goal_tolerance: Optional[float] = None, **params: Any) -> Result:
     """Solve ``world``'s query with OMPL planner ``name``.
 
     Parameters
@@ -88,6 +94,8 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     max_iter, max_time :
         Budget; at least one is needed. ``range`` (OMPL's step) may be given
         as ``expand_dis``.
+    goal_tolerance : float, optional
+        [m] The query's, replacing the world's (as ``navlab.plan`` takes it).
     """
     check_ompl_name(name)
     try:
@@ -124,7 +132,8 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     start, goal = space.allocState(), space.allocState()
     start[0], start[1] = world.start
     goal[0], goal[1] = world.goal
-    pdef.setStartAndGoalStates(start, goal, max(world.goal_tolerance, 1e-9))
+    tolerance = world.goal_tolerance if goal_tolerance is None else float(goal_tolerance)
+    pdef.setStartAndGoalStates(start, goal, max(tolerance, 1e-9))
     pdef.setOptimizationObjective(ob.PathLengthOptimizationObjective(si))
     planner = getattr(og, name)(si)
     if "expand_dis" in params and hasattr(planner, "setRange"):
@@ -133,6 +142,7 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
         raise ParameterError(f"unknown parameter(s) {', '.join(sorted(params))} for ompl:{name}; valid: expand_dis")
     planner.setProblemDefinition(pdef)
     planner.setup()
+    step = planner.getRange() if hasattr(planner, "getRange") else None  # (set up: its default computed)
     counts = hasattr(planner, "numIterations")
 
     def done() -> bool:
@@ -148,7 +158,9 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     stats: Dict[str, Any] = {"iterations": planner.numIterations() if counts else None, "time_s": elapsed,
                              "solve_time_s": time.perf_counter() - t_solve, "collision_checks": checker.checks,
                              "nodes": None, "first_solution_iteration": None, "first_solution_time_s": None}
-    params_out = {"planner": f"ompl:{name}", "max_iter": max_iter, "max_time": max_time, "seed": seed}
+    # what it ran with, as navlab's planners record theirs (its range and goal tolerance were left out)
+    params_out = {"planner": f"ompl:{name}", "max_iter": max_iter, "max_time": max_time, "seed": seed,
+                  "expand_dis": step, "goal_tolerance": tolerance}
     if not pdef.hasSolution():
         return Result(Status.FAILED, stats=stats, params=params_out, reason="OMPL found no path within the budget")
     path = pdef.getSolutionPath()

@@ -363,3 +363,12 @@ def test_an_ompl_planner_plans_with_the_experiments_goal_tolerance_and_records_i
     rows = run_experiment(exp, tmp_path, executor="serial", progress=False, plots=False).rows
     ompl = [r for r in rows if r["planner"] == "ompl:RRTstar"][0]
     assert ompl["params_used"]["goal_tolerance"] == 2.5 and ompl["params_used"]["expand_dis"] > 0
+
+
+@pytest.mark.parametrize("planner", ["astar", "hybrid_astar", {"name": "rrt_star", "motion": "dubins"}])
+def test_a_resolution_too_fine_or_too_coarse_for_the_world_is_refused_before_any_trial(planner):
+    """resolution=0.0001 on trap passed the checks; every trial then refused its 1e+09-cell raster
+    (attack, session 22)."""
+    for resolution, words in ((0.0001, "more than 1e\\+08"), (1000.0, "larger than the")):
+        with pytest.raises(ValueError, match=f"resolution {resolution:g} m .*{words}"):
+            load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"resolution": resolution}})

@@ -511,9 +511,11 @@ def validate(exp: Experiment) -> None:
                                                   **cell.sampler.params})
             check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
                              cell.sampler.name if cell.sampler else "")
+            _check_raster(worlds.get(cell.world), own)
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)
+            _check_raster(worlds.get(cell.world), own)
             continue
         params = {**own, **cell.sampler.params, **exp.budget}
         # the query's own setting, as navlab.plan takes it (it was refused here, "valid: ... goal_tolerance. Did
@@ -536,6 +538,15 @@ def validate(exp: Experiment) -> None:
     _check_shared_params_used(exp, used)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
+
+
+def _check_raster(world, settings: Dict[str, Any]) -> None:
+    """Refuse a ``resolution`` that rasterises ``world`` (a geometric world; None: none to check) to more
+    cells than navlab holds, or to none: each trial refused it, an ERROR row (attack, session 22)."""
+    from ..grid.rasterize import grid_shape
+
+    if world is not None and world.occupancy is None and settings.get("resolution") is not None:
+        grid_shape(world.bounds, settings["resolution"])
 
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:

@@ -372,3 +372,11 @@ def test_a_resolution_too_fine_or_too_coarse_for_the_world_is_refused_before_any
     for resolution, words in ((0.0001, "more than 1e\\+08"), (1000.0, "larger than the")):
         with pytest.raises(ValueError, match=f"resolution {resolution:g} m .*{words}"):
             load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"resolution": resolution}})
+
+
+@pytest.mark.parametrize("planner", ["hybrid_astar", {"name": "rrt_star", "motion": "dubins"}])
+def test_a_turning_radius_too_large_for_the_world_is_refused_before_any_trial(planner):
+    """turning_radius=300 on trap passed the checks; every trial refused it (attack, session 22)."""
+    with pytest.raises(ValueError, match="turning_radius 300 m: one heading step .* longer than"):
+        load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"turning_radius": 300}})
+    load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"turning_radius": 2.0}})

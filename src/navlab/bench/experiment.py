@@ -512,6 +512,7 @@ def validate(exp: Experiment) -> None:
             check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
                              cell.sampler.name if cell.sampler else "")
             _check_raster(worlds.get(cell.world), own)
+            _check_turning_scale(worlds.get(cell.world), cell.world, own)
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
             split_grid_params(cell.planner.name, own)
@@ -547,6 +548,23 @@ def _check_raster(world, settings: Dict[str, Any]) -> None:
 
     if world is not None and world.occupancy is None and settings.get("resolution") is not None:
         grid_shape(world.bounds, settings["resolution"])
+
+
+def _check_turning_scale(world, name: str, settings: Dict[str, Any]) -> None:
+    """Refuse a turning radius whose one heading step of arc is longer than ``world`` (a geometric world;
+    None: none to check) is across, which every trial refused, an ERROR row (attack, session 22: 300 m on
+    trap). Measured on the world's bounds, which its raster lies within, so what is refused here would be
+    refused by each trial too."""
+    radius = settings.get("turning_radius")
+    if world is None or world.occupancy is not None or radius is None:
+        return
+    bins = settings.get("heading_bins", 72)
+    extent = math.hypot(world.bounds.xmax - world.bounds.xmin, world.bounds.ymax - world.bounds.ymin)
+    step_arc = float(radius) * 2.0 * math.pi / int(bins)
+    if step_arc > extent:
+        raise ExperimentError(f"turning_radius {radius:g} m: one heading step ({360 / int(bins):g}°) of arc is "
+                              f"{step_arc:.3g} m, longer than world '{name}' ({extent:.3g} m across); use a smaller "
+                              "radius")
 
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:

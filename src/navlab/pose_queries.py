@@ -229,6 +229,10 @@ def check_pose_query(world, planner: str, params: Dict[str, Any], sampler: str =
 
         settings = _query(world, planner, params, _tree_pose_params(), sampler)[1]
         _tree_heading_bins(settings.pop("heading_bins", 72))
+        # (a car-like rrt took it and recorded it, and never read it: attack, session 22)
+        if planner == "rrt" and "connect_circle_dist" in settings:
+            raise ParameterError("connect_circle_dist: rrt does not rewire (rrt_star and informed_rrt_star take "
+                                 "it); leave connect_circle_dist out")
         check_se2_settings(settings)
 
 

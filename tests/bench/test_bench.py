@@ -6,6 +6,8 @@ from pathlib import Path
 
 import pytest
 
+import navlab
+
 from navlab.bench import ExperimentError, load_experiment, run_experiment, trial_seed
 from navlab.bench.executors import EXECUTORS
 from navlab.bench.store import read_rows
@@ -380,3 +382,12 @@ def test_a_turning_radius_too_large_for_the_world_is_refused_before_any_trial(pl
     with pytest.raises(ValueError, match="turning_radius 300 m: one heading step .* longer than"):
         load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"turning_radius": 300}})
     load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"turning_radius": 2.0}})
+
+
+def test_a_car_like_rrt_refuses_connect_circle_dist_as_a_holonomic_one_does():
+    """It took the setting and recorded it in params_used, and never read it (attack, session 22)."""
+    with pytest.raises(ValueError, match="connect_circle_dist: rrt does not rewire"):
+        navlab.plan("parking", planner="rrt", motion="reeds_shepp", connect_circle_dist=5.0, max_iter=50)
+    with pytest.raises(ValueError, match="connect_circle_dist: rrt does not rewire"):
+        load_experiment({**TINY, "worlds": ["parking"], "planners": ["rrt"],
+                         "params": {"motion": "reeds_shepp", "connect_circle_dist": 5.0}})

@@ -31,9 +31,8 @@ from .errors import ParameterError
 from .limits import check_seed, shown
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
-                      planner_names, split_grid_params, split_params, tree_query)
+                      planner_names, split_grid_params, split_params, take_sampler_params, tree_query)
 from .result import Result, Status
-from .registry import parameters_of
 from .sampling.planners import make_planner
 from .sampling.samplers import SAMPLERS
 
@@ -249,9 +248,7 @@ def _pose_plan(source: Any, planner: str, sampler: Optional[str], start, goal, s
     if goal_tolerance not in (None, 0, 0.0):
         raise ParameterError(f"goal_tolerance: {planner} ends exactly at the goal pose; leave goal_tolerance out")
     if sampler is not None:
-        sampler_keys = set(parameters_of(SAMPLERS.get(sampler))) | {"goal_sample_rate"}
-        to_sampler = {k: params.pop(k) for k in list(params) if k in sampler_keys}
-        samp = build_sampler(sampler, to_sampler)
+        samp = build_sampler(sampler, take_sampler_params(sampler, params))
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius,
                         allow_unknown=params.get("allow_unknown"))
     check_radius_not_dropped(world, robot_radius, params, planner)

@@ -103,6 +103,14 @@ def split_grid_params(planner: str, params: dict) -> dict:
     return check_grid_settings(params)
 
 
+def take_sampler_params(sampler: str, params: dict) -> dict:
+    """Remove from ``params`` and return the settings of ``sampler`` (and ``goal_sample_rate``): a car-like
+    tree's query splits them off so, before its own settings are checked (``navlab.plan`` and the bench's
+    checks alike)."""
+    keys = set(parameters_of(SAMPLERS.get(sampler))) | {"goal_sample_rate"}
+    return {k: params.pop(k) for k in list(params) if k in keys}
+
+
 def build_sampler(sampler: str, params: dict) -> Sampler:
     params = dict(params)
     rate = params.pop("goal_sample_rate", None) if "goal_sample_rate" not in parameters_of(SAMPLERS.get(sampler)) else None

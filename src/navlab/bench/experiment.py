@@ -442,10 +442,8 @@ def _mapping(value: Any, field: str) -> Dict[str, Any]:
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
-    from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params
-    from ..registry import parameters_of
+    from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params, take_sampler_params
     from ..sampling.planners import make_planner
-    from ..sampling.samplers import SAMPLERS
     from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
 
     for planner in exp.planners:
@@ -481,7 +479,8 @@ def validate(exp: Experiment) -> None:
     used: set = set()  # the shared settings some cell's planner takes
     for cell in exp.cells():
         # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
-        used |= set(routed_params(cell.planner.name, cell.params, cell.planner.params)) & set(cell.params)
+        own = routed_params(cell.planner.name, cell.params, cell.planner.params)
+        used |= set(own) & set(cell.params)
         if cell.planner.name in POSE_PLANNERS:
             _check_pose_params(cell.planner.name, cell.planner.params)
         if cell.planner.name.startswith(OMPL_PREFIX):
@@ -489,10 +488,8 @@ def validate(exp: Experiment) -> None:
             if not ompl_available():
                 raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
                                       "pip install 'navlab[ompl]'")
-            check_ompl_query(cell.planner.name[len(OMPL_PREFIX):],
-                             routed_params(cell.planner.name, cell.params, cell.planner.params), exp.budget)
+            check_ompl_query(cell.planner.name[len(OMPL_PREFIX):], own, exp.budget)
             continue
-        own = routed_params(cell.planner.name, cell.params, cell.planner.params)
         if cell.world in exp.maps and own.get("resolution") is not None:
             # (every trial was an ERROR row, docs/bench.md's own maps example among them: review and attack,
             # session 22)
@@ -506,8 +503,7 @@ def validate(exp: Experiment) -> None:
                                       "pose; leave goal_tolerance out")
             settings = {k: v for k, v in own.items() if k != "goal_tolerance"}
             if cell.sampler is not None:  # a car-like tree's sampler, as its query builds it (attack, session 22)
-                keys = set(parameters_of(SAMPLERS.get(cell.sampler.name))) | {"goal_sample_rate"}
-                build_sampler(cell.sampler.name, {**{k: settings.pop(k) for k in list(settings) if k in keys},
+                build_sampler(cell.sampler.name, {**take_sampler_params(cell.sampler.name, settings),
                                                   **cell.sampler.params})
             check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
                              cell.sampler.name if cell.sampler else "")
@@ -555,16 +551,13 @@ def _check_turning_scale(world, name: str, settings: Dict[str, Any]) -> None:
     None: none to check) is across, which every trial refused, an ERROR row (attack, session 22: 300 m on
     trap). Measured on the world's bounds, which its raster lies within, so what is refused here would be
     refused by each trial too."""
-    radius = settings.get("turning_radius")
-    if world is None or world.occupancy is not None or radius is None:
+    from ..sampling.footprint_lattice import check_heading_step
+
+    if world is None or world.occupancy is not None or settings.get("turning_radius") is None:
         return
-    bins = settings.get("heading_bins", 72)
     extent = math.hypot(world.bounds.xmax - world.bounds.xmin, world.bounds.ymax - world.bounds.ymin)
-    step_arc = float(radius) * 2.0 * math.pi / int(bins)
-    if step_arc > extent:
-        raise ExperimentError(f"turning_radius {radius:g} m: one heading step ({360 / int(bins):g}°) of arc is "
-                              f"{step_arc:.3g} m, longer than world '{name}' ({extent:.3g} m across); use a smaller "
-                              "radius")
+    check_heading_step(float(settings["turning_radius"]), int(settings.get("heading_bins", 72)), extent,
+                       f"world '{name}'")
 
 
 def _check_pose_params(planner: str, params: Dict[str, Any]) -> None:

@@ -386,10 +386,16 @@ def _turning_scale_checked(turning_radius: float, vertices, disc: float, resolut
     if turning_radius < smallest:
         raise ParameterError(f"turning_radius {turning_radius:g} m is too small for a footprint reaching {reach:g} m "
                              f"on {resolution:g} m cells: at least {smallest:.3g} m (or plan on finer cells: resolution)")
+    check_heading_step(turning_radius, bins, extent)
+
+
+def check_heading_step(turning_radius: float, bins: int, extent: float, where: str = "the map") -> None:
+    """Refuse, naming ``turning_radius``, a radius whose one heading step of arc (2π·r / bins) is longer
+    than ``extent`` [m], ``where``'s diagonal: the lattice could not turn inside it."""
     step_arc = turning_radius * 2.0 * math.pi / bins
     if step_arc > extent:
         raise ParameterError(f"turning_radius {turning_radius:g} m: one heading step ({360 / bins:g}°) of arc is "
-                             f"{step_arc:.3g} m, longer than the map ({extent:.3g} m across); use a smaller radius")
+                             f"{step_arc:.3g} m, longer than {where} ({extent:.3g} m across); use a smaller radius")
 
 
 @functools.lru_cache(maxsize=64)

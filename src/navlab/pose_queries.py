@@ -23,7 +23,8 @@ import numpy as np
 from .errors import ParameterError
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
-from .setting_names import HYBRID_PARAMS, POSE_PLANNERS, TREE_POSE_PLANNERS  # noqa: F401 (here since they were first)
+# (HYBRID_PARAMS, POSE_PLANNERS and TREE_POSE_PLANNERS here since they were first)
+from .setting_names import CAR_QUERY_PARAMS, HYBRID_PARAMS, POSE_PLANNERS, TREE_POSE_PLANNERS  # noqa: F401
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
@@ -159,8 +160,8 @@ def _query(world, planner: str, params: Dict[str, Any], valid, sampler: str = ""
                                f"valid: {', '.join(valid)}."
                                + setting_hint(unknown[0], planner, list(valid) + also, sampler) + budget)
     common = {"motion": check_motion(settings.pop("motion", "reeds_shepp")),
-              "turning_radius": check_turning_radius(settings.pop("turning_radius", DEFAULT_TURNING_RADIUS if world is None
-                                                                  else scene_turning_radius(world))),
+              "turning_radius": check_turning_radius(settings.pop(
+                  "turning_radius", DEFAULT_TURNING_RADIUS if world is None else scene_turning_radius(world))),
               "footprint": query_footprint(world, settings.pop("footprint", None)),
               "resolution": settings.pop("resolution", None)}
     if common["resolution"] is not None:  # its sign and kind (the raster's own checks come after the warm-up,
@@ -240,7 +241,7 @@ def _tree_pose_params() -> Tuple[str, ...]:
     """The settings of a tree planner between poses."""
     from .sampling.se2_planners import SE2_TREE_PARAMS
 
-    return ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
+    return (*CAR_QUERY_PARAMS, *SE2_TREE_PARAMS)
 
 
 def _tree_heading_bins(bins: Any) -> int:

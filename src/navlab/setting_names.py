@@ -19,15 +19,17 @@ COSTMAP_PARAMS = ("costmap", "inflation_radius", "cost_scaling_factor", "cost_tr
 POSE_PLANNERS = ("hybrid_astar",)
 #: tree planners that also plan between poses when ``motion`` is dubins or reeds_shepp
 TREE_POSE_PLANNERS = ("rrt", "rrt_star", "informed_rrt_star")
+#: the settings of every query between poses (Hybrid A*'s and a car-like tree's): its motion, robot and raster
+CAR_QUERY_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown")
 #: settings of ``hybrid_astar`` (see :func:`navlab.grid.hybrid_astar.plan_hybrid`), plus the query's own
-HYBRID_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", "heading_bins",
+HYBRID_PARAMS = (*CAR_QUERY_PARAMS, "heading_bins",
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
                  "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
                  "waypoint_spacing", "exact_retry", "distance_table")
 #: the settings of ``hybrid_astar`` that no other planner takes (an experiment's shared ones go to it alone):
 #: all but the grid planners' and those a car-like tree's query takes too
-HYBRID_ONLY = tuple(k for k in HYBRID_PARAMS if k not in GRID_PARAMS and
-                    k not in ("motion", "turning_radius", "footprint", "heading_bins"))
+HYBRID_ONLY = tuple(k for k in HYBRID_PARAMS if k not in GRID_PARAMS and k not in CAR_QUERY_PARAMS and
+                    k != "heading_bins")
 
 
 def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
@@ -103,7 +105,7 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
         takers.append("planner astar with costmap=true")
     # a car-like tree's: its lattice's heading_bins, and the query's motion, turning radius, footprint and raster
     # (astar was told turning_radius was hybrid_astar's alone: review, session 22)
-    car_tree = ("motion", "turning_radius", "footprint", "resolution", "allow_unknown", *SE2_TREE_PARAMS)
+    car_tree = (*CAR_QUERY_PARAMS, *SE2_TREE_PARAMS)
     if key in car_tree and key not in planners_keys:
         takers.append(f"planners {listed(sorted(TREE_POSE_PLANNERS))}"
                       + ("" if key == "motion" else " with motion=dubins or reeds_shepp"))

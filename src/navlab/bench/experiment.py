@@ -586,7 +586,8 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
         hint = taken_elsewhere(key, planners[0], own=f"planner{'s' if len(planners) > 1 else ''} {names}") or \
             suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS)))
         if key == "goal_tolerance":  # (the query's, which only planners for a point robot take)
-            hint = " A goal tolerance is for planners of a point robot: one between poses ends exactly at the goal pose."
+            hint = (" A goal tolerance is for planners of a point robot: one between poses ends exactly at the "
+                    "goal pose.")
         raise ExperimentError(f"parameter '{key}' applies to none of this experiment's planners ({names})." + hint)
 
 

@@ -411,3 +411,9 @@ def test_bad_settings_are_refused_before_any_kernel_loads(monkeypatch, world, pa
     monkeypatch.setattr(planning, "warm_pose_planner", no_warm_up)
     with pytest.raises((navlab.ParameterError, UnknownNameError), match=message):
         navlab.plan(world, **params)
+
+
+def test_a_tree_query_records_the_goal_tolerance_and_allow_unknown_it_ran_with():
+    """A bench row's params_used left them out though the search used them (newcomer, session 22)."""
+    r = navlab.plan("trap", planner="rrt_star", max_iter=50, goal_tolerance=0.5)
+    assert r.params["goal_tolerance"] == 0.5 and r.params["allow_unknown"] is False

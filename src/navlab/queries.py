@@ -128,6 +128,8 @@ def tree_query(world, planner: str, sampler: str, seed: Any, params: dict) -> Re
     samp = build_sampler(sampler, to_sampler)
     result = make_planner(planner, sampler=samp, **to_planner).plan(world, seed)
     result.params.update(samp.resolved_params(world))
+    # the query's own settings it ran with, which a bench row's params_used left out (newcomer, session 22)
+    result.params.update(goal_tolerance=float(world.goal_tolerance), allow_unknown=bool(world.allow_unknown))
     return result
 
 

@@ -173,3 +173,24 @@ def test_a_suite_run_with_other_settings_says_so_beside_the_document():
         "This run is not the suite 'samplers' as it stands: budget.max_iter 200 here, 5000 in the suite; trials 2 "
         "here, 20 in the suite. The document's numbers below go with the suite's settings.")
     assert _changed_from_suite({**edited, "name": "mine"}) == ""  # no suite of that name: nothing to say
+
+
+def test_a_smoke_run_with_another_planner_names_it_and_claims_no_document():
+    """(newcomer run, session 22: the smoke suite has no document, yet the line said "The document's numbers
+    below go with the suite's settings", and it showed the planners as Python dictionaries)"""
+    from navlab.bench.experiment import load_experiment
+    from navlab.bench.report import _changed_from_suite
+    from navlab.bench.suites import find_suite
+
+    smoke = load_experiment(find_suite("smoke")(), "suite").to_dict()
+    astar = load_experiment({**find_suite("smoke")(), "planners": ["astar"], "trials": 1}, "here").to_dict()
+    assert _changed_from_suite(astar) == (
+        "This run is not the suite 'smoke' as it stands: planners ['astar'] here, ['rrt_star'] in the suite; "
+        "trials 1 here, 4 in the suite.")
+    # a planner's own settings are part of what differs, not hidden behind its name
+    tuned = load_experiment({**find_suite("smoke")(), "planners": [{"name": "rrt_star", "expand_dis": 2.0}]},
+                            "here").to_dict()
+    assert _changed_from_suite(tuned) == (
+        "This run is not the suite 'smoke' as it stands: planners ['rrt_star (expand_dis=2.0)'] here, ['rrt_star'] in "
+        "the suite.")
+    assert _changed_from_suite(smoke) == ""

@@ -47,12 +47,35 @@ def _changed_from_suite(experiment: Dict[str, Any]) -> str:
         documented = load_experiment(make(), f"suite '{name}'").to_dict()
     except (ExperimentError, OSError):  # (its data gone since: nothing to compare with)
         return ""
-    changed = differences(experiment, documented, ignored=("description", "name", "claims", "study"),
-                          labels=("here", "in the suite"))
+    changed = differences(_labelled(experiment), _labelled(documented),
+                          ignored=("description", "name", "claims", "study"), labels=("here", "in the suite"))
     if not changed:
         return ""
-    return (f"This run is not the suite '{name}' as it stands: {'; '.join(changed)}. The document's numbers "
-            "below go with the suite's settings.")
+    # (a suite with no document to compare with, such as smoke, claimed "the document's numbers below" for a
+    # table it does not have: newcomer run, session 22)
+    tail = " The document's numbers below go with the suite's settings." if (documented.get("study") or {}).get(
+        "reference") else ""
+    return f"This run is not the suite '{name}' as it stands: {'; '.join(changed)}.{tail}"
+
+
+def _labelled(experiment: Dict[str, Any]) -> Dict[str, Any]:
+    """``experiment`` with its planners and samplers as their labels followed by their own settings
+    (``rrt_star``, ``astar (weight=2)``), not as the dictionaries
+    :meth:`~navlab.bench.experiment.Experiment.to_dict` writes (a report line read
+    ``planners [{'name': 'astar', 'params': {}, 'label': 'astar'}] here``)."""
+    def readable(part):
+        if not isinstance(part, dict):
+            return part
+        own = part.get("params") or {}
+        settings = ", ".join(f"{key}={value}" for key, value in sorted(own.items()))
+        label = part.get("label") or part.get("name")
+        return f"{label} ({settings})" if settings else label
+
+    out = dict(experiment)
+    for key in ("planners", "samplers"):
+        if isinstance(out.get(key), list):
+            out[key] = [readable(part) for part in out[key]]
+    return out
 
 
 def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[str, Any],

@@ -50,6 +50,16 @@ def test_start_and_goal_misuse_is_one_line(args, message):
     assert res.exit_code == 2 and message in res.output
 
 
+def test_a_map_without_start_and_goal_asks_for_the_flags(a_map, tmp_path):
+    """(the line gave the experiment file's form, {map: ..., scen: ...}, to a user of flags: newcomer, session 22)"""
+    moving_ai = tmp_path / "tiny.map"
+    moving_ai.write_text("type octile\nheight 2\nwidth 3\nmap\n...\n.@.\n")
+    for world in (str(a_map), str(moving_ai)):
+        res = CliRunner().invoke(main, ["bench", "--planner", "astar", "--world", world])
+        assert res.exit_code == 2, res.output
+        assert f"--world {world} is a map, which has no start or goal: give --start X Y and --goal X Y" in res.output
+
+
 def test_grid_plan_reports_the_warm_up_apart_from_the_search():
     import numpy as np
 

@@ -311,10 +311,20 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
 
 def _as_world(world: str, start, goal):
     """A --world as the experiment names it: a map with --start/--goal becomes a map world with that query."""
-    if start is None:
-        return world
+    from ..errors import NavlabError
+    from ..limits import short_name
     from ..world.sources import source_kind
 
+    if start is None:
+        try:
+            kind = source_kind(world)
+        except NavlabError:  # (not a world at all: the experiment's check says so, naming it)
+            return world
+        if kind in ("ros_map", "movingai_map"):  # (the experiment's line gave the file form: newcomer, session 22)
+            raise click.UsageError(f"--world {short_name(world)} is a map, which has no start or goal: give "
+                                   "--start X Y and --goal X Y in metres (or, in an experiment file, "
+                                   "{map: FILE, scen: FILE.scen, queries: N} for a Moving AI scenario)")
+        return world
     if source_kind(world) not in ("ros_map", "movingai_map"):
         raise click.UsageError(f"--start and --goal are for maps (map_server YAML, Moving AI .map); {world!r} "
                                "has its own start and goal")

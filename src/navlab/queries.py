@@ -10,7 +10,7 @@ planner and its sampler by name.
 from __future__ import annotations
 
 import time
-from typing import Any, Dict
+from typing import Any, Dict, Optional
 
 import numpy as np
 
@@ -234,6 +234,31 @@ def _without_repeats(path: np.ndarray) -> np.ndarray:
     return path[keep]
 
 
+def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[float] = None) -> None:
+    """Refuse a setting of A* on a costmap (``costmap=True``) that :func:`costmap_query` would: a planner
+    other than astar, an unknown name, a value out of range, and, given the world's ``robot_radius``, an
+    inflation radius below it. The bench checks an experiment with it before any trial (its trials of
+    ``{name: astar, costmap: true}`` were refused by a line listing costmap=true as valid: attack, session 22)."""
+    from .grid.settings import check_grid_settings
+    from .world.costmap import _length, _positive
+
+    if algorithm != "astar":
+        raise ParameterError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
+    unknown = sorted(set(params) - set(COSTMAP_PARAMS))
+    if unknown:
+        raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
+                         + suggest(unknown[0], list(COSTMAP_PARAMS)))
+    check_grid_settings({k: params[k] for k in ("resolution", "allow_unknown") if k in params})
+    inflation = _length("inflation_radius", params.get("inflation_radius", 0.55), allow_zero=True)
+    _positive("cost_scaling_factor", params.get("cost_scaling_factor", 3.0), allow_zero=True)
+    multiplier = params.get("cost_travel_multiplier", 0.0)
+    if not is_finite_real(multiplier) or multiplier < 0:  # (10**400: an OverflowError deeper down until session 18)
+        raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {shown(multiplier)}")
+    if robot_radius is not None and inflation < robot_radius:
+        raise ParameterError(f"inflation_radius = {inflation:g} m is below the robot's radius {robot_radius:g} m: "
+                             "cells the robot's body reaches would cost nothing")
+
+
 def costmap_query(world, algorithm: str, params: dict) -> Result:
     """A* over the world's Nav2-style costmap (``costmap=True``): the static layer (the map's
     cells, or the world rasterised), inflated for a disc of the world's robot radius with Nav2's
@@ -243,18 +268,11 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     from .world.costmap import LayeredCostmap
     from .world.footprint import Footprint
 
-    if algorithm != "astar":
-        raise ParameterError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
-    unknown = sorted(set(params) - set(COSTMAP_PARAMS))
-    if unknown:
-        raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
-                         + suggest(unknown[0], list(COSTMAP_PARAMS)))
+    check_costmap_settings(algorithm, params)
     t0 = time.perf_counter()
     settings = {"inflation_radius": params.get("inflation_radius", 0.55),
                 "cost_scaling_factor": params.get("cost_scaling_factor", 3.0)}
     multiplier = params.get("cost_travel_multiplier", DEFAULT_COST_TRAVEL_MULTIPLIER)
-    if not is_finite_real(multiplier):  # (10**400: an OverflowError deeper down until session 18)
-        raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {shown(multiplier)}")
     footprint = Footprint.disc(max(world.robot_radius, MIN_LENGTH))
     source = world.occupancy if world.occupancy is not None else world
     layers = LayeredCostmap(source, footprint, resolution=params.get("resolution"), **settings)

@@ -355,7 +355,7 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
     algorithms, the others to tree and OMPL planners), then its own."""
     from ..pose_queries import HYBRID_PARAMS, POSE_PLANNERS
     from ..queries import GRID_PARAMS
-    from ..setting_names import HYBRID_ONLY
+    from ..setting_names import COSTMAP_PARAMS, HYBRID_ONLY
 
     if planner in POSE_PLANNERS:  # its own settings (motion, turning_radius, ...)
         return {**{k: v for k, v in shared.items() if k in HYBRID_PARAMS}, **own}
@@ -364,8 +364,9 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
 
         takes = set(ompl_params(planner[len(OMPL_PREFIX):]))
         return {**{k: v for k, v in shared.items() if k in takes}, **own}
-    if not samples(planner):  # a grid algorithm
-        return {**{k: v for k, v in shared.items() if k in GRID_PARAMS and k not in HYBRID_ONLY}, **own}
+    if not samples(planner):  # a grid algorithm; astar on a costmap takes the costmap's settings instead
+        takes = COSTMAP_PARAMS if {**shared, **own}.get("costmap") is True else GRID_PARAMS
+        return {**{k: v for k, v in shared.items() if k in takes and k not in HYBRID_ONLY}, **own}
     car = {**shared, **own}.get("motion") in ("dubins", "reeds_shepp")
 
     def takes(key: str) -> bool:
@@ -382,7 +383,7 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
             return car
         if key == "goal_tolerance":
             return not car
-        return key not in GRID_PARAMS
+        return key not in GRID_PARAMS and key not in COSTMAP_PARAMS
 
     return {**{k: v for k, v in shared.items() if takes(k)}, **own}
 
@@ -442,7 +443,8 @@ def _mapping(value: Any, field: str) -> Dict[str, Any]:
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
-    from ..queries import build_sampler, is_grid_planner, split_grid_params, split_params, take_sampler_params
+    from ..queries import (build_sampler, check_costmap_settings, is_grid_planner, split_grid_params, split_params,
+                           take_sampler_params)
     from ..sampling.planners import make_planner
     from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
 
@@ -510,8 +512,16 @@ def validate(exp: Experiment) -> None:
             _check_raster(worlds.get(cell.world), own)
             _check_turning_scale(worlds.get(cell.world), cell.world, own)
             continue
+        if cell.sampler is None and own.get("costmap") not in (None, False):  # astar on a costmap, as plan takes it
+            if own["costmap"] is not True:
+                raise ExperimentError(f"costmap must be true or false, got {shown(own['costmap'])}")
+            world = worlds.get(cell.world)
+            check_costmap_settings(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"},
+                                   None if world is None else world.robot_radius)
+            _check_raster(world, own)
+            continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
-            split_grid_params(cell.planner.name, own)
+            split_grid_params(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"})
             _check_raster(worlds.get(cell.world), own)
             continue
         params = {**own, **cell.sampler.params, **exp.budget}

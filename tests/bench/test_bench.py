@@ -236,6 +236,24 @@ def test_ompl_anchor_rows(tmp_path):
     assert rows[0]["iterations"] >= 2000 or rows[0]["time_s"] >= 5.0
 
 
+def test_an_ompl_approximate_row_says_how_far_from_the_goal_it_ended():
+    """(OMPL's APPROXIMATE rows gave no reason, where navlab's planners give one: attack, session 22)"""
+    pytest.importorskip("ompl")
+    import re
+
+    import numpy as np
+
+    from navlab.bench.ompl_planners import plan_ompl
+    from navlab.world.sources import load_source
+
+    trap = load_source("trap")  # 50 iterations do not get out of the bug trap
+    result = plan_ompl(trap, "RRTstar", 0, max_iter=50)
+    assert result.status.name == "APPROXIMATE"
+    found = re.fullmatch(r"goal not reached in (\d+) iterations; the path ends (\S+) m from the goal", result.reason)
+    assert found and int(found[1]) == result.stats["iterations"]
+    assert float(found[2]) == pytest.approx(np.linalg.norm(result.path[-1] - trap.goal), rel=1e-3)
+
+
 @pytest.mark.parametrize("change, message", [
     ({"grid": {k: list(range(10)) for k in "abcdefgh"}}, r"the experiment has [0-9.]+e\+08 cells"),
     ({"trials": 10**9}, r"'trials' must be at most 100000 \(what a run supports\), got 1000000000"),

@@ -167,4 +167,10 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     pts = np.array([[path.getState(i)[0], path.getState(i)[1]] for i in range(path.getStateCount())])
     status = Status.EXACT if pdef.hasExactSolution() else Status.APPROXIMATE
     cost = float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
-    return Result(status, path=pts, cost=cost, stats=stats, params=params_out)
+    # an APPROXIMATE row says why, as navlab's planners' do (it gave none: attack, session 22)
+    spent = f"{stats['iterations']} iterations" if counts and stats["iterations"] is not None else \
+        f"{elapsed:.3g} s"
+    reason = "" if status == Status.EXACT else (
+        f"goal not reached in {spent}; the path ends {np.linalg.norm(pts[-1] - np.asarray(world.goal, float)):.4g} m "
+        "from the goal")
+    return Result(status, path=pts, cost=cost, stats=stats, params=params_out, reason=reason)

@@ -8,6 +8,7 @@ import threading
 
 import numpy as np
 import pytest
+import yaml
 
 import navlab
 from navlab.bench import load_experiment
@@ -169,6 +170,37 @@ def test_a_claim_on_a_swept_value_is_accepted():
     load_experiment({"worlds": ["trap"], "planners": ["rrt_star"], "trials": 1,
                      "grid": {"expand_dis": [1, 2]},
                      "claims": [{"text": "x", "metric": "cost", "lower": "expand_dis=1", "higher": "expand_dis=2"}]})
+
+
+def test_a_sweep_a_planner_ignores_gives_it_one_cell_and_a_note(tmp_path):
+    """``grid: {expand_dis: [1, 2]}`` gave hybrid_astar two cells, labelled expand_dis=1 and 2, that ran the
+    same search, so it was run and counted twice as if expand_dis mattered (newcomer, session 22)."""
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+
+    data = {"worlds": ["trap_car"], "planners": ["hybrid_astar", "rrt_star", {"name": "astar", "label": "a"},
+                                                 {"name": "rrt", "expand_dis": 3.0}],
+            "params": {"motion": "reeds_shepp"}, "grid": {"expand_dis": [1, 2], "heuristic": ["octile", "euclidean"]},
+            "trials": 1}
+    exp = load_experiment(data)
+    swept = [(c.planner.title, {k: c.params[k] for k in ("expand_dis", "heuristic") if k in c.params})
+             for c in exp.cells()]
+    assert swept == [("hybrid_astar", {}), ("rrt_star", {"expand_dis": 1}), ("rrt_star", {"expand_dis": 2}),
+                     ("a", {"heuristic": "octile"}), ("a", {"heuristic": "euclidean"}),
+                     ("rrt", {})]  # rrt's own expand_dis wins over the sweep
+    assert exp.unswept() == {"hybrid_astar": ["expand_dis", "heuristic"], "rrt_star": ["heuristic"],
+                             "a": ["expand_dis"], "rrt": ["expand_dis", "heuristic"]}
+    assert len({spec["trial_id"] for spec in exp.trial_specs()}) == len(exp.trial_specs()) == 6
+    path = tmp_path / "e.yaml"
+    path.write_text(yaml.safe_dump({**data, "name": "e", "budget": {"max_iter": 50}}))
+    res = CliRunner().invoke(main, ["bench", str(path), "--show"])
+    assert res.exit_code == 0
+    res = CliRunner().invoke(main, ["bench", str(path), "--out", str(tmp_path / "o"), "--no-plots", "-q",
+                                    "--executor", "serial"])
+    assert ("note: hybrid_astar does not take the swept expand_dis and heuristic: its cells are not split by "
+            "them (each runs once, not once per value)") in res.output
+    assert "note: a does not take the swept expand_dis: its cells are not split by it" in res.output
 
 
 def test_merge_keys_may_still_override():

@@ -145,15 +145,40 @@ class Experiment:
     samplers_given: bool = True
 
     def cells(self) -> List[Cell]:
-        keys = sorted(self.grid)
-        points = [dict(zip(keys, values)) for values in itertools.product(*(self.grid[k] for k in keys))]
-        out = []
+        """Every cell once. A planner's cells carry only the swept values it takes (:func:`routed_params`;
+        its own setting of the same name wins): ``grid: {expand_dis: [1, 2]}`` gave hybrid_astar two cells
+        that ran the same search as if expand_dis had mattered (newcomer, session 22);
+        :meth:`unswept` names what each planner ignores."""
+        out: Dict[str, Cell] = {}  # by cell id, in order
         for world in self.worlds:
             for planner in self.planners:
                 samplers = self.samplers if samples(planner.name) else [None]
                 for sampler in samplers:
-                    for point in points:
-                        out.append(Cell(world, planner, sampler, {**self.params, **point}))
+                    for point in self._points():
+                        kept = self._taken(planner, point)
+                        shared = {k: v for k, v in self.params.items() if k not in point or k in kept}
+                        cell = Cell(world, planner, sampler, {**shared, **kept})
+                        out.setdefault(cell.cell_id, cell)
+        return list(out.values())
+
+    def _points(self) -> List[Dict[str, Any]]:
+        keys = sorted(self.grid)
+        return [dict(zip(keys, values)) for values in itertools.product(*(self.grid[k] for k in keys))]
+
+    def _taken(self, planner: Component, point: Dict[str, Any]) -> Dict[str, Any]:
+        """The swept values of ``point`` that ``planner`` takes, as its trials route them."""
+        routed = routed_params(planner.name, {**self.params, **point}, planner.params)
+        return {k: v for k, v in point.items() if k in routed and k not in planner.params}
+
+    def unswept(self) -> Dict[str, List[str]]:
+        """Each planner's label with the swept settings none of its cells takes (so its cells run once for
+        all their values), for a note; planners that take every swept setting are left out."""
+        out = {}
+        for planner in self.planners:
+            taken = {k for point in self._points() for k in self._taken(planner, point)}
+            ignored = sorted(set(self.grid) - taken)
+            if ignored:
+                out[planner.title] = ignored
         return out
 
     def trial_specs(self) -> List[Dict[str, Any]]:
@@ -175,7 +200,7 @@ class Experiment:
         cid = cell.cell_id
         spec = {"trial_id": f"{cid}-{i:04d}" + (f"-r{repeat}" if repeat else ""), "cell_id": cid,
                 "cell": cell.to_dict(), "label": cell.label, "trial": i, "seed": trial_seed(self.seed, cid, i),
-                "budget": dict(self.budget), "swept": {k: cell.params[k] for k in sorted(self.grid)},
+                "budget": dict(self.budget), "swept": {k: cell.params[k] for k in sorted(self.grid) if k in cell.params},
                 "keep_tree": i == 0 and not repeat}
         if repeat:
             spec["repeat"] = repeat

@@ -345,6 +345,9 @@ def note_unused_settings(exp) -> None:
         own = routed_params(cell.planner.name, cell.params, cell.planner.params)
         lines.update(dict.fromkeys(unused_settings(cell.planner.name, own, lambda k, value: f"{k}={value}")))
     lines.update(dict.fromkeys(_untaken(exp)))
+    for label, keys in exp.unswept().items():  # (its cells were run once per value, as if it took them)
+        lines[f"note: {label} does not take the swept {' and '.join(keys)}: its cells are not split by "
+              f"{'them' if len(keys) > 1 else 'it'} (each runs once, not once per value)"] = None
     for line in lines:
         click.echo(line, err=True)
 

@@ -402,6 +402,38 @@ def test_a_turning_radius_too_large_for_the_world_is_refused_before_any_trial(pl
     load_experiment({**TINY, "worlds": ["trap"], "planners": [planner], "params": {"turning_radius": 2.0}})
 
 
+@pytest.mark.parametrize("planner", ["hybrid_astar", {"name": "rrt_star", "motion": "reeds_shepp"}])
+def test_a_turning_radius_too_large_for_a_map_world_is_refused_as_its_trials_would(planner, tmp_path):
+    """On a map world the check ran only in each trial, a run of ERROR rows (attack, session 22). At the
+    edge (a 40 x 30 map at 1 m is 50 m across: one 5-degree step of arc is 50 m at r = 572.96 m) the
+    experiment's check and the query's agree."""
+    import numpy as np
+
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.mapio import save_map
+
+    save_map(OccupancyGrid(np.zeros((30, 40), bool), resolution=1.0), tmp_path / "open.yaml")
+    world = {"map": str(tmp_path / "open.yaml"), "queries": [[5.5, 5.5, 30.5, 20.5]]}
+    name = planner if isinstance(planner, str) else planner["name"]
+    for radius in (572.0, 573.0):
+        query = dict(planner=name, motion="reeds_shepp", turning_radius=radius, max_iter=10)
+        if name == "hybrid_astar":
+            del query["max_iter"]
+        try:
+            navlab.plan(str(tmp_path / "open.yaml"), start=(5.5, 5.5, 0), goal=(30.5, 20.5, 0), **query)
+            refused_by_query = False
+        except ValueError:
+            refused_by_query = True
+        assert refused_by_query == (radius > 572.96)
+        experiment = {**TINY, "worlds": [world], "planners": [planner], "params": {"turning_radius": radius}}
+        if refused_by_query:
+            with pytest.raises(ValueError, match=f"turning_radius {radius:g} m: one heading step .* longer than "
+                                                 f"world 'open' \\(50 m across\\)"):
+                load_experiment(experiment)
+        else:
+            load_experiment(experiment)
+
+
 def test_a_car_like_rrt_refuses_connect_circle_dist_as_a_holonomic_one_does():
     """It took the setting and recorded it in params_used, and never read it (attack, session 22)."""
     with pytest.raises(ValueError, match="connect_circle_dist: rrt does not rewire"):

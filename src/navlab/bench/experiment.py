@@ -535,7 +535,7 @@ def validate(exp: Experiment) -> None:
             check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
                              cell.sampler.name if cell.sampler else "")
             _check_raster(worlds.get(cell.world), own)
-            _check_turning_scale(worlds.get(cell.world), cell.world, own)
+            _check_turning_scale(worlds.get(cell.world), cell.world, own, exp.maps.get(cell.world))
             continue
         if cell.sampler is None and own.get("costmap") not in (None, False):  # astar on a costmap, as plan takes it
             if own["costmap"] is not True:
@@ -581,16 +581,25 @@ def _check_raster(world, settings: Dict[str, Any]) -> None:
         grid_shape(world.bounds, settings["resolution"])
 
 
-def _check_turning_scale(world, name: str, settings: Dict[str, Any]) -> None:
-    """Refuse a turning radius whose one heading step of arc is longer than ``world`` (a geometric world;
-    None: none to check) is across, which every trial refused, an ERROR row (attack, session 22: 300 m on
-    trap). Measured on the world's bounds, which its raster lies within, so what is refused here would be
-    refused by each trial too."""
+def _check_turning_scale(world, name: str, settings: Dict[str, Any], map_entry: Optional[Dict[str, Any]] = None
+                         ) -> None:
+    """Refuse a turning radius whose one heading step of arc is longer than the world is across, which
+    every trial refused, an ERROR row (attack, session 22: 300 m on trap). ``world`` is a geometric world,
+    measured on its bounds, which its raster lies within, so what is refused here would be refused by each
+    trial too; or ``map_entry`` a map world's (:func:`~navlab.bench.maps.map_entry`), measured on its cells
+    as each trial measures them (its map is read once, by the experiment's check of its queries)."""
     from ..sampling.footprint_lattice import check_heading_step
+    from .maps import load_grid
 
-    if world is None or world.occupancy is not None or settings.get("turning_radius") is None:
+    if settings.get("turning_radius") is None:
         return
-    extent = math.hypot(world.bounds.xmax - world.bounds.xmin, world.bounds.ymax - world.bounds.ymin)
+    if map_entry is not None:
+        grid = load_grid(map_entry["map"])
+        extent = math.hypot(grid.width, grid.height) * grid.resolution
+    elif world is not None and world.occupancy is None:
+        extent = math.hypot(world.bounds.xmax - world.bounds.xmin, world.bounds.ymax - world.bounds.ymin)
+    else:
+        return
     check_heading_step(float(settings["turning_radius"]), int(settings.get("heading_bins", 72)), extent,
                        f"world '{name}'")
 

@@ -31,7 +31,8 @@ from .errors import ParameterError
 from .limits import check_seed, shown
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
-                      planner_names, split_grid_params, split_params, take_sampler_params, tree_query)
+                      planner_names, split_grid_params, split_params, take_query_params, take_sampler_params,
+                      tree_query)
 from .result import Result, Status
 from .sampling.planners import make_planner
 from .sampling.samplers import SAMPLERS
@@ -172,9 +173,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
             raise ParameterError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
         tree_sampler = None if planner in POSE_PLANNERS else sampler or "uniform"
         return _pose_plan(source, planner, tree_sampler, start, goal, seed, robot_radius, params)
-    params.pop("motion", None)  # holonomic: what every other planner does
-    goal_tolerance = params.pop("goal_tolerance", None)  # a property of the query, for every planner
-    allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
+    goal_tolerance, allow_unknown = take_query_params(params, grid)  # the query's, for every planner
     on_costs = params.get("costmap", False)
     if not isinstance(on_costs, bool):
         raise ParameterError(f"costmap must be true or false, got {on_costs!r}")

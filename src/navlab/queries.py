@@ -10,12 +10,12 @@ planner and its sampler by name.
 from __future__ import annotations
 
 import time
-from typing import Any, Dict, Optional
+from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 
 from .errors import ParameterError
-from .limits import MIN_LENGTH, is_finite_real, shown
+from .limits import MIN_LENGTH, check_length, is_finite_real, shown
 from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
@@ -101,6 +101,23 @@ def split_grid_params(planner: str, params: dict) -> dict:
                                    f"valid: {', '.join(GRID_PARAMS)}; and costmap=true for A* on a costmap."
                                    + setting_hint(key, planner, list(GRID_PARAMS) + ["costmap"]))
     return check_grid_settings(params)
+
+
+def take_query_params(params: dict, grid: bool) -> Tuple[Optional[float], Optional[bool]]:
+    """Remove from a point planner's ``params`` the query's own settings, checked, and return them:
+    ``(goal_tolerance, allow_unknown)``, None where not given. ``motion=holonomic`` (every point planner's)
+    goes too; a grid planner keeps ``allow_unknown``, one of its own settings, and a tree planner's goes to
+    its world. :func:`navlab.plan` and the bench's check of an experiment both split them here (they had a
+    copy each: review, session 22)."""
+    if params.get("motion") == "holonomic":
+        params.pop("motion")
+    goal_tolerance = params.pop("goal_tolerance", None)
+    allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
+    if goal_tolerance is not None:
+        check_length("goal_tolerance", goal_tolerance)
+    if allow_unknown is not None and not isinstance(allow_unknown, (bool, np.bool_)):
+        raise ParameterError(f"allow_unknown must be true or false, got {allow_unknown!r}")
+    return goal_tolerance, allow_unknown
 
 
 def take_sampler_params(sampler: str, params: dict) -> dict:
@@ -248,7 +265,9 @@ def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[
     if unknown:
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
                          + suggest(unknown[0], list(COSTMAP_PARAMS)))
-    check_grid_settings({k: params[k] for k in ("resolution", "allow_unknown") if k in params})
+    check_grid_settings({k: params[k] for k in ("allow_unknown",) if k in params})
+    if params.get("resolution") is not None:  # (as the costmap itself says it)
+        _length("resolution", params["resolution"])
     inflation = _length("inflation_radius", params.get("inflation_radius", 0.55), allow_zero=True)
     _positive("cost_scaling_factor", params.get("cost_scaling_factor", 3.0), allow_zero=True)
     multiplier = params.get("cost_travel_multiplier", 0.0)

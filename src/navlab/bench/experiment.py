@@ -31,7 +31,7 @@ from typing import Any, Dict, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..limits import MAX_COUNT, check_length, digit_count, is_finite_real, shown, value_text
+from ..limits import MAX_COUNT, digit_count, is_finite_real, shown, value_text
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -469,7 +469,7 @@ def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
     from ..queries import (build_sampler, check_costmap_settings, is_grid_planner, split_grid_params, split_params,
-                           take_sampler_params)
+                           take_query_params, take_sampler_params)
     from ..sampling.planners import make_planner
     from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
 
@@ -550,17 +550,10 @@ def validate(exp: Experiment) -> None:
             _check_raster(worlds.get(cell.world), own)
             continue
         params = {**own, **cell.sampler.params, **exp.budget}
-        # the query's own setting, as navlab.plan takes it (it was refused here, "valid: ... goal_tolerance. Did
-        # you mean 'goal_tolerance'?", though each trial takes it: review, session 22)
-        if params.get("goal_tolerance") is not None:
-            check_length("goal_tolerance", params["goal_tolerance"])
-        params.pop("goal_tolerance", None)
-        # and its allow_unknown (a map's unknown cells) and motion=holonomic, as navlab.plan takes them
-        allow_unknown = params.pop("allow_unknown", False)
-        if not isinstance(allow_unknown, (bool, np.bool_)):
-            raise ExperimentError(f"allow_unknown must be true or false, got {allow_unknown!r}")
-        if params.get("motion") == "holonomic":
-            params.pop("motion")
+        # the query's own settings (goal_tolerance, allow_unknown, motion=holonomic), as navlab.plan takes them
+        # (goal_tolerance was refused here, "Did you mean 'goal_tolerance'?", though each trial takes it:
+        # review, session 22)
+        take_query_params(params, grid=False)
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
         planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
         try:

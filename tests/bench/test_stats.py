@@ -19,6 +19,14 @@ def test_describe_matches_numpy_and_scipy():
     assert describe([3.0, 3.0])["ci95"] == [3.0, 3.0]
 
 
+def test_the_interval_of_a_quantity_that_cannot_be_negative_stops_at_zero():
+    """(two costs of 1 and 30 m gave [−169, 200] m: newcomer, session 22)"""
+    lo, hi = sps.t.interval(0.95, 1, loc=15.5, scale=sps.sem([1.0, 30.0]))
+    assert lo < -100
+    assert describe([1.0, 30.0])["ci95"] == pytest.approx([0.0, hi])
+    assert describe([-1.0, 30.0])["ci95"][0] < 0  # a quantity that was negative keeps its interval
+
+
 def test_cliffs_delta_equals_the_pairwise_count():
     rng = np.random.default_rng(2)
     a, b = rng.integers(0, 6, 17).astype(float), rng.integers(1, 7, 13).astype(float)  # with ties

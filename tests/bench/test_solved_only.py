@@ -172,7 +172,10 @@ def test_a_suite_run_with_other_settings_says_so_beside_the_document():
     assert _changed_from_suite(edited) == (
         "This run is not the suite 'samplers' as it stands: budget.max_iter 200 here, 5000 in the suite; trials 2 "
         "here, 20 in the suite. The document's numbers below go with the suite's settings.")
-    assert _changed_from_suite({**edited, "name": "mine"}) == ""  # no suite of that name: nothing to say
+    # saved under another name, it keeps the study's title, and is still compared with the suite (newcomer,
+    # session 22: an edited --show template was reported as the study without a word)
+    assert _changed_from_suite({**edited, "name": "mine"}) == _changed_from_suite(edited)
+    assert _changed_from_suite({**edited, "name": "mine", "study": {}}) == ""  # no suite, no study: nothing to say
 
 
 def test_a_smoke_run_with_another_planner_names_it_and_claims_no_document():

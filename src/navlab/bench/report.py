@@ -37,10 +37,15 @@ def _changed_from_suite(experiment: Dict[str, Any]) -> str:
     against ("" when it does not, or there is no such suite): a --show template edited to 2 trials of 200
     iterations was set beside the document's 20 of 5 000 without a word (newcomer run, session 21)."""
     from .experiment import ExperimentError, differences, load_experiment
-    from .suites import find_suite
+    from .suites import SUITES, find_suite
 
     name = experiment.get("name", "")
     make = find_suite(name)
+    title = (experiment.get("study") or {}).get("title")
+    if make is None and title:  # a suite's --show template saved under another name keeps its study's title
+        # (and was reported as the study without a word on what was changed: newcomer, session 21)
+        name, make = next(((n, SUITES.get(n)) for n in SUITES.names()
+                           if (SUITES.get(n)().get("study") or {}).get("title") == title), ("", None))
     if make is None:
         return ""
     try:

@@ -121,3 +121,22 @@ def test_grid_settings_a_planner_does_not_use_are_noted_once(tmp_path):
         "not used"]
     args = args[:5] + args[9:]  # astar alone: it uses both
     assert "note:" not in CliRunner().invoke(main, args[:-1] + [str(tmp_path / "out2")]).stderr
+
+
+def test_samplers_no_planner_draws_do_not_stop_a_resume(tmp_path, monkeypatch):
+    """A run of astar with --sampler gaussian (a note says no planner draws it) could not be resumed without
+    --sampler: "differs in: samplers" (attack, session 22). With a tree planner the samplers still count."""
+    from navlab.bench import load_experiment
+
+    monkeypatch.chdir(tmp_path)
+    base = ["bench", "--world", "trap", "--planner", "astar", "--trials", "1", "-q", "--no-plots",
+            "--executor", "serial"]
+    assert CliRunner().invoke(main, base + ["--sampler", "gaussian"]).exit_code == 0
+    again = CliRunner().invoke(main, base + ["--resume"])
+    assert again.exit_code == 0 and "0 run now" in again.output, again.output
+    assert len(list((tmp_path / "bench-results").iterdir())) == 1
+    one = {"worlds": ["trap"], "trials": 1}
+    assert load_experiment({**one, "planners": ["astar"], "samplers": ["gaussian"]}).fingerprint() == \
+        load_experiment({**one, "planners": ["astar"]}).fingerprint()
+    assert load_experiment({**one, "planners": ["rrt"], "samplers": ["gaussian"]}).fingerprint() != \
+        load_experiment({**one, "planners": ["rrt"]}).fingerprint()

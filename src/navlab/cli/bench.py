@@ -379,14 +379,17 @@ def _adhoc_name(data) -> str:
     """``adhoc-<worlds>-<planners>-<hash>``: readable, and different for different experiments."""
     import re
 
-    from ..bench.experiment import stable_hash
+    from ..bench.experiment import samples, stable_hash
 
     def short(value) -> str:
         text = value.get("map", "map") if isinstance(value, dict) else str(value)
         return re.sub(r"[^A-Za-z0-9_.]+", "_", text.rsplit("/", 1)[-1].rsplit(".", 1)[0])[:16]
 
     parts = [short(w) for w in data.get("worlds", [])[:2]] + [short(p) for p in data.get("planners", [])[:2]]
-    return "-".join(["adhoc", *parts, stable_hash({k: v for k, v in data.items() if k != "name"})[:8]])
+    # (samplers no planner draws are left out, as from the run's fingerprint: Experiment.fingerprint)
+    drawn = any(samples(p) for p in data.get("planners", []) if isinstance(p, str))
+    named = {k: v for k, v in data.items() if k != "name" and (drawn or k != "samplers")}
+    return "-".join(["adhoc", *parts, stable_hash(named)[:8]])
 
 
 def _resume_command() -> str:

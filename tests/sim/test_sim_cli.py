@@ -135,6 +135,30 @@ def test_a_footprint_robots_goal_off_the_map_is_invalid_goal(world, extra):
     assert out.output.startswith("INVALID_GOAL (the goal is in collision: at (100, 100) the robot's footprint left")
 
 
+def test_a_goal_a_lopsided_footprint_fits_at_one_heading_only_is_not_invalid():
+    """A footprint 0.6 m ahead of its wheels and 0.05 m behind fits the corner at (3.85, 1.35) of one_obstacle
+    only facing south-west (3.93 rad): half the circle, at 8 headings, was tried, and the goal was refused as
+    INVALID_GOAL (attack, session 23). Checked against shapely: the footprint at 3.93 rad lies in the bounds."""
+    from shapely.geometry import Polygon, box
+    from shapely.affinity import rotate, translate
+
+    from navlab.robots import make_robot
+    from navlab.sim.runner import check_endpoints
+    from navlab.world.sources import load_source
+
+    outline = [[-0.05, -0.05], [0.6, -0.05], [0.6, 0.05], [-0.05, 0.05]]
+    world = load_source("one_obstacle")
+    b = world.bounds
+    placed = translate(rotate(Polygon(outline), 3.93, origin=(0, 0), use_radians=True), 3.85, 1.35)
+    assert box(b.xmin, b.ymin, b.xmax, b.ymax).contains(placed)
+    facing_east = translate(Polygon(outline), 3.85, 1.35)
+    assert not box(b.xmin, b.ymin, b.xmax, b.ymax).contains(facing_east)
+    robot = make_robot("diff", footprint=outline)
+    check_endpoints(world, robot, world.start, (3.85, 1.35))  # no NoPathError
+    with pytest.raises(Exception, match="the goal is in collision"):
+        check_endpoints(world, robot, world.start, (3.85, 1.35), goal_heading=0.0)
+
+
 def test_a_goal_at_the_start_has_a_tracking_error_not_nan():
     from navlab.sim.runner import simulate
 

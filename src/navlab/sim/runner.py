@@ -203,15 +203,15 @@ def costmap_path(scene_world, robot, controller, start, goal) -> np.ndarray:
 
 def check_endpoints(scene_world, robot, start, goal, goal_heading: Optional[float] = None) -> None:
     """NoPathError INVALID_START / INVALID_GOAL (an answer about the world, as navlab plan's) when the
-    robot's shape cannot stand at the start, or at the goal at its heading (at any of 8 headings when it
-    has none), by the rule the simulation itself applies."""
+    robot's shape cannot stand at the start, or at the goal at its heading (at any of 72 headings when it
+    has none: :meth:`~navlab.sim.scene.Scene.free_at_some_heading`), by the rule the simulation itself
+    applies."""
     from ..sim.scene import Scene
 
     scene = Scene(scene_world, robot.radius, getattr(robot, "footprint", None))
     if not scene.free(np.asarray(start, float)):
         raise NoPathError(f"the start is in collision: {scene.describe(start)}", "INVALID_START")
-    headings = np.linspace(0, np.pi, 8, False) if goal_heading is None else (goal_heading,)
-    if not any(scene.free(np.array((*goal[:2], heading))) for heading in headings):
+    if not scene.free_at_some_heading(goal, goal_heading):
         raise NoPathError(f"the goal is in collision: {scene.describe(goal)}", "INVALID_GOAL")
 
 

@@ -17,6 +17,8 @@ from ..world.geometry import (clearance_batch, pack_geometry, point_segment_dist
 from ..world.motion import track, translated
 
 CIRCLE, RECT, POLY = 0, 1, 2
+#: headings tried (5° apart, as Hybrid A*'s 72 bins) where a goal has none: can the robot stand there?
+STANDING_HEADINGS = 72
 
 
 @njit(cache=True)
@@ -256,6 +258,18 @@ class Scene:
         if self.footprint is not None and len(p) < 3:
             p = np.array((*p[:2], 0.0))
         return self.free_motion(p, p)
+
+    def free_at_some_heading(self, xy, heading: Optional[float] = None) -> bool:
+        """Whether the robot can stand at point ``xy``: at ``heading``, or when that is None at one of
+        :data:`STANDING_HEADINGS` headings around the whole circle (a disc at any). Only half the circle,
+        at 8 headings, was tried: a footprint that sticks out forward fits a corner facing one way only,
+        and such a goal was refused (attack, session 23)."""
+        if heading is not None:
+            return self.free(np.array((*xy[:2], heading)))
+        if self.footprint is None:
+            return self.free(np.array((*xy[:2], 0.0)))
+        return any(self.free(np.array((*xy[:2], h)))
+                   for h in np.linspace(0.0, 2.0 * math.pi, STANDING_HEADINGS, endpoint=False))
 
     def obstacles_at(self, t: float) -> list:
         """Every obstacle's shape at time ``t`` (moving ones translated)."""

@@ -214,8 +214,7 @@ class Simulation:
             self.costmap_feed = CostmapFeed(scene_world, robot.shape, controller, self.goal)
         if not self.scene.free(self.start):
             raise ParameterError(f"the robot starts in collision: {self.scene.describe(self.start)}")
-        headings = np.linspace(0, np.pi, 8, False) if self.goal_heading is None else (self.goal_heading,)
-        if not any(self.scene.free(np.array((*self.goal, heading))) for heading in headings):
+        if not self.scene.free_at_some_heading(self.goal, self.goal_heading):
             raise ParameterError(f"the goal is unreachable: {self.scene.describe(self.goal)}")
 
     def run(self, seed: Any = 0, progress: Optional[Callable[[float, float], None]] = None) -> SimResult:

@@ -193,3 +193,17 @@ def test_the_bar_draws_simulated_seconds_against_the_limit_on_a_terminal(monkeyp
     drawn = terminal.getvalue().replace("\r", "\n")
     assert "/2.5 s simulated [" in drawn and "s simulated/s]" in drawn  # the limit as given, not rounded
     assert "s/ s simulated" not in drawn  # (tqdm inverts a rate below 1: "1.83s/ s simulated" at start-up)
+
+
+def test_a_progress_that_is_not_a_function_is_refused_before_the_run():
+    """(progress=3 was a raw TypeError at the run's first step: attack, session 23)"""
+    from navlab.errors import ParameterError
+    from navlab.sim.runner import simulate
+
+    with pytest.raises(ParameterError, match="^progress must be a function of \\(t, max_time\\) or None, got 3$"):
+        simulate("one_obstacle", progress=3)
+    seen = []
+    result, _, _ = simulate("one_obstacle", progress=lambda t, most: seen.append((t, most)))
+    assert result.status.name == "REACHED" and len(seen) == result.steps + 1  # (t = 0 and each step's end)
+    assert seen[-1][0] == pytest.approx(result.time_s)
+    assert len({most for _, most in seen}) == 1 and seen[0][1] > result.time_s  # the run's max_time throughout

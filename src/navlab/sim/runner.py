@@ -16,7 +16,7 @@ from ..sensors import Lidar
 from .replan import PLAN_MARGIN, Replanner  # noqa: F401  (PLAN_MARGIN: the seeds' experiments use it)
 from .replan import plan_path as _plan_path
 from .scene import load_scene_world
-from .simulation import SimResult, Simulation
+from .simulation import SimResult, Simulation, check_progress
 
 #: the omni robot follows a global plan with the potential field as its local
 #: avoider (the plain field stalls in traps and clutter); the diff drive
@@ -86,6 +86,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     from ..angles import planned_heading
     from ..limits import check_coordinate, check_seed
 
+    check_progress(progress)  # (before any planning)
     checked = {}
     for name, values in (("start", start), ("goal", goal)):
         if values is None:

@@ -124,6 +124,13 @@ class SimResult:
         return out
 
 
+def check_progress(progress: Any) -> None:
+    """Refuse a ``progress`` that is neither None nor callable, naming it (``progress=3`` was a raw TypeError,
+    "'int' object is not callable", at the run's first step: attack, session 23)."""
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be a function of (t, max_time) or None, got {shown(progress)}")
+
+
 class Simulation:
     """One robot in one world.
 
@@ -220,6 +227,7 @@ class Simulation:
     def run(self, seed: Any = 0, progress: Optional[Callable[[float, float], None]] = None) -> SimResult:
         """Run from the start until the goal, a stall, a collision or ``max_time``; ``progress(t,
         max_time)``, if given, is called at every step with the simulated time."""
+        check_progress(progress)
         rng = np.random.default_rng(seed)
         replanner = getattr(self.controller, "replanner", None)
         replans_before = len(getattr(replanner, "paths", ()))

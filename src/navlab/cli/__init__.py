@@ -16,7 +16,7 @@ STARTED = time.perf_counter()
 
 import click  # noqa: E402 - after the clock starts
 
-from .common import EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error
+from .common import CUT_STATUS, EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error
 
 
 def _quick_exit() -> None:
@@ -271,7 +271,9 @@ class NavlabGroup(SuggestingGroup):
             sys.exit(EXIT_INTERRUPTED)
         except Exception as exc:
             if isinstance(exc, BrokenPipeError) and _stdout_reader_gone():
-                sys.exit(0)  # `navlab list | head -1`: the reader has what it wanted; no message, like ls or cat
+                # `navlab list | head -1`: the reader has what it wanted; no message, like ls or cat (and the
+                # status of the answer, where a verb answers with one: status_if_output_is_cut)
+                sys.exit(ctx.meta.get(CUT_STATUS, 0))
             if debug_enabled():
                 raise
             status, line = describe_error(exc)

@@ -139,6 +139,19 @@ def before_first_kernel() -> None:
     say_when_compiling()
 
 
+#: the click context's ``meta`` key holding the exit status a verb's answer has, for when its reader goes
+#: away before the output ends (:func:`status_if_output_is_cut`)
+CUT_STATUS = "navlab.status_if_output_is_cut"
+
+
+def status_if_output_is_cut(code: int) -> None:
+    """The exit status to end with if standard output's reader goes away before this verb's output ends
+    (``navlab plan ... | head -1``). Such a command ends quietly, status 0, as ``ls | head -1`` does; but
+    ``plan`` and ``sim`` answer with their status (1: no path, not reached), and a TIMEOUT read by ``head``
+    ended 0, success under ``set -o pipefail`` (attack, session 23)."""
+    click.get_current_context().meta[CUT_STATUS] = code
+
+
 def debug_enabled() -> bool:
     """True when ``NAVLAB_DEBUG`` is set to anything but ''/0: show Python tracebacks."""
     return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")

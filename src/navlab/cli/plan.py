@@ -11,7 +11,7 @@ import click
 from ..errors import ParameterError
 from ..wording import counted, duration
 from .common import (Count, PointOrPoseOption, PositiveNumber, before_first_kernel, before_numba_import,
-                     note_unused_grid_settings, parse_params)
+                     note_unused_grid_settings, parse_params, status_if_output_is_cut)
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -99,6 +99,7 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
         result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
         if not pose_query and is_grid_planner(planner):  # (once they passed the planner's checks)
             note_unused_grid_settings(planner, settings, lambda key, value: f"--param {key}={value}")
+    status_if_output_is_cut(0 if result.success else 1)
     if plot:
         from ..viz import plot_plan
 

@@ -9,7 +9,8 @@ from pathlib import Path
 
 import click
 
-from .common import Count, PointOrPoseOption, before_first_kernel, check_output_file, parse_params
+from .common import (Count, PointOrPoseOption, before_first_kernel, check_output_file, parse_params,
+                     status_if_output_is_cut)
 
 #: runs per setting an experiment takes (each is a whole simulation: 10 000 of the shortest take minutes)
 MAX_EXPERIMENT_RUNS = 10_000
@@ -125,10 +126,12 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
                                             progress=bar)
     except NoPathError as exc:
         # the planner's answer about this world, as `navlab plan` gives it: not bad input
+        status_if_output_is_cut(1)
         click.echo(json.dumps({"status": exc.status, "reason": str(exc)}) if as_json else f"{exc.status} ({exc})")
         sys.exit(1)
     finally:
         bar.close()
+    status_if_output_is_cut(0 if result.status.name == "REACHED" else 1)
     if trajectory:
         from ..sim.trajectory import write_trajectory_csv
 

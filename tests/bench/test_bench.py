@@ -438,6 +438,33 @@ def test_a_car_like_rrt_refuses_connect_circle_dist_as_a_holonomic_one_does():
     """It took the setting and recorded it in params_used, and never read it (attack, session 22)."""
     with pytest.raises(ValueError, match="connect_circle_dist: rrt does not rewire"):
         navlab.plan("parking", planner="rrt", motion="reeds_shepp", connect_circle_dist=5.0, max_iter=50)
-    with pytest.raises(ValueError, match="connect_circle_dist: rrt does not rewire"):
+    # (a shared setting goes only to the planners that take it: here none does, and the line says who would)
+    with pytest.raises(ValueError, match="parameter 'connect_circle_dist' applies to none of this experiment's "
+                                         "planners \\(rrt\\). 'connect_circle_dist' is a setting of planners "
+                                         "informed_rrt_star and rrt_star, not of planner rrt"):
         load_experiment({**TINY, "worlds": ["parking"], "planners": ["rrt"],
                          "params": {"motion": "reeds_shepp", "connect_circle_dist": 5.0}})
+
+
+def test_the_documented_experiment_file_loads_and_routes_as_the_docs_say():
+    """docs/bench.md's example was refused: its shared connect_circle_dist went to rrt too, which does not
+    rewire (newcomer, session 23)."""
+    pytest.importorskip("ompl")
+    import re
+    from pathlib import Path
+
+    import yaml
+
+    from navlab.bench.experiment import routed_params
+
+    text = (Path(__file__).parents[2] / "docs" / "bench.md").read_text(encoding="utf-8")
+    block = re.search(r"## Experiment files\n\n```yaml\n(.*?)```", text, re.S)[1]
+    data = yaml.safe_load(block)
+    data["worlds"] = [w for w in data["worlds"] if w != "my_world.yaml"]  # (the reader's own file)
+    exp = load_experiment(data)
+    taken = {(c.planner.title, c.sampler.title if c.sampler else "-", c.params.get("expand_dis")):
+             routed_params(c.planner.name, c.params, c.planner.params) for c in exp.cells() if c.world == "trap"}
+    assert taken[("rrt_star", "uniform", 0.5)] == {"connect_circle_dist": 30, "expand_dis": 0.5}
+    assert taken[("rrt-0.5", "uniform", None)] == {"expand_dis": 0.5}  # its own expand_dis: one cell, no sweep
+    assert taken[("ompl:RRTstar", "-", 1.0)] == {"expand_dis": 1.0}
+    assert len(taken) == 2 * 2 + 2 + 2  # rrt_star × samplers × sweep, rrt-0.5 × samplers, OMPL × sweep

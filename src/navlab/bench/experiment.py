@@ -21,6 +21,7 @@ earlier ones.
 from __future__ import annotations
 
 import datetime
+import functools
 import hashlib
 import itertools
 import json
@@ -410,9 +411,28 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
             return car
         if key == "goal_tolerance":
             return not car
-        return key not in GRID_PARAMS and key not in COSTMAP_PARAMS
+        return key in _tree_settings(planner, car)
 
     return {**{k: v for k, v in shared.items() if takes(k)}, **own}
+
+
+@functools.lru_cache(maxsize=None)
+def _tree_settings(planner: str, car: bool) -> frozenset:
+    """The settings tree planner ``planner`` takes, car-like (``car``) or not: its own, and those of every
+    sampler (the cell's sampler sorts them out, naming a setting of another). A shared setting went to every
+    tree planner, so ``params: {connect_circle_dist: 30}`` beside rrt_star refused rrt, which does not rewire
+    (newcomer, session 23: docs/bench.md's own example)."""
+    from ..registry import parameters_of
+    from ..sampling.planners import PLANNERS
+    from ..sampling.samplers import SAMPLERS
+    from ..sampling.se2_planners import SE2_TREE_PARAMS
+
+    if car:
+        own = set(SE2_TREE_PARAMS) - ({"connect_circle_dist"} if planner == "rrt" else set())
+    else:
+        own = set(parameters_of(PLANNERS.get(planner))) - {"sampler"}
+    drawn = {key for name in SAMPLERS.names() for key in parameters_of(SAMPLERS.get(name))} - {"base"}
+    return frozenset(own | drawn | {"goal_sample_rate", "motion"})
 
 
 def _check_world(world: str):
@@ -622,8 +642,9 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
         planners = sorted({p.name for p in exp.planners})
         names = ", ".join(planners)
         # who does take it, rather than the nearest name: that was 'turning_radius' itself (newcomer, session 22)
+        trees = {k for p in exp.planners if samples(p.name) for car in (False, True) for k in _tree_settings(p.name, car)}
         hint = taken_elsewhere(key, planners[0], own=f"planner{'s' if len(planners) > 1 else ''} {names}") or \
-            suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS)))
+            suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS) | trees))
         if key == "goal_tolerance":  # (the query's, which only planners for a point robot take)
             hint = (" A goal tolerance is for planners of a point robot: one between poses ends exactly at the "
                     "goal pose.")

@@ -121,3 +121,22 @@ def test_a_noisy_laser_makes_the_runs_of_a_world_differ_and_is_recorded(tmp_path
     assert bad.exit_code == 2 and "sick_lms" in bad.output
     elsewhere = CliRunner().invoke(main, ["bench", "--world", "trap", "--lidar", "rplidar_a1"])
     assert elsewhere.exit_code == 2 and "go with --suite barn" in elsewhere.output
+
+
+def test_the_per_world_plot_holds_a_long_navigator_label_without_a_warning(tmp_path):
+    """(a tuned rpp's label, 120 characters, made tight_layout print a UserWarning on stderr: newcomer, session 23)"""
+    import types
+    import warnings
+
+    from PIL import Image
+
+    from navlab.bench.barn_report import _plot
+
+    label = "rpp(" + ",".join(f"setting_{k}=1.5" for k in range(9)) + ")"
+    summary = {"navigators": {label: {"per_world": {0: {"score": 0.4, "success": 1.0},
+                                                    36: {"score": 0.2, "success": 0.5}}}}, "published": None}
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        name = _plot(types.SimpleNamespace(worlds=[0, 36]), summary, tmp_path)
+    width, height = Image.open(tmp_path / name).size
+    assert width > 1.5 * height  # the legend beside the axes, whole

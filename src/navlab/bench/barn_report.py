@@ -99,9 +99,10 @@ def _plot(study, summary: Dict[str, Any], folder: Path) -> str:
     ax_c.set_xlabel("BARN world")
     ax_s.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax_s.set_title("BARN, per world (2D kinematic simulation)")
-    fig.tight_layout()
     name = "barn_per_world.png"
     (folder / "plots").mkdir(exist_ok=True)
-    fig.savefig(folder / "plots" / name, dpi=110)
+    # the figure grows to hold the legend beside the axes, however long a navigator's label (tight_layout
+    # could not make room for a long one and printed a UserWarning: newcomer, session 23)
+    fig.savefig(folder / "plots" / name, dpi=110, bbox_inches="tight")
     plt.close(fig)
     return f"plots/{name}"

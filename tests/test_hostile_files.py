@@ -203,6 +203,23 @@ def test_a_sweep_a_planner_ignores_gives_it_one_cell_and_a_note(tmp_path):
     assert "note: a does not take the swept expand_dis: its cells are not split by it" in res.output
 
 
+def test_a_swept_sampler_setting_splits_only_the_cells_of_samplers_that_take_it():
+    """``grid: {sigma: [0.5, 1]}`` with the gaussian and uniform samplers was refused: sigma went to the uniform
+    sampler's cells too (session 23)."""
+    from navlab.bench.trial import cell_kwargs
+
+    exp = load_experiment({"worlds": ["trap"], "planners": ["rrt_star"], "samplers": ["gaussian", "uniform"],
+                           "grid": {"sigma": [0.5, 1.0]}, "trials": 1})
+    cells = [(c.sampler.title, c.params.get("sigma")) for c in exp.cells()]
+    assert cells == [("gaussian", 0.5), ("gaussian", 1.0), ("uniform", None)]
+    with pytest.raises(ExperimentError, match="parameter 'directions' applies to none"):
+        load_experiment({"worlds": ["trap"], "planners": ["rrt_star"], "samplers": ["gaussian", "uniform"],
+                         "params": {"directions": 4}, "trials": 1})
+    assert exp.unswept() == {"rrt_star with uniform": ["sigma"]}
+    kwargs = [cell_kwargs(spec["cell"], spec["budget"]) for spec in exp.trial_specs()]
+    assert kwargs == [{"sigma": 0.5}, {"sigma": 1.0}, {}]
+
+
 def test_merge_keys_may_still_override():
     from navlab.yamlio import parse_yaml
 

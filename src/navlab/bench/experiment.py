@@ -156,7 +156,7 @@ class Experiment:
                 samplers = self.samplers if samples(planner.name) else [None]
                 for sampler in samplers:
                     for point in self._points():
-                        kept = self._taken(planner, point)
+                        kept = self._taken(planner, sampler, point)
                         shared = {k: v for k, v in self.params.items() if k not in point or k in kept}
                         cell = Cell(world, planner, sampler, {**shared, **kept})
                         out.setdefault(cell.cell_id, cell)
@@ -166,20 +166,29 @@ class Experiment:
         keys = sorted(self.grid)
         return [dict(zip(keys, values)) for values in itertools.product(*(self.grid[k] for k in keys))]
 
-    def _taken(self, planner: Component, point: Dict[str, Any]) -> Dict[str, Any]:
-        """The swept values of ``point`` that ``planner`` takes, as its trials route them."""
-        routed = routed_params(planner.name, {**self.params, **point}, planner.params)
-        return {k: v for k, v in point.items() if k in routed and k not in planner.params}
+    def _taken(self, planner: Component, sampler: Optional[Component], point: Dict[str, Any]) -> Dict[str, Any]:
+        """The swept values of ``point`` that ``planner`` with ``sampler`` takes, as its trials route them."""
+        routed = routed_params(planner.name, {**self.params, **point}, {**planner.params, **(
+            sampler.params if sampler else {})}, sampler.name if sampler else None)
+        own = {**planner.params, **(sampler.params if sampler else {})}
+        return {k: v for k, v in point.items() if k in routed and k not in own}
 
     def unswept(self) -> Dict[str, List[str]]:
-        """Each planner's label with the swept settings none of its cells takes (so its cells run once for
-        all their values), for a note; planners that take every swept setting are left out."""
+        """Each planner's (and, where they differ, each sampler's) label with the swept settings none of its
+        cells takes (so its cells run once for all their values), for a note; those that take every swept
+        setting are left out."""
         out = {}
         for planner in self.planners:
-            taken = {k for point in self._points() for k in self._taken(planner, point)}
-            ignored = sorted(set(self.grid) - taken)
-            if ignored:
-                out[planner.title] = ignored
+            samplers = self.samplers if samples(planner.name) else [None]
+            ignored = [sorted(set(self.grid) - {k for point in self._points() for k in self._taken(planner, s, point)})
+                       for s in samplers]
+            if len({tuple(keys) for keys in ignored}) == 1:  # the same for every sampler: the planner's
+                if ignored[0]:
+                    out[planner.title] = ignored[0]
+                continue
+            for sampler, keys in zip(samplers, ignored):
+                if keys:
+                    out[f"{planner.title} with {sampler.title}"] = keys
         return out
 
     def trial_specs(self) -> List[Dict[str, Any]]:
@@ -377,10 +386,12 @@ def _plain_name(name: Any) -> str:
     return text
 
 
-def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> Dict[str, Any]:
+def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any], sampler: Optional[str] = None
+                  ) -> Dict[str, Any]:
     """A cell's settings: the experiment's shared ``params`` and ``grid``
     values that apply to this kind of planner (grid settings to grid
-    algorithms, the others to tree and OMPL planners), then its own."""
+    algorithms, the others to tree and OMPL planners), then its own. A tree planner's cell with
+    ``sampler`` takes that sampler's settings only (None: any sampler's)."""
     from ..pose_queries import HYBRID_PARAMS, POSE_PLANNERS
     from ..queries import GRID_PARAMS
     from ..setting_names import COSTMAP_PARAMS, HYBRID_ONLY
@@ -411,17 +422,18 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any]) -> 
             return car
         if key == "goal_tolerance":
             return not car
-        return key in _tree_settings(planner, car)
+        return key in _tree_settings(planner, car, sampler)
 
     return {**{k: v for k, v in shared.items() if takes(k)}, **own}
 
 
 @functools.lru_cache(maxsize=None)
-def _tree_settings(planner: str, car: bool) -> frozenset:
-    """The settings tree planner ``planner`` takes, car-like (``car``) or not: its own, and those of every
-    sampler (the cell's sampler sorts them out, naming a setting of another). A shared setting went to every
-    tree planner, so ``params: {connect_circle_dist: 30}`` beside rrt_star refused rrt, which does not rewire
-    (newcomer, session 23: docs/bench.md's own example)."""
+def _tree_settings(planner: str, car: bool, sampler: Optional[str] = None) -> frozenset:
+    """The settings tree planner ``planner`` takes, car-like (``car``) or not: its own, and those of
+    ``sampler`` (None: of every sampler), and ``goal_sample_rate``, which any sampler takes (it wraps it in goal
+    bias). A shared setting went to every tree planner, so ``params: {connect_circle_dist: 30}`` beside rrt_star
+    refused rrt, which does not rewire (newcomer, session 23: docs/bench.md's own example), and
+    ``grid: {sigma: [0.5, 1]}`` refused the uniform sampler's cells."""
     from ..registry import parameters_of
     from ..sampling.planners import PLANNERS
     from ..sampling.samplers import SAMPLERS
@@ -431,7 +443,8 @@ def _tree_settings(planner: str, car: bool) -> frozenset:
         own = set(SE2_TREE_PARAMS) - ({"connect_circle_dist"} if planner == "rrt" else set())
     else:
         own = set(parameters_of(PLANNERS.get(planner))) - {"sampler"}
-    drawn = {key for name in SAMPLERS.names() for key in parameters_of(SAMPLERS.get(name))} - {"base"}
+    drawn = {key for name in ([sampler] if sampler else SAMPLERS.names())
+             for key in parameters_of(SAMPLERS.get(name))} - {"base"}
     return frozenset(own | drawn | {"goal_sample_rate", "motion"})
 
 
@@ -528,7 +541,8 @@ def validate(exp: Experiment) -> None:
     used: set = set()  # the shared settings some cell's planner takes
     for cell in exp.cells():
         # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
-        own = routed_params(cell.planner.name, cell.params, cell.planner.params)
+        own = routed_params(cell.planner.name, cell.params, cell.planner.params,
+                            cell.sampler.name if cell.sampler else None)
         used |= set(own) & set(cell.params)
         if cell.planner.name in POSE_PLANNERS:
             _check_pose_params(cell.planner.name, cell.planner.params)

@@ -56,10 +56,10 @@ def cell_kwargs(cell: Dict[str, Any], budget: Dict[str, Any]) -> Dict[str, Any]:
     from .experiment import routed_params
 
     name = cell["planner"]["name"]
-    own = routed_params(name, cell["params"], cell["planner"]["params"])
+    sampler = cell["sampler"] or {"params": {}}
+    own = routed_params(name, cell["params"], cell["planner"]["params"], sampler.get("name"))
     if _is_grid(name):
         return own
-    sampler = cell["sampler"] or {"params": {}}
     return {**own, **sampler["params"], **budget}
 
 

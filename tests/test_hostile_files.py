@@ -203,6 +203,16 @@ def test_a_sweep_a_planner_ignores_gives_it_one_cell_and_a_note(tmp_path):
     assert "note: a does not take the swept expand_dis: its cells are not split by it" in res.output
 
 
+def test_a_swept_weight_or_heuristic_does_not_split_a_grid_search_that_ignores_it():
+    """(dijkstra ran once per swept weight, the same search: review, session 23)"""
+    exp = load_experiment({"worlds": ["trap"], "planners": ["astar", "dijkstra", "jps"], "trials": 1,
+                           "grid": {"weight": [1, 2], "heuristic": ["octile", "manhattan"]}})
+    cells = [(c.planner.title, tuple(sorted(k for k in c.params if k in ("weight", "heuristic"))))
+             for c in exp.cells()]
+    assert cells == [("astar", ("heuristic", "weight"))] * 4 + [("dijkstra", ()), ("jps", ())]
+    assert exp.unswept() == {"dijkstra": ["heuristic", "weight"], "jps": ["heuristic", "weight"]}
+
+
 def test_a_swept_sampler_setting_splits_only_the_cells_of_samplers_that_take_it():
     """``grid: {sigma: [0.5, 1]}`` with the gaussian and uniform samplers was refused: sigma went to the uniform
     sampler's cells too (session 23)."""

@@ -208,7 +208,7 @@ EXPAND_DIS_TAKERS = "'expand_dis' is a setting of planners growth_ratio_rrt, inf
      "'inflation_radius' is a setting of planner astar with costmap=true, not of planner rrt_star with the uniform "
      "sampler."),
     ("parking", {"planner": "hybrid_astar", "costmap": True},
-     "'costmap' is a setting of planner astar with costmap=true, not of planner hybrid_astar."),
+     "'costmap' is a setting of planner astar, not of planner hybrid_astar."),
     # a typo is matched against every planner's settings (attack, session 21: smoth=true with rrt was asked "Did
     # you mean 'motion'?", its own nearest setting)
     ("trap", {"planner": "rrt", "smoth": True},

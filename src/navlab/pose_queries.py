@@ -226,12 +226,12 @@ def check_pose_query(world, planner: str, params: Dict[str, Any], sampler: str =
 
         check_settings(**_query(world, planner, params, HYBRID_PARAMS)[1])
     else:
-        from .sampling.se2_planners import check_se2_settings
+        from .sampling.se2_planners import check_se2_settings, se2_tree_params
 
         settings = _query(world, planner, params, _tree_pose_params(), sampler)[1]
         _tree_heading_bins(settings.pop("heading_bins", 72))
         # (a car-like rrt took it and recorded it, and never read it: attack, session 22)
-        if planner == "rrt" and "connect_circle_dist" in settings:
+        if "connect_circle_dist" in settings and "connect_circle_dist" not in se2_tree_params(planner):
             raise ParameterError("connect_circle_dist: rrt does not rewire (rrt_star and informed_rrt_star take "
                                  "it); leave connect_circle_dist out")
         check_se2_settings(settings)

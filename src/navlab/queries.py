@@ -257,7 +257,8 @@ def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[
     inflation radius below it. The bench checks an experiment with it before any trial (its trials of
     ``{name: astar, costmap: true}`` were refused by a line listing costmap=true as valid: attack, session 22)."""
     from .grid.settings import check_grid_settings
-    from .world.costmap import _length, _positive
+    from .world.costmap import (DEFAULT_COST_SCALING_FACTOR, DEFAULT_INFLATION_RADIUS, check_costmap_resolution,
+                                check_inflation)
 
     if algorithm != "astar":
         raise ParameterError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
@@ -266,16 +267,14 @@ def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[
         raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
                          + suggest(unknown[0], list(COSTMAP_PARAMS)))
     check_grid_settings({k: params[k] for k in ("allow_unknown",) if k in params})
-    if params.get("resolution") is not None:  # (as the costmap itself says it)
-        _length("resolution", params["resolution"])
-    inflation = _length("inflation_radius", params.get("inflation_radius", 0.55), allow_zero=True)
-    _positive("cost_scaling_factor", params.get("cost_scaling_factor", 3.0), allow_zero=True)
+    if params.get("resolution") is not None:
+        check_costmap_resolution(params["resolution"])
+    check_inflation(params.get("inflation_radius", DEFAULT_INFLATION_RADIUS),
+                    params.get("cost_scaling_factor", DEFAULT_COST_SCALING_FACTOR),
+                    None if robot_radius is None else max(robot_radius, MIN_LENGTH))  # (the query's disc)
     multiplier = params.get("cost_travel_multiplier", 0.0)
     if not is_finite_real(multiplier) or multiplier < 0:  # (10**400: an OverflowError deeper down until session 18)
         raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {shown(multiplier)}")
-    if robot_radius is not None and inflation < robot_radius:
-        raise ParameterError(f"inflation_radius = {inflation:g} m is below the robot's radius {robot_radius:g} m: "
-                             "cells the robot's body reaches would cost nothing")
 
 
 def costmap_query(world, algorithm: str, params: dict) -> Result:
@@ -284,13 +283,13 @@ def costmap_query(world, algorithm: str, params: dict) -> Result:
     formula, step costs weighted by cell cost (:mod:`navlab.grid.cost_search`). The returned
     path is checked against the exact world before it is returned."""
     from .grid.cost_search import DEFAULT_COST_TRAVEL_MULTIPLIER, plan_on_costmap
-    from .world.costmap import LayeredCostmap
+    from .world.costmap import DEFAULT_COST_SCALING_FACTOR, DEFAULT_INFLATION_RADIUS, LayeredCostmap
     from .world.footprint import Footprint
 
     check_costmap_settings(algorithm, params)
     t0 = time.perf_counter()
-    settings = {"inflation_radius": params.get("inflation_radius", 0.55),
-                "cost_scaling_factor": params.get("cost_scaling_factor", 3.0)}
+    settings = {"inflation_radius": params.get("inflation_radius", DEFAULT_INFLATION_RADIUS),
+                "cost_scaling_factor": params.get("cost_scaling_factor", DEFAULT_COST_SCALING_FACTOR)}
     multiplier = params.get("cost_travel_multiplier", DEFAULT_COST_TRAVEL_MULTIPLIER)
     footprint = Footprint.disc(max(world.robot_radius, MIN_LENGTH))
     source = world.occupancy if world.occupancy is not None else world

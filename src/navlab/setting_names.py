@@ -101,7 +101,9 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
         takers.append("planner astar")
     elif key in GRID_PARAMS:
         takers.append(f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})")
-    if key in COSTMAP_PARAMS and key not in GRID_PARAMS:
+    if key == "costmap":  # (not "a setting of planner astar with costmap=true")
+        takers.append("planner astar")
+    elif key in COSTMAP_PARAMS and key not in GRID_PARAMS:
         takers.append("planner astar with costmap=true")
     # a car-like tree's: its lattice's heading_bins, and the query's motion, turning radius, footprint and raster
     # (astar was told turning_radius was hybrid_astar's alone: review, session 22)

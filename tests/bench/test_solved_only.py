@@ -2,6 +2,7 @@
 and costs are compared on the queries both sides solved."""
 
 import zlib
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -197,3 +198,20 @@ def test_a_smoke_run_with_another_planner_names_it_and_claims_no_document():
         "This run is not the suite 'smoke' as it stands: planners ['rrt_star (expand_dis=2.0)'] here, ['rrt_star'] in "
         "the suite.")
     assert _changed_from_suite(smoke) == ""
+
+
+def test_a_renamed_suite_template_is_reported_without_the_moving_ai_maps(monkeypatch):
+    """Looking for the suite a renamed template came from built every suite, and grid-vs-rrt-maps refused to
+    build without ../shared/data/movingai: the error ended the run after its trials, with no report (review,
+    session 23)."""
+    from navlab.bench import suites
+    from navlab.bench.experiment import load_experiment
+    from navlab.bench.report import _changed_from_suite
+
+    samplers = load_experiment(suites.find_suite("samplers")(), "suite").to_dict()
+    monkeypatch.setattr(suites, "_movingai_candidates", lambda: [Path("/nonexistent/movingai")])
+    with pytest.raises(ValueError, match="the Moving AI maps are not in"):
+        suites.find_suite("grid-vs-rrt-maps")()
+    edited = {**samplers, "name": "mine", "trials": 2}
+    assert _changed_from_suite(edited) == ("This run is not the suite 'samplers' as it stands: trials 2 here, 20 in "
+                                           "the suite. The document's numbers below go with the suite's settings.")

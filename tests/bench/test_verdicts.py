@@ -89,3 +89,24 @@ def test_cost_verdicts_need_no_noise_rule_and_wall_time_is_selectable():
     assert judge_claims(rows, [CLAIM], time="wall")[0]["verdict"] == "contradicted"
     summary = summarize(rows, "wall")
     assert summary["time_label"] == "wall-clock time" and [c["trials"] for c in summary["cells"]] == [20, 20]
+
+
+def test_a_cell_not_split_by_a_sweep_faces_each_of_the_others_cells():
+    """hybrid_astar takes no expand_dis, so grid: {expand_dis: [1, 2]} gives it one cell and rrt_star two; the
+    claim found no partner of the same shape and vanished from the report (review and attack, session 23)."""
+    rows = []
+    for planner, sampler, swept, cost in (("hybrid_astar", "-", {}, 10.0),
+                                          ("rrt_star", "uniform", {"expand_dis": 1}, 20.0),
+                                          ("rrt_star", "uniform", {"expand_dis": 2}, 5.0)):
+        for i in range(8):
+            rows.append({"trial_id": f"{planner}-{swept}-{i}", "cell_id": f"{planner}{swept}", "trial": i,
+                         "world": "w", "planner": planner, "sampler": sampler, "swept": swept, "status": "EXACT",
+                         "success": True, "cost": cost + 0.01 * i, "cpu_s": 0.1, "wall_s": 0.1})
+    claim = {"text": "hybrid is shorter", "metric": "cost", "lower": "hybrid_astar", "higher": "rrt_star"}
+    verdicts = {v["group_higher"]: v["verdict"] for v in judge_claims(rows, [claim])}
+    assert verdicts == {"rrt_star / uniform / expand_dis=1": "confirmed",
+                        "rrt_star / uniform / expand_dis=2": "contradicted"}
+    # a value compared with another of the same setting still pairs only cells alike in the rest
+    claim = {"text": "1 is longer", "metric": "cost", "lower": "expand_dis=2", "higher": "expand_dis=1"}
+    assert [(v["group_lower"], v["group_higher"], v["verdict"]) for v in judge_claims(rows, [claim])] == [
+        ("rrt_star / uniform / expand_dis=2", "rrt_star / uniform / expand_dis=1", "confirmed")]

@@ -331,14 +331,12 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
             for low in lows:
                 for high in highs:
                     for ga in [g for g in groups if _matches(g, low)]:
-                        gb = _partner(ga, low, high, groups)
-                        if gb is None:
-                            continue
-                        va, vb, short = judged_values(groups[ga], groups[gb], metric)
-                        test = compare(va, vb) if not short else {
-                            "n_a": len(va), "n_b": len(vb), "p": None, "delta": None,
-                            "median_a": _median(va), "median_b": _median(vb)}
-                        tests.append((claim, metric, low, high, ga, gb, {**test, "short": short}))
+                        for gb in _partners(ga, low, high, groups):
+                            va, vb, short = judged_values(groups[ga], groups[gb], metric)
+                            test = compare(va, vb) if not short else {
+                                "n_a": len(va), "n_b": len(vb), "p": None, "delta": None,
+                                "median_a": _median(va), "median_b": _median(vb)}
+                            tests.append((claim, metric, low, high, ga, gb, {**test, "short": short}))
         for (claim, metric, low, high, ga, gb, test), p in zip(tests, holm([t[-1]["p"] for t in tests])):
             if test["short"]:
                 limit = {"noise": None, "threshold": None}
@@ -362,17 +360,31 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
     return verdicts
 
 
-def _partner(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]]]) -> Optional[str]:
-    """The group named ``high`` that differs from ``ga`` only where ``low``
-    and ``high`` differ (same swept values, same planner when comparing samplers)."""
-    parts = ga.split(" / ")
+def _partners(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]]]) -> List[str]:
+    """The groups named ``high`` that differ from ``ga`` only where ``low`` and ``high`` differ: the same
+    planner when comparing samplers and the reverse (a planner that draws no samples faces any sampler's
+    cells), and the same value of every swept setting both groups have. A setting swept for one and not the other is one its planner does not take, so its one cell ran the
+    same search for every value and faces each of the other's (a cell not split by a sweep had no partner, and
+    the claim vanished from the report: review and attack, session 23)."""
+    head, swept = _split_group(ga)
+    out = []
     for g in groups:
-        other = g.split(" / ")
-        if g == ga or not _matches(g, high) or len(other) != len(parts):
+        other_head, other_swept = _split_group(g)
+        if g == ga or not _matches(g, high) or len(other_head) != len(head):
             continue
-        if all(x == y or x == low or y == high for x, y in zip(parts, other)):
-            return g
-    return None
+        # (a planner that draws no samples, "-", faces a tree planner whatever its sampler)
+        if not all(x == y or x == low or y == high or "-" in (x, y) for x, y in zip(head, other_head)):
+            continue
+        if all(swept[k] == other_swept[k] or (f"{k}={swept[k]}" == low and f"{k}={other_swept[k]}" == high)
+               for k in swept.keys() & other_swept.keys()):
+            out.append(g)
+    return out
+
+
+def _split_group(group: str) -> Tuple[List[str], Dict[str, str]]:
+    """A group's planner and sampler, and its swept values by name (:func:`group_of`)."""
+    parts = group.split(" / ")
+    return parts[:2], dict(part.split("=", 1) for part in parts[2:])
 
 
 def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:

@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any, Dict, Iterable, List, Optional
 
 from . import barn
-from .experiment import ExperimentError, stable_hash, trial_seed
+from .experiment import ExperimentError, content_digest, stable_hash, trial_seed
 
 #: [s] simulated beyond the time limit, so the clock (which starts after the first 0.1 m) can run its 100 s
 SLACK_S = 20.0
@@ -77,6 +77,11 @@ class BarnStudy:
         """Identity of the results: the runs count and world list are left out (they extend a result set)."""
         core = {k: v for k, v in self.to_dict().items() if k not in ("runs", "worlds", "data")}
         return stable_hash(core)
+
+    def world_contents(self) -> Dict[str, str]:
+        """A digest of each world file by world, compared on resume as an experiment's are
+        (:meth:`~navlab.bench.experiment.Experiment.world_contents`)."""
+        return {f"world_{w}": content_digest((self.data / f"world_{w}.world").read_bytes()) for w in self.worlds}
 
     def trial_specs(self) -> List[Dict[str, Any]]:
         specs = []

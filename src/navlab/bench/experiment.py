@@ -52,6 +52,9 @@ FIELDS = ("name", "description", "worlds", "planners", "samplers", "params", "gr
           "claims", "study")
 #: fields that describe an experiment without changing its results
 DESCRIPTIVE = ("trials", "description", "name", "claims", "study")
+#: an experiment's samplers when it names none (its tree planners draw uniformly), and its seed
+DEFAULT_SAMPLERS = ("uniform",)
+DEFAULT_SEED = 0
 #: trials of each cell run a second time, late in the run, to measure how
 #: much the timing of identical work varies (the noise the time verdicts must beat)
 NOISE_REPEATS = 2
@@ -167,11 +170,16 @@ class Experiment:
         return [dict(zip(keys, values)) for values in itertools.product(*(self.grid[k] for k in keys))]
 
     def _taken(self, planner: Component, sampler: Optional[Component], point: Dict[str, Any]) -> Dict[str, Any]:
-        """The swept values of ``point`` that ``planner`` with ``sampler`` takes, as its trials route them."""
+        """The swept values of ``point`` that ``planner`` with ``sampler`` takes, as its trials route them, and
+        a grid algorithm's search uses (:func:`~navlab.grid.planner.settings_ignored`)."""
+        from ..grid.planner import GRID_ALGORITHMS, settings_ignored
+
         routed = routed_params(planner.name, {**self.params, **point}, {**planner.params, **(
             sampler.params if sampler else {})}, sampler.name if sampler else None)
         own = {**planner.params, **(sampler.params if sampler else {})}
-        return {k: v for k, v in point.items() if k in routed and k not in own}
+        ignored = set(settings_ignored(planner.name)) if planner.name in GRID_ALGORITHMS else set()
+        # (dijkstra ran once per swept weight, the same search each time: review, session 23)
+        return {k: v for k, v in point.items() if k in routed and k not in own and k not in ignored}
 
     def unswept(self) -> Dict[str, List[str]]:
         """Each planner's (and, where they differ, each sampler's) label with the swept settings none of its
@@ -234,9 +242,40 @@ class Experiment:
         data = self.to_dict()
         for key in DESCRIPTIVE:
             data.pop(key)
-        if not any(samples(p.name) for p in self.planners):  # samplers no planner draws change no result (a run
-            data["samplers"] = []  # of astar with --sampler gaussian could not be resumed without it: attack, s. 22)
+        # What no planner uses changes no result: samplers no planner draws, a budget no planner takes, a seed
+        # no planner draws with; each is left as it is when not given (so the runs made before keep their
+        # identity: review, session 23), and a run resumes without it (astar with --sampler gaussian, then
+        # without, was refused "differs in: samplers"; --max-iter and --seed alike: attacks, sessions 22-23).
+        if not any(samples(p.name) for p in self.planners):
+            data["samplers"] = [_component(s, "samplers").to_dict() for s in DEFAULT_SAMPLERS]
+            if not any(p.name.startswith(OMPL_PREFIX) for p in self.planners):
+                data["budget"], data["seed"] = {}, DEFAULT_SEED
         return stable_hash(data)[:16]
+
+    def world_contents(self) -> Dict[str, str]:
+        """A digest of each world read from a file (a world file's bytes, a map's cells, resolution and
+        origin), by world name: a file edited between a run and its resume left one cell holding costs of
+        two worlds (attack, session 23), so a resume compares them (:mod:`navlab.bench.store`)."""
+        from ..world.scenes import SCENES
+        from .maps import load_grid
+
+        out = {}
+        for world in self.worlds:
+            if world in self.maps:
+                grid = load_grid(self.maps[world]["map"])
+                out[world] = content_digest(np.packbits(grid.blocked).tobytes(), np.packbits(grid.unknown).tobytes(),
+                                            repr((grid.blocked.shape, grid.resolution, tuple(grid.origin))).encode())
+            elif world not in SCENES and Path(world).is_file():
+                out[world] = content_digest(Path(world).read_bytes())
+        return out
+
+
+def content_digest(*parts: bytes) -> str:
+    """A short digest of ``parts`` (a world's content), for :meth:`Experiment.world_contents`."""
+    digest = hashlib.sha256()
+    for part in parts:
+        digest.update(part)
+    return digest.hexdigest()[:16]
 
 
 # -- reading and checking ----------------------------------------------------
@@ -366,13 +405,13 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         worlds=worlds,
         maps=maps,
         planners=[_component(p, "planners") for p in _as_list(data["planners"], "planners")],
-        samplers=[_component(s, "samplers") for s in _as_list(data.get("samplers", ["uniform"]), "samplers")],
+        samplers=[_component(s, "samplers") for s in _as_list(data.get("samplers", list(DEFAULT_SAMPLERS)), "samplers")],
         params=_mapping(data.get("params"), "params"),
         grid=grid,
         budget={k: v for k, v in budget.items() if v is not None},
         # (null: not given, as for the budget's fields; it was "must be a positive integer, got None")
         trials=20 if data.get("trials") is None else data["trials"],
-        seed=0 if data.get("seed") is None else data["seed"],
+        seed=DEFAULT_SEED if data.get("seed") is None else data["seed"],
         claims=[_claim(c) for c in data.get("claims") or []],
     )
 
@@ -404,7 +443,10 @@ def routed_params(planner: str, shared: Dict[str, Any], own: Dict[str, Any], sam
         takes = set(ompl_params(planner[len(OMPL_PREFIX):]))
         return {**{k: v for k, v in shared.items() if k in takes}, **own}
     if not samples(planner):  # a grid algorithm; astar on a costmap takes the costmap's settings instead
-        takes = COSTMAP_PARAMS if {**shared, **own}.get("costmap") is True else GRID_PARAMS
+        if planner == "astar" and {**shared, **own}.get("costmap") is True:
+            takes: Tuple[str, ...] = COSTMAP_PARAMS
+        else:  # (astar takes any costmap value, to be checked: costmap=yes was "applies to none": attack, s. 23)
+            takes = GRID_PARAMS + (("costmap",) if planner == "astar" else ())
         return {**{k: v for k, v in shared.items() if k in takes and k not in HYBRID_ONLY}, **own}
     car = {**shared, **own}.get("motion") in ("dubins", "reeds_shepp")
 
@@ -437,10 +479,10 @@ def _tree_settings(planner: str, car: bool, sampler: Optional[str] = None) -> fr
     from ..registry import parameters_of
     from ..sampling.planners import PLANNERS
     from ..sampling.samplers import SAMPLERS
-    from ..sampling.se2_planners import SE2_TREE_PARAMS
+    from ..sampling.se2_planners import se2_tree_params
 
     if car:
-        own = set(SE2_TREE_PARAMS) - ({"connect_circle_dist"} if planner == "rrt" else set())
+        own = set(se2_tree_params(planner))
     else:
         own = set(parameters_of(PLANNERS.get(planner))) - {"sampler"}
     drawn = {key for name in ([sampler] if sampler else SAMPLERS.names())
@@ -573,12 +615,13 @@ def validate(exp: Experiment) -> None:
             _check_raster(worlds.get(cell.world), own)
             _check_turning_scale(worlds.get(cell.world), cell.world, own, exp.maps.get(cell.world))
             continue
-        if cell.sampler is None and own.get("costmap") not in (None, False):  # astar on a costmap, as plan takes it
-            if own["costmap"] is not True:
+        if cell.sampler is None and "costmap" in own and own["costmap"] is not False:  # as navlab.plan takes it
+            if own["costmap"] is not True:  # (0 passed as false, then every trial refused it: review, session 23)
                 raise ExperimentError(f"costmap must be true or false, got {shown(own['costmap'])}")
             world = worlds.get(cell.world)
-            check_costmap_settings(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"},
-                                   None if world is None else world.robot_radius)
+            # a map world's robot, from its entry (its map is read by the trials: review and attack, session 23)
+            radius = exp.maps[cell.world].get("robot_radius", 0.0) if cell.world in exp.maps else world.robot_radius
+            check_costmap_settings(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"}, radius)
             _check_raster(world, own)
             continue
         if cell.sampler is None:  # a grid algorithm: its settings only, no budget
@@ -667,7 +710,8 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
 
 def _check_unique_cells(exp: Experiment) -> None:
     """Refuse an experiment naming the same cell twice (``worlds: [trap, trap]``,
-    ``grid: {expand_dis: [1, 1]}``): its trials would share trial ids and count twice."""
+    ``grid: {expand_dis: [1, 1]}``): its trials would share trial ids and count twice. (Cells that come out
+    the same by routing, a sweep a planner does not take, are one cell: :meth:`Experiment.cells`.)"""
     for what, values in (("worlds", exp.worlds), ("planners", [p.title for p in exp.planners]),
                          ("samplers", [s.title for s in exp.samplers])):
         twice = sorted({v for v in values if values.count(v) > 1})
@@ -680,10 +724,6 @@ def _check_unique_cells(exp: Experiment) -> None:
             if hashes.count(h) > 1:
                 raise ExperimentError(f"grid '{key}' lists {v!r} twice: each cell runs once (use 'trials' for "
                                       f"more runs)")
-    ids = [c.cell_id for c in exp.cells()]
-    if len(set(ids)) != len(ids):
-        twice = next(c.label for c in exp.cells() if ids.count(c.cell_id) > 1)
-        raise ExperimentError(f"the cell {twice} is named twice: each cell runs once")
 
 
 def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,

@@ -25,6 +25,7 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple
 
 from ..atomic import write_text_atomic
 from ..errors import ParameterError
+from ..limits import short_name
 from ..wording import counted
 from .experiment import Experiment, ExperimentError, differences
 
@@ -138,6 +139,7 @@ class ResultStore:
         #: lines of results.jsonl set aside (into results.rejected.jsonl) as not being trial rows
         self.rejected = 0
         try:
+            contents = experiment.world_contents()
             _cut_torn_tail(self.results_path)
             if overwrite:
                 self.results_path.unlink(missing_ok=True)
@@ -146,10 +148,11 @@ class ResultStore:
             else:
                 old_rows, self.rejected = _set_aside_bad_rows(self.results_path) if self.results_path.exists() \
                     else ([], 0)
-                _check_reuse(self.folder, experiment, old_rows, resume)
+                _check_reuse(self.folder, experiment, old_rows, resume, contents)
             #: torn last lines cut from results.jsonl over the folder's life (kept in results.torn.jsonl)
             self.torn = _count_lines(self.folder / TORN_FILE)
-            meta = {"fingerprint": experiment.fingerprint(), "experiment": experiment.to_dict()}
+            meta = {"fingerprint": experiment.fingerprint(), "experiment": experiment.to_dict(),
+                    "world_contents": contents}
             try:
                 write_text_atomic(self.folder / EXPERIMENT_FILE, json.dumps(meta, indent=2))
             except OSError as exc:
@@ -217,9 +220,11 @@ class ResultStore:
         return [self.rows[s["trial_id"]] for s in specs if s["trial_id"] in self.rows]
 
 
-def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, Any]], resume: bool) -> None:
-    """Refuse to mix results: another experiment's folder, or this one's
-    without ``resume``."""
+def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, Any]], resume: bool,
+                 contents: Dict[str, str]) -> None:
+    """Refuse to mix results: another experiment's folder, one computed on world files that have changed
+    since (``contents``: :meth:`~navlab.bench.experiment.Experiment.world_contents`), or this one's without
+    ``resume``."""
     meta_path = folder / EXPERIMENT_FILE
     if meta_path.exists():
         try:
@@ -235,6 +240,12 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
                 f"'{folder}' holds results of a different experiment ('{old.get('experiment', {}).get('name')}'; "
                 f"differs in: {', '.join(differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
                 "Use another --out, or --overwrite to discard them.")
+        changed = [world for world, digest in (old.get("world_contents") or {}).items()
+                   if contents.get(world, digest) != digest]
+        if changed and old_rows:  # (a run from before the digests were kept has none to compare)
+            raise ExperimentError(f"'{folder}' holds results computed on another version of "
+                                  f"{', '.join(map(short_name, changed))} (the file changed since): use another "
+                                  "--out, or --overwrite to discard them")
         if old_rows and not resume:
             raise ExperimentError(f"'{folder}' already holds {counted(len(old_rows), 'finished run')} of this "
                                   "experiment (trials and noise repeats); "

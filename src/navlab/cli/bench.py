@@ -190,8 +190,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
             check_plain(data)
         except ExperimentError as exc:
             raise ExperimentError(f"{where}: {exc}") from None
-        data["name"] = _adhoc_name(data)
+        data["name"] = "adhoc"  # (named below by what it runs)
     exp = load_experiment(data, where)
+    if not (experiment or suite):
+        exp.name = data["name"] = _adhoc_name(data, exp.fingerprint())
     if show:
         click.echo(yaml.safe_dump(data, sort_keys=False))
         return
@@ -375,21 +377,18 @@ def _untaken(exp) -> List[str]:
     return out
 
 
-def _adhoc_name(data) -> str:
-    """``adhoc-<worlds>-<planners>-<hash>``: readable, and different for different experiments."""
+def _adhoc_name(data, fingerprint: str) -> str:
+    """``adhoc-<worlds>-<planners>-<hash>``: readable, and different for different experiments; the hash is
+    the run's identity (:meth:`~navlab.bench.experiment.Experiment.fingerprint`), so the same run with more
+    trials, or with samplers, a budget or a seed none of its planners uses, finds its folder to resume."""
     import re
-
-    from ..bench.experiment import samples, stable_hash
 
     def short(value) -> str:
         text = value.get("map", "map") if isinstance(value, dict) else str(value)
         return re.sub(r"[^A-Za-z0-9_.]+", "_", text.rsplit("/", 1)[-1].rsplit(".", 1)[0])[:16]
 
     parts = [short(w) for w in data.get("worlds", [])[:2]] + [short(p) for p in data.get("planners", [])[:2]]
-    # (samplers no planner draws are left out, as from the run's fingerprint: Experiment.fingerprint)
-    drawn = any(samples(p) for p in data.get("planners", []) if isinstance(p, str))
-    named = {k: v for k, v in data.items() if k != "name" and (drawn or k != "samplers")}
-    return "-".join(["adhoc", *parts, stable_hash(named)[:8]])
+    return "-".join(["adhoc", *parts, fingerprint[:8]])
 
 
 def _resume_command() -> str:

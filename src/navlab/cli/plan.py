@@ -99,7 +99,8 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
         result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
         if not pose_query and is_grid_planner(planner):  # (once they passed the planner's checks)
             note_unused_grid_settings(planner, settings, lambda key, value: f"--param {key}={value}")
-    status_if_output_is_cut(0 if result.success else 1)
+    status = 0 if result.success else 1  # (the exit status, also if the output is cut short)
+    status_if_output_is_cut(status)
     if plot:
         from ..viz import plot_plan
 
@@ -112,8 +113,8 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     else:
         _print_summary(world, result, planner, sampler, seed, plot)
     _note_ignored_shape(world, result)
-    if not result.success:
-        sys.exit(1)
+    if status:
+        sys.exit(status)
 
 
 #: the command may end the process at once after this verb (navlab.cli._exit_now): it writes with click.echo

@@ -131,7 +131,8 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         sys.exit(1)
     finally:
         bar.close()
-    status_if_output_is_cut(0 if result.status.name == "REACHED" else 1)
+    status = 0 if result.status.name == "REACHED" else 1  # (the exit status, also if the output is cut short)
+    status_if_output_is_cut(status)
     if trajectory:
         from ..sim.trajectory import write_trajectory_csv
 
@@ -170,8 +171,8 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         for what, name in (("trajectory", trajectory), ("plot", plot), ("animation", gif)):
             if name:
                 click.echo(f"  {what} written to {name}")
-    if result.status.name != "REACHED":
-        sys.exit(1)
+    if status:
+        sys.exit(status)
 
 
 class SimulatedTimeBar:

@@ -326,15 +326,21 @@ def too_heavy(weight) -> str:
             f"got {shown(weight)}")
 
 
+def settings_ignored(algorithm: str) -> Tuple[str, ...]:
+    """The grid settings ``algorithm`` searches without, whatever their values: Dijkstra, JPS and Theta*
+    have their own heuristic (:data:`OWN_HEURISTIC`), and only A* takes a weight."""
+    return (("heuristic",) if algorithm in OWN_HEURISTIC else ()) + (("weight",) if algorithm != "astar" else ())
+
+
 def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:
-    """``settings`` with the ``heuristic`` and ``weight`` among them as ``algorithm`` searches with them:
-    Dijkstra, JPS and Theta* have their own heuristic (:data:`OWN_HEURISTIC`) and only A* a weight. What a
-    result's params report (they said 'manhattan' and 3.0 for a Dijkstra search given them, which used
-    neither), and A* with heuristic ``none`` no weight."""
+    """``settings`` with the ``heuristic`` and ``weight`` among them as ``algorithm`` searches with them
+    (:func:`settings_ignored`), and A* with heuristic ``none`` with no weight. What a result's params report
+    (they said 'manhattan' and 3.0 for a Dijkstra search given them, which used neither)."""
     out = dict(settings)
-    if "heuristic" in out:
-        out["heuristic"] = OWN_HEURISTIC.get(algorithm, out["heuristic"])
-    if "weight" in out and (algorithm != "astar" or out.get("heuristic") == "none"):
+    ignored = settings_ignored(algorithm)
+    if "heuristic" in out and "heuristic" in ignored:
+        out["heuristic"] = OWN_HEURISTIC[algorithm]
+    if "weight" in out and ("weight" in ignored or out.get("heuristic") == "none"):
         out["weight"] = 1.0  # (a weight times no heuristic is none either)
     return out
 

@@ -255,6 +255,29 @@ def _length(name: str, value: Any, allow_zero: bool = False) -> float:
         raise CostmapError(str(exc)) from None
 
 
+#: Nav2's inflation layer defaults: how far costs spread [m] and how fast they fall [1/m]
+DEFAULT_INFLATION_RADIUS = 0.55
+DEFAULT_COST_SCALING_FACTOR = 3.0
+
+
+def check_costmap_resolution(resolution: Any) -> float:
+    """A costmap's cell size [m], checked (a length in navlab's range)."""
+    return _length("resolution", resolution)
+
+
+def check_inflation(inflation_radius: Any, cost_scaling_factor: Any, inscribed: Optional[float] = None
+                    ) -> Tuple[float, float]:
+    """``(inflation_radius, cost_scaling_factor)`` checked: lengths in navlab's range, and, given the footprint's
+    ``inscribed`` radius, an inflation radius no smaller (the costmap's own check, and the bench's before any
+    trial: one rule, one message)."""
+    radius = _length("inflation_radius", inflation_radius, allow_zero=True)
+    if inscribed is not None and radius < inscribed:
+        raise CostmapError(f"inflation_radius = {inflation_radius:g} m is below the footprint's inscribed radius "
+                           f"{inscribed:g} m (footprint_padding included): cells the robot's body reaches "
+                           "would cost nothing")
+    return radius, _positive("cost_scaling_factor", cost_scaling_factor, allow_zero=True)
+
+
 class LayeredCostmap:
     """Static, obstacle and inflation layers combined into a :class:`Costmap`.
 
@@ -278,17 +301,13 @@ class LayeredCostmap:
         Whether the static layer is used (else the source only sets the extent).
     """
 
-    def __init__(self, source, footprint, inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0,
-                 resolution: Optional[float] = None, obstacle_range: float = 2.5, raytrace_range: float = 3.0,
-                 static: bool = True) -> None:
+    def __init__(self, source, footprint, inflation_radius: float = DEFAULT_INFLATION_RADIUS,
+                 cost_scaling_factor: float = DEFAULT_COST_SCALING_FACTOR, resolution: Optional[float] = None,
+                 obstacle_range: float = 2.5, raytrace_range: float = 3.0, static: bool = True) -> None:
         self.footprint = footprint
         self.inscribed = footprint.inscribed_radius
-        self.inflation_radius = _length("inflation_radius", inflation_radius, allow_zero=True)
-        if self.inflation_radius < self.inscribed:
-            raise CostmapError(f"inflation_radius = {inflation_radius:g} m is below the footprint's inscribed radius "
-                               f"{self.inscribed:g} m (footprint_padding included): cells the robot's body reaches "
-                               "would cost nothing")
-        self.cost_scaling_factor = _positive("cost_scaling_factor", cost_scaling_factor, allow_zero=True)
+        self.inflation_radius, self.cost_scaling_factor = check_inflation(inflation_radius, cost_scaling_factor,
+                                                                          self.inscribed)
         self.obstacle_range = _length("obstacle_range", obstacle_range)
         self.raytrace_range = _length("raytrace_range", raytrace_range)
         self.lethal_static, self.unknown, self.resolution, self.origin = _static_layer(source, resolution, static)
@@ -374,7 +393,7 @@ def _static_layer(source, resolution: Optional[float], static: bool):
         lethal = np.array(source.blocked, bool) if static else np.zeros(source.blocked.shape, bool)
         unknown = np.array(source.unknown, bool) if static else np.zeros(source.blocked.shape, bool)
         return lethal, unknown & ~lethal, float(source.resolution), (float(source.origin[0]), float(source.origin[1]))
-    res = _length("resolution", 0.05 if resolution is None else resolution)
+    res = check_costmap_resolution(0.05 if resolution is None else resolution)
     b = source.bounds
     nx, ny = int(math.ceil((b.xmax - b.xmin) / res - 1e-9)), int(math.ceil((b.ymax - b.ymin) / res - 1e-9))
     if nx * ny > MAX_COSTMAP_CELLS:
@@ -388,7 +407,8 @@ def _static_layer(source, resolution: Optional[float], static: bool):
     return lethal, np.zeros_like(lethal), res, (float(b.xmin), float(b.ymin))
 
 
-def build_costmap(source, footprint, inflation_radius: float = 0.55, cost_scaling_factor: float = 3.0,
+def build_costmap(source, footprint, inflation_radius: float = DEFAULT_INFLATION_RADIUS,
+                  cost_scaling_factor: float = DEFAULT_COST_SCALING_FACTOR,
                   resolution: Optional[float] = None) -> Costmap:
     """The static and inflation layers of ``source`` (a World or OccupancyGrid) for a footprint."""
     return LayeredCostmap(source, footprint, inflation_radius, cost_scaling_factor, resolution).static_costmap()

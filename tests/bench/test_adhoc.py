@@ -188,3 +188,14 @@ def test_a_world_file_edited_between_a_run_and_its_resume_is_named(tmp_path, mon
     changed = CliRunner().invoke(main, base + ["--trials", "3", "--resume"])
     assert changed.exit_code == 2
     assert f"holds results computed on another version of {world} (the file changed since)" in changed.output
+
+
+def test_an_ompl_planner_that_counts_no_iterations_is_noted_beside_max_iter(tmp_path):
+    """(ompl:RRTConnect's rows recorded max_iter 50, which it never reads: attack, session 23)"""
+    pytest.importorskip("ompl")
+    res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "ompl:RRTConnect", "--planner",
+                                    "ompl:RRTstar", "--max-iter", "50", "--max-time", "0.05", "--trials", "1", "-q",
+                                    "--no-plots", "--executor", "serial", "--out", str(tmp_path / "o")])
+    assert res.exit_code == 0, res.output
+    assert ("note: ompl:RRTConnect counts no iterations and stops on max_time alone: max_iter 50 is not used by it"
+            in res.stderr.splitlines())

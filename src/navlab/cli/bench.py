@@ -374,6 +374,14 @@ def _untaken(exp) -> List[str]:
             else ""
         out.append(f"note: the budget ({given}) is for tree and OMPL planners; none of this experiment's ({names}) "
                    f"takes one (grid planners search to the end{hybrid}), so it is not used")
+    from ..bench.ompl_planners import COUNTING
+
+    uncounted = sorted({p.name for p in exp.planners if p.name.startswith(OMPL_PREFIX)
+                        and p.name[len(OMPL_PREFIX):] not in COUNTING})
+    if exp.budget.get("max_iter") is not None and uncounted:  # (recorded, and never read: attack, session 23)
+        one = len(uncounted) == 1
+        out.append(f"note: {', '.join(uncounted)} count{'s' if one else ''} no iterations and stop{'s' if one else ''} "
+                   f"on max_time alone: max_iter {exp.budget['max_iter']} is not used by {'it' if one else 'them'}")
     return out
 
 

@@ -363,9 +363,10 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
 def _partners(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]]]) -> List[str]:
     """The groups named ``high`` that differ from ``ga`` only where ``low`` and ``high`` differ: the same
     planner when comparing samplers and the reverse (a planner that draws no samples faces any sampler's
-    cells), and the same value of every swept setting both groups have. A setting swept for one and not the other is one its planner does not take, so its one cell ran the
-    same search for every value and faces each of the other's (a cell not split by a sweep had no partner, and
-    the claim vanished from the report: review and attack, session 23)."""
+    cells), and the same value of every swept setting both groups have. A setting swept for one and not the
+    other is one its planner does not take, so its one cell ran the same search for every value and faces each
+    of the other's (a cell not split by a sweep had no partner, and the claim vanished from the report: review
+    and attack, session 23)."""
     head, swept = _split_group(ga)
     out = []
     for g in groups:

@@ -174,9 +174,8 @@ class Experiment:
         a grid algorithm's search uses (:func:`~navlab.grid.planner.settings_ignored`)."""
         from ..grid.planner import GRID_ALGORITHMS, settings_ignored
 
-        routed = routed_params(planner.name, {**self.params, **point}, {**planner.params, **(
-            sampler.params if sampler else {})}, sampler.name if sampler else None)
         own = {**planner.params, **(sampler.params if sampler else {})}
+        routed = routed_params(planner.name, {**self.params, **point}, own, sampler.name if sampler else None)
         ignored = set(settings_ignored(planner.name)) if planner.name in GRID_ALGORITHMS else set()
         # (dijkstra ran once per swept weight, the same search each time: review, session 23)
         return {k: v for k, v in point.items() if k in routed and k not in own and k not in ignored}
@@ -218,7 +217,8 @@ class Experiment:
         cid = cell.cell_id
         spec = {"trial_id": f"{cid}-{i:04d}" + (f"-r{repeat}" if repeat else ""), "cell_id": cid,
                 "cell": cell.to_dict(), "label": cell.label, "trial": i, "seed": trial_seed(self.seed, cid, i),
-                "budget": dict(self.budget), "swept": {k: cell.params[k] for k in sorted(self.grid) if k in cell.params},
+                "budget": dict(self.budget),
+                "swept": {k: cell.params[k] for k in sorted(self.grid) if k in cell.params},
                 "keep_tree": i == 0 and not repeat}
         if repeat:
             spec["repeat"] = repeat
@@ -405,7 +405,8 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         worlds=worlds,
         maps=maps,
         planners=[_component(p, "planners") for p in _as_list(data["planners"], "planners")],
-        samplers=[_component(s, "samplers") for s in _as_list(data.get("samplers", list(DEFAULT_SAMPLERS)), "samplers")],
+        samplers=[_component(s, "samplers")
+                  for s in _as_list(data.get("samplers", list(DEFAULT_SAMPLERS)), "samplers")],
         params=_mapping(data.get("params"), "params"),
         grid=grid,
         budget={k: v for k, v in budget.items() if v is not None},
@@ -699,7 +700,8 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
         planners = sorted({p.name for p in exp.planners})
         names = ", ".join(planners)
         # who does take it, rather than the nearest name: that was 'turning_radius' itself (newcomer, session 22)
-        trees = {k for p in exp.planners if samples(p.name) for car in (False, True) for k in _tree_settings(p.name, car)}
+        trees = {k for p in exp.planners if samples(p.name)
+                 for car in (False, True) for k in _tree_settings(p.name, car)}
         hint = taken_elsewhere(key, planners[0], own=f"planner{'s' if len(planners) > 1 else ''} {names}") or \
             suggest(key, sorted(used | set(GRID_PARAMS) | set(HYBRID_PARAMS) | trees))
         if key == "goal_tolerance":  # (the query's, which only planners for a point robot take)

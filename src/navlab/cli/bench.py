@@ -360,6 +360,7 @@ def _untaken(exp) -> List[str]:
     (newcomer, session 22). Notes, not refusals: a suite's own samplers and budget stay when --planner
     picks planners that take none, and a run made so must still resume (review, session 22)."""
     from ..bench.experiment import OMPL_PREFIX, samples
+    from ..bench.ompl_planners import COUNTING
 
     names = ", ".join(sorted({p.name for p in exp.planners}))
     out = []
@@ -374,8 +375,6 @@ def _untaken(exp) -> List[str]:
             else ""
         out.append(f"note: the budget ({given}) is for tree and OMPL planners; none of this experiment's ({names}) "
                    f"takes one (grid planners search to the end{hybrid}), so it is not used")
-    from ..bench.ompl_planners import COUNTING
-
     uncounted = sorted({p.name for p in exp.planners if p.name.startswith(OMPL_PREFIX)
                         and p.name[len(OMPL_PREFIX):] not in COUNTING})
     if exp.budget.get("max_iter") is not None and uncounted:  # (recorded, and never read: attack, session 23)

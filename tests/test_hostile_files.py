@@ -159,6 +159,17 @@ def test_a_large_map_yaml_is_refused_by_size(files):
     ({"claims": [{"text": "x", "metric": "cost", "lower": "gausian", "higher": "uniform"}]},
      "'lower' names 'gausian'.*Did you mean 'gaussian'"),
     ({"budget": {"max_iter": 10**12}}, "budget: max_iter=1000000000000 with no max_time could grow a tree"),
+    # claims and labels a report could not judge, or would judge twice (attack, session 23)
+    ({"claims": [{"text": "x", "metric": "cost", "lower": "rrt_star / gausian", "higher": "rrt_star / uniform"}]},
+     "'lower' names 'rrt_star / gausian', which is no planner.*Did you mean 'rrt_star / gaussian'"),
+    ({"claims": [{"text": "x", "metric": "cost", "lower": "-", "higher": "uniform"}]}, "'lower' names '-'"),
+    ({"claims": [{"text": "x", "metric": "cost", "lower": "uniform", "higher": "uniform"}]},
+     "'uniform' is on both sides"),
+    ({"claims": [{"text": "x", "metric": "cost", "lower": ["uniform", "uniform"], "higher": "gaussian"}]},
+     "'lower' names 'uniform' twice"),
+    ({"claims": [{"text": "x", "metric": "cost", "lower": "uniform", "higher": "gaussian"},
+                 {"text": "x", "metric": "cost", "lower": "gaussian", "higher": "uniform"}]}, "two claims read 'x'"),
+    ({"planners": [{"name": "rrt_star", "label": "rrt / step 1"}]}, "label 'rrt / step 1': a label may not hold"),
 ])
 def test_experiments_that_would_run_a_cell_twice_or_never_are_refused(data, message):
     base = {"worlds": ["trap"], "planners": ["rrt_star"], "samplers": ["uniform", "gaussian"], "trials": 1}
@@ -190,7 +201,8 @@ def test_a_sweep_a_planner_ignores_gives_it_one_cell_and_a_note(tmp_path):
                      ("a", {"heuristic": "octile"}), ("a", {"heuristic": "euclidean"}),
                      ("rrt", {})]  # rrt's own expand_dis wins over the sweep
     assert exp.unswept() == {"hybrid_astar": ["expand_dis", "heuristic"], "rrt_star": ["heuristic"],
-                             "a": ["expand_dis"], "rrt": ["expand_dis", "heuristic"]}
+                             "a": ["expand_dis"], "rrt": ["heuristic"]}
+    assert exp.swept_over() == {"rrt": ["expand_dis"]}  # (it was told it did not take it: attack, session 23)
     assert len({spec["trial_id"] for spec in exp.trial_specs()}) == len(exp.trial_specs()) == 6
     path = tmp_path / "e.yaml"
     path.write_text(yaml.safe_dump({**data, "name": "e", "budget": {"max_iter": 50}}))

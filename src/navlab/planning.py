@@ -30,9 +30,9 @@ from .compile_clock import compile_clock, first_call_seconds, hold_interrupts_wh
 from .errors import ParameterError
 from .limits import check_seed, shown
 from .pose_queries import POSE_PLANNERS, is_pose_query
-from .queries import (GRID_PARAMS, build_sampler, costmap_query, grid_query, is_grid_planner, path_length,  # noqa: F401
-                      planner_names, split_grid_params, split_params, take_query_params, take_sampler_params,
-                      tree_query)
+from .queries import (GRID_PARAMS, build_sampler, check_tree_allow_unknown, costmap_query, grid_query,  # noqa: F401
+                      is_grid_planner, path_length, planner_names, split_grid_params, split_params, take_query_params,
+                      take_sampler_params, tree_query)
 from .result import Result, Status
 from .sampling.planners import make_planner
 from .sampling.samplers import SAMPLERS
@@ -200,8 +200,8 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         make_planner(planner, sampler=build_sampler(sampler, to_sampler), **to_planner)
     world = load_source(source, start=start, goal=goal, robot_radius=robot_radius, goal_tolerance=goal_tolerance,
                         allow_unknown=allow_unknown)
-    if allow_unknown is not None and world.occupancy is None and not grid:
-        raise ParameterError("allow_unknown applies to maps; this source is a geometric world")
+    if not grid:
+        check_tree_allow_unknown(world, allow_unknown)
     common = {"planner": planner, "sampler": None if grid else sampler,
               "seed": seed if isinstance(seed, int) else None, "world": world.name,
               "robot_radius": world.robot_radius}

@@ -100,7 +100,17 @@ def split_grid_params(planner: str, params: dict) -> dict:
             raise UnknownNameError(f"unknown parameter '{key}' for grid planner '{planner}'; "
                                    f"valid: {', '.join(GRID_PARAMS)}; and costmap=true for A* on a costmap."
                                    + setting_hint(key, planner, list(GRID_PARAMS) + ["costmap"]))
-    return check_grid_settings(params)
+    checked = check_grid_settings({**params, "algorithm": planner})  # (the algorithm's own rules too)
+    checked.pop("algorithm")
+    return checked
+
+
+def check_tree_allow_unknown(world, allow_unknown: Optional[bool]) -> None:
+    """Refuse ``allow_unknown`` for a tree planner's query on a geometric ``world`` (it has no unknown cells;
+    a grid planner takes it for its raster). :func:`navlab.plan` and the bench's check both ask here (the
+    bench ran every trial of such a cell as an ERROR row: attack, session 23)."""
+    if allow_unknown is not None and world.occupancy is None:
+        raise ParameterError("allow_unknown applies to maps; this source is a geometric world")
 
 
 def take_query_params(params: dict, grid: bool) -> Tuple[Optional[float], Optional[bool]]:

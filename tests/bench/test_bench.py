@@ -363,12 +363,28 @@ def test_what_a_trial_would_refuse_is_refused_before_any_trial(change, message):
         load_experiment({**TINY, **change})
 
 
-def test_what_navlab_plan_takes_a_bench_takes():
+def test_what_navlab_plan_takes_a_bench_takes(tmp_path):
     """A car-like tree alone with a shared resolution, motion=holonomic, allow_unknown for a holonomic tree:
-    refused, though navlab plan and each trial take them (attack, session 22)."""
+    refused, though navlab plan and each trial take them (attack, session 22). And what navlab plan refuses,
+    the bench refuses: allow_unknown for a tree on a geometric world (each trial was an ERROR row: attack,
+    session 23)."""
+    import numpy as np
+
+    from navlab.grid import OccupancyGrid
+    from navlab.grid.mapio import save_map
+
     load_experiment({**TINY, "worlds": ["parking"], "planners": [{"name": "rrt_star", "motion": "dubins"}],
                      "params": {"resolution": 0.2}})
-    load_experiment({**TINY, "params": {"motion": "holonomic", "allow_unknown": True}})
+    load_experiment({**TINY, "params": {"motion": "holonomic"}})
+    save_map(OccupancyGrid(np.zeros((40, 40), bool), resolution=0.25), tmp_path / "open.yaml")
+    on_a_map = {"map": str(tmp_path / "open.yaml"), "queries": [[1, 1, 8, 8]]}
+    load_experiment({**TINY, "worlds": [on_a_map], "params": {"motion": "holonomic", "allow_unknown": True}})
+    with pytest.raises(ValueError, match="allow_unknown applies to maps; this source is a geometric world"):
+        navlab.plan("trap", planner="rrt", allow_unknown=False, max_iter=10)
+    with pytest.raises(ValueError, match="allow_unknown applies to maps; this source is a geometric world"):
+        load_experiment({**TINY, "params": {"allow_unknown": False}})
+    with pytest.raises(ValueError, match="jps needs connectivity 8"):  # (each trial's ERROR row too)
+        load_experiment({**TINY, "planners": ["jps"], "grid": {"connectivity": [4, 8]}})
     load_experiment({**TINY, "grid": {"motion": ["holonomic", "dubins"]}, "worlds": ["parking"]})
     with pytest.raises(ValueError, match="allow_unknown must be true or false, got 'yes'"):
         load_experiment({**TINY, "params": {"allow_unknown": "yes"}})

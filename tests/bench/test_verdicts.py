@@ -110,3 +110,35 @@ def test_a_cell_not_split_by_a_sweep_faces_each_of_the_others_cells():
     claim = {"text": "1 is longer", "metric": "cost", "lower": "expand_dis=2", "higher": "expand_dis=1"}
     assert [(v["group_lower"], v["group_higher"], v["verdict"]) for v in judge_claims(rows, [claim])] == [
         ("rrt_star / uniform / expand_dis=2", "rrt_star / uniform / expand_dis=1", "confirmed")]
+
+
+def test_a_planners_own_setting_pairs_it_with_the_cells_swept_to_the_same_value():
+    """rrt with its own expand_dis 1.0 was compared with rrt_star's expand_dis=3.0 cell too (attack, session
+    23): a setting one side set itself is compared as if swept."""
+    rows = []
+    for planner, swept, params, cost in (("rrt", {}, {"expand_dis": 1.0}, 10.0),
+                                         ("rrt_star", {"expand_dis": 1.0}, {"expand_dis": 1.0}, 20.0),
+                                         ("rrt_star", {"expand_dis": 3.0}, {"expand_dis": 3.0}, 5.0)):
+        for i in range(8):
+            rows.append({"trial_id": f"{planner}-{swept}-{i}", "cell_id": f"{planner}{swept}", "trial": i,
+                         "world": "w", "planner": planner, "sampler": "uniform", "swept": swept, "params": params,
+                         "status": "EXACT", "success": True, "cost": cost + 0.01 * i, "cpu_s": 0.1, "wall_s": 0.1})
+    claim = {"text": "rrt is shorter", "metric": "cost", "lower": "rrt", "higher": "rrt_star"}
+    assert [(v["group_higher"], v["verdict"]) for v in judge_claims(rows, [claim])] == [
+        ("rrt_star / uniform / expand_dis=1.0", "confirmed")]
+
+
+def test_the_overall_line_names_the_cells_when_one_name_faced_several():
+    """("contradicted in trap (6/6 vs 6/6 solved); confirmed in trap (6/6 vs 6/6 solved)" said neither which
+    cells nor that a third comparison was not shown: attack, session 23)"""
+    from navlab.bench.analysis import overall_verdicts
+
+    def verdict(higher, outcome):
+        return {"world": "trap", "claim": "c", "lower": "astar", "higher": "rrt_star", "group_lower": "astar / -",
+                "group_higher": higher, "verdict": outcome, "why": "", "solved": ["6/6", "6/6"]}
+
+    line = overall_verdicts([verdict("rrt_star / uniform", "contradicted"), verdict("rrt_star / gaussian", "confirmed"),
+                             verdict("rrt_star / boundary", "not shown")])["c"]
+    assert line == ("contradicted in trap (astar / - vs rrt_star / uniform: 6/6 vs 6/6 solved); confirmed in trap "
+                    "(astar / - vs rrt_star / gaussian: 6/6 vs 6/6 solved); not shown in trap (astar / - vs "
+                    "rrt_star / boundary: 6/6 vs 6/6 solved)")

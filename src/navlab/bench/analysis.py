@@ -363,29 +363,39 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
 def _partners(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]]]) -> List[str]:
     """The groups named ``high`` that differ from ``ga`` only where ``low`` and ``high`` differ: the same
     planner when comparing samplers and the reverse (a planner that draws no samples faces any sampler's
-    cells), and the same value of every swept setting both groups have. A setting swept for one and not the
-    other is one its planner does not take, so its one cell ran the same search for every value and faces each
-    of the other's (a cell not split by a sweep had no partner, and the claim vanished from the report: review
-    and attack, session 23)."""
-    head, swept = _split_group(ga)
+    cells), and the same value of every setting both groups' cells ran with, swept or their own. A setting
+    one side does not take at all (a sweep that did not split its cells) does not part them: its one cell
+    ran the same search for every value and faces each of the other's cells (a cell not split by a sweep had
+    no partner, and the claim vanished from the report; review and attacks, session 23). Read from the
+    groups' rows, not their labels, which a label holding " / " made ambiguous."""
+    a = groups[ga][0]
     out = []
-    for g in groups:
-        other_head, other_swept = _split_group(g)
-        if g == ga or not _matches(g, high) or len(other_head) != len(head):
+    for g, rows in groups.items():
+        if g == ga or not _matches(g, high):
             continue
+        if ga == low and g == high:  # (two whole group labels)
+            out.append(g)
+            continue
+        b = rows[0]
         # (a planner that draws no samples, "-", faces a tree planner whatever its sampler)
-        if not all(x == y or x == low or y == high or "-" in (x, y) for x, y in zip(head, other_head)):
+        if not all(x == y or x == low or y == high or "-" in (x, y)
+                   for x, y in ((a["planner"], b["planner"]), (a["sampler"], b["sampler"]))):
             continue
-        if all(swept[k] == other_swept[k] or (f"{k}={swept[k]}" == low and f"{k}={other_swept[k]}" == high)
-               for k in swept.keys() & other_swept.keys()):
+        keys = set(a.get("swept") or {}) | set(b.get("swept") or {})
+        if all(_alike(k, _setting(a, k), _setting(b, k), low, high) for k in keys):
             out.append(g)
     return out
 
 
-def _split_group(group: str) -> Tuple[List[str], Dict[str, str]]:
-    """A group's planner and sampler, and its swept values by name (:func:`group_of`)."""
-    parts = group.split(" / ")
-    return parts[:2], dict(part.split("=", 1) for part in parts[2:])
+def _setting(row: Dict[str, Any], key: str) -> Any:
+    """The value of ``key`` a row's cell ran with: swept, else its own (the settings it was given), else None
+    (a setting its planner does not take)."""
+    swept = row.get("swept") or {}
+    return swept[key] if key in swept else (row.get("params") or {}).get(key)
+
+
+def _alike(key: str, va: Any, vb: Any, low: str, high: str) -> bool:
+    return va is None or vb is None or va == vb or (f"{key}={va}" == low and f"{key}={vb}" == high)
 
 
 def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
@@ -398,8 +408,12 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         out[v["claim"]].append(v)
     lines = {}
     for claim, vs in out.items():
-        # a claim on several comparisons names the groups of each (which one decided a world was not said)
-        pairs = len({(v["lower"], v["higher"]) for v in vs}) > 1
+        # a claim on several comparisons names the groups of each (which one decided a world was not said),
+        # by their cells' labels where one name faced several cells (the line said "contradicted in trap (6/6
+        # vs 6/6 solved); confirmed in trap (6/6 vs 6/6 solved)": attack, session 23)
+        cells = len({(v["world"], v.get("group_lower"), v.get("group_higher")) for v in vs}) > len(
+            {(v["world"], v["lower"], v["higher"]) for v in vs})
+        pairs = "cells" if cells else "names" if len({(v["lower"], v["higher"]) for v in vs}) > 1 else ""
         confirmed = _where(vs, "confirmed", pairs)
         contradicted = _where(vs, "contradicted", pairs)
         few = [v for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)]
@@ -415,7 +429,11 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
             parts.append(f"contradicted in {contradicted}")
         if confirmed:
             parts.append(f"confirmed in {confirmed}" + ("" if contradicted else " only"))
-        if rest:  # ("not shown in any of" every world, and then too few to judge in them, said it twice)
+        if pairs == "cells":  # each comparison not shown, named, even in a world another one decided
+            shown_not = _where([v for v in vs if v not in few], "not shown", pairs)
+            if shown_not:
+                parts.append(f"not shown in {shown_not}")
+        elif rest:  # ("not shown in any of" every world, and then too few to judge in them, said it twice)
             parts.append(f"not shown in {'' if judged or unsolved else 'any of '}{', '.join(rest)}")
         if unsolved:
             # "not shown", as the report's per-world table says it (the line's own wording for it confused),
@@ -436,12 +454,16 @@ def _by_world(items) -> str:
     return ", ".join(f"{world} ({'; '.join(d)})" if any(d) else world for world, d in details.items())
 
 
-def _where(verdicts: List[Dict[str, Any]], verdict: str, pairs: bool = False) -> str:
+def _where(verdicts: List[Dict[str, Any]], verdict: str, pairs: str = "") -> str:
     """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``, each world once; with
-    ``pairs``, each comparison's groups before its counts (``boundary vs gaussian: 18/20 vs 20/20 solved``)."""
+    ``pairs``, each comparison's names (``"names"``: ``boundary vs gaussian: 18/20 vs 20/20 solved``) or its
+    cells' labels (``"cells"``) before its counts."""
     def detail(v: Dict[str, Any]) -> str:
         counts = f"{v['solved'][0]} vs {v['solved'][1]} solved" if v.get("solved") else ""
-        return f"{v['lower']} vs {v['higher']}" + (f": {counts}" if counts else "") if pairs else counts
+        if not pairs:
+            return counts
+        sides = (v["group_lower"], v["group_higher"]) if pairs == "cells" else (v["lower"], v["higher"])
+        return f"{sides[0]} vs {sides[1]}" + (f": {counts}" if counts else "")
 
     return _by_world((v["world"], detail(v)) for v in verdicts if v["verdict"] == verdict)
 

@@ -176,24 +176,47 @@ class Experiment:
 
         own = {**planner.params, **(sampler.params if sampler else {})}
         routed = routed_params(planner.name, {**self.params, **point}, own, sampler.name if sampler else None)
-        ignored = set(settings_ignored(planner.name)) if planner.name in GRID_ALGORITHMS else set()
+        ignored = set(settings_ignored(planner.name, routed)) if planner.name in GRID_ALGORITHMS else set()
         # (dijkstra ran once per swept weight, the same search each time: review, session 23)
         return {k: v for k, v in point.items() if k in routed and k not in own and k not in ignored}
+
+    def routed_keys(self) -> set:
+        """The shared and swept settings some planner (with some sampler) is given, whether or not its
+        search then uses them (a weight beside astar with heuristic none, which a note names)."""
+        out = set()
+        for planner in self.planners:
+            for sampler in self.samplers if samples(planner.name) else [None]:
+                own = {**planner.params, **(sampler.params if sampler else {})}
+                for point in self._points():
+                    shared = {**self.params, **point}
+                    out |= set(routed_params(planner.name, shared, own, sampler.name if sampler else None)) & set(shared)
+        return out
 
     def unswept(self) -> Dict[str, List[str]]:
         """Each planner's (and, where they differ, each sampler's) label with the swept settings none of its
         cells takes (so its cells run once for all their values), for a note; those that take every swept
-        setting are left out."""
+        setting are left out. Settings it sets itself are :meth:`swept_over`'s."""
+        return self._not_split(own_ones=False)
+
+    def swept_over(self) -> Dict[str, List[str]]:
+        """As :meth:`unswept`, for the swept settings a planner or its sampler sets itself (its own value wins;
+        the note said it did not take them: attack, session 23)."""
+        return self._not_split(own_ones=True)
+
+    def _not_split(self, own_ones: bool) -> Dict[str, List[str]]:
         out = {}
         for planner in self.planners:
             samplers = self.samplers if samples(planner.name) else [None]
-            ignored = [sorted(set(self.grid) - {k for point in self._points() for k in self._taken(planner, s, point)})
-                       for s in samplers]
-            if len({tuple(keys) for keys in ignored}) == 1:  # the same for every sampler: the planner's
-                if ignored[0]:
-                    out[planner.title] = ignored[0]
+            not_split = []
+            for sampler in samplers:
+                own = set(planner.params) | set(sampler.params if sampler else ())
+                keys = set(self.grid) - {k for point in self._points() for k in self._taken(planner, sampler, point)}
+                not_split.append(sorted(keys & own if own_ones else keys - own))
+            if len({tuple(keys) for keys in not_split}) == 1:  # the same for every sampler: the planner's
+                if not_split[0]:
+                    out[planner.title] = not_split[0]
                 continue
-            for sampler, keys in zip(samplers, ignored):
+            for sampler, keys in zip(samplers, not_split):
                 if keys:
                     out[f"{planner.title} with {sampler.title}"] = keys
         return out
@@ -546,8 +569,8 @@ def _mapping(value: Any, field: str) -> Dict[str, Any]:
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
     from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
-    from ..queries import (build_sampler, check_costmap_settings, is_grid_planner, split_grid_params, split_params,
-                           take_query_params, take_sampler_params)
+    from ..queries import (build_sampler, check_costmap_settings, check_tree_allow_unknown, is_grid_planner,
+                           split_grid_params, split_params, take_query_params, take_sampler_params)
     from ..sampling.planners import make_planner
     from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
 
@@ -577,16 +600,19 @@ def validate(exp: Experiment) -> None:
     labels = [p.title for p in exp.planners]
     if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
         raise ExperimentError("two planners or two samplers share a label; give them distinct 'label's")
+    for part in [*exp.planners, *exp.samplers]:  # (" / " parts a group's label: a claim then failed, after
+        if " / " in part.title or part.title == "-":  # every trial, with an internal error; attack, session 23)
+            raise ExperimentError(f"label {part.title!r}: a label may not hold ' / ' or be '-', which the report's "
+                                  "group names are made of")
     worlds: Dict[str, Any] = {}  # each world loaded once (its pose queries' defaults come from it)
     for world in exp.worlds:
         if world not in exp.maps:
             worlds[world] = _check_world(world)
-    used: set = set()  # the shared settings some cell's planner takes
+    used = exp.routed_keys()  # the shared settings some cell's planner takes
     for cell in exp.cells():
         # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
         own = routed_params(cell.planner.name, cell.params, cell.planner.params,
                             cell.sampler.name if cell.sampler else None)
-        used |= set(own) & set(cell.params)
         if cell.planner.name in POSE_PLANNERS:
             _check_pose_params(cell.planner.name, cell.planner.params)
         if cell.planner.name.startswith(OMPL_PREFIX):
@@ -633,7 +659,9 @@ def validate(exp: Experiment) -> None:
         # the query's own settings (goal_tolerance, allow_unknown, motion=holonomic), as navlab.plan takes them
         # (goal_tolerance was refused here, "Did you mean 'goal_tolerance'?", though each trial takes it:
         # review, session 22)
-        take_query_params(params, grid=False)
+        _, allow_unknown = take_query_params(params, grid=False)
+        if cell.world not in exp.maps:
+            check_tree_allow_unknown(worlds[cell.world], allow_unknown)
         to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
         planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
         try:
@@ -830,14 +858,33 @@ def _as_written_alike(value: Any) -> Any:
 
 
 def _check_claim_groups(exp: Experiment) -> None:
-    """Every name a claim compares must name a group of the experiment: a
-    planner, a sampler, a swept ``key=value``, or a whole group label."""
-    names = {p.title for p in exp.planners} | {s.title for s in exp.samplers} | {"-"}
+    """Every name a claim compares must name a group of the experiment: a planner, a sampler, a swept
+    ``key=value``, or a whole group label (as the report's tables write it); the two sides must differ and
+    name each group once, and no two claims may share a text (a label typo in a whole group label, "-", a
+    side named twice or a claim against itself passed, then had no verdict or two: attack, session 23)."""
+    names = {p.title for p in exp.planners} | {s.title for s in exp.samplers}
     names |= {f"{k}={v}" for k, values in exp.grid.items() for v in values}
+    labels = {" / ".join([c.planner.title, c.sampler.title if c.sampler else "-"]
+                         + [f"{k}={c.params[k]}" for k in sorted(exp.grid) if k in c.params]) for c in exp.cells()}
+    texts = [claim["text"] for claim in exp.claims]
     for claim in exp.claims:
+        if texts.count(claim["text"]) > 1:
+            raise ExperimentError(f"two claims read '{claim['text']}': give each its own text (the report lists "
+                                  "them by it)")
+        sides = {}
         for side in ("lower", "higher"):
-            for name in claim[side] if isinstance(claim[side], list) else [claim[side]]:
-                if str(name) not in names and " / " not in str(name):
+            given = [str(n) for n in (claim[side] if isinstance(claim[side], list) else [claim[side]])]
+            for name in given:
+                valid = labels if " / " in name else names
+                if name not in valid:
                     raise ExperimentError(f"claim '{claim['text']}': '{side}' names {name!r}, which is no planner, "
-                                          f"sampler or swept value of this experiment; valid: "
-                                          f"{', '.join(sorted(names - {'-'}))}." + suggest(str(name), sorted(names)))
+                                          f"sampler, swept value or group of this experiment; valid: "
+                                          f"{', '.join(sorted(names))}, or a group as the report names it "
+                                          f"(planner / sampler / key=value)." + suggest(name, sorted(names | labels)))
+                if given.count(name) > 1:
+                    raise ExperimentError(f"claim '{claim['text']}': '{side}' names {name!r} twice")
+            sides[side] = set(given)
+        both = sides["lower"] & sides["higher"]
+        if both:
+            raise ExperimentError(f"claim '{claim['text']}': {', '.join(map(repr, sorted(both)))} is on both sides: "
+                                  "a claim compares two different groups")

@@ -326,22 +326,24 @@ def too_heavy(weight) -> str:
             f"got {shown(weight)}")
 
 
-def settings_ignored(algorithm: str) -> Tuple[str, ...]:
+def settings_ignored(algorithm: str, settings: Optional[Dict[str, Any]] = None) -> Tuple[str, ...]:
     """The grid settings ``algorithm`` searches without, whatever their values: Dijkstra, JPS and Theta*
-    have their own heuristic (:data:`OWN_HEURISTIC`), and only A* takes a weight."""
-    return (("heuristic",) if algorithm in OWN_HEURISTIC else ()) + (("weight",) if algorithm != "astar" else ())
+    have their own heuristic (:data:`OWN_HEURISTIC`), only A* takes a weight, and A* with heuristic ``none``
+    (in ``settings``) none (a weight times no heuristic is none either)."""
+    no_weight = algorithm != "astar" or (settings or {}).get("heuristic") == "none"
+    return (("heuristic",) if algorithm in OWN_HEURISTIC else ()) + (("weight",) if no_weight else ())
 
 
 def as_searched(algorithm: str, **settings: Any) -> Dict[str, Any]:
     """``settings`` with the ``heuristic`` and ``weight`` among them as ``algorithm`` searches with them
-    (:func:`settings_ignored`), and A* with heuristic ``none`` with no weight. What a result's params report
-    (they said 'manhattan' and 3.0 for a Dijkstra search given them, which used neither)."""
+    (:func:`settings_ignored`). What a result's params report (they said 'manhattan' and 3.0 for a Dijkstra
+    search given them, which used neither)."""
     out = dict(settings)
-    ignored = settings_ignored(algorithm)
+    ignored = settings_ignored(algorithm, settings)
     if "heuristic" in out and "heuristic" in ignored:
         out["heuristic"] = OWN_HEURISTIC[algorithm]
-    if "weight" in out and ("weight" in ignored or out.get("heuristic") == "none"):
-        out["weight"] = 1.0  # (a weight times no heuristic is none either)
+    if "weight" in out and "weight" in ignored:
+        out["weight"] = 1.0
     return out
 
 

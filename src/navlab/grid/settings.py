@@ -45,6 +45,8 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
         _name("heuristic", out["heuristic"], HEURISTICS.names())
     if "algorithm" in out:
         _name("algorithm", out["algorithm"], GRID_ALGORITHMS.names())
+        if out["algorithm"] == "jps" and out.get("connectivity", 8) not in (8, 8.0):  # (canonical on 8 only)
+            raise ParameterError("jps needs connectivity 8")
     if "connectivity" in out:
         value = out["connectivity"]
         if isinstance(value, bool) or not isinstance(value, (int, float)) or value not in (4, 8):

@@ -484,3 +484,28 @@ def test_the_documented_experiment_file_loads_and_routes_as_the_docs_say():
     assert taken[("rrt-0.5", "uniform", None)] == {"expand_dis": 0.5}  # its own expand_dis: one cell, no sweep
     assert taken[("ompl:RRTstar", "-", 1.0)] == {"expand_dis": 1.0}
     assert len(taken) == 2 * 2 + 2 + 2  # rrt_star × samplers × sweep, rrt-0.5 × samplers, OMPL × sweep
+
+
+def test_ompl_prmstar_finishes_its_time_budget():
+    """OMPL's PRM checks its termination condition from a second thread; a Python condition there waited
+    for the lock the first thread held while joining it, and the run never ended (newcomer, session 23: here
+    the first solve hung every time). In a child process, so a deadlock fails the test instead of hanging
+    the suite."""
+    pytest.importorskip("ompl")
+    import subprocess
+    import sys
+
+    code = ("from navlab.bench.ompl_planners import plan_ompl\n"
+            "from navlab.world.sources import load_source\n"
+            "world = load_source('trap')\n"
+            "for seed in range(5):\n"
+            "    r = plan_ompl(world, 'PRMstar', seed, max_time=0.05)\n"
+            "    print(r.status.name, r.stats['iterations'])\n")
+    try:
+        out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    except subprocess.TimeoutExpired:
+        pytest.fail("ompl:PRMstar did not finish 5 solves of 0.05 s in 120 s")
+    assert out.returncode == 0, out.stderr
+    rows = [line.split() for line in out.stdout.splitlines()]
+    assert len(rows) == 5 and all(status in ("EXACT", "APPROXIMATE", "FAILED") and iterations == "None"
+                                  for status, iterations in rows)  # (PRM counts no iterations)

@@ -153,7 +153,11 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     if not counts and max_time is None:
         raise ParameterError(f"ompl:{name} does not count iterations; give it max_time")
     t_solve = time.perf_counter()
-    planner.solve(ob.PlannerTerminationCondition(done))
+    if counts:
+        planner.solve(ob.PlannerTerminationCondition(done))
+    else:  # OMPL's own clock: PRM asks the condition from a second thread, which waited for Python's lock
+        # while the first held it joining that thread, forever (newcomer, session 23); the time alone stops these
+        planner.solve(ob.timedPlannerTerminationCondition(max(0.0, max_time - (t_solve - t0))))
     elapsed = time.perf_counter() - t0
     stats: Dict[str, Any] = {"iterations": planner.numIterations() if counts else None, "time_s": elapsed,
                              "solve_time_s": time.perf_counter() - t_solve, "collision_checks": checker.checks,

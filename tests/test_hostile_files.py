@@ -155,7 +155,7 @@ def test_a_large_map_yaml_is_refused_by_size(files):
     ({"worlds": ["trap", "trap"]}, "'worlds' names 'trap' twice"),
     ({"grid": {"expand_dis": [1, 1]}}, "grid 'expand_dis' lists 1 twice"),
     ({"grid": {"expand_dis": [1, 1.0]}}, "grid 'expand_dis' lists 1 twice"),  # the same number written two ways
-    ({"samplers": ["uniform", "uniform"]}, "two planners or two samplers share a label"),
+    ({"samplers": ["uniform", "uniform"]}, "two planners or two samplers share the label 'uniform'"),
     ({"claims": [{"text": "x", "metric": "cost", "lower": "gausian", "higher": "uniform"}]},
      "'lower' names 'gausian'.*Did you mean 'gaussian'"),
     ({"budget": {"max_iter": 10**12}}, "budget: max_iter=1000000000000 with no max_time could grow a tree"),

@@ -199,3 +199,20 @@ def test_an_ompl_planner_that_counts_no_iterations_is_noted_beside_max_iter(tmp_
     assert res.exit_code == 0, res.output
     assert ("note: ompl:RRTConnect counts no iterations and stops on max_time alone: max_iter 50 is not used by it"
             in res.stderr.splitlines())
+
+
+def test_a_max_iter_no_ompl_planner_counts_leaves_the_identity_and_is_named_as_such():
+    """(ompl:RRTConnect with --max-iter 999 --resume was refused "differs in: budget.max_iter", beside a note that
+    it is not used; and with no budget it was told max_iter would do: newcomer, session 23)"""
+    pytest.importorskip("ompl")
+    from navlab.bench import load_experiment
+
+    base = {"worlds": ["trap"], "trials": 1}
+    connect = {**base, "planners": ["ompl:RRTConnect"], "budget": {"max_time": 0.1}}
+    assert load_experiment(connect).fingerprint() == load_experiment(
+        {**connect, "budget": {"max_time": 0.1, "max_iter": 999}}).fingerprint()
+    star = {**base, "planners": ["ompl:RRTstar"], "budget": {"max_time": 0.1}}
+    assert load_experiment(star).fingerprint() != load_experiment(
+        {**star, "budget": {"max_time": 0.1, "max_iter": 999}}).fingerprint()
+    with pytest.raises(ValueError, match="budget: ompl:RRTConnect does not count iterations; give it max_time"):
+        load_experiment({**base, "planners": ["ompl:RRTConnect"]})

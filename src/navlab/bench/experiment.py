@@ -269,10 +269,16 @@ class Experiment:
         # no planner draws with; each is left as it is when not given (so the runs made before keep their
         # identity: review, session 23), and a run resumes without it (astar with --sampler gaussian, then
         # without, was refused "differs in: samplers"; --max-iter and --seed alike: attacks, sessions 22-23).
-        if not any(samples(p.name) for p in self.planners):
+        from .ompl_planners import COUNTING
+
+        trees = any(samples(p.name) for p in self.planners)
+        ompl = [p.name[len(OMPL_PREFIX):] for p in self.planners if p.name.startswith(OMPL_PREFIX)]
+        if not trees:
             data["samplers"] = [_component(s, "samplers").to_dict() for s in DEFAULT_SAMPLERS]
-            if not any(p.name.startswith(OMPL_PREFIX) for p in self.planners):
+            if not ompl:
                 data["budget"], data["seed"] = {}, DEFAULT_SEED
+            elif not any(name in COUNTING for name in ompl):  # (RRTConnect's unread max_iter: newcomer, s. 23)
+                data["budget"] = {k: v for k, v in data["budget"].items() if k != "max_iter"}
         return stable_hash(data)[:16]
 
     def world_contents(self) -> Dict[str, str]:
@@ -599,7 +605,10 @@ def validate(exp: Experiment) -> None:
         check_max_time(exp.budget["max_time"])
     labels = [p.title for p in exp.planners]
     if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
-        raise ExperimentError("two planners or two samplers share a label; give them distinct 'label's")
+        shared = sorted({t for t in labels if labels.count(t) > 1} | {
+            t for t in [x.title for x in exp.samplers] if [x.title for x in exp.samplers].count(t) > 1})
+        raise ExperimentError(f"two planners or two samplers share the label {', '.join(map(repr, shared))}; give "
+                              "them distinct 'label's")
     for part in [*exp.planners, *exp.samplers]:  # (" / " parts a group's label: a claim then failed, after
         if " / " in part.title or part.title == "-":  # every trial, with an internal error; attack, session 23)
             raise ExperimentError(f"label {part.title!r}: a label may not hold ' / ' or be '-', which the report's "

@@ -66,10 +66,10 @@ def check_ompl_query(name: str, params: Dict[str, Any], budget: Dict[str, Any]) 
         check_length("expand_dis", params["expand_dis"], allow_zero=False)
     if params.get("goal_tolerance") is not None:
         check_length("goal_tolerance", params["goal_tolerance"])
+    if budget.get("max_time") is None and name not in COUNTING:  # (first: it was told max_iter would do)
+        raise ParameterError(f"budget: ompl:{name} does not count iterations; give it max_time")
     if budget.get("max_iter") is None and budget.get("max_time") is None:
         raise ParameterError(f"budget: ompl:{name} needs max_iter or max_time (an OMPL run stops on its budget)")
-    if budget.get("max_time") is None and name not in COUNTING:
-        raise ParameterError(f"budget: ompl:{name} does not count iterations; give it max_time")
 
 
 def ompl_available() -> bool:

@@ -215,3 +215,16 @@ def test_a_renamed_suite_template_is_reported_without_the_moving_ai_maps(monkeyp
     edited = {**samplers, "name": "mine", "trials": 2}
     assert _changed_from_suite(edited) == ("This run is not the suite 'samplers' as it stands: trials 2 here, 20 in "
                                            "the suite. The document's numbers below go with the suite's settings.")
+
+
+def test_differences_name_the_map_world_and_field_that_changed():
+    """(two lists of map worlds were shown whole and cut to the same first characters, so the change could
+    not be seen: attack and newcomer, session 23)"""
+    from navlab.bench.experiment import differences
+
+    was = {"worlds": [{"name": "m", "map": "m.yaml"}, {"name": "a", "map": "a.map", "queries": [[1, 1, 5, 5]]}],
+           "budget": {"max_iter": 1}}
+    now = {"worlds": [{"name": "m", "map": "m.yaml"}, {"name": "a", "map": "a.map", "queries": [[2, 1, 5, 5]]}],
+           "budget": {"max_iter": 2}, "seed": 3}
+    assert differences(was, now) == ["budget.max_iter 1 there, 2 now", "seed (not set) there, 3 now",
+                                     "worlds[1].queries [[1, 1, 5, 5]] there, [[2, 1, 5, 5]] now"]

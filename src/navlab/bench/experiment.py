@@ -785,20 +785,36 @@ def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,
     list of str
         One entry per differing field, in the fields' order.
     """
-    def value(v):
-        return "(not set)" if v is None else shown(v)
-
     out = []
     for key in sorted(set(a) | set(b)):
         old, new = a.get(key), b.get(key)
         if key in ignored or old == new:
             continue
-        if isinstance(old, dict) and isinstance(new, dict):
-            out += [f"{key}.{sub} {value(old.get(sub))} {labels[0]}, {value(new.get(sub))} {labels[1]}"
-                    for sub in sorted(set(old) | set(new), key=str) if old.get(sub) != new.get(sub)]
+        if _mappings(old) and _mappings(new) and len(old) == len(new):
+            # a list of map worlds, item by item and field by field: whole, both sides were cut to the same
+            # first characters and the change could not be seen (attack and newcomer, session 23)
+            out += [line for i, (was, now) in enumerate(zip(old, new)) if was != now
+                    for line in _fields_differing(f"{key}[{i}]", was, now, labels)]
         else:
-            out.append(f"{key} {value(old)} {labels[0]}, {value(new)} {labels[1]}")
+            out += _fields_differing(key, old, new, labels)
     return out
+
+
+def _mappings(value: Any) -> bool:
+    return isinstance(value, list) and any(isinstance(item, dict) for item in value)
+
+
+def _fields_differing(key: str, old: Any, new: Any, labels: Tuple[str, str]) -> List[str]:
+    """``key``'s differing fields when both are mappings (``budget.max_iter 200 there, 5000 now``), else
+    ``key`` whole."""
+    if not (isinstance(old, dict) and isinstance(new, dict)):
+        return [f"{key} {_set_or_not(old)} {labels[0]}, {_set_or_not(new)} {labels[1]}"]
+    return [f"{key}.{sub} {_set_or_not(old.get(sub))} {labels[0]}, {_set_or_not(new.get(sub))} {labels[1]}"
+            for sub in sorted(set(old) | set(new), key=str) if old.get(sub) != new.get(sub)]
+
+
+def _set_or_not(value: Any) -> str:
+    return "(not set)" if value is None else shown(value)
 
 
 def _roughly(count: int) -> str:

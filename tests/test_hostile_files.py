@@ -202,7 +202,7 @@ def test_a_sweep_a_planner_ignores_gives_it_one_cell_and_a_note(tmp_path):
                      ("rrt", {})]  # rrt's own expand_dis wins over the sweep
     assert exp.unswept() == {"hybrid_astar": ["expand_dis", "heuristic"], "rrt_star": ["heuristic"],
                              "a": ["expand_dis"], "rrt": ["heuristic"]}
-    assert exp.swept_over() == {"rrt": ["expand_dis"]}  # (it was told it did not take it: attack, session 23)
+    assert exp.own_over_sweep() == {"rrt": ["expand_dis"]}  # (it was told it did not take it: attack, session 23)
     assert len({spec["trial_id"] for spec in exp.trial_specs()}) == len(exp.trial_specs()) == 6
     path = tmp_path / "e.yaml"
     path.write_text(yaml.safe_dump({**data, "name": "e", "budget": {"max_iter": 50}}))

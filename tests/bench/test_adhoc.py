@@ -216,3 +216,26 @@ def test_a_max_iter_no_ompl_planner_counts_leaves_the_identity_and_is_named_as_s
         {**star, "budget": {"max_time": 0.1, "max_iter": 999}}).fingerprint()
     with pytest.raises(ValueError, match="budget: ompl:RRTConnect does not count iterations; give it max_time"):
         load_experiment({**base, "planners": ["ompl:RRTConnect"]})
+
+
+def test_a_folder_made_before_the_identity_left_unused_settings_out_still_resumes(tmp_path):
+    """A run of ompl:RRTConnect with a max_iter it never reads, made before session 23, recorded the identity
+    of every setting; it is still this run (review, session 23: "differs in: ?")."""
+    import json
+
+    from navlab.bench import load_experiment
+    from navlab.bench.experiment import DESCRIPTIVE, stable_hash
+    from navlab.bench.store import ResultStore
+
+    exp = load_experiment({"worlds": ["trap"], "planners": ["astar"], "budget": {"max_iter": 50}, "trials": 1})
+    current, before = exp.fingerprints()
+    data = {k: v for k, v in exp.to_dict().items() if k not in DESCRIPTIVE}
+    assert before == stable_hash(data)[:16] != current
+    folder = tmp_path / "run"
+    folder.mkdir()
+    (folder / "experiment.json").write_text(json.dumps({"fingerprint": before, "experiment": exp.to_dict()}))
+    (folder / "results.jsonl").write_text(json.dumps({"trial_id": "x-0000", "status": "EXACT"}) + "\n")
+    ResultStore(folder, exp, resume=True).close()  # no "holds results of a different experiment"
+    (folder / "experiment.json").write_text(json.dumps({"fingerprint": "0" * 16, "experiment": exp.to_dict()}))
+    with pytest.raises(ValueError, match="differs in: no setting its experiment.json shows"):
+        ResultStore(folder, exp, resume=True)

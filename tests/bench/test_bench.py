@@ -246,12 +246,16 @@ def test_an_ompl_approximate_row_says_how_far_from_the_goal_it_ended():
     from navlab.bench.ompl_planners import plan_ompl
     from navlab.world.sources import load_source
 
-    trap = load_source("trap")  # 50 iterations do not get out of the bug trap
-    result = plan_ompl(trap, "RRTstar", 0, max_iter=50)
-    assert result.status.name == "APPROXIMATE"
-    found = re.fullmatch(r"goal not reached in (\d+) iterations; the path ends (\S+) m from the goal", result.reason)
-    assert found and int(found[1]) == result.stats["iterations"]
-    assert float(found[2]) == pytest.approx(np.linalg.norm(result.path[-1] - trap.goal), rel=1e-3)
+    trap = load_source("trap")  # 50 iterations seldom get out of the bug trap (OMPL takes no seed per query)
+    results = [plan_ompl(trap, "RRTstar", 0, max_iter=50) for _ in range(8)]
+    approximate = [r for r in results if r.status.name == "APPROXIMATE"]
+    assert approximate, [r.status.name for r in results]
+    for result in approximate:
+        found = re.fullmatch(r"goal not reached in (\d+) iterations; the path ends (\S+) m from the goal",
+                             result.reason)
+        assert found and int(found[1]) == result.stats["iterations"]
+        assert float(found[2]) == pytest.approx(np.linalg.norm(result.path[-1] - trap.goal), rel=1e-3)
+    assert all(r.reason == "" for r in results if r.status.name == "EXACT")
 
 
 @pytest.mark.parametrize("change, message", [

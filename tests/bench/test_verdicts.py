@@ -142,3 +142,23 @@ def test_the_overall_line_names_the_cells_when_one_name_faced_several():
     assert line == ("contradicted in trap (astar / - vs rrt_star / uniform: 6/6 vs 6/6 solved); confirmed in trap "
                     "(astar / - vs rrt_star / gaussian: 6/6 vs 6/6 solved); not shown in trap (astar / - vs "
                     "rrt_star / boundary: 6/6 vs 6/6 solved)")
+
+
+def test_a_claim_with_no_pair_of_cells_is_not_shown_with_its_reason():
+    """rrt fixed at its own expand_dis 0.5, rrt_star swept over 1 and 3: no cells alike; the claim vanished
+    from the report (review, session 23)."""
+    from navlab.bench.analysis import overall_verdicts
+
+    rows = []
+    for planner, swept, params in (("rrt", {}, {"expand_dis": 0.5}), ("rrt_star", {"expand_dis": 1.0}, {}),
+                                   ("rrt_star", {"expand_dis": 3.0}, {})):
+        for i in range(6):
+            rows.append({"trial_id": f"{planner}-{swept}-{i}", "cell_id": f"{planner}{swept}", "trial": i,
+                         "world": "w", "planner": planner, "sampler": "uniform", "swept": swept,
+                         "params": {**params, **swept}, "status": "EXACT", "success": True, "cost": 1.0 + i,
+                         "cpu_s": 0.1, "wall_s": 0.1})
+    claim = {"text": "rrt is shorter", "metric": "cost", "lower": "rrt", "higher": "rrt_star"}
+    verdicts = judge_claims(rows, [claim])
+    assert [(v["verdict"], v["group_lower"], v["why"][:27]) for v in verdicts] == [
+        ("not shown", None, "no pair of cells alike in a")]
+    assert overall_verdicts(verdicts) == {"rrt is shorter": "not shown in any of w"}

@@ -337,6 +337,10 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
                                 "n_a": len(va), "n_b": len(vb), "p": None, "delta": None,
                                 "median_a": _median(va), "median_b": _median(vb)}
                             tests.append((claim, metric, low, high, ga, gb, {**test, "short": short}))
+        for claim in claims:  # a claim with no pair of cells to compare here is said so, not left out (a
+            # planner's own setting that no swept cell of the other side shares: review, session 23)
+            if not any(t[0] is claim for t in tests):
+                verdicts.append(_unpaired(world, claim))
         for (claim, metric, low, high, ga, gb, test), p in zip(tests, holm([t[-1]["p"] for t in tests])):
             if test["short"]:
                 limit = {"noise": None, "threshold": None}
@@ -360,14 +364,28 @@ def judge_claims(rows: List[Dict[str, Any]], claims: List[Dict[str, Any]], time:
     return verdicts
 
 
+def _unpaired(world: str, claim: Dict[str, Any]) -> Dict[str, Any]:
+    """The verdict of a claim that found no pair of cells in ``world`` (:func:`_partners`): not shown."""
+    return {"world": world, "claim": claim["text"], "metric": claim["metric"], "lower": _names(claim["lower"]),
+            "higher": _names(claim["higher"]), "group_lower": None, "group_higher": None, "verdict": "not shown",
+            "why": "no pair of cells alike in all but what the claim names (a setting one side fixes at a value "
+                   "the other side's cells did not run with)",
+            "p_holm": None, "delta": None, "magnitude": "-", "ratio": None, "noise": None, "threshold_ratio": None,
+            "median_lower": None, "median_higher": None, "n": [0, 0], "solved": []}
+
+
+def _names(side: Any) -> str:
+    return ", ".join(side) if isinstance(side, list) else side
+
+
 def _partners(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any]]]) -> List[str]:
     """The groups named ``high`` that differ from ``ga`` only where ``low`` and ``high`` differ: the same
     planner when comparing samplers and the reverse (a planner that draws no samples faces any sampler's
     cells), and the same value of every setting both groups' cells ran with, swept or their own. A setting
     one side does not take at all (a sweep that did not split its cells) does not part them: its one cell
     ran the same search for every value and faces each of the other's cells (a cell not split by a sweep had
-    no partner, and the claim vanished from the report; review and attacks, session 23). Read from the
-    groups' rows, not their labels, which a label holding " / " made ambiguous."""
+    no partner, and the claim vanished from the report; review and attacks, session 23). The planner,
+    sampler and settings are read from the groups' rows, not parsed from their labels."""
     a = groups[ga][0]
     out = []
     for g, rows in groups.items():
@@ -388,13 +406,15 @@ def _partners(ga: str, low: str, high: str, groups: Dict[str, List[Dict[str, Any
 
 
 def _setting(row: Dict[str, Any], key: str) -> Any:
-    """The value of ``key`` a row's cell ran with: swept, else its own (the settings it was given), else None
-    (a setting its planner does not take)."""
+    """The value of ``key`` a row's cell ran with: swept, else as its settings recorded it (its planner's or
+    sampler's own, or shared), else None (a setting its planner does not take)."""
     swept = row.get("swept") or {}
     return swept[key] if key in swept else (row.get("params") or {}).get(key)
 
 
 def _alike(key: str, va: Any, vb: Any, low: str, high: str) -> bool:
+    """Whether two cells' values of ``key`` let them be compared: equal, one not taken, or the very values
+    the claim compares (``key=va`` lower, ``key=vb`` higher)."""
     return va is None or vb is None or va == vb or (f"{key}={va}" == low and f"{key}={vb}" == high)
 
 
@@ -413,11 +433,12 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         # vs 6/6 solved); confirmed in trap (6/6 vs 6/6 solved)": attack, session 23)
         cells = len({(v["world"], v.get("group_lower"), v.get("group_higher")) for v in vs}) > len(
             {(v["world"], v["lower"], v["higher"]) for v in vs})
-        pairs = "cells" if cells else "names" if len({(v["lower"], v["higher"]) for v in vs}) > 1 else ""
-        confirmed = _where(vs, "confirmed", pairs)
-        contradicted = _where(vs, "contradicted", pairs)
+        naming = "cells" if cells else "names" if len({(v["lower"], v["higher"]) for v in vs}) > 1 else ""
+        confirmed = _where(vs, "confirmed", naming)
+        contradicted = _where(vs, "contradicted", naming)
         few = [v for v in vs if v["verdict"] == "not shown" and v.get("solved") and _too_few_solved(v)]
-        unsolved = _by_world((v["world"], f"{v['lower']} solved {v['solved'][0]}, {v['higher']} {v['solved'][1]}")
+        sides = ("group_lower", "group_higher") if naming == "cells" else ("lower", "higher")
+        unsolved = _by_world((v["world"], f"{v[sides[0]]} solved {v['solved'][0]}, {v[sides[1]]} {v['solved'][1]}")
                              for v in few)
         judged = {v["world"] for v in vs if v["verdict"] in ("confirmed", "contradicted")}
         rest = sorted({v["world"] for v in vs} - judged - {v["world"] for v in few})
@@ -429,8 +450,8 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
             parts.append(f"contradicted in {contradicted}")
         if confirmed:
             parts.append(f"confirmed in {confirmed}" + ("" if contradicted else " only"))
-        if pairs == "cells":  # each comparison not shown, named, even in a world another one decided
-            shown_not = _where([v for v in vs if v not in few], "not shown", pairs)
+        if naming == "cells":  # each comparison not shown, named, even in a world another one decided
+            shown_not = _where([v for v in vs if v not in few], "not shown", naming)
             if shown_not:
                 parts.append(f"not shown in {shown_not}")
         elif rest:  # ("not shown in any of" every world, and then too few to judge in them, said it twice)
@@ -454,15 +475,16 @@ def _by_world(items) -> str:
     return ", ".join(f"{world} ({'; '.join(d)})" if any(d) else world for world, d in details.items())
 
 
-def _where(verdicts: List[Dict[str, Any]], verdict: str, pairs: str = "") -> str:
+def _where(verdicts: List[Dict[str, Any]], verdict: str, naming: str = "") -> str:
     """``world (solved a/n vs b/n), ...`` for the verdicts saying ``verdict``, each world once; with
-    ``pairs``, each comparison's names (``"names"``: ``boundary vs gaussian: 18/20 vs 20/20 solved``) or its
+    ``naming``, each comparison's names (``"names"``: ``boundary vs gaussian: 18/20 vs 20/20 solved``) or its
     cells' labels (``"cells"``) before its counts."""
     def detail(v: Dict[str, Any]) -> str:
         counts = f"{v['solved'][0]} vs {v['solved'][1]} solved" if v.get("solved") else ""
-        if not pairs:
+        if not naming:
             return counts
-        sides = (v["group_lower"], v["group_higher"]) if pairs == "cells" else (v["lower"], v["higher"])
+        sides = (v["group_lower"] or v["lower"], v["group_higher"] or v["higher"]) if naming == "cells" else \
+            (v["lower"], v["higher"])
         return f"{sides[0]} vs {sides[1]}" + (f": {counts}" if counts else "")
 
     return _by_world((v["world"], detail(v)) for v in verdicts if v["verdict"] == verdict)

@@ -22,7 +22,7 @@ import time
 import traceback
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, Iterable, List, Optional
+from typing import Any, Dict, Iterable, List, Optional, Tuple
 
 from . import barn
 from .experiment import ExperimentError, content_digest, stable_hash, trial_seed
@@ -77,6 +77,10 @@ class BarnStudy:
         """Identity of the results: the runs count and world list are left out (they extend a result set)."""
         core = {k: v for k, v in self.to_dict().items() if k not in ("runs", "worlds", "data")}
         return stable_hash(core)
+
+    def fingerprints(self) -> Tuple[str, str]:
+        """The identities a folder of this study may hold (one: a BARN study's has not changed)."""
+        return self.fingerprint(), self.fingerprint()
 
     def world_contents(self) -> Dict[str, str]:
         """A digest of each world file by world, compared on resume as an experiment's are

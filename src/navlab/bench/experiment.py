@@ -189,18 +189,19 @@ class Experiment:
                 own = {**planner.params, **(sampler.params if sampler else {})}
                 for point in self._points():
                     shared = {**self.params, **point}
-                    out |= set(routed_params(planner.name, shared, own, sampler.name if sampler else None)) & set(shared)
+                    routed = routed_params(planner.name, shared, own, sampler.name if sampler else None)
+                    out |= set(routed) & set(shared)
         return out
 
     def unswept(self) -> Dict[str, List[str]]:
         """Each planner's (and, where they differ, each sampler's) label with the swept settings none of its
         cells takes (so its cells run once for all their values), for a note; those that take every swept
-        setting are left out. Settings it sets itself are :meth:`swept_over`'s."""
+        setting are left out. Settings it sets itself are :meth:`own_over_sweep`'s."""
         return self._not_split(own_ones=False)
 
-    def swept_over(self) -> Dict[str, List[str]]:
-        """As :meth:`unswept`, for the swept settings a planner or its sampler sets itself (its own value wins;
-        the note said it did not take them: attack, session 23)."""
+    def own_over_sweep(self) -> Dict[str, List[str]]:
+        """As :meth:`unswept`, for the swept settings a planner or its sampler sets itself, so its own value wins
+        over every swept one (the note said it did not take them: attack, session 23)."""
         return self._not_split(own_ones=True)
 
     def _not_split(self, own_ones: bool) -> Dict[str, List[str]]:
@@ -280,6 +281,15 @@ class Experiment:
             elif not any(name in COUNTING for name in ompl):  # (RRTConnect's unread max_iter: newcomer, s. 23)
                 data["budget"] = {k: v for k, v in data["budget"].items() if k != "max_iter"}
         return stable_hash(data)[:16]
+
+    def fingerprints(self) -> Tuple[str, str]:
+        """:meth:`fingerprint`, and the identity navlab gave the same experiment until session 23 (every
+        setting, used or not), which a run made then recorded: either resumes it (a run of ompl:RRTConnect with
+        a max_iter it never read could no longer be resumed: review, session 23)."""
+        data = self.to_dict()
+        for key in DESCRIPTIVE:
+            data.pop(key)
+        return self.fingerprint(), stable_hash(data)[:16]
 
     def world_contents(self) -> Dict[str, str]:
         """A digest of each world read from a file (a world file's bytes, a map's cells, resolution and
@@ -605,8 +615,9 @@ def validate(exp: Experiment) -> None:
         check_max_time(exp.budget["max_time"])
     labels = [p.title for p in exp.planners]
     if len(set(labels)) != len(labels) or len({s.title for s in exp.samplers}) != len(exp.samplers):
+        sampler_labels = [x.title for x in exp.samplers]
         shared = sorted({t for t in labels if labels.count(t) > 1} | {
-            t for t in [x.title for x in exp.samplers] if [x.title for x in exp.samplers].count(t) > 1})
+            t for t in sampler_labels if sampler_labels.count(t) > 1})
         raise ExperimentError(f"two planners or two samplers share the label {', '.join(map(repr, shared))}; give "
                               "them distinct 'label's")
     for part in [*exp.planners, *exp.samplers]:  # (" / " parts a group's label: a claim then failed, after
@@ -617,7 +628,7 @@ def validate(exp: Experiment) -> None:
     for world in exp.worlds:
         if world not in exp.maps:
             worlds[world] = _check_world(world)
-    used = exp.routed_keys()  # the shared settings some cell's planner takes
+    used = exp.routed_keys()  # the shared settings some cell's planner is given (used by its search or not)
     for cell in exp.cells():
         # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
         own = routed_params(cell.planner.name, cell.params, cell.planner.params,
@@ -783,7 +794,7 @@ def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,
     Returns
     -------
     list of str
-        One entry per differing field, in the fields' order.
+        One entry per differing field, in the fields' order (per item and field for a list of map worlds).
     """
     out = []
     for key in sorted(set(a) | set(b)):
@@ -801,6 +812,7 @@ def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,
 
 
 def _mappings(value: Any) -> bool:
+    """Whether ``value`` is a list holding a mapping (a map world)."""
     return isinstance(value, list) and any(isinstance(item, dict) for item in value)
 
 
@@ -889,8 +901,10 @@ def _check_claim_groups(exp: Experiment) -> None:
     side named twice or a claim against itself passed, then had no verdict or two: attack, session 23)."""
     names = {p.title for p in exp.planners} | {s.title for s in exp.samplers}
     names |= {f"{k}={v}" for k, values in exp.grid.items() for v in values}
-    labels = {" / ".join([c.planner.title, c.sampler.title if c.sampler else "-"]
-                         + [f"{k}={c.params[k]}" for k in sorted(exp.grid) if k in c.params]) for c in exp.cells()}
+    from .analysis import group_of
+
+    labels = {group_of({"planner": c.planner.title, "sampler": c.sampler.title if c.sampler else "-",
+                        "swept": {k: c.params[k] for k in exp.grid if k in c.params}}) for c in exp.cells()}
     texts = [claim["text"] for claim in exp.claims]
     for claim in exp.claims:
         if texts.count(claim["text"]) > 1:

@@ -198,7 +198,7 @@ def build(experiment: Dict[str, Any], rows: List[Dict[str, Any]], summary: Dict[
                             "order of magnitude only; times are not comparable in size (different software "
                             "and machines), only in order. Where the document says two things (a reading), "
                             "the 'solved' rows say which one our run agrees with; a success rate agrees "
-                            "within 0.1 of the document's (its 20 trials resolve no finer)."))
+                            "within 0.1 of the document's."))
         blocks.append(("table", (["world", "cell", "reading", "metric", "document", "ours (mean)", "ours (median)",
                                   "agrees"],
                                  [[r[0], r[1], r[2] or "-", r[3], fmt(r[4]), fmt(r[5], 4), fmt(r[6], 4),

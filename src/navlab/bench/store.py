@@ -235,11 +235,12 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
             raise ExperimentError(f"'{meta_path}' is damaged ({str(exc).splitlines()[0][:120]}), so the results "
                                   "beside it cannot be matched to this experiment: restore it, use another --out, "
                                   "or --overwrite to start again") from None
-        if old.get("fingerprint") != experiment.fingerprint():
+        if old.get("fingerprint") not in experiment.fingerprints():
+            changed = ", ".join(differences(old.get("experiment", {}), experiment.to_dict())) or \
+                "no setting its experiment.json shows; its results were identified another way"
             raise ExperimentError(
                 f"'{folder}' holds results of a different experiment ('{old.get('experiment', {}).get('name')}'; "
-                f"differs in: {', '.join(differences(old.get('experiment', {}), experiment.to_dict())) or '?'}). "
-                "Use another --out, or --overwrite to discard them.")
+                f"differs in: {changed}). Use another --out, or --overwrite to discard them.")
         changed = [world for world, digest in (old.get("world_contents") or {}).items()
                    if contents.get(world, digest) != digest]
         if changed and old_rows:  # (a run from before the digests were kept has none to compare)

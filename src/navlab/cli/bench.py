@@ -350,7 +350,7 @@ def note_unused_settings(exp) -> None:
     for label, keys in exp.unswept().items():  # (its cells were run once per value, as if it took them)
         lines[f"note: {label} does not take the swept {' and '.join(keys)}: its cells are not split by "
               f"{'them' if len(keys) > 1 else 'it'} (each runs once, not once per value)"] = None
-    for label, keys in exp.swept_over().items():
+    for label, keys in exp.own_over_sweep().items():
         lines[f"note: {label} sets its own {' and '.join(keys)}: the swept values do not split its cells"] = None
     for line in lines:
         click.echo(line, err=True)

@@ -326,10 +326,17 @@ def too_heavy(weight) -> str:
             f"got {shown(weight)}")
 
 
+def check_jps_connectivity(algorithm: str, connectivity: int) -> None:
+    """JPS prunes the 8-connected grid's symmetric paths: it searches no other (checked after the value's
+    own check, which names a connectivity that is neither 4 nor 8)."""
+    if algorithm == "jps" and connectivity != 8:
+        raise ParameterError("jps needs connectivity 8")
+
+
 def settings_ignored(algorithm: str, settings: Optional[Dict[str, Any]] = None) -> Tuple[str, ...]:
-    """The grid settings ``algorithm`` searches without, whatever their values: Dijkstra, JPS and Theta*
-    have their own heuristic (:data:`OWN_HEURISTIC`), only A* takes a weight, and A* with heuristic ``none``
-    (in ``settings``) none (a weight times no heuristic is none either)."""
+    """The grid settings ``algorithm`` searches without, whatever values they are given: Dijkstra, JPS and
+    Theta* have their own heuristic (:data:`OWN_HEURISTIC`), only A* takes a weight, and A* with heuristic
+    ``none`` in ``settings`` takes none either (a weight times no heuristic is none)."""
     no_weight = algorithm != "astar" or (settings or {}).get("heuristic") == "none"
     return (("heuristic",) if algorithm in OWN_HEURISTIC else ()) + (("weight",) if no_weight else ())
 
@@ -541,8 +548,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             raise ParameterError(f"{flag} must be true or false, got {value!r}")
     if smooth_method not in ("bresenham", "supercover"):
         raise ParameterError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
-    if algorithm == "jps" and connectivity != 8:
-        raise ParameterError("jps needs connectivity 8")
+    check_jps_connectivity(algorithm, connectivity)
     params: Dict[str, Any] = {"algorithm": algorithm, **as_searched(algorithm, heuristic=heuristic, weight=weight),
                               "connectivity": connectivity, "smooth": smooth, "allow_unknown": allow_unknown,
                               "smooth_method": smooth_method}

@@ -38,20 +38,19 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     """``params`` with every grid setting it has checked (values unchanged
     but for integral floats of ``connectivity``); unknown keys pass through
     (the caller reports them). Raises ``ParameterError`` naming the setting."""
-    from .planner import GRID_ALGORITHMS, HEURISTICS, MAX_WEIGHT, too_heavy
+    from .planner import GRID_ALGORITHMS, HEURISTICS, MAX_WEIGHT, check_jps_connectivity, too_heavy
 
     out = dict(params)
     if "heuristic" in out:
         _name("heuristic", out["heuristic"], HEURISTICS.names())
     if "algorithm" in out:
         _name("algorithm", out["algorithm"], GRID_ALGORITHMS.names())
-        if out["algorithm"] == "jps" and out.get("connectivity", 8) not in (8, 8.0):  # (canonical on 8 only)
-            raise ParameterError("jps needs connectivity 8")
     if "connectivity" in out:
         value = out["connectivity"]
         if isinstance(value, bool) or not isinstance(value, (int, float)) or value not in (4, 8):
             raise ParameterError(f"connectivity must be 4 or 8, got {value!r}")
         out["connectivity"] = int(value)
+    check_jps_connectivity(out.get("algorithm", ""), out.get("connectivity", 8))
     for key in ("smooth", "allow_unknown"):
         if key in out:
             _flag(key, out[key])

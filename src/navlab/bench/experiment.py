@@ -28,7 +28,7 @@ import json
 import math
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Tuple, Union
+from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
@@ -153,45 +153,42 @@ class Experiment:
         its own setting of the same name wins): ``grid: {expand_dis: [1, 2]}`` gave hybrid_astar two cells
         that ran the same search as if expand_dis had mattered (newcomer, session 22);
         :meth:`unswept` names what each planner ignores."""
+        kinds = []  # (planner, sampler, settings), the same in every world: routed once
+        for planner, sampler, point, own, routed in self._routings():
+            kept = _taken(planner.name, point, own, routed)
+            shared = {k: v for k, v in self.params.items() if k not in point or k in kept}
+            kinds.append((planner, sampler, {**shared, **kept}))
         out: Dict[str, Cell] = {}  # by cell id, in order
         for world in self.worlds:
-            for planner in self.planners:
-                samplers = self.samplers if samples(planner.name) else [None]
-                for sampler in samplers:
-                    for point in self._points():
-                        kept = self._taken(planner, sampler, point)
-                        shared = {k: v for k, v in self.params.items() if k not in point or k in kept}
-                        cell = Cell(world, planner, sampler, {**shared, **kept})
-                        out.setdefault(cell.cell_id, cell)
+            for planner, sampler, settings in kinds:
+                cell = Cell(world, planner, sampler, settings)
+                out.setdefault(cell.cell_id, cell)
         return list(out.values())
+
+    def swept(self, cell: Cell) -> Dict[str, Any]:
+        """The swept values ``cell`` ran with (its row's ``swept``, which names its group in the report)."""
+        return {k: cell.params[k] for k in sorted(self.grid) if k in cell.params}
 
     def _points(self) -> List[Dict[str, Any]]:
         keys = sorted(self.grid)
         return [dict(zip(keys, values)) for values in itertools.product(*(self.grid[k] for k in keys))]
 
-    def _taken(self, planner: Component, sampler: Optional[Component], point: Dict[str, Any]) -> Dict[str, Any]:
-        """The swept values of ``point`` that ``planner`` with ``sampler`` takes, as its trials route them, and
-        a grid algorithm's search uses (:func:`~navlab.grid.planner.settings_ignored`)."""
-        from ..grid.planner import GRID_ALGORITHMS, settings_ignored
-
-        own = {**planner.params, **(sampler.params if sampler else {})}
-        routed = routed_params(planner.name, {**self.params, **point}, own, sampler.name if sampler else None)
-        ignored = set(settings_ignored(planner.name, routed)) if planner.name in GRID_ALGORITHMS else set()
-        # (dijkstra ran once per swept weight, the same search each time: review, session 23)
-        return {k: v for k, v in point.items() if k in routed and k not in own and k not in ignored}
-
-    def routed_keys(self) -> set:
-        """The shared and swept settings some planner (with some sampler) is given, whether or not its
-        search then uses them (a weight beside astar with heuristic none, which a note names)."""
-        out = set()
+    def _routings(self) -> Iterator[Tuple[Component, Optional[Component], Dict[str, Any], Dict[str, Any],
+                                          Dict[str, Any]]]:
+        """``(planner, sampler, point, own, routed)`` for each planner, each sampler it draws from and each grid
+        point: its own settings (the planner's and the sampler's), and the settings it is given
+        (:func:`routed_params`)."""
         for planner in self.planners:
             for sampler in self.samplers if samples(planner.name) else [None]:
                 own = {**planner.params, **(sampler.params if sampler else {})}
                 for point in self._points():
-                    shared = {**self.params, **point}
-                    routed = routed_params(planner.name, shared, own, sampler.name if sampler else None)
-                    out |= set(routed) & set(shared)
-        return out
+                    yield planner, sampler, point, own, routed_params(
+                        planner.name, {**self.params, **point}, own, sampler.name if sampler else None)
+
+    def routed_keys(self) -> set:
+        """The shared and swept settings some planner (with some sampler) is given, whether or not its
+        search then uses them (a weight beside astar with heuristic none, which a note names)."""
+        return {k for _, _, point, _, routed in self._routings() for k in routed if k in self.params or k in point}
 
     def unswept(self) -> Dict[str, List[str]]:
         """Each planner's (and, where they differ, each sampler's) label with the swept settings none of its
@@ -205,14 +202,20 @@ class Experiment:
         return self._not_split(own_ones=True)
 
     def _not_split(self, own_ones: bool) -> Dict[str, List[str]]:
+        taken: Dict[Tuple[int, int], set] = {}  # by (planner, sampler) index: the swept settings some cell takes
+        left: Dict[Tuple[int, int], set] = {}  # ... and those it sets itself
+        for planner, sampler, point, own, routed in self._routings():
+            key = (id(planner), id(sampler))
+            taken.setdefault(key, set()).update(_taken(planner.name, point, own, routed))
+            left[key] = set(own)
         out = {}
         for planner in self.planners:
             samplers = self.samplers if samples(planner.name) else [None]
             not_split = []
             for sampler in samplers:
-                own = set(planner.params) | set(sampler.params if sampler else ())
-                keys = set(self.grid) - {k for point in self._points() for k in self._taken(planner, sampler, point)}
-                not_split.append(sorted(keys & own if own_ones else keys - own))
+                key = (id(planner), id(sampler))
+                keys = set(self.grid) - taken[key]
+                not_split.append(sorted(keys & left[key] if own_ones else keys - left[key]))
             if len({tuple(keys) for keys in not_split}) == 1:  # the same for every sampler: the planner's
                 if not_split[0]:
                     out[planner.title] = not_split[0]
@@ -242,7 +245,7 @@ class Experiment:
         spec = {"trial_id": f"{cid}-{i:04d}" + (f"-r{repeat}" if repeat else ""), "cell_id": cid,
                 "cell": cell.to_dict(), "label": cell.label, "trial": i, "seed": trial_seed(self.seed, cid, i),
                 "budget": dict(self.budget),
-                "swept": {k: cell.params[k] for k in sorted(self.grid) if k in cell.params},
+                "swept": self.swept(cell),
                 "keep_tree": i == 0 and not repeat}
         if repeat:
             spec["repeat"] = repeat
@@ -263,9 +266,7 @@ class Experiment:
     def fingerprint(self) -> str:
         """Identity of the results this experiment produces. The trial count is
         left out: more trials extend a result set, they do not change it."""
-        data = self.to_dict()
-        for key in DESCRIPTIVE:
-            data.pop(key)
+        data = self._identity()
         # What no planner uses changes no result: samplers no planner draws, a budget no planner takes, a seed
         # no planner draws with; each is left as it is when not given (so the runs made before keep their
         # identity: review, session 23), and a run resumes without it (astar with --sampler gaussian, then
@@ -286,10 +287,11 @@ class Experiment:
         """:meth:`fingerprint`, and the identity navlab gave the same experiment until session 23 (every
         setting, used or not), which a run made then recorded: either resumes it (a run of ompl:RRTConnect with
         a max_iter it never read could no longer be resumed: review, session 23)."""
-        data = self.to_dict()
-        for key in DESCRIPTIVE:
-            data.pop(key)
-        return self.fingerprint(), stable_hash(data)[:16]
+        return self.fingerprint(), stable_hash(self._identity())[:16]
+
+    def _identity(self) -> Dict[str, Any]:
+        """:meth:`to_dict` without the fields that change no result (:data:`DESCRIPTIVE`)."""
+        return {k: v for k, v in self.to_dict().items() if k not in DESCRIPTIVE}
 
     def world_contents(self) -> Dict[str, str]:
         """A digest of each world read from a file (a world file's bytes, a map's cells, resolution and
@@ -307,6 +309,16 @@ class Experiment:
             elif world not in SCENES and Path(world).is_file():
                 out[world] = content_digest(Path(world).read_bytes())
         return out
+
+
+def _taken(planner: str, point: Dict[str, Any], own: Dict[str, Any], routed: Dict[str, Any]) -> Dict[str, Any]:
+    """The swept values of ``point`` a cell of ``planner`` takes: those it is given (``routed``) and does not
+    set itself (``own``), and a grid algorithm's search uses (:func:`~navlab.grid.planner.settings_ignored`:
+    dijkstra ran once per swept weight, the same search each time; review, session 23)."""
+    from ..grid.planner import GRID_ALGORITHMS, settings_ignored
+
+    ignored = set(settings_ignored(planner, routed)) if planner in GRID_ALGORITHMS else set()
+    return {k: v for k, v in point.items() if k in routed and k not in own and k not in ignored}
 
 
 def content_digest(*parts: bytes) -> str:
@@ -899,12 +911,12 @@ def _check_claim_groups(exp: Experiment) -> None:
     ``key=value``, or a whole group label (as the report's tables write it); the two sides must differ and
     name each group once, and no two claims may share a text (a label typo in a whole group label, "-", a
     side named twice or a claim against itself passed, then had no verdict or two: attack, session 23)."""
-    names = {p.title for p in exp.planners} | {s.title for s in exp.samplers}
-    names |= {f"{k}={v}" for k, values in exp.grid.items() for v in values}
     from .analysis import group_of
 
+    names = {p.title for p in exp.planners} | {s.title for s in exp.samplers}
+    names |= {f"{k}={v}" for k, values in exp.grid.items() for v in values}
     labels = {group_of({"planner": c.planner.title, "sampler": c.sampler.title if c.sampler else "-",
-                        "swept": {k: c.params[k] for k in exp.grid if k in c.params}}) for c in exp.cells()}
+                        "swept": exp.swept(c)}) for c in exp.cells()}
     texts = [claim["text"] for claim in exp.claims]
     for claim in exp.claims:
         if texts.count(claim["text"]) > 1:

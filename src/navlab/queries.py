@@ -266,6 +266,7 @@ def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[
     other than astar, an unknown name, a value out of range, and, given the world's ``robot_radius``, an
     inflation radius below it. The bench checks an experiment with it before any trial (its trials of
     ``{name: astar, costmap: true}`` were refused by a line listing costmap=true as valid: attack, session 22)."""
+    from .grid.cost_search import DEFAULT_COST_TRAVEL_MULTIPLIER
     from .grid.settings import check_grid_settings
     from .world.costmap import (DEFAULT_COST_SCALING_FACTOR, DEFAULT_INFLATION_RADIUS, check_costmap_resolution,
                                 check_inflation)
@@ -282,7 +283,7 @@ def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[
     check_inflation(params.get("inflation_radius", DEFAULT_INFLATION_RADIUS),
                     params.get("cost_scaling_factor", DEFAULT_COST_SCALING_FACTOR),
                     None if robot_radius is None else max(robot_radius, MIN_LENGTH))  # (the query's disc)
-    multiplier = params.get("cost_travel_multiplier", 0.0)
+    multiplier = params.get("cost_travel_multiplier", DEFAULT_COST_TRAVEL_MULTIPLIER)
     if not is_finite_real(multiplier) or multiplier < 0:  # (10**400: an OverflowError deeper down until session 18)
         raise ParameterError(f"cost_travel_multiplier must be a number ≥ 0, got {shown(multiplier)}")
 

@@ -267,21 +267,34 @@ class Experiment:
         """Identity of the results this experiment produces. The trial count is
         left out: more trials extend a result set, they do not change it."""
         data = self._identity()
-        # What no planner uses changes no result: samplers no planner draws, a budget no planner takes, a seed
-        # no planner draws with; each is left as it is when not given (so the runs made before keep their
-        # identity: review, session 23), and a run resumes without it (astar with --sampler gaussian, then
-        # without, was refused "differs in: samplers"; --max-iter and --seed alike: attacks, sessions 22-23).
+        # What no planner uses changes no result (:meth:`unused`): each is left as it is when not given (so the
+        # runs made before keep their identity: review, session 23), and a run resumes without it (astar with
+        # --sampler gaussian, then without, was refused "differs in: samplers"; --max-iter and --seed alike:
+        # attacks and newcomer, sessions 22-23).
+        unused = self.unused()
+        if unused["samplers"]:
+            data["samplers"] = [_component(s, "samplers").to_dict() for s in DEFAULT_SAMPLERS]
+        data["budget"] = {k: v for k, v in data["budget"].items() if k not in unused["budget"]}
+        if unused["seed"]:
+            data["seed"] = DEFAULT_SEED
+        return stable_hash(data)[:16]
+
+    def unused(self) -> Dict[str, Any]:
+        """What none of the experiment's planners uses: ``samplers`` (true when no tree planner draws them),
+        ``budget`` (the fields no planner takes: every one beside grid and pose planners alone, ``max_iter``
+        beside OMPL planners that count no iterations) and ``seed`` (true when no planner draws random
+        numbers). The run's identity leaves them out, and ``navlab bench`` says so in a note."""
         from .ompl_planners import COUNTING
 
         trees = any(samples(p.name) for p in self.planners)
         ompl = [p.name[len(OMPL_PREFIX):] for p in self.planners if p.name.startswith(OMPL_PREFIX)]
-        if not trees:
-            data["samplers"] = [_component(s, "samplers").to_dict() for s in DEFAULT_SAMPLERS]
-            if not ompl:
-                data["budget"], data["seed"] = {}, DEFAULT_SEED
-            elif not any(name in COUNTING for name in ompl):  # (RRTConnect's unread max_iter: newcomer, s. 23)
-                data["budget"] = {k: v for k, v in data["budget"].items() if k != "max_iter"}
-        return stable_hash(data)[:16]
+        if trees:
+            budget: List[str] = []
+        elif not ompl:
+            budget = sorted(self.budget)
+        else:
+            budget = ["max_iter"] if "max_iter" in self.budget and not any(n in COUNTING for n in ompl) else []
+        return {"samplers": not trees, "budget": budget, "seed": not trees and not ompl}
 
     def fingerprints(self) -> Tuple[str, str]:
         """:meth:`fingerprint`, and the identity navlab gave the same experiment until session 23 (every

@@ -357,28 +357,30 @@ def note_unused_settings(exp) -> None:
 
 
 def _untaken(exp) -> List[str]:
-    """Notes for samplers or a budget that none of the experiment's planners takes: navlab plan refuses
-    them, and bench ran hybrid_astar with --sampler gaussian --max-iter 200 as if neither were given
-    (newcomer, session 22). Notes, not refusals: a suite's own samplers and budget stay when --planner
-    picks planners that take none, and a run made so must still resume (review, session 22)."""
-    from ..bench.experiment import OMPL_PREFIX, samples
+    """Notes for samplers or a budget that none of the experiment's planners takes (:meth:`Experiment.unused
+    <navlab.bench.experiment.Experiment.unused>`): navlab plan refuses them, and bench ran hybrid_astar with
+    --sampler gaussian --max-iter 200 as if neither were given (newcomer, session 22). Notes, not refusals: a
+    suite's own samplers and budget stay when --planner picks planners that take none, and a run made so must
+    still resume (review, session 22)."""
+    from ..bench.experiment import OMPL_PREFIX
     from ..bench.ompl_planners import COUNTING
 
+    unused = exp.unused()
     names = ", ".join(sorted({p.name for p in exp.planners}))
+    ompl = sorted({p.name for p in exp.planners if p.name.startswith(OMPL_PREFIX)})
     out = []
-    if exp.samplers_given and not any(samples(p.name) for p in exp.planners):
-        own = " (OMPL's planners draw their own)" if any(p.name.startswith(OMPL_PREFIX) for p in exp.planners) \
-            else ""
+    if exp.samplers_given and unused["samplers"]:
+        own = " (OMPL's planners draw their own)" if ompl else ""
         out.append(f"note: the samplers ({', '.join(s.title for s in exp.samplers)}) are for navlab's tree planners; "
                    f"none of this experiment's ({names}) draws them{own}, so they are not used")
-    if exp.budget and not any(samples(p.name) or p.name.startswith(OMPL_PREFIX) for p in exp.planners):
+    if exp.budget and unused["budget"] and not ompl:
         given = ", ".join(f"{k} {v}" for k, v in exp.budget.items())
         hybrid = "; hybrid_astar's budget is max_expansions" if any(p.name == "hybrid_astar" for p in exp.planners) \
             else ""
         out.append(f"note: the budget ({given}) is for tree and OMPL planners; none of this experiment's ({names}) "
                    f"takes one (grid planners search to the end{hybrid}), so it is not used")
-    uncounted = sorted({p.name for p in exp.planners if p.name.startswith(OMPL_PREFIX)
-                        and p.name[len(OMPL_PREFIX):] not in COUNTING})
+    # (per planner: a max_iter beside RRTstar too is used by it, and not by RRTConnect)
+    uncounted = [name for name in ompl if name[len(OMPL_PREFIX):] not in COUNTING]
     if exp.budget.get("max_iter") is not None and uncounted:  # (recorded, and never read: attack, session 23)
         one = len(uncounted) == 1
         out.append(f"note: {', '.join(uncounted)} count{'s' if one else ''} no iterations and stop{'s' if one else ''} "

@@ -33,14 +33,14 @@ SE2_TREE_PARAMS = ("expand_dis", "max_iter", "max_time", "connect_circle_dist", 
                    "heading_bins")
 #: iterations when max_iter is not given
 DEFAULT_MAX_ITER = {"rrt": 10_000, "rrt_star": 5_000, "informed_rrt_star": 5_000}
+#: the tree's arrays hold this many nodes (and trace entries) at first, then double as needed
+INITIAL_NODES = 4096
 
 
 def se2_tree_params(planner: str) -> Tuple[str, ...]:
     """The settings of :data:`SE2_TREE_PARAMS` ``planner`` takes: all but ``connect_circle_dist`` for rrt, which
     does not rewire (its mode 0)."""
     return tuple(k for k in SE2_TREE_PARAMS if k != "connect_circle_dist" or SE2_MODES.get(planner) != 0)
-#: the tree's arrays hold this many nodes (and trace entries) at first, then double as needed
-INITIAL_NODES = 4096
 
 
 def se2_gamma(bounds) -> float:

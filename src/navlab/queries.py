@@ -275,8 +275,8 @@ def check_costmap_settings(algorithm: str, params: dict, robot_radius: Optional[
         raise ParameterError(f"costmap: only astar plans on a costmap's costs, got '{algorithm}'")
     unknown = sorted(set(params) - set(COSTMAP_PARAMS))
     if unknown:
-        raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: {', '.join(COSTMAP_PARAMS)}"
-                         + suggest(unknown[0], list(COSTMAP_PARAMS)))
+        raise UnknownNameError(f"unknown parameter '{unknown[0]}' with costmap=true; valid: "
+                               f"{', '.join(COSTMAP_PARAMS)}." + suggest(unknown[0], list(COSTMAP_PARAMS)))
     check_grid_settings({k: params[k] for k in ("allow_unknown",) if k in params})
     if params.get("resolution") is not None:
         check_costmap_resolution(params["resolution"])

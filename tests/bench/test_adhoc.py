@@ -239,3 +239,13 @@ def test_a_folder_made_before_the_identity_left_unused_settings_out_still_resume
     (folder / "experiment.json").write_text(json.dumps({"fingerprint": "0" * 16, "experiment": exp.to_dict()}))
     with pytest.raises(ValueError, match="differs in: no setting its experiment.json shows"):
         ResultStore(folder, exp, resume=True)
+
+
+def test_a_resume_with_nothing_to_resume_says_it_is_a_new_run(tmp_path, monkeypatch):
+    """(flags that differ from the earlier run name another folder, and --resume began afresh without a word:
+    newcomer, session 23)"""
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "astar", "--trials", "1", "-q",
+                                    "--no-plots", "--executor", "serial", "--out", "fresh", "--resume"])
+    assert res.exit_code == 0
+    assert "note: nothing to resume in fresh (no results there): a new run" in res.stderr

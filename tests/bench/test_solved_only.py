@@ -228,3 +228,8 @@ def test_differences_name_the_map_world_and_field_that_changed():
            "budget": {"max_iter": 2}, "seed": 3}
     assert differences(was, now) == ["budget.max_iter 1 there, 2 now", "seed (not set) there, 3 now",
                                      "worlds[1].queries [[1, 1, 5, 5]] there, [[2, 1, 5, 5]] now"]
+    # more or fewer planners: by their labels (the two lists of dicts were cut to the same characters: newcomer,
+    # session 23)
+    planners = [{"name": "astar", "params": {}, "label": "astar"}, {"name": "rrt_star", "params": {}, "label": "rrt_star"}]
+    assert differences({"planners": planners}, {"planners": planners + [{"name": "rrt", "params": {}, "label": "rrt"}]}
+                       ) == ["planners ['astar', 'rrt_star'] there, ['astar', 'rrt_star', 'rrt'] now"]

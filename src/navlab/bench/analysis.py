@@ -449,7 +449,8 @@ def overall_verdicts(verdicts: List[Dict[str, Any]]) -> Dict[str, str]:
         if contradicted:
             parts.append(f"contradicted in {contradicted}")
         if confirmed:
-            parts.append(f"confirmed in {confirmed}" + ("" if contradicted else " only"))
+            # ("only" where the rest is not listed: by cells each comparison not shown is named: newcomer, s. 23)
+            parts.append(f"confirmed in {confirmed}" + ("" if contradicted or naming == "cells" else " only"))
         if naming == "cells":  # each comparison not shown, named, even in a world another one decided
             shown_not = _where([v for v in vs if v not in few], "not shown", naming)
             if shown_not:

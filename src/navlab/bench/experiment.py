@@ -831,6 +831,8 @@ def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,
             # first characters and the change could not be seen (attack and newcomer, session 23)
             out += [line for i, (was, now) in enumerate(zip(old, new)) if was != now
                     for line in _fields_differing(f"{key}[{i}]", was, now, labels)]
+        elif _mappings(old) and _mappings(new):  # (more or fewer planners or worlds: by their names)
+            out.append(f"{key} {shown(_item_names(old))} {labels[0]}, {shown(_item_names(new))} {labels[1]}")
         else:
             out += _fields_differing(key, old, new, labels)
     return out
@@ -839,6 +841,11 @@ def differences(a: Dict[str, Any], b: Dict[str, Any], ignored=DESCRIPTIVE,
 def _mappings(value: Any) -> bool:
     """Whether ``value`` is a list holding a mapping (a map world)."""
     return isinstance(value, list) and any(isinstance(item, dict) for item in value)
+
+
+def _item_names(items: List[Any]) -> List[Any]:
+    """A list's items by name: a mapping's ``label`` or ``name`` (a planner, a map world), else itself."""
+    return [item.get("label") or item.get("name", item) if isinstance(item, dict) else item for item in items]
 
 
 def _fields_differing(key: str, old: Any, new: Any, labels: Tuple[str, str]) -> List[str]:

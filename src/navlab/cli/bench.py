@@ -6,6 +6,7 @@ import difflib
 import os
 import shlex
 import sys
+from pathlib import Path
 from typing import Any, Dict, List
 
 import click
@@ -202,6 +203,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if not (experiment or suite) and not out and not resume:
         click.echo(f"results go to {folder} (--out DIR to choose; the same flags again with --resume continue it)",
                    err=True)
+    from ..bench.store import RESULTS_FILE
+
+    if resume and not (Path(folder) / RESULTS_FILE).is_file():  # (it began afresh without a word: newcomer,
+        click.echo(f"note: nothing to resume in {folder} (no results there): a new run", err=True)  # session 23)
     try:
         run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
                              overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)

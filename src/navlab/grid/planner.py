@@ -36,7 +36,7 @@ import numpy as np
 
 from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from ..errors import ParameterError
-from ..limits import check_coordinate, shown
+from ..limits import check_coordinate, check_weight, shown
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
@@ -314,18 +314,6 @@ def _cell(value, what: str) -> Tuple[int, int]:
 STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells", "warmup_s")
 
 
-#: the largest A* weight: past it the search orders nodes by the heuristic alone already (greedy
-#: best-first), and at 1e306 weight × heuristic overflowed to inf, which ordered nothing (a Berlin
-#: query cost 665.6 against 394.5 at 1e305: final newcomer run, session 19)
-MAX_WEIGHT = 1e6
-
-
-def too_heavy(weight) -> str:
-    """The message for a weight past :data:`MAX_WEIGHT`."""
-    return (f"weight must be at most {MAX_WEIGHT:g} (beyond it A* is greedy best-first already), "
-            f"got {shown(weight)}")
-
-
 def check_jps_connectivity(algorithm: str, connectivity: int) -> None:
     """JPS prunes the 8-connected grid's symmetric paths: it searches no other (checked after the value's
     own check, which names a connectivity that is neither 4 nor 8)."""
@@ -534,15 +522,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
                smooth: bool, weight: float, allow_unknown: bool, smooth_method: str, warmup_s: float) -> Result:
     """:func:`plan` once its kernels are warm: the checks, the search and the path, timed (``time_s``)."""
     t0 = time.perf_counter()
-    try:
-        as_float = float(weight) if isinstance(weight, numbers.Real) else math.nan  # np.float32, np.int64, Fraction
-    except OverflowError:  # an int past float's range (10**400)
-        as_float = math.inf
-    if isinstance(weight, (bool, np.bool_)) or not as_float >= 1 or not math.isfinite(as_float):
-        raise ParameterError(f"weight must be a finite number >= 1, got {shown(weight)}")
-    if as_float > MAX_WEIGHT:
-        raise ParameterError(too_heavy(weight))
-    weight = as_float
+    weight = check_weight(weight)
     for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
         if not isinstance(value, (bool, np.bool_)):
             raise ParameterError(f"{flag} must be true or false, got {value!r}")

@@ -13,7 +13,7 @@ import math
 from typing import Any, Dict
 
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, is_finite_real, shown
+from ..limits import MAX_COORDINATE, MAX_WEIGHT, MIN_LENGTH, is_finite_real, shown, too_heavy
 
 
 def _name(key: str, value: Any, valid) -> str:
@@ -38,7 +38,7 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     """``params`` with every grid setting it has checked (values unchanged
     but for integral floats of ``connectivity``); unknown keys pass through
     (the caller reports them). Raises ``ParameterError`` naming the setting."""
-    from .planner import GRID_ALGORITHMS, HEURISTICS, MAX_WEIGHT, check_jps_connectivity, too_heavy
+    from .planner import GRID_ALGORITHMS, HEURISTICS, check_jps_connectivity
 
     out = dict(params)
     if "heuristic" in out:

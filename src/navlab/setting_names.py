@@ -25,7 +25,7 @@ CAR_QUERY_PARAMS = ("motion", "turning_radius", "footprint", "resolution", "allo
 HYBRID_PARAMS = (*CAR_QUERY_PARAMS, "heading_bins",
                  "reverse_penalty", "change_penalty", "non_straight_penalty", "analytic_expansion",
                  "analytic_expansion_max_length", "analytic_expansion_ratio", "max_expansions", "smooth",
-                 "waypoint_spacing", "exact_retry", "distance_table")
+                 "waypoint_spacing", "exact_retry", "distance_table", "weight")
 #: the settings of ``hybrid_astar`` that no other planner takes (an experiment's shared ones go to it alone):
 #: all but the grid planners' and those a car-like tree's query takes too
 HYBRID_ONLY = tuple(k for k in HYBRID_PARAMS if k not in GRID_PARAMS and k not in CAR_QUERY_PARAMS and

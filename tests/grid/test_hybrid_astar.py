@@ -131,7 +131,10 @@ def test_a_start_whose_footprint_overlaps_a_wall_names_the_cell():
     ({"smooth": "maybe"}, "smooth must be true or false"),
     ({"analytic_expansion_ratio": 0.0}, "analytic_expansion_ratio"),
     ({"analytic_expansion_ratio": -3.5}, "analytic_expansion_ratio"),
-    ({"analytic_expansion_ratio": "3.5"}, "analytic_expansion_ratio")])
+    ({"analytic_expansion_ratio": "3.5"}, "analytic_expansion_ratio"),
+    ({"weight": 0.5}, "weight must be a finite number >= 1, got 0.5"), ({"weight": float("nan")}, "weight"),
+    ({"weight": True}, "weight must be .* got True"), ({"weight": "2"}, "weight"),
+    ({"weight": 1e7}, "weight must be at most 1e\\+06")])
 def test_bad_input_is_named(kwargs, field):
     args = {"grid": aisle(), "start": (1.2, 1.55, 0.0), "goal": (4.05, 4.6, 1.5), "turning_radius": 0.5,
             "footprint": ROBOT}
@@ -452,3 +455,18 @@ def test_a_footprint_vertex_past_floats_range_is_named():
 
     with pytest.raises(ParameterError, match="footprint must be a disc's radius"):
         plan_hybrid(aisle(), (1.2, 1.55, 0.0), (4.05, 4.6, 1.5), 0.5, footprint=[[0, 0], [1, 0], [1, 10 ** 400]])
+
+
+@pytest.mark.parametrize("motion", ["reeds_shepp", "dubins"])
+@pytest.mark.parametrize("weight", [1.5, 5.0, 1e6])
+def test_a_weighted_search_still_clears_the_aisle_on_the_curvature_bound(motion, weight):
+    """Weighting the heuristic changes which nodes are expanded, never what a path must satisfy: the exact
+    curve clears every wall under shapely at 1 mm and keeps the turning radius."""
+    grid, start, goal = aisle(), (1.2, 1.55, 0.0), (4.05, 4.6, math.pi / 2)
+    result = plan_hybrid(grid, start, goal, 0.5, motion=motion, footprint=ROBOT, weight=weight)
+    assert result.status is Status.EXACT, result.reason
+    assert result.params["weight"] == weight
+    path, poses = retrace(result, start)
+    assert np.allclose(path.end[:2], goal[:2], atol=1e-9)
+    assert_clear(grid, poses, ROBOT)
+    assert_curvature(poses, 0.5)

@@ -125,3 +125,27 @@ def test_hybrid_astar_costs_what_dijkstra_costs_on_a_lattice_its_primitives_clos
         assert result.stats["g"] == pytest.approx(expected, rel=1e-12), goal
         # the path ends in the goal's cell, a few thousandths of a cell from its centre
         assert np.hypot(*(np.array(result.path[-1, :2]) - centre(goal[0], goal[1]))) < 0.05 * RES
+
+
+@pytest.mark.parametrize("weight", [1.25, 2.0, 5.0])
+def test_a_weighted_search_costs_at_most_weight_times_dijkstra(weight):
+    """Weighted A* (keys g + w·h) returns at most w times the optimum with a consistent heuristic (Pohl 1970;
+    without re-expansions, Likhachev et al., ARA*, NIPS 2003); here the heuristic is consistent up to the
+    0.0044-cell offsets above, a fraction of the 2.2-cell cost quantum. Never below the optimum, and on these
+    queries the weight saves expansions overall."""
+    radius = ARC * RES
+    length = radius * math.pi / 2
+    grid = OccupancyGrid(np.zeros((SIZE, SIZE), bool), resolution=RES)
+    centre = lambda cx, cy: ((cx + 0.5) * RES, (cy + 0.5) * RES)  # noqa: E731
+    plain = weighted = 0
+    for goal in random_goals(np.random.default_rng(21), 10, True):
+        common = dict(motion="reeds_shepp", heading_bins=4, change_penalty=0.0, analytic_expansion=False,
+                      smooth=False)
+        ends = ((*centre(*START), 0.0), (*centre(goal[0], goal[1]), goal[2] * math.pi / 2))
+        result = plan_hybrid(grid, *ends, radius, weight=weight, **common)
+        assert result.status == Status.EXACT
+        expected = dijkstra((*START, 0), goal, length)
+        assert expected * (1 - 1e-12) <= result.stats["g"] <= weight * expected + 0.1 * RES, goal
+        weighted += result.stats["expansions"]
+        plain += plan_hybrid(grid, *ends, radius, **common).stats["expansions"]
+    assert weighted < plain

@@ -80,7 +80,7 @@ from shapely.geometry import Point, Polygon
 
 from ..errors import ParameterError
 from ..jit import njit
-from ..limits import MAX_COUNT, check_count, check_length, finite_number
+from ..limits import MAX_COUNT, check_count, check_length, check_weight, finite_number
 from ..registry import suggest
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
@@ -103,6 +103,7 @@ DEFAULTS = {  # Nav2 SmacPlannerHybrid's defaults where it has one
     "non_straight_penalty": 1.2,
     "analytic_expansion_max_length": None,  # [m] None: ANALYTIC_MIN_LENGTH or ANALYTIC_RADII turning radii
     "max_expansions": 200_000,
+    "weight": 1.0,  # (Smac has none: its keys are g + h)
 }
 #: the most poses a returned path holds (``waypoint_spacing``): 240 MB of poses
 MAX_WAYPOINTS = 10 ** 7
@@ -128,7 +129,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                 analytic_expansion_ratio: Optional[float] = None,
                 max_expansions: int = DEFAULTS["max_expansions"], smooth: bool = True,
                 waypoint_spacing: Optional[float] = None, exact_retry: bool = True,
-                distance_table: bool = True) -> Result:
+                distance_table: bool = True, weight: float = DEFAULTS["weight"]) -> Result:
     """Plan a car-like robot's path between poses on an occupancy grid (Hybrid A*).
 
     Parameters
@@ -188,6 +189,13 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         heading bin, solved the first time a query needs it and kept for the
         robot's next queries). False: solved at each pose exactly, every
         time (the search's answers before the table, bit for bit).
+    weight : float
+        The heuristic's weight (weighted A*: Pohl, "Heuristic search viewed as
+        path finding in a graph", Artificial Intelligence 1(3), 1970): nodes
+        are ordered by g + weight·h. 1 (the default) is Dolgov et al.'s
+        search; more expands fewer nodes for a path that may be longer
+        (PythonRobotics' ``HybridAStar`` weighs its heuristic by 5, its
+        ``H_COST``). At most :data:`~navlab.limits.MAX_WEIGHT`.
 
     Returns
     -------
@@ -218,7 +226,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                              analytic_expansion_max_length=analytic_expansion_max_length,
                              analytic_expansion_ratio=analytic_expansion_ratio, max_expansions=max_expansions,
                              smooth=smooth, waypoint_spacing=waypoint_spacing, exact_retry=exact_retry,
-                             distance_table=distance_table)
+                             distance_table=distance_table, weight=weight)
     distance_table_on = bool(distance_table)
     heading_bins, max_expansions = checked["heading_bins"], checked["max_expansions"]
     analytic_max = max(ANALYTIC_MIN_LENGTH, ANALYTIC_RADII * r) if analytic_expansion_max_length is None else \
@@ -235,7 +243,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                               "analytic_expansion_ratio": None if analytic_expansion_ratio is None
                               else float(analytic_expansion_ratio), "max_expansions": int(max_expansions),
                               "smooth": bool(smooth), "exact_retry": bool(exact_retry),
-                              "distance_table": distance_table_on, "resolution": res}
+                              "distance_table": distance_table_on, "weight": checked["weight"], "resolution": res}
     # the search runs in the grid's own frame: metres from the corner of cell (0, 0), along its axes
     yaw = grid.origin[2]
     c, s = math.cos(yaw), math.sin(yaw)
@@ -298,7 +306,9 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         # clearance sits at the margin's edge
         what = f"a disc of the robot's inscribed radius ({inscribed:.3g} m)" if inscribed > 0 else "a point"
         return finish(Status.FAILED, f"no collision-free path: the goal is walled off from the start even for {what}")
-    penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty)])
+    # the travel-cost factors, then 1 / weight: the search keys nodes g / weight + h (the order of g + weight·h)
+    penalties = np.array([1.0, float(non_straight_penalty), float(reverse_penalty), float(change_penalty),
+                          1.0 / checked["weight"]])
     def through_start():
         """A lattice through the start heading itself, its ``common`` tuple, and the start as its one node."""
         own = lattice_for(outline, disc, r, res, int(heading_bins), motion == "reeds_shepp", lst)
@@ -411,7 +421,8 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
                    change_penalty=DEFAULTS["change_penalty"], non_straight_penalty=DEFAULTS["non_straight_penalty"],
                    analytic_expansion=True, analytic_expansion_max_length=DEFAULTS["analytic_expansion_max_length"],
                    analytic_expansion_ratio=None, max_expansions=DEFAULTS["max_expansions"], smooth=True,
-                   waypoint_spacing=None, exact_retry=True, distance_table=True) -> Dict[str, Any]:
+                   waypoint_spacing=None, exact_retry=True, distance_table=True,
+                   weight=DEFAULTS["weight"]) -> Dict[str, Any]:
     """:func:`plan_hybrid`'s settings but the robot, map and poses, checked as it searches with them.
 
     Apart from the search so that a query can be refused before its kernels load: a typo waited for their
@@ -421,14 +432,15 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
     ----------
     heading_bins, reverse_penalty, change_penalty, non_straight_penalty, analytic_expansion,
     analytic_expansion_max_length, analytic_expansion_ratio, max_expansions, smooth, waypoint_spacing,
-    exact_retry, distance_table
+    exact_retry, distance_table, weight
         As :func:`plan_hybrid` takes them.
 
     Returns
     -------
     dict
         ``heading_bins`` and ``max_expansions`` (capped at :data:`~navlab.limits.MAX_COUNT`) as ints,
-        ``analytic_expansion_max_length`` and ``waypoint_spacing`` [m] as floats (None where not given).
+        ``analytic_expansion_max_length`` and ``waypoint_spacing`` [m] as floats (None where not given),
+        ``weight`` as a float.
 
     Raises
     ------
@@ -453,6 +465,7 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
     out["max_expansions"] = min(check_count("max_expansions", max_expansions, 1, None), MAX_COUNT)
     out["waypoint_spacing"] = None if waypoint_spacing is None else \
         check_length("waypoint_spacing", waypoint_spacing, allow_zero=False)
+    out["weight"] = check_weight(weight)
     return out
 
 

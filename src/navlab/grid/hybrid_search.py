@@ -198,10 +198,11 @@ def _pop(hkey, hnode, hentry, size):
 @njit(cache=True, inline="always")
 def _open(hkey, hnode, hentry, size, eg, ex, ey, elazy, entry, node, g, x, y, theta, field, reverse, gx, gy, gtheta,
           radius) -> None:
-    """Queue ``node`` (pose x, y, θ at cost g; ``field`` the holonomic heuristic at its cell) as ``entry``: keyed
-    on the field alone when Reeds–Shepp (the distance is found when it comes up), on the larger of
-    it and the Dubins distance otherwise (a Dubins solve costs little more than the queue's bookkeeping
-    for putting it off; where an upper bound on it is no more than the field, that is the field)."""
+    """Queue ``node`` (pose x, y, θ; ``g`` its cost's share of the key, the cost over the heuristic's weight;
+    ``field`` the holonomic heuristic at its cell) as ``entry``: keyed on the field alone when Reeds–Shepp (the
+    distance is found when it comes up), on the larger of it and the Dubins distance otherwise (a Dubins solve
+    costs little more than the queue's bookkeeping for putting it off; where an upper bound on it is no more
+    than the field, that is the field)."""
     eg[entry], ex[entry], ey[entry], elazy[entry] = g, x, y, reverse
     if reverse or _forward_within(x, y, theta, gx, gy, gtheta, radius, field):
         key = g + field
@@ -323,6 +324,9 @@ class Scratch(threading.local):
 # what the expansion loop (:func:`_expand`) hands back to :func:`search`
 _EXHAUSTED, _FOUND, _GROW, _SWEPT, _FIELD = 0, 1, 2, 3, 4
 # the loop's counters, kept in one int64 array between its calls
+#: ``penalties[_KEY_SCALE]``: 1 / the heuristic's weight (after the four travel-cost penalties)
+_KEY_SCALE = 4
+
 (_COUNT, _NBLOCKS, _NENTRIES, _HSIZE, _EXPANSIONS, _SOLVED, _COUNTDOWN, _PENDING, _PENDING_CHILD,
  _GOAL_NODE, _EXACT, _COUNTERS) = range(12)
 
@@ -433,7 +437,7 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
             -1, -1
         closed[count] = rejected[count] = False  # (scratch arrays hold the last query's values)
         elazy[count] = False
-        _push(hkey, hnode, hentry, count, sg[i], count, count)
+        _push(hkey, hnode, hentry, count, sg[i] * penalties[_KEY_SCALE], count, count)
         count += 1
     counters[_COUNT] = counters[_NENTRIES] = counters[_HSIZE] = count
     counters[_NBLOCKS] = nblocks
@@ -478,7 +482,8 @@ def search(blocked, res, sx, sy, sbin, sg, gx, gy, gtheta, theta0, step, bins, r
             for u in again:
                 closed[u] = False
                 field = fdist[_field_index(nx[u], ny[u], res, w + 2)]  # settled when the node was pushed
-                _open(hkey, hnode, hentry, counters[_HSIZE], eg, ex, ey, elazy, counters[_NENTRIES], u, ng[u],
+                _open(hkey, hnode, hentry, counters[_HSIZE], eg, ex, ey, elazy, counters[_NENTRIES], u,
+                      ng[u] * penalties[_KEY_SCALE],
                       nx[u], ny[u], theta0 + nb[u] * step, field, reverse, gx, gy, gtheta, radius)
                 counters[_HSIZE] += 1
                 counters[_NENTRIES] += 1
@@ -517,6 +522,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
     best_kinds = np.zeros(MAX_SEGMENTS, dtype=np.int64)
     best_lens = np.zeros(MAX_SEGMENTS)
     straight_pen, turn_pen, reverse_pen, change_pen = penalties[0], penalties[1], penalties[2], penalties[3]
+    key_scale = penalties[_KEY_SCALE]  # 1 / the heuristic's weight: keys are g / weight + h
     gcos, gsin = math.cos(gtheta), math.sin(gtheta)  # the goal's frame, for the distance table
     count, nblocks, nentries, hsize = counters[_COUNT], counters[_NBLOCKS], counters[_NENTRIES], counters[_HSIZE]
     expansions, solved, countdown = counters[_EXPANSIONS], counters[_SOLVED], counters[_COUNTDOWN]
@@ -598,7 +604,7 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
             if use_analytic and (at_goal or math.hypot(gx - x, gy - y) <= analytic_max):
                 attempt = True
                 if analytic_ratio > 0.0 and not at_goal:  # Smac's AnalyticExpansion::tryAnalyticExpansion
-                    closest[0] = min(closest[0], (key - ng[v]) / res)
+                    closest[0] = min(closest[0], (key - ng[v] * key_scale) / res)
                     # (capped: a ratio of 1e-300 or 1e300 must not overflow the conversion to int64)
                     desired = max(int(min(closest[0] / analytic_ratio, 1e18)),
                                   int(min(math.ceil(analytic_ratio), 1e18)))
@@ -692,8 +698,8 @@ def _expand(blocked, res, gx, gy, gtheta, theta0, step, bins, radius, reverse, p
                 rejected[_U(u)] = False  # (the node arrays grow uninitialised)
             uu = _U(u)
             nx[uu], ny[uu], nb[uu], ng[uu], nparent[uu], nprim_of[uu] = x2, y2, b2, g2, v, j
-            _open(hkey, hnode, hentry, hsize, eg, ex, ey, elazy, nentries, u, g2, x2, y2, theta0 + b2 * step, field,
-                  reverse, gx, gy, gtheta, radius)
+            _open(hkey, hnode, hentry, hsize, eg, ex, ey, elazy, nentries, u, g2 * key_scale, x2, y2,
+                  theta0 + b2 * step, field, reverse, gx, gy, gtheta, radius)
             hsize += 1
             nentries += 1
         if event != _EXHAUSTED:

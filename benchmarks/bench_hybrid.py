@@ -4,6 +4,7 @@
     python benchmarks/bench_hybrid.py --quick     # PythonRobotics' demo query once, no reference map
     python benchmarks/bench_hybrid.py --reference-only   # navlab alone on the 384 x 384 map, no checkout needed
     python benchmarks/bench_hybrid.py --analytic-max 12 --analytic-ratio 3.5   # Smac's analytic schedule
+    python benchmarks/bench_hybrid.py --weight 1.5   # navlab at weight 1.5 (and at PythonRobotics' own 5)
     python benchmarks/bench_hybrid.py --smac-maps    # navlab on five 384 x 384 maps against Smac's README figure
     python benchmarks/bench_hybrid.py --smac-maps --smac-driver build-smac/smac_driver   # and Nav2 Smac itself
 
@@ -15,6 +16,9 @@ map of obstacle points at 1 m spacing); three more queries run on that map.
 Its car (car.py: WB, W, LF, LB, MAX_STEER; the pose is the rear-axle centre)
 gives navlab's footprint, the rectangle from -LB to LF by W, and turning
 radius WB / tan(MAX_STEER); both planners drive forward and in reverse.
+PythonRobotics weighs its heuristic by its H_COST (5): each query runs navlab
+unweighted (or at ``--weight``) and at that same weight (``weight=5``), each
+timed right after a PythonRobotics run.
 
 navlab's map blocks every cell that holds an obstacle point, with the grid
 shifted by half a cell so each point sits at its cell's centre: a footprint
@@ -156,38 +160,56 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
         queries += [(name, _radians(s), _radians(g)) for name, s, g in EXTRA_QUERIES]
     print(f"map: PythonRobotics demo, {len(ox)} obstacle points; navlab grid {grid.width} x {grid.height} cells "
           f"at {res:g} m; car {car.LB + car.LF:g} x {car.W:g} m, turning radius {radius:.3f} m, reeds_shepp")
-    print(f"navlab options: {_described(options)}")
+    # navlab's own weight (1 unless --weight), then PythonRobotics' H_COST: the same weighted search as its own
+    weights = list(dict.fromkeys([options.get("weight", 1.0), float(module.H_COST)]))
+    print(f"navlab options: {_described(options)}; each query at heuristic weight "
+          f"{' and '.join(f'{w:g}' for w in weights)} (PythonRobotics' H_COST is {module.H_COST:g})")
     warm, _ = run_navlab(grid, start, goal, radius, footprint, options)
     print(f"navlab first call (loads compiled kernels): {warm:.3f} s, not counted below")
-    print(f"{'query':<20} {'navlab ms':>9} {'range':>16} {'first ms':>9} {'again ms':>9} {'PyRob s':>8} {'range':>14} "
-          f"{'PyRob/nav':>9} {'PyRob/again':>11} {'nav m':>7} {'PyRob m':>8} {'nav<=PyRob':>10} {'expansions':>10}")
+    print(f"{'query':<20} {'weight':>6} {'navlab ms':>9} {'range':>16} {'first ms':>9} {'again ms':>9} {'PyRob s':>8} "
+          f"{'range':>14} {'PyRob/nav':>9} {'PyRob/again':>11} {'nav m':>7} {'PyRob m':>8} {'nav<=PyRob':>10} "
+          f"{'expansions':>10}")
     for name, s, g in queries:
-        nav_times, first_times, again_times, pr_times = [], [], [], []
-        for _ in range(repeat):  # each navlab run right after a PythonRobotics one, as the first of each pair
-            elapsed, result = run_navlab(grid, s, g, radius, footprint, options, cleared=False)
-            nav_times.append(elapsed)
-            elapsed, _ = run_navlab(grid, s, g, radius, footprint, options, cleared=False)
-            again_times.append(elapsed)
-            elapsed, _ = run_navlab(grid, s, g, radius, footprint, options)
-            first_times.append(elapsed)
-            elapsed, pr_length = run_pythonrobotics(module, ox, oy, s, g)
-            pr_times.append(elapsed)
-        nav, ref = statistics.median(nav_times), statistics.median(pr_times)
-        found = result.status == Status.EXACT
-        shorter = "-" if not found or math.isnan(pr_length) else "yes" if result.cost <= pr_length + 0.01 else "no"
-        again = statistics.median(again_times)
-        print(f"{name:<20} {1000 * nav:>9.1f} {spread([1000 * t for t in nav_times], 1, ' ms'):>16} "
-              f"{1000 * statistics.median(first_times):>9.1f} {1000 * again:>9.2f} {ref:>8.2f} "
-              f"{spread(pr_times, 2, ' s'):>14} {ref / nav:>8.1f}x {ref / again:>10.1f}x "
-              f"{f'{result.cost:.2f}' if found else 'failed':>7} {pr_length:>8.2f} {shorter:>10} "
-              f"{result.stats['expansions']:>10}")
+        rows = {w: ([], [], []) for w in weights}  # navlab after PythonRobotics, again, first
+        pr_times = []
+        results = {}
+
+        def keep_robot():
+            """Each weight's query once, untimed: the lattice and table then hold what its kept runs read."""
+            for w in weights:
+                results[w] = run_navlab(grid, s, g, radius, footprint, {**options, "weight": w}, cleared=False)[1]
+
+        keep_robot()
+        for _ in range(repeat):  # each weight's kept run right after a PythonRobotics one, then at once again
+            for w in weights:
+                elapsed, pr_length = run_pythonrobotics(module, ox, oy, s, g)
+                pr_times.append(elapsed)
+                for times in rows[w][:2]:
+                    times.append(run_navlab(grid, s, g, radius, footprint, {**options, "weight": w},
+                                            cleared=False)[0])
+            for w in weights:  # a robot's first query: lattice and table cleared
+                rows[w][2].append(run_navlab(grid, s, g, radius, footprint, {**options, "weight": w})[0])
+            keep_robot()  # (a cleared run keeps only its own weight's entries)
+        ref = statistics.median(pr_times)
+        for w in weights:
+            nav_times, again_times, first_times = rows[w]
+            result = results[w]
+            nav, again = statistics.median(nav_times), statistics.median(again_times)
+            found = result.status == Status.EXACT
+            shorter = "-" if not found or math.isnan(pr_length) else "yes" if result.cost <= pr_length + 0.01 \
+                else "no"
+            print(f"{name:<20} {w:>6g} {1000 * nav:>9.2f} {spread([1000 * t for t in nav_times], 2, ' ms'):>16} "
+                  f"{1000 * statistics.median(first_times):>9.1f} {1000 * again:>9.2f} {ref:>8.2f} "
+                  f"{spread(pr_times, 2, ' s'):>14} {ref / nav:>8.1f}x {ref / again:>10.1f}x "
+                  f"{f'{result.cost:.2f}' if found else 'failed':>7} {pr_length:>8.2f} {shorter:>10} "
+                  f"{result.stats['expansions']:>10}")
     bubble = math.hypot((car.LF + car.LB) / 2, car.W / 2)
     distances = "solved at each pose" if options.get("distance_table") is False else \
         "from the robot's table at half-cell and 5-degree spacing"
     margin = math.sqrt(2) * res + res / 4 + math.hypot(car.LF, car.W / 2) * math.sin(math.pi / 72)
     notes = (
-        f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} run(s) per query, "
-        "interleaved; navlab ms with the robot's footprint lattice and Reeds-Shepp distance table kept from its "
+        f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} run(s) per query and "
+        "weight, interleaved (a PythonRobotics run before each weight's); navlab ms with the robot's footprint lattice and Reeds-Shepp distance table kept from its "
         "earlier queries (one of each for every start heading and goal), first ms with them cleared (a robot's "
         "first query), again ms the kept query at once again (its code and data still in the CPU's caches, as "
         "in a planner replanning in a tight loop; navlab ms follows a PythonRobotics run, which evicts them); "
@@ -204,7 +226,7 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
         f"Search: PythonRobotics {module.XY_GRID_RESOLUTION:g} m / {math.degrees(module.YAW_GRID_RESOLUTION):g} "
         f"deg states, {module.XY_GRID_RESOLUTION * 1.5:g} m arcs, {module.N_STEER + 1} steering values, "
         f"heuristic x{module.H_COST:g}, switch-back cost {module.SB_COST:g};",
-        f"navlab {res:g} m / 5 deg states (72 bins), three primitives per direction, heuristic x1 "
+        f"navlab {res:g} m / 5 deg states (72 bins), three primitives per direction, heuristic x the weight "
         f"(the larger of the obstacle-free Reeds-Shepp length, {distances}, and an 8-connected field, which exceeds the "
         "straight line by up to 8%: off 45-degree multiples, so not strictly admissible), Reeds-Shepp shortcut smoothing.",
     )
@@ -706,6 +728,9 @@ def main() -> None:
                     help="navlab's analytic_expansion_max_length [m] (default: the planner's, max(3 m, 3 turning radii))")
     ap.add_argument("--analytic-ratio", type=float, metavar="R",
                     help="navlab's analytic_expansion_ratio (Smac's schedule; default: try at every expansion)")
+    ap.add_argument("--weight", type=float, metavar="W",
+                    help="navlab's heuristic weight beside PythonRobotics' own H_COST (default 1: its search "
+                         "unweighted)")
     ap.add_argument("--exact-distances", action="store_true",
                     help="navlab's distance_table=false: the Reeds-Shepp distance solved at every pose, no table")
     ap.add_argument("--smac-maps", action="store_true",
@@ -723,10 +748,12 @@ def main() -> None:
         options["analytic_expansion_ratio"] = args.analytic_ratio
     if args.exact_distances:
         options["distance_table"] = False
+    if args.weight is not None:
+        options["weight"] = args.weight
     if args.smac_maps and (options or args.repeat is not None or args.quick or args.reference_only):
         ap.error("--smac-maps runs its fixed settings (navlab's defaults and Smac's README ones) once per query: "
-                 "--analytic-max, --analytic-ratio, --exact-distances, --repeat, --quick and --reference-only do "
-                 "not apply")
+                 "--analytic-max, --analytic-ratio, --exact-distances, --weight, --repeat, --quick and "
+                 "--reference-only do not apply")
     if args.smac_driver is not None and not args.smac_maps:
         ap.error("--smac-driver goes with --smac-maps")
     if args.reference_only and args.quick:

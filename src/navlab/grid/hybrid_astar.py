@@ -89,7 +89,7 @@ from ..sampling.curves import (LEFT, LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, RIG
 from ..sampling.footprint_lattice import (check_turning_scale, curve_free, footprint_misfit, lattice_for,
                                           pose_free, robot_outline)
 from ..wording import counted
-from .hybrid_certify import first_overlap_exact
+from .hybrid_certify import _first_overlap, first_overlap_exact
 from .hybrid_field import field_at, field_start
 from .hybrid_search import Scratch, search
 from . import hybrid_table
@@ -394,17 +394,15 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     segments = _merged(segments)
     kinds = np.array([k for k, _ in segments], dtype=np.int64)
     lengths = np.array([s for _, s in segments])
-    traced, _ = trace_word(lsx, lsy, lst, kinds, lengths, r, lattice.ds)
-    hit = first_overlap_exact(blocked, res, vertices, disc, traced, 0.5 * lattice.delta)
-    if hit is not None:
-        return finish(Status.FAILED, f"internal check: the path found overlaps cell {hit}; please report it")
-    waypoints = word_poses(kinds, lengths, spacing)
+    overlaps, hx, hy, waypoints, world, direction = _checked_poses(
+        lsx, lsy, lst, kinds, lengths, r, lattice.ds, blocked, res, vertices, float(disc), 0.5 * lattice.delta,
+        spacing, MAX_WAYPOINTS, ox, oy, yaw)
+    if overlaps:
+        return finish(Status.FAILED, f"internal check: the path found overlaps cell {(int(hx), int(hy))}; please "
+                                     "report it")
     if waypoints > MAX_WAYPOINTS:
         raise ParameterError(f"waypoint_spacing: {spacing:g} m gives {waypoints:.3g} poses along the "
                              f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")
-    poses, direction = trace_word(lsx, lsy, lst, kinds, lengths, r, spacing)
-    world = np.column_stack([ox + c * poses[:, 0] - s * poses[:, 1], oy + s * poses[:, 0] + c * poses[:, 1],
-                             poses[:, 2] + yaw])
     length = float(np.abs(lengths).sum())
     stats["g"] = float(ng[last])
     stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
@@ -655,6 +653,30 @@ def _shortcut_kernel(seg_kinds, seg_lengths, x, y, theta, radius, reverse, block
 def _direction(length) -> int:
     """+1 forward, -1 reverse (a segment's signed length), 0 for none."""
     return 1 if length > 0.0 else -1 if length < 0.0 else 0
+
+
+@njit(cache=True)
+def _checked_poses(x, y, theta, kinds, lengths, radius, ds, blocked, res, vertices, disc, grow, spacing, most, ox, oy,
+                   yaw):
+    """The path's independent re-check and its waypoints, in one compiled call (each call into compiled code
+    costs a small query a few tens of microseconds right after another program has run: cold caches).
+
+    The word from (x, y, θ) (grid frame) traced every ``ds`` and checked against the blocked cells grown by
+    ``grow`` (:func:`~navlab.grid.hybrid_certify.first_overlap_exact`); then, unless more than ``most``, its
+    poses every ``spacing`` [m] in the world frame (the grid's origin ``ox``, ``oy``, ``yaw``).
+    Returns (overlaps, cell x, cell y, waypoints, world poses (N, 3), direction (N,)): none traced when it
+    overlaps or needs more than ``most``."""
+    traced, _ = trace_word(x, y, theta, kinds, lengths, radius, ds)
+    overlaps, hx, hy = _first_overlap(blocked, res, vertices, disc, traced, grow)
+    count = word_poses(kinds, lengths, spacing)
+    if overlaps or count > most:
+        return overlaps, hx, hy, count, np.empty((0, 3)), np.empty(0, dtype=np.int8)
+    poses, direction = trace_word(x, y, theta, kinds, lengths, radius, spacing)
+    c, s = math.cos(yaw), math.sin(yaw)
+    for i in range(poses.shape[0]):
+        px, py = poses[i, 0], poses[i, 1]
+        poses[i, 0], poses[i, 1], poses[i, 2] = ox + c * px - s * py, oy + s * px + c * py, poses[i, 2] + yaw
+    return overlaps, hx, hy, count, poses, direction
 
 
 @njit(cache=True)

@@ -90,7 +90,7 @@ from ..sampling.footprint_lattice import (check_turning_scale, curve_free, footp
                                           pose_free, robot_outline)
 from ..wording import counted
 from .hybrid_certify import _first_overlap, first_overlap_exact
-from .hybrid_field import field_at, field_start
+from .hybrid_field import field_at, field_from_clearance, field_start
 from .hybrid_search import Scratch, search
 from . import hybrid_table
 from .occupancy import OccupancyGrid, check_grid
@@ -290,14 +290,12 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
     # 8-connected distances overstate a straight line by up to 8 % off 45°: not strictly admissible, as Smac's)
     inscribed = _inscribed(outline) if len(vertices) else disc
     cells_clear, near2, clear = _tables_of(grid)
-    passable = cells_clear * res > max(0.0, inscribed - math.sqrt(2.0) * res)
     gcx, gcy = int(lgx // res), int(lgy // res)
-    # settled lazily: as far as the start here, then as far as the search reads (Smac's way; the same values)
-    passable |= _cell_mask(blocked.shape, gcx, gcy)
-    field = field_start(passable, gcx, gcy, res)
     scx, scy = int(lsx // res), int(lsy // res)
-    at_start, cells = field_at(*field, grid.width + 2, res, scx, scy)
-    field = (*field[:2], cells, *field[3:])
+    # settled lazily: as far as the start here, then as far as the search reads (Smac's way; the same values)
+    passable, *field, at_start = field_from_clearance(cells_clear, res, max(0.0, inscribed - math.sqrt(2.0) * res),
+                                                      gcx, gcy, scx, scy)
+    field = tuple(field)
     if not math.isfinite(at_start) and not math.isfinite(field_at(
             *field_start(passable | _cell_mask(blocked.shape, scx, scy), gcx, gcy, res), grid.width + 2, res, scx,
             scy)[0]):

@@ -96,9 +96,16 @@ def test_the_bucket_queue_field_equals_heap_dijkstra_bit_for_bit():
         assert np.array_equal(holonomic_field(passable, gx, gy, res), heap_field(passable, gx, gy, res))
 
 
-def reference_shortcut(segments, start, r, motion, blocked, clear, lattice, common):
+def reference_shortcut(kinds, lengths, start, r, motion, blocked, clear, lattice, common):
     """The smoother with the public solvers, one Python call per candidate (as before it was compiled),
     reading every pose's cells (no clearance map: ``clear`` unused), poses they reject checked exactly."""
+    smoothed = _reference_shortcut(list(zip(kinds.tolist(), lengths.tolist())), start, r, motion, blocked, lattice,
+                                   common)
+    return np.array([k for k, _ in smoothed], dtype=np.int64), np.array([s for _, s in smoothed], dtype=float)
+
+
+def _reference_shortcut(segments, start, r, motion, blocked, lattice, common):
+    """:func:`reference_shortcut` on a list of (kind, length) segments."""
     from navlab.sampling.curves import LETTERS, CurvePath
     from navlab.grid.hybrid_astar import exact_grow
     from navlab.sampling.footprint_lattice import NO_CLEARANCE, curve_free

@@ -379,19 +379,13 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         return finish(Status.FAILED, f"no path on the search's lattice ({int(heading_bins)} headings, "
                                      f"{res:g} m cells): {why}")
     # the chain of primitives, then the analytic tail, as (kind, signed length) segments from the start
-    chain = []
-    v = last
-    while parent[v] >= 0:
-        chain.append(prim[v])
-        v = parent[v]
-    joined = [(k, s) for *_, k, s in starts[v:v + 1] if k != NOP]  # the arc onto the lattice (start node v)
-    segments = joined + [(int(lattice.prim_kind[j]), float(lattice.prim_len[j])) for j in reversed(chain)]
-    segments += [(int(k), float(s)) for k, s in zip(akinds, alens) if k != NOP and abs(s) > 1e-12 * r]
+    join_kind = np.array([n[4] for n in starts], dtype=np.int64)  # the arcs onto the lattice, per start node
+    join_len = np.array([n[5] for n in starts])
+    kinds, lengths = _path_segments(parent, prim, last, join_kind, join_len, lattice.prim_kind, lattice.prim_len,
+                                    akinds, alens, 1e-12 * r)
     if smooth:
-        segments = _shortcut(segments, (lsx, lsy, lst), r, motion, blocked, clear, lattice, common)
-    segments = _merged(segments)
-    kinds = np.array([k for k, _ in segments], dtype=np.int64)
-    lengths = np.array([s for _, s in segments])
+        kinds, lengths = _shortcut(kinds, lengths, (lsx, lsy, lst), r, motion, blocked, clear, lattice, common)
+    kinds, lengths = _merged(kinds, lengths)
     overlaps, hx, hy, waypoints, world, direction = _checked_poses(
         lsx, lsy, lst, kinds, lengths, r, lattice.ds, blocked, res, vertices, float(disc), 0.5 * lattice.delta,
         spacing, MAX_WAYPOINTS, ox, oy, yaw)
@@ -515,15 +509,53 @@ def exact_grow(lattice) -> float:
     return lattice.delta
 
 
-def _merged(segments):
+@njit(cache=True)
+def _path_segments(parent, prim, last, join_kind, join_len, prim_kind, prim_len, akinds, alens, negligible):
+    """The found path as segments (kinds, signed lengths [m]) from the start: the arc from the start onto the
+    lattice of the start node the chain leads back to (none when its kind is ``NOP``), the primitives from
+    there to node ``last`` (``parent`` and ``prim``: each node's), then the analytic tail's segments longer
+    than ``negligible`` [m]."""
+    depth = 0
+    v = last
+    while parent[v] >= 0:
+        depth += 1
+        v = parent[v]
+    first = 1 if join_kind[v] != NOP else 0
+    tail = 0
+    for i in range(akinds.shape[0]):
+        if akinds[i] != NOP and abs(alens[i]) > negligible:
+            tail += 1
+    kinds = np.empty(first + depth + tail, dtype=np.int64)
+    lengths = np.empty(first + depth + tail)
+    if first:
+        kinds[0], lengths[0] = join_kind[v], join_len[v]
+    k = first + depth - 1
+    v = last
+    while parent[v] >= 0:  # (the chain runs from the end back)
+        kinds[k], lengths[k] = prim_kind[prim[v]], prim_len[prim[v]]
+        k -= 1
+        v = parent[v]
+    k = first + depth
+    for i in range(akinds.shape[0]):
+        if akinds[i] != NOP and abs(alens[i]) > negligible:
+            kinds[k], lengths[k] = akinds[i], alens[i]
+            k += 1
+    return kinds, lengths
+
+
+@njit(cache=True)
+def _merged(kinds, lengths):
     """Consecutive segments of the same kind and direction as one (LLL → L)."""
-    out = []
-    for kind, length in segments:
-        if out and out[-1][0] == kind and (out[-1][1] < 0) == (length < 0):
-            out[-1] = (kind, out[-1][1] + length)
+    out_kinds = np.empty_like(kinds)
+    out_lengths = np.empty_like(lengths)
+    n = 0
+    for i in range(kinds.shape[0]):
+        if n > 0 and out_kinds[n - 1] == kinds[i] and (out_lengths[n - 1] < 0) == (lengths[i] < 0):
+            out_lengths[n - 1] += lengths[i]
         else:
-            out.append((kind, length))
-    return out
+            out_kinds[n], out_lengths[n] = kinds[i], lengths[i]
+            n += 1
+    return out_kinds[:n], out_lengths[:n]
 
 
 @functools.lru_cache(maxsize=1)
@@ -599,15 +631,12 @@ def _cell_mask(shape, x, y) -> np.ndarray:
     return mask
 
 
-def _shortcut(segments, start, r, motion, blocked, clear, lattice, common):
+def _shortcut(kinds, lengths, start, r, motion, blocked, clear, lattice, common):
     """Greedy smoothing: from each waypoint, jump to the farthest later waypoint
-    whose exact Dubins/Reeds–Shepp path is shorter and collision-free."""
-    kinds = np.array([k for k, _ in segments], dtype=np.int64)
-    lengths = np.array([s for _, s in segments], dtype=float)
-    out_kinds, out_lengths = _shortcut_kernel(kinds, lengths, *start, r, motion == "reeds_shepp", blocked, common[0],
-                                              lattice.ds, *common[1:], clear, lattice.clear_disc, lattice.vertices,
-                                              lattice.disc, exact_grow(lattice))
-    return list(zip(out_kinds.tolist(), out_lengths.tolist()))
+    whose exact Dubins/Reeds–Shepp path is shorter and collision-free. Segments in and out as
+    (kinds, signed lengths [m]) arrays."""
+    return _shortcut_kernel(kinds, lengths, *start, r, motion == "reeds_shepp", blocked, common[0], lattice.ds,
+                            *common[1:], clear, lattice.clear_disc, lattice.vertices, lattice.disc, exact_grow(lattice))
 
 
 @njit(cache=True)

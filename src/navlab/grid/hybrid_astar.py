@@ -397,7 +397,7 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
                              f"{float(np.abs(lengths).sum()):.4g} m path, more than the {MAX_WAYPOINTS:.0e} a path holds")
     length = float(np.abs(lengths).sum())
     stats["g"] = float(ng[last])
-    stats["word"] = "".join(LETTERS[int(k)] for k in kinds)
+    stats["word"] = "".join(LETTERS[k] for k in kinds.tolist())
     stats["segments"] = lengths.tolist()  # [m], negative in reverse: the exact path, for re-tracing
     stats["cusps"] = int(_cusps(0, lengths, 0))
     # where the path ends against the goal pose: 0 with the analytic expansion; without it, in the goal's cell

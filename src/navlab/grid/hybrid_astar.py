@@ -113,6 +113,8 @@ ANALYTIC_MIN_LENGTH = 3.0
 #: mostly turning, which Smac's 3 m assumes of a robot turning on 0.4 m; a car turning on 4.4 m
 #: (PythonRobotics') would otherwise try it only from poses nearer than its own radius
 ANALYTIC_RADII = 3.0
+#: the keys of what Hybrid A* keeps on a grid (``OccupancyGrid._cache``): its blocked cells, its tables
+_BLOCKED_KEY, _TABLES_KEY = "hybrid_astar.blocked", "hybrid_astar.tables"
 #: each thread's search arrays, reused query after query (per thread, so threads never share them)
 _SCRATCH = Scratch()
 
@@ -558,22 +560,28 @@ def _merged(kinds, lengths):
     return out_kinds[:n], out_lengths[:n]
 
 
-@functools.lru_cache(maxsize=1)
 def _blocked_of(grid: OccupancyGrid) -> np.ndarray:
-    """The cells the search treats as blocked (blocked or unknown), C-ordered, for the last grid planned on.
+    """The cells the search treats as blocked (blocked or unknown), C-ordered; kept on the grid (its
+    ``_cache``: the grid is immutable, and the array lives as long as it does). Not written.
 
-    Keyed on the grid itself (immutable, hashed by identity), one grid kept: a robot plans on one map many
-    times, and this and :func:`_tables_of` hashed the whole map for :func:`_map_tables` on each query (20–30
-    µs of a 0.6 ms query on PythonRobotics' 61 x 61 map, right after a PythonRobotics run). Not written."""
-    return np.ascontiguousarray(grid.blocked | grid.unknown)
+    A robot plans on one map many times: found by content, each query hashed the whole map
+    (``np.packbits``, 20–30 µs of a 0.6 ms query on PythonRobotics' 61 x 61 map right after a
+    PythonRobotics run)."""
+    blocked = grid._cache.get(_BLOCKED_KEY)
+    if blocked is None:  # (two threads may both build it: the same cells either way)
+        blocked = grid._cache.setdefault(_BLOCKED_KEY, np.ascontiguousarray(grid.blocked | grid.unknown))
+    return blocked
 
 
-@functools.lru_cache(maxsize=1)
 def _tables_of(grid: OccupancyGrid):
-    """:func:`_map_tables` of the last grid planned on (as :func:`_blocked_of`); another grid with the same
-    cells finds them by content."""
-    blocked = _blocked_of(grid)
-    return _map_tables(blocked.shape, grid.resolution, np.packbits(blocked).tobytes())
+    """:func:`_map_tables` of ``grid``, kept on it as :func:`_blocked_of` is; a new grid with the same cells
+    finds the last map's by content."""
+    tables = grid._cache.get(_TABLES_KEY)
+    if tables is None:
+        blocked = _blocked_of(grid)
+        tables = grid._cache.setdefault(_TABLES_KEY, _map_tables(blocked.shape, grid.resolution,
+                                                                 np.packbits(blocked).tobytes()))
+    return tables
 
 
 @functools.lru_cache(maxsize=1)

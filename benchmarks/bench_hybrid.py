@@ -209,7 +209,8 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
     margin = math.sqrt(2) * res + res / 4 + math.hypot(car.LF, car.W / 2) * math.sin(math.pi / 72)
     notes = (
         f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} run(s) per query and "
-        "weight, interleaved (a PythonRobotics run before each weight's); navlab ms with the robot's footprint lattice and Reeds-Shepp distance table kept from its "
+        "weight, interleaved (a PythonRobotics run before each weight's); navlab ms with the robot's footprint "
+        "lattice and Reeds-Shepp distance table kept from its "
         "earlier queries (one of each for every start heading and goal), first ms with them cleared (a robot's "
         "first query), again ms the kept query at once again (its code and data still in the CPU's caches, as "
         "in a planner replanning in a tight loop; navlab ms follows a PythonRobotics run, which evicts them); "

@@ -300,8 +300,8 @@ HUGE = 10 ** 400  # an int past float's range: math.isfinite raises OverflowErro
 
 
 @pytest.mark.parametrize("call, words", [
-    (lambda: navlab.plan("clutter", planner="astar", weight=HUGE), "weight must be a finite number, got an integer "
-                                                                   "of 401 digits"),
+    (lambda: navlab.plan("clutter", planner="astar", weight=HUGE), "weight must be a finite number >= 1, got an "
+                                                                   "integer of 401 digits"),
     (lambda: navlab.plan("clutter", planner="jps", resolution=HUGE), "resolution must be a finite number"),
     (lambda: navlab.plan("clutter", planner="astar", costmap=True, cost_scaling_factor=HUGE), "cost_scaling_factor"),
     (lambda: simulate("one_obstacle", robot_params={"max_speed": HUGE}), "max_speed must be finite, got an integer of 401 digits"),

@@ -224,9 +224,10 @@ EXPAND_DIS_TAKERS = "'expand_dis' is a setting of planners growth_ratio_rrt, inf
     ("trap", {"planner": "rrt_star", "heading_bins": 8},
      "'heading_bins' is a setting of planners informed_rrt_star, rrt and rrt_star with motion=dubins or reeds_shepp "
      "and planner hybrid_astar, not of planner rrt_star with holonomic motion."),
-    # only astar takes a weight (newcomer check, session 21: the grid planners were named, jps then ignored it)
-    ("trap", {"planner": "rrt_star", "weight": 3}, "'weight' is a setting of planner astar, not of planner rrt_star "
-                                                  "with the uniform sampler."),
+    # of the grid planners only astar takes a weight (newcomer check, session 21: the grid planners were named,
+    # jps then ignored it); Hybrid A* too since session 24
+    ("trap", {"planner": "rrt_star", "weight": 3}, "'weight' is a setting of planners astar and hybrid_astar, not of "
+                                                  "planner rrt_star with the uniform sampler."),
 ])
 def test_a_setting_of_another_planner_is_named_as_such_not_guessed_at(world, params, hint):
     """(newcomer check, session 20: smooth=true with rrt_star was asked "Did you mean 'motion'?")"""

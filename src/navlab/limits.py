@@ -14,6 +14,7 @@ from __future__ import annotations
 
 import datetime
 import math
+import numbers
 import os
 from typing import Any, Optional
 
@@ -54,8 +55,6 @@ def too_heavy(weight: Any) -> str:
 def check_weight(weight: Any) -> float:
     """A heuristic's ``weight`` (weighted A*: keys g + weight·h) as a float in [1, :data:`MAX_WEIGHT`]: any
     real number (numpy's, a Fraction), not a bool; else ParameterError naming it."""
-    import numbers
-
     try:
         as_float = float(weight) if isinstance(weight, numbers.Real) else math.nan
     except OverflowError:  # an int past float's range (10**400)

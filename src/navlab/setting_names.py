@@ -98,7 +98,7 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
     samplers = [name for name in SAMPLERS.names() if key in parameters_of(SAMPLERS.get(name))]
     takers = []
     if key in ASTAR_ONLY:
-        takers.append("planner astar")
+        planners.insert(0, "astar")  # (named with the others: "planners astar and hybrid_astar")
     elif key in GRID_PARAMS:
         takers.append(f"the grid planners ({', '.join(GRID_ALGORITHMS.names())})")
     if key == "costmap":  # (not "a setting of planner astar with costmap=true")

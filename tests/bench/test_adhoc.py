@@ -109,8 +109,8 @@ def test_grid_settings_a_planner_does_not_use_are_noted_once(tmp_path):
     assert res.exit_code == 0, res.output
     # (a swept heuristic no longer splits the cells of searches that ignore it: session 23)
     assert [line for line in res.stderr.splitlines() if line.startswith("note:")] == [
-        "note: jps searches unweighted (only astar takes a weight): weight=2 is not used",
-        "note: dijkstra searches unweighted (only astar takes a weight): weight=2 is not used",
+        "note: jps searches unweighted (of the grid planners only astar takes a weight): weight=2 is not used",
+        "note: dijkstra searches unweighted (of the grid planners only astar takes a weight): weight=2 is not used",
         "note: jps does not take the swept heuristic: its cells are not split by it (each runs once, not once "
         "per value)",
         "note: dijkstra does not take the swept heuristic: its cells are not split by it (each runs once, not "

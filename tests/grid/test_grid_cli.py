@@ -48,7 +48,7 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
     assert res.exit_code == 0 and json.loads(res.stdout)["params"]["heuristic"] == "octile"
     assert res.stderr.splitlines() == [
         "note: jps searches with its own heuristic (octile): --heuristic manhattan is not used",
-        "note: jps searches unweighted (only astar takes a weight): --weight 3 is not used"]
+        "note: jps searches unweighted (of the grid planners only astar takes a weight): --weight 3 is not used"]
     res = run("grid", "plan", DATA / "arena.map", *query, "--algorithm", "dijkstra", "--heuristic", "euclidean")
     assert res.stderr == "note: dijkstra searches with no heuristic: --heuristic euclidean is not used\n"
     for given in (("--algorithm", "astar", "--heuristic", "manhattan", "--weight", 3), ("--algorithm", "jps"),
@@ -66,7 +66,7 @@ def test_settings_an_algorithm_does_not_use_are_noted_not_dropped_silently():
     assert json.loads(res.stdout)["params"]["heuristic"] == "octile" and json.loads(res.stdout)["params"]["weight"] == 1
     assert res.stderr.splitlines() == [
         "note: jps searches with its own heuristic (octile): --param heuristic=manhattan is not used",
-        "note: jps searches unweighted (only astar takes a weight): --param weight=3 is not used"]
+        "note: jps searches unweighted (of the grid planners only astar takes a weight): --param weight=3 is not used"]
     res = run("plan", DATA / "arena.map", "--planner", "astar", "--start", 1.5, 11.5, "--goal", 12.5, 35.5,
               "--param", "heuristic=manhattan", "--param", "weight=3", "--json")
     assert json.loads(res.stdout)["params"]["weight"] == 3 and res.stderr == ""

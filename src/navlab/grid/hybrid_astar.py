@@ -195,9 +195,10 @@ def plan_hybrid(grid: OccupancyGrid, start, goal, turning_radius: float, motion:
         The heuristic's weight (weighted A*: Pohl, "Heuristic search viewed as
         path finding in a graph", Artificial Intelligence 1(3), 1970): nodes
         are ordered by g + weight·h. 1 (the default) is Dolgov et al.'s
-        search; more expands fewer nodes for a path that may be longer
-        (PythonRobotics' ``HybridAStar`` weighs its heuristic by 5, its
-        ``H_COST``). At most :data:`~navlab.limits.MAX_WEIGHT`.
+        search; more mostly expands fewer nodes, for a path that may be
+        longer (not always fewer: a greedier search can follow a detour
+        further; PythonRobotics' ``HybridAStar`` weighs its heuristic by 5,
+        its ``H_COST``). At most :data:`~navlab.limits.MAX_WEIGHT`.
 
     Returns
     -------

@@ -323,10 +323,9 @@ class Scratch(threading.local):
 
 # what the expansion loop (:func:`_expand`) hands back to :func:`search`
 _EXHAUSTED, _FOUND, _GROW, _SWEPT, _FIELD = 0, 1, 2, 3, 4
-# the loop's counters, kept in one int64 array between its calls
 #: ``penalties[_KEY_SCALE]``: 1 / the heuristic's weight (after the four travel-cost penalties)
 _KEY_SCALE = 4
-
+# the loop's counters, kept in one int64 array between its calls
 (_COUNT, _NBLOCKS, _NENTRIES, _HSIZE, _EXPANSIONS, _SOLVED, _COUNTDOWN, _PENDING, _PENDING_CHILD,
  _GOAL_NODE, _EXACT, _COUNTERS) = range(12)
 

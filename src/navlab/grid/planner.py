@@ -36,7 +36,7 @@ import numpy as np
 
 from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from ..errors import ParameterError
-from ..limits import check_coordinate, check_weight, shown
+from ..limits import check_coordinate, check_weight
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
@@ -358,7 +358,7 @@ def unused_settings(algorithm: str, settings: Dict[str, Any], spelled) -> List[s
     if "weight" in given and used["weight"] != given["weight"]:
         # (worded as the heuristic's note, in the present: the ROS planner says it at start-up, before any plan)
         who, why = ("astar with heuristic none", "a weight scales the heuristic") if algorithm == "astar" else \
-            (algorithm, "only astar takes a weight")
+            (algorithm, "of the grid planners only astar takes a weight")
         lines.append(f"note: {who} searches unweighted ({why}): {spelled('weight', given['weight'])} is not used")
     return lines
 

@@ -13,7 +13,7 @@ import math
 from typing import Any, Dict
 
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, MAX_WEIGHT, MIN_LENGTH, is_finite_real, shown, too_heavy
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_weight, is_finite_real, shown
 
 
 def _name(key: str, value: Any, valid) -> str:
@@ -54,10 +54,8 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     for key in ("smooth", "allow_unknown"):
         if key in out:
             _flag(key, out[key])
-    if "weight" in out and not _number("weight", out["weight"]) >= 1:
-        raise ParameterError(f"weight must be a number >= 1, got {out['weight']!r}")
-    if "weight" in out and out["weight"] > MAX_WEIGHT:
-        raise ParameterError(too_heavy(out["weight"]))
+    if "weight" in out:
+        check_weight(out["weight"])  # (A*'s own rule: navlab.grid.plan and Hybrid A* take the same values)
     if "resolution" in out and out["resolution"] is not None:
         r = _number("resolution", out["resolution"])
         if not MIN_LENGTH <= r <= MAX_COORDINATE:

@@ -89,7 +89,7 @@ from ..sampling.curves import (LEFT, LETTERS, MAX_SEGMENTS, NEGLIGIBLE, NOP, RIG
 from ..sampling.footprint_lattice import (check_turning_scale, curve_free, footprint_misfit, lattice_for,
                                           pose_free, robot_outline)
 from ..wording import counted
-from .hybrid_certify import _first_overlap, first_overlap_exact
+from .hybrid_certify import first_overlap_compiled, first_overlap_exact
 from .hybrid_field import field_at, field_from_clearance, field_start
 from .hybrid_search import Scratch, search
 from . import hybrid_table
@@ -703,7 +703,7 @@ def _checked_poses(x, y, theta, kinds, lengths, radius, ds, blocked, res, vertic
     Returns (overlaps, cell x, cell y, waypoints, world poses (N, 3), direction (N,)): none traced when it
     overlaps or needs more than ``most``."""
     traced, _ = trace_word(x, y, theta, kinds, lengths, radius, ds)
-    overlaps, hx, hy = _first_overlap(blocked, res, vertices, disc, traced, grow)
+    overlaps, hx, hy = first_overlap_compiled(blocked, res, vertices, disc, traced, grow)
     count = word_poses(kinds, lengths, spacing)
     if overlaps or count > most:
         return overlaps, hx, hy, count, np.empty((0, 3)), np.empty(0, dtype=np.int8)

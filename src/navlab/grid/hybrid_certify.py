@@ -38,15 +38,16 @@ def first_overlap_exact(blocked: np.ndarray, res: float, vertices: np.ndarray, d
     ``vertices`` (K, 2) the outline in body coordinates [m], or none and ``disc`` [m] a disc's
     radius (0: a point). A disc here is exact, where shapely's is a 64-gon inside it, so a disc
     is judged a little more strictly."""
-    found, x, y = _first_overlap(np.ascontiguousarray(blocked, dtype=np.bool_), float(res),
+    found, x, y = first_overlap_compiled(np.ascontiguousarray(blocked, dtype=np.bool_), float(res),
                                  np.ascontiguousarray(vertices, dtype=float).reshape(-1, 2), float(disc),
                                  np.ascontiguousarray(poses, dtype=float).reshape(-1, 3), float(grow))
     return (int(x), int(y)) if found else None
 
 
 @njit(cache=True)
-def _first_overlap(blocked, res, vertices, disc, poses, grow):
-    """:func:`first_overlap_exact`'s loop: (found, x, y)."""
+def first_overlap_compiled(blocked, res, vertices, disc, poses, grow):
+    """:func:`first_overlap_exact`'s loop, callable from compiled code (the planner's final check): (found,
+    x, y), the arrays as that function makes them."""
     outline = np.empty((vertices.shape[0], 2))
     box = np.empty((4, 2))  # polygon_rect_touch's scratch
     for p in range(poses.shape[0]):

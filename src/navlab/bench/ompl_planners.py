@@ -36,8 +36,9 @@ OMPL_NAMES = ("RRT", "RRTConnect", "RRTstar", "InformedRRTstar", "PRMstar", "BIT
 
 def check_ompl_name(name: str) -> None:
     if name not in OMPL_NAMES:
-        raise UnknownNameError(f"unknown OMPL planner 'ompl:{name}'; valid: "
-                               + ", ".join(f"ompl:{n}" for n in OMPL_NAMES) + "." + suggest(name, list(OMPL_NAMES)))
+        named = [f"ompl:{n}" for n in OMPL_NAMES]  # (the hint as the name is written: 'ompl:PRMstar')
+        raise UnknownNameError(f"unknown OMPL planner 'ompl:{name}'; valid: " + ", ".join(named) + "."
+                               + suggest(f"ompl:{name}", named))
 
 
 #: the settings navlab passes to an OMPL planner (``expand_dis``: its range; ``goal_tolerance``: the query's)

@@ -198,6 +198,8 @@ def test_report_renders_with_embedded_images(tmp_path):
     ({"params": {"expand_dist": 1.0}}, "did you mean 'expand_dis'"),
     ({"budget": {"max_iters": 10}}, "did you mean 'max_iter'"),
     ({"planners": ["ompl:RRTstr"]}, "did you mean 'ompl:RRTstar'"),  # (as the name is written)
+    ({"planners": [{"name": "rrt", "label": ""}]}, "the label of 'rrt' must be a non-empty text, got ''"),
+    ({"samplers": [{"name": "uniform", "label": None}]}, "the label of 'uniform' must be a non-empty text, got None"),
     # a shared setting no planner takes, and a heading-aware planner's own unknown one: refused, not dropped
     ({"planners": ["astar"], "params": {"heuristc": "octile"}}, r"none of .* \(astar\).*'heuristic'"),
     ({"worlds": ["parking"], "planners": ["hybrid_astar"], "params": {"heading_binz": 36}},

@@ -594,7 +594,13 @@ def _component(entry: Any, what: str) -> Component:
         return Component(entry)
     if isinstance(entry, dict) and "name" in entry:
         params = {k: v for k, v in entry.items() if k not in ("name", "label")}
-        return Component(str(entry["name"]), params, str(entry.get("label", "")))
+        label = entry.get("label", "")
+        if "label" in entry and (isinstance(label, bool) or not isinstance(label, (str, int, float))
+                                 or not str(label).strip()):
+            # ('' read as no label, and null as the label 'None': session 23's newcomer)
+            raise ExperimentError(f"'{what}': the label of {entry['name']!r} must be a non-empty text, got "
+                                  f"{shown(label)}")
+        return Component(str(entry["name"]), params, str(label))
     raise ExperimentError(f"each of '{what}' is a name or a mapping with 'name' (and settings), got {entry!r}")
 
 

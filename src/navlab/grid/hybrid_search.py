@@ -6,7 +6,9 @@ as the search reads it), then calls :func:`search`; this module holds only the
 compiled kernels. The loop is Dolgov et al.'s ("Path planning for autonomous
 vehicles in unknown semi-structured environments", IJRR 29(5), 2010): one
 continuous pose per discrete state (cell, heading bin), three primitives per
-driving direction, closed states never re-opened.
+driving direction, closed states never re-opened. Nodes are keyed g / w + h,
+the order of weighted A*'s g + w·h (``plan_hybrid``'s ``weight``; 1 by
+default); "g" below is that share of a key.
 
 Two choices make it fast without changing which nodes it expands:
 

@@ -210,9 +210,9 @@ def test_a_sweep_a_planner_ignores_gives_it_one_cell_and_a_note(tmp_path):
     assert res.exit_code == 0
     res = CliRunner().invoke(main, ["bench", str(path), "--out", str(tmp_path / "o"), "--no-plots", "-q",
                                     "--executor", "serial"])
-    assert ("note: hybrid_astar does not take the swept expand_dis and heuristic: its cells are not split by "
+    assert ("note: hybrid_astar does not use the swept expand_dis and heuristic: its cells are not split by "
             "them (each runs once, not once per value)") in res.output
-    assert "note: a does not take the swept expand_dis: its cells are not split by it" in res.output
+    assert "note: a does not use the swept expand_dis: its cells are not split by it" in res.output
 
 
 def test_a_swept_weight_or_heuristic_does_not_split_a_grid_search_that_ignores_it():
@@ -223,6 +223,21 @@ def test_a_swept_weight_or_heuristic_does_not_split_a_grid_search_that_ignores_i
              for c in exp.cells()]
     assert cells == [("astar", ("heuristic", "weight"))] * 4 + [("dijkstra", ()), ("jps", ())]
     assert exp.unswept() == {"dijkstra": ["heuristic", "weight"], "jps": ["heuristic", "weight"]}
+    assert exp.partly_unswept() == {}  # (astar uses both everywhere here)
+
+
+def test_a_swept_setting_some_cells_do_not_use_is_named_with_those_cells():
+    """astar with heuristic none searches unweighted, so a swept weight splits only its other cells, and a
+    holonomic tree takes no turning radius: said in a note naming where (newcomer, session 24: no note)."""
+    exp = load_experiment({"worlds": ["trap"], "planners": ["astar"], "trials": 1,
+                           "grid": {"weight": [1, 5], "heuristic": ["none", "octile"]}})
+    assert [tuple(sorted(c.params.items())) for c in exp.cells()] == [
+        (("heuristic", "none"),), (("heuristic", "octile"), ("weight", 1)), (("heuristic", "octile"), ("weight", 5))]
+    assert exp.partly_unswept() == {"astar": ["weight where heuristic=none"]} and exp.unswept() == {}
+    cars = load_experiment({"worlds": ["trap_car"], "planners": ["rrt_star"], "trials": 1,
+                            "grid": {"motion": ["holonomic", "dubins"], "turning_radius": [0.5, 1.0]}})
+    assert len(cars.cells()) == 3
+    assert cars.partly_unswept() == {"rrt_star": ["turning_radius where motion=holonomic"]}
 
 
 def test_a_swept_sampler_setting_splits_only_the_cells_of_samplers_that_take_it():

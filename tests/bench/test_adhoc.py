@@ -111,9 +111,9 @@ def test_grid_settings_a_planner_does_not_use_are_noted_once(tmp_path):
     assert [line for line in res.stderr.splitlines() if line.startswith("note:")] == [
         "note: jps searches unweighted (of the grid planners only astar takes a weight): weight=2 is not used",
         "note: dijkstra searches unweighted (of the grid planners only astar takes a weight): weight=2 is not used",
-        "note: jps does not take the swept heuristic: its cells are not split by it (each runs once, not once "
+        "note: jps does not use the swept heuristic: its cells are not split by it (each runs once, not once "
         "per value)",
-        "note: dijkstra does not take the swept heuristic: its cells are not split by it (each runs once, not "
+        "note: dijkstra does not use the swept heuristic: its cells are not split by it (each runs once, not "
         "once per value)"]
     res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "astar", "--grid", "heuristic=[octile,none]",
                                     "--param", "weight=2", "--trials", "1", "-q", "--no-plots", "--executor", "serial",

@@ -201,6 +201,33 @@ class Experiment:
         over every swept one (the note said it did not take them: attack, session 23)."""
         return self._not_split(own_ones=True)
 
+    def partly_unswept(self) -> Dict[str, List[str]]:
+        """Each planner's (with a sampler, when there are several) label with the swept settings some of its
+        cells use and others do not, each as ``"weight where heuristic=none"``: the other cells' swept values.
+        astar under ``heuristic: [none, octile]`` and ``weight: [1, 5]`` searches unweighted with heuristic
+        none, so the weight does not split those cells; a car-like tree under a swept ``motion`` takes
+        ``turning_radius`` only where it is dubins or reeds_shepp. For a note (newcomer, session 24: only
+        settings that no cell uses were noted)."""
+        used: Dict[Tuple[int, int], set] = {}
+        dropped: Dict[Tuple[int, int], Dict[str, set]] = {}
+        for planner, sampler, point, own, routed in self._routings():
+            key = (id(planner), id(sampler))
+            taken = _taken(planner.name, point, own, routed)
+            used.setdefault(key, set()).update(taken)
+            for name in set(point) - set(taken) - set(own):
+                where = ", ".join(f"{k}={point[k]}" for k in sorted(taken)) or "-"
+                dropped.setdefault(key, {}).setdefault(name, set()).add(where)
+        out = {}
+        for planner in self.planners:
+            samplers = self.samplers if samples(planner.name) else [None]
+            for sampler in samplers:
+                key = (id(planner), id(sampler))
+                parts = [f"{name} where {' or '.join(sorted(where))}"
+                         for name, where in sorted(dropped.get(key, {}).items()) if name in used.get(key, set())]
+                if parts:
+                    out[planner.title + (f" with {sampler.title}" if len(samplers) > 1 else "")] = parts
+        return out
+
     def _not_split(self, own_ones: bool) -> Dict[str, List[str]]:
         taken: Dict[Tuple[int, int], set] = {}  # by (planner, sampler) index: the swept settings some cell takes
         left: Dict[Tuple[int, int], set] = {}  # ... and those it sets itself

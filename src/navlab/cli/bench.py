@@ -353,8 +353,11 @@ def note_unused_settings(exp) -> None:
         lines.update(dict.fromkeys(unused_settings(cell.planner.name, own, lambda k, value: f"{k}={value}")))
     lines.update(dict.fromkeys(_untaken(exp)))
     for label, keys in exp.unswept().items():  # (its cells were run once per value, as if it took them)
-        lines[f"note: {label} does not take the swept {' and '.join(keys)}: its cells are not split by "
+        lines[f"note: {label} does not use the swept {' and '.join(keys)}: its cells are not split by "
               f"{'them' if len(keys) > 1 else 'it'} (each runs once, not once per value)"] = None
+    for label, parts in exp.partly_unswept().items():
+        lines[f"note: {label} does not use the swept {'; nor '.join(parts)}: those cells are not split by it "
+              "(each runs once, not once per value)"] = None
     for label, keys in exp.own_over_sweep().items():
         lines[f"note: {label} sets its own {' and '.join(keys)}: the swept values do not split its cells"] = None
     for line in lines:

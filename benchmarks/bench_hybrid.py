@@ -208,8 +208,11 @@ def compare(module, car, res: float, repeat: int, quick: bool, options) -> None:
         "from the robot's table at half-cell and 5-degree spacing"
     margin = math.sqrt(2) * res + res / 4 + math.hypot(car.LF, car.W / 2) * math.sin(math.pi / 72)
     notes = (
-        f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} run(s) per query and "
-        "weight, interleaved (a PythonRobotics run before each weight's); navlab ms with the robot's footprint "
+        f"weight: navlab's heuristic weight; the row at PythonRobotics' own (H_COST {module.H_COST:g}) compares "
+        "like with like, the other is navlab's own search (1: unweighted).",
+        f"PyRob/nav: median PythonRobotics time / median navlab time (x faster), {repeat} navlab run(s) per query "
+        "and weight, interleaved, each right after a PythonRobotics run of the query (PyRob s: the median of all "
+        "of them, the same on both of a query's rows); navlab ms with the robot's footprint "
         "lattice and Reeds-Shepp distance table kept from its "
         "earlier queries (one of each for every start heading and goal), first ms with them cleared (a robot's "
         "first query), again ms the kept query at once again (its code and data still in the CPU's caches, as "

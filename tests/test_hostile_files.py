@@ -238,6 +238,14 @@ def test_a_swept_setting_some_cells_do_not_use_is_named_with_those_cells():
                             "grid": {"motion": ["holonomic", "dubins"], "turning_radius": [0.5, 1.0]}})
     assert len(cars.cells()) == 3
     assert cars.partly_unswept() == {"rrt_star": ["turning_radius where motion=holonomic"]}
+    # named by the setting that tells those cells apart, not by every other swept one; once per planner when
+    # every sampler's cells agree (review, session 24)
+    exp = load_experiment({"worlds": ["trap"], "planners": ["astar"], "trials": 1,
+                           "grid": {"weight": [1, 5], "heuristic": ["none", "octile"], "connectivity": [4, 8]}})
+    assert exp.partly_unswept() == {"astar": ["weight where heuristic=none"]}
+    cars = load_experiment({"worlds": ["trap_car"], "planners": ["rrt"], "samplers": ["uniform", "gaussian"],
+                            "trials": 1, "grid": {"motion": ["holonomic", "dubins"], "turning_radius": [0.5, 1.0]}})
+    assert cars.partly_unswept() == {"rrt": ["turning_radius where motion=holonomic"]}
 
 
 def test_a_swept_sampler_setting_splits_only_the_cells_of_samplers_that_take_it():

@@ -7,8 +7,10 @@ import numpy as np
 import pytest
 
 from navlab.grid.hybrid_astar import _merged, _path_segments
-from navlab.grid.hybrid_field import field_at, field_from_clearance, field_start
+from navlab.grid.hybrid_field import SETTLED, field_from_clearance
 from navlab.sampling.curves import LEFT, NOP, RIGHT, STRAIGHT
+
+from grid.test_hybrid_heuristic import heap_field  # tests/ is on the path (pyproject: pythonpath)
 
 
 def merged_reference(kinds, lengths):
@@ -57,15 +59,19 @@ def test_the_path_segments_walk_the_parent_chain_then_the_tail():
 
 
 @pytest.mark.parametrize("seed", range(4))
-def test_the_field_from_clearance_is_the_field_started_on_the_passable_cells(seed):
+def test_the_field_from_clearance_is_heap_dijkstra_over_the_clear_cells(seed):
+    """The cells clear of ``limit`` and the goal's, and the value at the start cell and at every cell the wave
+    settled on the way, against a heap Dijkstra in Python over those cells."""
     rng = np.random.default_rng(seed)
     clear = rng.uniform(0.0, 5.0, (30, 40))
-    res, limit = 0.1, 0.2
+    res, limit = 0.1, 0.1  # (four cells in five clear: the start is reached)
     gx, gy, sx, sy = 3, 4, 35, 25
     passable = clear * res > limit
     passable[gy, gx] = True
-    state, dist, cells, size, cursor = field_start(passable, gx, gy, res)
-    at, _ = field_at(state, dist, cells, size, cursor, 42, res, sx, sy)
-    got = field_from_clearance(clear, res, limit, gx, gy, sx, sy)
-    assert np.array_equal(got[0], passable) and np.array_equal(got[1], state) and np.array_equal(got[2], dist)
-    assert got[-1] == at or (math.isinf(at) and math.isinf(got[-1]))
+    truth = heap_field(passable, gx, gy, res)
+    got_passable, state, dist, *_, at = field_from_clearance(clear, res, limit, gx, gy, sx, sy)
+    assert np.array_equal(got_passable, passable)
+    assert math.isfinite(at) and at == truth[sy, sx]
+    inner = dist.reshape(32, 42)[1:-1, 1:-1]
+    settled = (state.reshape(32, 42)[1:-1, 1:-1] & SETTLED) != 0
+    assert settled.sum() > 10 and np.array_equal(inner[settled], truth[settled])

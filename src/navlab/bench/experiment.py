@@ -202,31 +202,27 @@ class Experiment:
         return self._not_split(own_ones=True)
 
     def partly_unswept(self) -> Dict[str, List[str]]:
-        """Each planner's (with a sampler, when there are several) label with the swept settings some of its
-        cells use and others do not, each as ``"weight where heuristic=none"``: the other cells' swept values.
-        astar under ``heuristic: [none, octile]`` and ``weight: [1, 5]`` searches unweighted with heuristic
-        none, so the weight does not split those cells; a car-like tree under a swept ``motion`` takes
-        ``turning_radius`` only where it is dubins or reeds_shepp. For a note (newcomer, session 24: only
-        settings that no cell uses were noted)."""
+        """Each planner's (and, where they differ, each sampler's) label with the swept settings some of its
+        cells use and others do not, each as ``"weight where heuristic=none"``: the swept values of the cells
+        that do not, by the settings that tell them apart (all of them when none does alone). astar under
+        ``heuristic: [none, octile]`` and ``weight: [1, 5]`` searches unweighted with heuristic none, so the
+        weight does not split those cells; a car-like tree under a swept ``motion`` takes ``turning_radius``
+        only where it is dubins or reeds_shepp. For a note (newcomer, session 24: only settings that no cell
+        uses were noted)."""
         used: Dict[Tuple[int, int], set] = {}
-        dropped: Dict[Tuple[int, int], Dict[str, set]] = {}
+        dropped: Dict[Tuple[int, int], Dict[str, List[Dict[str, Any]]]] = {}  # setting -> the points without it
         for planner, sampler, point, own, routed in self._routings():
             key = (id(planner), id(sampler))
             taken = _taken(planner.name, point, own, routed)
             used.setdefault(key, set()).update(taken)
             for name in set(point) - set(taken) - set(own):
-                where = ", ".join(f"{k}={point[k]}" for k in sorted(taken)) or "-"
-                dropped.setdefault(key, {}).setdefault(name, set()).add(where)
-        out = {}
-        for planner in self.planners:
-            samplers = self.samplers if samples(planner.name) else [None]
-            for sampler in samplers:
-                key = (id(planner), id(sampler))
-                parts = [f"{name} where {' or '.join(sorted(where))}"
-                         for name, where in sorted(dropped.get(key, {}).items()) if name in used.get(key, set())]
-                if parts:
-                    out[planner.title + (f" with {sampler.title}" if len(samplers) > 1 else "")] = parts
-        return out
+                dropped.setdefault(key, {}).setdefault(name, []).append(point)
+
+        def parts(key) -> List[str]:
+            return [f"{name} where {_where(points, self.grid, name)}"
+                    for name, points in sorted(dropped.get(key, {}).items()) if name in used.get(key, set())]
+
+        return self._by_label(parts)
 
     def _not_split(self, own_ones: bool) -> Dict[str, List[str]]:
         taken: Dict[Tuple[int, int], set] = {}  # by (planner, sampler) index: the swept settings some cell takes
@@ -235,21 +231,27 @@ class Experiment:
             key = (id(planner), id(sampler))
             taken.setdefault(key, set()).update(_taken(planner.name, point, own, routed))
             left[key] = set(own)
+
+        def keys(key) -> List[str]:
+            unused = set(self.grid) - taken[key]
+            return sorted(unused & left[key] if own_ones else unused - left[key])
+
+        return self._by_label(keys)
+
+    def _by_label(self, found) -> Dict[str, List[str]]:
+        """``found((id(planner), id(sampler)))`` (a list, empty for none) by label: the planner's when it is the
+        same for every sampler it draws from, else each sampler's (``"rrt with uniform"``)."""
         out = {}
         for planner in self.planners:
             samplers = self.samplers if samples(planner.name) else [None]
-            not_split = []
-            for sampler in samplers:
-                key = (id(planner), id(sampler))
-                keys = set(self.grid) - taken[key]
-                not_split.append(sorted(keys & left[key] if own_ones else keys - left[key]))
-            if len({tuple(keys) for keys in not_split}) == 1:  # the same for every sampler: the planner's
-                if not_split[0]:
-                    out[planner.title] = not_split[0]
+            each = [found((id(planner), id(sampler))) for sampler in samplers]
+            if len({tuple(items) for items in each}) == 1:  # the same for every sampler: the planner's
+                if each[0]:
+                    out[planner.title] = each[0]
                 continue
-            for sampler, keys in zip(samplers, not_split):
-                if keys:
-                    out[f"{planner.title} with {sampler.title}"] = keys
+            for sampler, items in zip(samplers, each):
+                if items:
+                    out[f"{planner.title} with {sampler.title}"] = items
         return out
 
     def trial_specs(self) -> List[Dict[str, Any]]:
@@ -349,6 +351,16 @@ class Experiment:
             elif world not in SCENES and Path(world).is_file():
                 out[world] = content_digest(Path(world).read_bytes())
         return out
+
+
+def _where(points: List[Dict[str, Any]], grid: Dict[str, list], name: str) -> str:
+    """The grid ``points`` (the cells that do not use swept setting ``name``) as a condition on the other swept
+    settings: on those whose values there are fewer than the grid's (``heuristic=none``, not also every
+    ``connectivity``), or on all when none is so (``costmap=True or costmap=False and heuristic=none``)."""
+    others = [k for k in sorted(grid) if k != name]
+    telling = [k for k in others if len({repr(p[k]) for p in points}) < len(grid[k])] or others
+    conditions = dict.fromkeys(" and ".join(f"{k}={p[k]}" for k in telling) for p in points)
+    return " or ".join(conditions) or "-"
 
 
 def _taken(planner: str, point: Dict[str, Any], own: Dict[str, Any], routed: Dict[str, Any]) -> Dict[str, Any]:

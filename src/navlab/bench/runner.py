@@ -143,17 +143,17 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
 
 
 def _note_rows_of_no_cell(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]]) -> None:
-    """Say on stderr how many resumed rows belong to no trial of the experiment as it is routed now (a setting
+    """Say on stderr how many resumed rows belong to no cell of the experiment as it is routed now (a setting
     that came to split a planner's cells or to merge them, after an upgrade: a run sweeping ``weight`` before
     Hybrid A* took it ran hybrid_astar as one cell): they stay in results.jsonl and results.csv, left out of
     the report (attack, session 24: they were left without a word)."""
-    ids = {s["trial_id"] for s in specs} | {s["trial_id"] for s in repeats}
-    stale = [row for tid, row in store.rows.items() if tid not in ids]
+    cells = {s["cell_id"] for s in specs}  # (a cell's trials past --trials are not of another cell)
+    stale = [row for row in store.rows.values() if row.get("cell_id") not in cells]
     if stale:
         labels = sorted({str(row.get("label") or row.get("planner") or "?") for row in stale})
         one = len(stale) == 1
         print(f"{store.folder}: {counted(len(stale), 'kept row')} ({', '.join(labels)}) "
-              f"{'belongs' if one else 'belong'} to no trial of this experiment as navlab now runs it (its cells are "
+              f"{'belongs' if one else 'belong'} to no cell of this experiment as navlab now runs it (its cells are "
               f"split or merged differently since {'it' if one else 'they'} ran): kept in results.jsonl and "
               "results.csv, left out of the report", file=sys.stderr)
 

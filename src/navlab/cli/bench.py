@@ -354,14 +354,19 @@ def note_unused_settings(exp) -> None:
     lines.update(dict.fromkeys(_untaken(exp)))
     for label, keys in exp.unswept().items():  # (its cells were run once per value, as if it took them)
         lines[f"note: {label} does not use the swept {' and '.join(keys)}: its cells are not split by "
-              f"{'them' if len(keys) > 1 else 'it'} (each runs once, not once per value)"] = None
+              f"{_once(keys)}"] = None
     for label, parts in exp.partly_unswept().items():
-        lines[f"note: {label} does not use the swept {'; nor '.join(parts)}: those cells are not split by it "
-              "(each runs once, not once per value)"] = None
+        lines[f"note: {label} does not use the swept {'; nor '.join(parts)}: those cells are not split by "
+              f"{_once(parts)}"] = None
     for label, keys in exp.own_over_sweep().items():
         lines[f"note: {label} sets its own {' and '.join(keys)}: the swept values do not split its cells"] = None
     for line in lines:
         click.echo(line, err=True)
+
+
+def _once(settings: List[str]) -> str:
+    """How a note on swept settings that do not split cells ends."""
+    return f"{'them' if len(settings) > 1 else 'it'} (each runs once, not once per value)"
 
 
 def _untaken(exp) -> List[str]:

@@ -589,9 +589,11 @@ def _tables_of(grid: OccupancyGrid):
 def _map_tables(shape, res: float, packed: bytes):
     """What the search reads of a map that is the same for every query on it, cached by the map's content
     (``packed``: ``np.packbits`` of the blocked cells; a robot plans on one map many times, and on
-    PythonRobotics' 61 x 61 map these cost about 0.5 ms a query). Only the last map's are kept: they take
-    24 bytes per cell (2.4 GB at the 10⁸-cell limit), and a replanning loop on a changing costmap would
-    only fill a longer cache with maps it never sees again: ``distance_transform_edt(~blocked)``
+    PythonRobotics' 61 x 61 map these cost about 0.5 ms a query). Here only the last map's are kept, for a
+    new grid object with the same cells; each grid also keeps its own on itself while it lives
+    (:func:`_tables_of`). They take 24 bytes per cell (2.4 GB at the 10⁸-cell limit), and a replanning
+    loop on a changing costmap would only fill a longer cache with maps it never sees again:
+    ``distance_transform_edt(~blocked)``
     [cells], :func:`_nearest_blocked2` [cells²] and its roots times ``res``, the values of
     :func:`~navlab.sampling.footprint_lattice.clearance_map` [m] (the same squares' roots), which let
     curve checks pass poses far from everything unread. Read-only arrays."""

@@ -209,34 +209,36 @@ class Experiment:
         weight does not split those cells; a car-like tree under a swept ``motion`` takes ``turning_radius``
         only where it is dubins or reeds_shepp. For a note (newcomer, session 24: only settings that no cell
         uses were noted)."""
-        used: Dict[Tuple[int, int], set] = {}
-        dropped: Dict[Tuple[int, int], Dict[str, List[Dict[str, Any]]]] = {}  # setting -> the points without it
-        for planner, sampler, point, own, routed in self._routings():
-            key = (id(planner), id(sampler))
-            taken = _taken(planner.name, point, own, routed)
-            used.setdefault(key, set()).update(taken)
-            for name in set(point) - set(taken) - set(own):
-                dropped.setdefault(key, {}).setdefault(name, []).append(point)
+        usage = self._usage()
 
         def parts(key) -> List[str]:
+            used, _, dropped = usage[key]
             return [f"{name} where {_where(points, self.grid, name)}"
-                    for name, points in sorted(dropped.get(key, {}).items()) if name in used.get(key, set())]
+                    for name, points in sorted(dropped.items()) if name in used]
 
         return self._by_label(parts)
 
     def _not_split(self, own_ones: bool) -> Dict[str, List[str]]:
-        taken: Dict[Tuple[int, int], set] = {}  # by (planner, sampler) index: the swept settings some cell takes
-        left: Dict[Tuple[int, int], set] = {}  # ... and those it sets itself
-        for planner, sampler, point, own, routed in self._routings():
-            key = (id(planner), id(sampler))
-            taken.setdefault(key, set()).update(_taken(planner.name, point, own, routed))
-            left[key] = set(own)
+        usage = self._usage()
 
         def keys(key) -> List[str]:
-            unused = set(self.grid) - taken[key]
-            return sorted(unused & left[key] if own_ones else unused - left[key])
+            used, own, _ = usage[key]
+            unused = set(self.grid) - used
+            return sorted(unused & own if own_ones else unused - own)
 
         return self._by_label(keys)
+
+    def _usage(self) -> Dict[Tuple[int, int], Tuple[set, set, Dict[str, List[Dict[str, Any]]]]]:
+        """By ``(id(planner), id(sampler))``: the swept settings some of its cells use (:func:`_taken`), those it
+        sets itself, and each swept setting it is not given or does not use with the grid points where not."""
+        out: Dict[Tuple[int, int], Tuple[set, set, Dict[str, List[Dict[str, Any]]]]] = {}
+        for planner, sampler, point, own, routed in self._routings():
+            used, _, dropped = out.setdefault((id(planner), id(sampler)), (set(), set(own), {}))
+            taken = _taken(planner.name, point, own, routed)
+            used.update(taken)
+            for name in set(point) - set(taken) - set(own):
+                dropped.setdefault(name, []).append(point)
+        return out
 
     def _by_label(self, found) -> Dict[str, List[str]]:
         """``found((id(planner), id(sampler)))`` (a list, empty for none) by label: the planner's when it is the

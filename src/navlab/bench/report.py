@@ -41,15 +41,17 @@ def _changed_from_suite(experiment: Dict[str, Any]) -> str:
 
     name = experiment.get("name", "")
     make = find_suite(name)
+    suite = None if make is None else _built(make)
     title = (experiment.get("study") or {}).get("title")
     if make is None and title:  # a suite's --show template saved under another name keeps its study's title
         # (and was reported as the study without a word on what was changed: newcomer, session 21)
-        name, make = next(((n, SUITES.get(n)) for n in SUITES.names() if _study_title(SUITES.get(n)) == title),
-                          ("", None))
-    if make is None:
+        built = ((n, _built(SUITES.get(n))) for n in SUITES.names())
+        name, suite = next(((n, data) for n, data in built if ((data or {}).get("study") or {}).get("title") == title),
+                           ("", None))
+    if suite is None:
         return ""
     try:
-        documented = load_experiment(make(), f"suite '{name}'").to_dict()
+        documented = load_experiment(suite, f"suite '{name}'").to_dict()
     except (ExperimentError, OSError):  # (its data gone since: nothing to compare with)
         return ""
     changed = differences(_labelled(experiment), _labelled(documented),
@@ -72,13 +74,13 @@ def _compared(verdict: Dict[str, Any]) -> str:
     return f"{verdict['lower']} < {verdict['higher']}: {low} < {high}"
 
 
-def _study_title(make) -> Optional[str]:
-    """The study title of the suite ``make`` builds, or None when it cannot be built here (a suite on the Moving
-    AI maps without them: building it raised, after every trial, and no report was written; review, session 23)."""
+def _built(make) -> Optional[Dict[str, Any]]:
+    """The experiment the suite ``make`` builds, or None when it cannot be built here (a suite on the Moving AI
+    maps without them: building it raised, after every trial, and no report was written; review, session 23)."""
     from ..errors import NavlabError
 
     try:
-        return (make().get("study") or {}).get("title")
+        return make()
     except (NavlabError, OSError):  # (ExperimentError is a NavlabError)
         return None
 

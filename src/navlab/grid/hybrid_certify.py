@@ -39,8 +39,8 @@ def first_overlap_exact(blocked: np.ndarray, res: float, vertices: np.ndarray, d
     radius (0: a point). A disc here is exact, where shapely's is a 64-gon inside it, so a disc
     is judged a little more strictly."""
     found, x, y = first_overlap_compiled(np.ascontiguousarray(blocked, dtype=np.bool_), float(res),
-                                 np.ascontiguousarray(vertices, dtype=float).reshape(-1, 2), float(disc),
-                                 np.ascontiguousarray(poses, dtype=float).reshape(-1, 3), float(grow))
+                                         np.ascontiguousarray(vertices, dtype=float).reshape(-1, 2), float(disc),
+                                         np.ascontiguousarray(poses, dtype=float).reshape(-1, 3), float(grow))
     return (int(x), int(y)) if found else None
 
 

@@ -24,7 +24,7 @@ from .errors import ParameterError
 from .registry import UnknownNameError, suggest
 from .result import Result, Status
 # (HYBRID_PARAMS, POSE_PLANNERS and TREE_POSE_PLANNERS here since they were first)
-from .setting_names import CAR_QUERY_PARAMS, HYBRID_PARAMS, POSE_PLANNERS, TREE_POSE_PLANNERS  # noqa: F401
+from .setting_names import HYBRID_PARAMS, POSE_PLANNERS, TREE_POSE_PLANNERS, car_tree_params  # noqa: F401
 
 #: how the robot may move: any direction (today's planners), forward along
 #: arcs of at least the turning radius, or forward and reverse
@@ -228,20 +228,13 @@ def check_pose_query(world, planner: str, params: Dict[str, Any], sampler: str =
     else:
         from .sampling.se2_planners import check_se2_settings, se2_tree_params
 
-        settings = _query(world, planner, params, _tree_pose_params(), sampler)[1]
+        settings = _query(world, planner, params, car_tree_params(), sampler)[1]
         _tree_heading_bins(settings.pop("heading_bins", 72))
         # (a car-like rrt took it and recorded it, and never read it: attack, session 22)
         if "connect_circle_dist" in settings and "connect_circle_dist" not in se2_tree_params(planner):
             raise ParameterError("connect_circle_dist: rrt does not rewire (rrt_star and informed_rrt_star take "
                                  "it); leave connect_circle_dist out")
         check_se2_settings(settings)
-
-
-def _tree_pose_params() -> Tuple[str, ...]:
-    """The settings of a tree planner between poses."""
-    from .sampling.se2_planners import SE2_TREE_PARAMS
-
-    return (*CAR_QUERY_PARAMS, *SE2_TREE_PARAMS)
 
 
 def _tree_heading_bins(bins: Any) -> int:
@@ -294,7 +287,7 @@ def tree_pose_query(world, planner: str, sampler, seed: Any, params: Dict[str, A
     from .sampling.footprint_lattice import check_turning_scale, lattice_for, robot_outline
     from .sampling.se2_planners import plan_se2_tree
 
-    common, settings = _query(world, planner, params, _tree_pose_params())
+    common, settings = _query(world, planner, params, car_tree_params())
     bins = _tree_heading_bins(settings.pop("heading_bins", 72))
     t0 = time.perf_counter()
     grid = _pose_grid(world, common["resolution"])

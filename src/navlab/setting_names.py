@@ -8,6 +8,8 @@ of them, the other would import it, and the package's imports must not go round 
 
 from __future__ import annotations
 
+from typing import Tuple
+
 #: settings of the grid algorithms, routed by name like sampler settings
 GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
 #: grid settings astar alone uses (the others search unweighted, with a note)
@@ -30,6 +32,14 @@ HYBRID_PARAMS = (*CAR_QUERY_PARAMS, "heading_bins",
 #: all but the grid planners' and those a car-like tree's query takes too
 HYBRID_ONLY = tuple(k for k in HYBRID_PARAMS if k not in GRID_PARAMS and k not in CAR_QUERY_PARAMS and
                     k != "heading_bins")
+
+
+def car_tree_params() -> Tuple[str, ...]:
+    """The settings of a tree planner between poses: the query's (:data:`CAR_QUERY_PARAMS`) and the SE(2)
+    tree's (:data:`~navlab.sampling.se2_planners.SE2_TREE_PARAMS`)."""
+    from .sampling.se2_planners import SE2_TREE_PARAMS  # (when asked: this module loads without the trees')
+
+    return (*CAR_QUERY_PARAMS, *SE2_TREE_PARAMS)
 
 
 def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
@@ -87,7 +97,6 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
     from .registry import parameters_of
     from .sampling.planners import PLANNERS
     from .sampling.samplers import SAMPLERS
-    from .sampling.se2_planners import SE2_TREE_PARAMS
 
     def listed(names):
         return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
@@ -107,7 +116,7 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
         takers.append("planner astar with costmap=true")
     # a car-like tree's: its lattice's heading_bins, and the query's motion, turning radius, footprint and raster
     # (astar was told turning_radius was hybrid_astar's alone: review, session 22)
-    car_tree = (*CAR_QUERY_PARAMS, *SE2_TREE_PARAMS)
+    car_tree = car_tree_params()
     if key in car_tree and key not in planners_keys:
         takers.append(f"planners {listed(sorted(TREE_POSE_PLANNERS))}"
                       + ("" if key == "motion" else " with motion=dubins or reeds_shepp"))

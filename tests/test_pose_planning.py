@@ -167,6 +167,9 @@ def test_the_summary_counts_in_words_and_a_failure_has_no_cusps():
     assert res.exit_code == 1 and ", 1 expansion, planning" in res.output and "cusp" not in res.output
     res = CliRunner().invoke(main, ["plan", "parking", "--planner", "hybrid_astar"])
     assert res.exit_code == 0 and re.search(r"\d+ expansions, 1 cusp, planning", res.output)
+    assert "heuristic weight" not in res.output  # (said only when weighted: newcomer, session 24)
+    res = CliRunner().invoke(main, ["plan", "parking", "--planner", "hybrid_astar", "--param", "weight=5"])
+    assert res.exit_code == 0 and "turning radius 4.5 m, heuristic weight 5, 48 expansions" in res.output
 
 
 def test_a_robot_radius_a_footprint_scene_would_drop_is_refused():

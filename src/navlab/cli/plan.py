@@ -159,7 +159,9 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
         p, n = result.params, s["expansions"]
         cusps = s.get("cusps", 0)  # of a path found: a failed search has none to count
         cusps_said = f"{counted(cusps, 'cusp')}, " if len(result.path) else ""
-        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, "
+        # (a weighted search said nothing of its weight but in --json: newcomer, session 24)
+        weighted = f"heuristic weight {p['weight']:g}, " if p.get("weight", 1.0) != 1.0 else ""
+        click.echo(f"  {p.get('motion')}, turning radius {p.get('turning_radius', 0):g} m, {weighted}"
                    f"{counted(n, 'expansion')}, {cusps_said}planning {s['time_s'] * 1000:.1f} ms")
         off, turn = s.get("goal_offset_m", 0.0), s.get("goal_heading_offset_rad", 0.0)
         if len(result.path) and (off > 1e-6 or turn > 1e-6):  # analytic_expansion=false: near the goal, not at it

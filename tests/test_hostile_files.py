@@ -224,6 +224,9 @@ def test_a_swept_weight_or_heuristic_does_not_split_a_grid_search_that_ignores_i
     assert cells == [("astar", ("heuristic", "weight"))] * 4 + [("dijkstra", ()), ("jps", ())]
     assert exp.unswept() == {"dijkstra": ["heuristic", "weight"], "jps": ["heuristic", "weight"]}
     assert exp.partly_unswept() == {}  # (astar uses both everywhere here)
+    from navlab.wording import listed  # (the notes' lists: "heuristic and weight", "a, b and c")
+
+    assert listed(["heuristic", "weight"]) == "heuristic and weight" and listed(["a", "b", "c"]) == "a, b and c"
 
 
 def test_a_swept_setting_some_cells_do_not_use_is_named_with_those_cells():

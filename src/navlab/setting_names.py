@@ -10,6 +10,8 @@ from __future__ import annotations
 
 from typing import Tuple
 
+from .wording import listed
+
 #: settings of the grid algorithms, routed by name like sampler settings
 GRID_PARAMS = ("allow_unknown", "connectivity", "heuristic", "resolution", "smooth", "weight")
 #: grid settings astar alone uses (the others search unweighted, with a note)
@@ -97,9 +99,6 @@ def taken_elsewhere(key: str, planner: str, sampler: str = "", own: str = "") ->
     from .registry import parameters_of
     from .sampling.planners import PLANNERS
     from .sampling.samplers import SAMPLERS
-
-    def listed(names):
-        return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
 
     planners_keys = {k for name in PLANNERS.names() for k in parameters_of(PLANNERS.get(name))}
     planners = [name for name in PLANNERS.names() if key in parameters_of(PLANNERS.get(name))]

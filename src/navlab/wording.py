@@ -11,6 +11,13 @@ def counted(n: int, noun: str) -> str:
     return f"{n} {noun}" + ("" if n == 1 else "s")
 
 
+def listed(names) -> str:
+    """``a``, ``a and b``, ``a, b and c``: names as a sentence lists them (a note read "heuristic and motion
+    and sigma and turning_radius and weight": newcomer, session 24)."""
+    names = list(names)
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1]
+
+
 def duration(seconds: float) -> str:
     """A duration as people read it (a first use's warm-up printed as "53881 ms"; newcomer run, session 21).
 

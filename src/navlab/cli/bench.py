@@ -13,7 +13,7 @@ import click
 import yaml
 
 from ..bench.suites import suite_help
-from ..wording import counted
+from ..wording import counted, listed
 from .common import Count, PositiveNumber, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
@@ -353,13 +353,13 @@ def note_unused_settings(exp) -> None:
         lines.update(dict.fromkeys(unused_settings(cell.planner.name, own, lambda k, value: f"{k}={value}")))
     lines.update(dict.fromkeys(_untaken(exp)))
     for label, keys in exp.unswept().items():  # (its cells were run once per value, as if it took them)
-        lines[f"note: {label} does not use the swept {' and '.join(keys)}: its cells are not split by "
+        lines[f"note: {label} does not use the swept {listed(keys)}: its cells are not split by "
               f"{_once(keys)}"] = None
     for label, parts in exp.partly_unswept().items():
         lines[f"note: {label} does not use the swept {'; nor '.join(parts)}: those cells are not split by "
               f"{_once(parts)}"] = None
     for label, keys in exp.own_over_sweep().items():
-        lines[f"note: {label} sets its own {' and '.join(keys)}: the swept values do not split its cells"] = None
+        lines[f"note: {label} sets its own {listed(keys)}: the swept values do not split its cells"] = None
     for line in lines:
         click.echo(line, err=True)
 

@@ -70,6 +70,15 @@ def check_weight(weight: Any) -> float:
 SHOWN_LENGTH = 80
 
 
+def check_flag(name: str, value: Any) -> bool:
+    """``value`` as a Python bool if it is one (or numpy's), else ParameterError naming ``name``: a string
+    or a number is refused, since ``bool("false")`` and ``bool(2)`` are true and a typo must not switch a
+    setting on."""
+    if not isinstance(value, (bool, np.bool_)):
+        raise ParameterError(f"{name} must be true or false, got {shown(value)}")
+    return bool(value)
+
+
 def is_finite_real(value: Any) -> bool:
     """Whether ``value`` is a finite real number (Python or numpy, not a bool) that fits a float:
     ``math.isfinite`` raises OverflowError on an int past float's range (10**400), which

@@ -28,7 +28,7 @@ import numpy as np
 
 from .compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from .errors import ParameterError
-from .limits import check_seed, shown
+from .limits import check_flag, check_seed, shown
 from .pose_queries import POSE_PLANNERS, is_pose_query
 from .queries import (GRID_PARAMS, build_sampler, check_tree_allow_unknown, costmap_query, grid_query,  # noqa: F401
                       is_grid_planner, path_length, planner_names, split_grid_params, split_params, take_query_params,
@@ -174,9 +174,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
         tree_sampler = None if planner in POSE_PLANNERS else sampler or "uniform"
         return _pose_plan(source, planner, tree_sampler, start, goal, seed, robot_radius, params)
     goal_tolerance, allow_unknown = take_query_params(params, grid)  # the query's, for every planner
-    on_costs = params.get("costmap", False)
-    if not isinstance(on_costs, bool):
-        raise ParameterError(f"costmap must be true or false, got {on_costs!r}")
+    on_costs = check_flag("costmap", params.get("costmap", False))
     if not on_costs:
         params.pop("costmap", None)  # costmap=false: the planner's own query, as when it is left out
     if on_costs and not grid:

@@ -15,7 +15,7 @@ from typing import Any, Dict, Optional, Tuple
 import numpy as np
 
 from .errors import ParameterError
-from .limits import MIN_LENGTH, check_length, is_finite_real, shown
+from .limits import MIN_LENGTH, check_flag, check_length, is_finite_real, shown
 from .registry import UnknownNameError, parameters_of, suggest
 from .result import Result, Status, Tree
 from .sampling.planners import PLANNERS, make_planner
@@ -125,8 +125,8 @@ def take_query_params(params: dict, grid: bool) -> Tuple[Optional[float], Option
     allow_unknown = params.get("allow_unknown") if grid else params.pop("allow_unknown", None)
     if goal_tolerance is not None:
         check_length("goal_tolerance", goal_tolerance)
-    if allow_unknown is not None and not isinstance(allow_unknown, (bool, np.bool_)):
-        raise ParameterError(f"allow_unknown must be true or false, got {allow_unknown!r}")
+    if allow_unknown is not None:
+        check_flag("allow_unknown", allow_unknown)
     return goal_tolerance, allow_unknown
 
 

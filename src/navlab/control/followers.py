@@ -9,7 +9,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import check_length, is_finite_real, shown
+from ..limits import check_flag, check_length, is_finite_real, shown
 from ..robots.kinematics import _wrap
 from .base import CONTROLLERS, REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number
 from .path_tracking import split_at_cusps
@@ -28,8 +28,7 @@ class _Follower(Controller):
 
     def __init__(self, stall_window: float = 8.0, stall_progress: float = 0.02, replan: bool = False,
                  replan_interval: float = 1.0, check_ahead: float = 1.0) -> None:
-        if not isinstance(replan, bool):
-            raise ParameterError(f"replan must be true or false, got {replan!r}")
+        replan = check_flag("replan", replan)
         for name, value in (("replan_interval", replan_interval), ("check_ahead", check_ahead)):
             if not (is_finite_real(value) and value > 0):
                 raise ParameterError(f"{name} must be a positive number, got {shown(value)}")

@@ -61,6 +61,7 @@ from typing import Optional
 import numpy as np
 
 from ..errors import ParameterError
+from ..limits import check_flag
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, LETHAL_OBSTACLE, MAX_NON_OBSTACLE
 from .base import CONTROLLERS
 from .local import CostmapController, arc_rollouts, check_number
@@ -155,12 +156,12 @@ class RegulatedPurePursuit(CostmapController):
                  pose_track_settling: float = 0.2) -> None:
         super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
                          layers, replan_interval, footprint_padding, costmap_resolution)
-        for name, flag in (("use_velocity_scaled_lookahead_dist", use_velocity_scaled_lookahead_dist),
-                           ("use_cost_regulated_linear_velocity_scaling", use_cost_regulated_linear_velocity_scaling),
-                           ("creep_when_blocked", creep_when_blocked),
-                           ("plan_poses", plan_poses)):
-            if not isinstance(flag, bool):
-                raise ParameterError(f"{name} must be true or false, got {flag!r}")
+        use_velocity_scaled_lookahead_dist = check_flag("use_velocity_scaled_lookahead_dist",
+                                                        use_velocity_scaled_lookahead_dist)
+        use_cost_regulated_linear_velocity_scaling = check_flag("use_cost_regulated_linear_velocity_scaling",
+                                                                use_cost_regulated_linear_velocity_scaling)
+        creep_when_blocked = check_flag("creep_when_blocked", creep_when_blocked)
+        plan_poses = check_flag("plan_poses", plan_poses)
         self.desired_linear_vel = check_number("desired_linear_vel", desired_linear_vel)
         self.lookahead_dist = check_number("lookahead_dist", lookahead_dist)
         self.min_lookahead_dist = check_number("min_lookahead_dist", min_lookahead_dist)

@@ -80,7 +80,7 @@ from shapely.geometry import Point, Polygon
 
 from ..errors import ParameterError
 from ..jit import njit
-from ..limits import MAX_COUNT, check_count, check_length, check_weight, finite_number
+from ..limits import MAX_COUNT, check_count, check_flag, check_length, check_weight, finite_number
 from ..registry import suggest
 from ..result import Result, Status
 from ..sampling import dubins, reeds_shepp, reeds_shepp_length
@@ -447,8 +447,7 @@ def check_settings(heading_bins=DEFAULTS["heading_bins"], reverse_penalty=DEFAUL
             raise ParameterError(f"{name} must be at least {low:g}, got {value!r}")
     for name, value in (("analytic_expansion", analytic_expansion), ("smooth", smooth), ("exact_retry", exact_retry),
                         ("distance_table", distance_table)):
-        if not isinstance(value, (bool, np.bool_)):  # bool("fals") is True: a typo must not switch it on
-            raise ParameterError(f"{name} must be true or false, got {value!r}")
+        check_flag(name, value)
     out["analytic_expansion_max_length"] = None if analytic_expansion_max_length is None else \
         check_length("analytic_expansion_max_length", analytic_expansion_max_length)
     if analytic_expansion_ratio is not None and not finite_number("analytic_expansion_ratio",

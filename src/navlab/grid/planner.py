@@ -36,7 +36,7 @@ import numpy as np
 
 from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from ..errors import ParameterError
-from ..limits import check_coordinate, check_weight
+from ..limits import check_coordinate, check_flag, check_weight
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
@@ -523,9 +523,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
     """:func:`plan` once its kernels are warm: the checks, the search and the path, timed (``time_s``)."""
     t0 = time.perf_counter()
     weight = check_weight(weight)
-    for flag, value in (("smooth", smooth), ("allow_unknown", allow_unknown)):
-        if not isinstance(value, (bool, np.bool_)):
-            raise ParameterError(f"{flag} must be true or false, got {value!r}")
+    smooth, allow_unknown = check_flag("smooth", smooth), check_flag("allow_unknown", allow_unknown)
     if smooth_method not in ("bresenham", "supercover"):
         raise ParameterError(f"smooth_method must be 'bresenham' or 'supercover', got {smooth_method!r}")
     check_jps_connectivity(algorithm, connectivity)

@@ -13,18 +13,12 @@ import math
 from typing import Any, Dict
 
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_weight, is_finite_real, shown
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_flag, check_weight, is_finite_real, shown
 
 
 def _name(key: str, value: Any, valid) -> str:
     if not isinstance(value, str) or value not in valid:
         raise ParameterError(f"{key} must be one of {', '.join(valid)}; got {value!r}")
-    return value
-
-
-def _flag(key: str, value: Any) -> bool:
-    if not isinstance(value, bool):
-        raise ParameterError(f"{key} must be true or false, got {value!r}")
     return value
 
 
@@ -53,7 +47,7 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     check_jps_connectivity(out.get("algorithm", ""), out.get("connectivity", 8))
     for key in ("smooth", "allow_unknown"):
         if key in out:
-            _flag(key, out[key])
+            out[key] = check_flag(key, out[key])
     if "weight" in out:
         check_weight(out["weight"])  # (A*'s own rule: navlab.grid.plan and Hybrid A* take the same values)
     if "resolution" in out and out["resolution"] is not None:

@@ -20,7 +20,7 @@ from typing import Any, Dict, Optional, Union
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import MAX_COUNT, check_count, check_length, check_memory, shown
+from ..limits import MAX_COUNT, check_count, check_flag, check_length, check_memory, shown
 from ..registry import Registry, parameters_of
 from ..result import Result, Status, Tree
 from . import tree_kernel as K
@@ -120,8 +120,7 @@ class TreePlanner:
                                  f"got {self.batch_size}")
         if self.index not in INDEXES:
             raise ParameterError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
-        if not isinstance(self.keep_tree, (bool, np.bool_)):  # 'yes' and 2 were taken as true
-            raise ParameterError(f"keep_tree must be true or false, got {self.keep_tree!r}")
+        self.keep_tree = check_flag("keep_tree", self.keep_tree)  # ('yes' and 2 were taken as true)
 
     def check_fits(self, max_iter: Optional[int] = None) -> None:
         """Refuse (ParameterError naming max_iter) a budget whose tree could not fit in

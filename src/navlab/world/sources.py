@@ -22,7 +22,7 @@ import numpy as np
 
 from ..angles import HeadingWarning
 from ..errors import NavlabError, ParameterError
-from ..limits import check_coordinate, check_length
+from ..limits import check_coordinate, check_flag, check_length
 from .io import WorldFormatError, load_world, read_yaml_document
 from .world import World
 
@@ -133,9 +133,7 @@ def load_source(source: Any, start=None, goal=None, robot_radius: Optional[float
     if goal_tolerance is not None:
         changes["goal_tolerance"] = check_length("goal_tolerance", goal_tolerance)
     if allow_unknown is not None:
-        if not isinstance(allow_unknown, bool):
-            raise ParameterError(f"allow_unknown must be true or false, got {allow_unknown!r}")
-        changes["allow_unknown"] = allow_unknown
+        changes["allow_unknown"] = check_flag("allow_unknown", allow_unknown)
 
     kind = source_kind(source)
     superseded = []  # the source's own heading warnings, said only for the headings the query keeps

@@ -10,7 +10,7 @@ import numpy as np
 
 from ..angles import planned_heading
 from ..errors import ParameterError
-from ..limits import check_coordinate, check_length
+from ..limits import check_coordinate, check_flag, check_length
 from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
 
@@ -143,9 +143,7 @@ class World:
             _check_obstacle(k, obstacle)
         for what in ("robot_radius", "goal_tolerance"):
             object.__setattr__(self, what, check_length(what, _plain(getattr(self, what))))
-        if not isinstance(self.allow_unknown, (bool, np.bool_)):
-            raise ParameterError(f"allow_unknown must be true or false, got {self.allow_unknown!r}")
-        object.__setattr__(self, "allow_unknown", bool(self.allow_unknown))
+        object.__setattr__(self, "allow_unknown", check_flag("allow_unknown", self.allow_unknown))
         if self.occupancy is not None:
             for what in ("blocked", "resolution", "origin"):
                 if not hasattr(self.occupancy, what):

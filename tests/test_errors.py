@@ -56,3 +56,17 @@ def test_no_check_raises_a_bare_value_error():
                 bare.append(f"{path.relative_to(SRC)}:{node.lineno}")
     assert not bare, "raise navlab.errors.ParameterError (or a NavlabError) instead of ValueError at " + \
         ", ".join(bare)
+
+
+@pytest.mark.parametrize("name, valid, hint", [
+    ("dif", ["omni3", "diff", "jackal", "car"], " Did you mean 'diff'?"),  # close by spelling
+    ("pur", ["dwa", "pure_pursuit", "rpp"], " Did you mean 'pure_pursuit'?"),  # too short to be close: begun
+    ("ab", ["abcdefgh", "abxyzuvw"], ""),  # begins two: no guess
+    ("p", ["pure_pursuit"], ""),  # one letter begins too much to be a hint
+    ("zzz", ["dwa", "rpp"], ""),
+    (3, ["dwa"], ""),
+])
+def test_suggest_names_the_closest_or_the_one_name_begun(name, valid, hint):
+    from navlab.registry import suggest
+
+    assert suggest(name, valid) == hint

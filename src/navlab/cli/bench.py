@@ -14,7 +14,7 @@ import yaml
 
 from ..bench.suites import suite_help
 from ..wording import counted, listed
-from .common import Count, PositiveNumber, parse_params
+from .common import Count, PositiveNumber, SuggestingChoice, parse_params
 
 #: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
 EXIT_INTERRUPTED = 130
@@ -47,7 +47,7 @@ class BenchCommand(click.Command):
 
 @click.command("export", context_settings={"help_option_names": ["-h", "--help"]})
 @click.argument("folder", type=click.Path(file_okay=False))
-@click.option("--format", "fmt", type=click.Choice(["csv", "parquet"]), default="csv", show_default=True,
+@click.option("--format", "fmt", type=SuggestingChoice(["csv", "parquet"]), default="csv", show_default=True,
               help="csv, or parquet (needs the parquet extra: pip install 'navlab[parquet]').")
 @click.option("--out", type=click.Path(dir_okay=False), default=None,
               help="Output file (default: FOLDER/results.csv or results.parquet).")
@@ -86,14 +86,14 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--max-iter", type=Count(), default=None, help="Iteration budget per trial.")
 @click.option("--max-time", type=PositiveNumber(), default=None, help="Time budget per trial [s].")
 @click.option("--seed", type=Count(low=0), default=None, help="Base seed of the per-trial seeds.")
-@click.option("--executor", type=click.Choice(["process", "serial", "dask"]), default="process", show_default=True,
+@click.option("--executor", type=SuggestingChoice(["process", "serial", "dask"]), default="process", show_default=True,
               help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")
 @click.option("--jobs", "-j", type=Count(1, 256), default=None,
               help="Worker processes, 1 to 256 (default: all cores).")
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
 @click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")
 @click.option("--overwrite", is_flag=True, help="Discard the results in --out and start again.")
-@click.option("--time", "time_kind", type=click.Choice(["cpu", "wall"]), default="cpu", show_default=True,
+@click.option("--time", "time_kind", type=SuggestingChoice(["cpu", "wall"]), default="cpu", show_default=True,
               help="Time the statistics, plots and claims use: the trial thread's CPU time, or wall-clock time.")
 @click.option("--no-plots", is_flag=True, help="Skip the figures (faster).")
 @click.option("--show", is_flag=True, help="Print the experiment as YAML and exit (a template for your own).")
@@ -108,7 +108,7 @@ def export_cmd(folder, fmt, out) -> None:
                    "(default: dwa_barn).")
 @click.option("--straight-line", is_flag=True,
               help="--suite barn: score worlds without a path file against the 10 m straight line (OT 5 s).")
-@click.option("--lidar", "barn_lidar", type=click.Choice(["exact", "rplidar_a1"]), default="exact", show_default=True,
+@click.option("--lidar", "barn_lidar", type=SuggestingChoice(["exact", "rplidar_a1"]), default="exact", show_default=True,
               help="--suite barn: the Jackal's sensors. rplidar_a1: a noisy laser (RPLIDAR A1 datasheet), 2 % "
                    "wheel-speed noise, 1 % slip and a compass, so the runs of one world differ by seed as Gazebo's "
                    "do (give --trials N runs per world; the challenge ran 10).")

@@ -43,18 +43,19 @@ class SuggestingGroup(click.Group):
 
 
 class SuggestingChoice(click.Choice):
-    """click's Choice whose refusal names the closest choice ("Did you mean 'pose'?")."""
+    """click's Choice whose refusal names the closest choice ("Did you mean 'diff'?"), by the rule the
+    registries' names use (:func:`navlab.registry.suggest`); every choice option of ``navlab`` is one."""
 
     def convert(self, value, param, ctx):
         try:
             return super().convert(value, param, ctx)
         except click.BadParameter as exc:
-            import difflib
+            from ..registry import suggest
 
-            close = difflib.get_close_matches(str(value), [str(c) for c in self.choices], n=1)
-            if not close:
+            hint = suggest(str(value), [str(c) for c in self.choices])
+            if not hint:
                 raise
-            self.fail(f"{exc.message} Did you mean {close[0]!r}?", param, ctx)
+            self.fail(f"{exc.message}{hint}", param, ctx)
 
 
 class ExactNumber(click.ParamType):

@@ -12,8 +12,8 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..wording import counted, duration
-from .common import (Count, ExactNumber, PositiveNumber, SuggestingGroup, before_first_kernel, before_numba_import,
-                     note_unused_grid_settings)
+from .common import (Count, ExactNumber, PositiveNumber, SuggestingChoice, SuggestingGroup, before_first_kernel,
+                     before_numba_import, note_unused_grid_settings)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -34,10 +34,10 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
 @click.option("--goal", nargs=2, type=ExactNumber(), required=True, metavar="X Y",
               help="Goal cell (or metres with --world).")
 @click.option("--world", "in_world", is_flag=True, help="Start and goal are world coordinates in metres.")
-@click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
-@click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
+@click.option("--algorithm", type=SuggestingChoice(ALGORITHMS), default="astar", show_default=True)
+@click.option("--heuristic", type=SuggestingChoice(HEURISTICS), default="octile", show_default=True,
               help=HEURISTIC_HELP)
-@click.option("--connectivity", type=click.Choice(["4", "8"]), default="8", show_default=True)
+@click.option("--connectivity", type=SuggestingChoice(["4", "8"]), default="8", show_default=True)
 @click.option("--weight", type=float, default=1.0, show_default=True,
               help="Weighted A*: the heuristic times this (>= 1; 1 finds shortest paths). Only astar with a "
                    "heuristic takes one (a note says so otherwise).")
@@ -48,7 +48,7 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
                    "stricter: it blocks a cell when any part of its square is within the radius of a blocked "
                    "cell's square, so the same radius can give it a longer path.")
 @click.option("--allow-unknown", is_flag=True, help="Let the path cross cells of unknown occupancy.")
-@click.option("--map-rule", type=click.Choice(["nav2", "ros1"]), default="nav2", show_default=True,
+@click.option("--map-rule", type=SuggestingChoice(["nav2", "ros1"]), default="nav2", show_default=True,
               help="How a map_server image is read: Nav2's map_io (inclusive thresholds) or ROS 1's map_server.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
 @click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG of grid and path.")
@@ -129,8 +129,8 @@ def fail(message: str) -> None:
 @click.argument("scen_path", metavar="FILE.scen", type=click.Path(dir_okay=False))
 @click.option("--map", "map_path", type=click.Path(dir_okay=False), default=None,
               help="The .map file (default: the scenario's map name next to FILE.scen).")
-@click.option("--algorithm", type=click.Choice(ALGORITHMS), default="astar", show_default=True)
-@click.option("--heuristic", type=click.Choice(HEURISTICS), default="octile", show_default=True,
+@click.option("--algorithm", type=SuggestingChoice(ALGORITHMS), default="astar", show_default=True)
+@click.option("--heuristic", type=SuggestingChoice(HEURISTICS), default="octile", show_default=True,
               help=HEURISTIC_HELP)
 @click.option("--limit", type=Count(), default=None, help="Only the first N scenarios.")
 @click.option("--every", type=Count(), default=1, show_default=True, help="Only every k-th scenario.")

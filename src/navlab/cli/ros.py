@@ -10,7 +10,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import EXIT_INTERRUPTED, Count, SuggestingGroup, parse_params
+from .common import EXIT_INTERRUPTED, Count, SuggestingChoice, SuggestingGroup, parse_params
 
 ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
 
@@ -106,7 +106,7 @@ for _node in NODES:
               help="How long to listen (wall-clock seconds, from when the first topic appears).")
 @click.option("--wait", type=click.FloatRange(min=0), default=10.0, show_default=True,
               help="How long to wait for the topics to appear (wall-clock seconds).")
-@click.option("--time", "clock", type=click.Choice(["auto", "sim", "wall"]), default="auto", show_default=True,
+@click.option("--time", "clock", type=SuggestingChoice(["auto", "sim", "wall"]), default="auto", show_default=True,
               help="Receive time from /clock (sim) or the system clock (wall); auto: sim when /clock is published.")
 @click.option("--json", "as_json", is_flag=True, help="One JSON object per topic.")
 def delay_cmd(topics, duration, wait, clock, as_json) -> None:
@@ -135,7 +135,7 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
 @click.option("--map", "--world", "world", default=None,
               help="map_server YAML (diff drive) or world file / scene (omni3). Default: a generated maze for "
                    "diff, the one_obstacle scene for omni3.")
-@click.option("--robot", type=click.Choice(["diff", "omni3"]), default="diff", show_default=True,
+@click.option("--robot", type=SuggestingChoice(["diff", "omni3"]), default="diff", show_default=True,
               help="diff: map_server + sim + pathplanner + goto_waypoint; omni3: sim + "
                    "potential_field_navigator.")
 @click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import click
 
-from .common import (Count, PointOrPoseOption, before_first_kernel, check_output_file, parse_params,
-                     status_if_output_is_cut)
+from .common import (Count, PointOrPoseOption, SuggestingChoice, before_first_kernel, check_output_file,
+                     parse_params, status_if_output_is_cut)
 
 #: runs per setting an experiment takes (each is a whole simulation: 10 000 of the shortest take minutes)
 MAX_EXPERIMENT_RUNS = 10_000
@@ -23,7 +23,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 
 @click.command("sim")
 @click.argument("world", required=False)
-@click.option("--robot", type=click.Choice(["omni3", "diff", "jackal", "car"]), default="omni3", show_default=True,
+@click.option("--robot", type=SuggestingChoice(["omni3", "diff", "jackal", "car"]), default="omni3", show_default=True,
               help="omni3 (seed 004's), diff (a TurtleBot3 Burger), jackal (the BARN robot: a 0.42 × 0.33 m "
                    "rectangle; default controller rpp) or car (a kinematic bicycle, 4.4 × 1.8 m, turning radius "
                    "4.5 m: plans between poses and reverses at cusps).")
@@ -44,7 +44,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
               help="Global planner setting, e.g. motion=dubins, turning_radius=1.2, max_iter=20000.")
 @click.option("--sampler", default="uniform", show_default=True,
               help="Sampler of a tree planner (rrt_star etc.), on worlds and maps.")
-@click.option("--lidar", type=click.Choice(["rplidar_a1", "exact", "none"]), default=None,
+@click.option("--lidar", type=SuggestingChoice(["rplidar_a1", "exact", "none"]), default=None,
               help="LiDAR noise (default: exact when the controller needs a scan).")
 @click.option("--robot-param", "robot_params", multiple=True, metavar="KEY=VALUE",
               help="Robot setting, e.g. wheel_radius=0.04 (see the docs).")
@@ -59,7 +59,7 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.option("--odom-timing", "odom_timing", multiple=True, metavar="KEY=VALUE[,...]",
               help="Odometry rate [Hz], latency [s] and jitter [s], e.g. rate=50,latency=0.08.")
 @click.option("--seed", type=Count(low=0), default=0, show_default=True)
-@click.option("--experiment", type=click.Choice(EXPERIMENT_NAMES), default=None,
+@click.option("--experiment", type=SuggestingChoice(EXPERIMENT_NAMES), default=None,
               help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
                    "(seed002), sensor-latency (seed004-latency: seed 004 with its measured topic delays and a "
                    "crossing obstacle), hybrid-vs-field (random-clutter).")

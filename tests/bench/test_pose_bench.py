@@ -47,3 +47,21 @@ def test_a_pose_planners_bad_setting_is_refused_before_any_trial(grid, message):
     message = message if "bins" in message or "radius" in message else "is a setting of planner hybrid_astar, not"
     with pytest.raises((ExperimentError, ValueError), match=message):
         load_experiment({**POSES, "grid": grid, "planners": ["rrt_star"]})
+
+
+@pytest.mark.parametrize("where", ["grid", "params"])
+def test_a_swept_values_refusal_names_the_planner_and_its_grid_values(where):
+    """``grid: {motion: [holonomic, reeds_shepp]}`` for hybrid_astar was refused as "motion: hybrid_astar
+    plans for a car-like robot ...", as a ``params:`` motion is, so a sweep's bad value read as the
+    planner's own setting (left alone in sessions 23-24); a value from ``params:`` stays as it was."""
+    value = ["holonomic", "reeds_shepp"] if where == "grid" else "holonomic"
+    with pytest.raises(ExperimentError) as caught:
+        load_experiment({**POSES, where: {"motion": value}, "planners": ["hybrid_astar"]})
+    said = str(caught.value)
+    assert "motion must be dubins or reeds_shepp, got 'holonomic'" in said
+    assert ("planner 'hybrid_astar' with grid values motion='holonomic': motion:" in said) == (where == "grid")
+
+
+def test_a_grid_algorithms_swept_connectivity_is_named_too():
+    with pytest.raises(ExperimentError, match="planner 'jps' with grid values connectivity=4: jps needs connectivity 8"):
+        load_experiment({"worlds": ["trap"], "planners": ["jps"], "grid": {"connectivity": [4, 8]}})

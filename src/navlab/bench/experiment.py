@@ -32,7 +32,7 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..limits import MAX_COUNT, digit_count, is_finite_real, shown, value_text
+from ..limits import MAX_COUNT, check_flag, digit_count, is_finite_real, shown, value_text
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -656,11 +656,8 @@ def _mapping(value: Any, field: str) -> Dict[str, Any]:
 
 def validate(exp: Experiment) -> None:
     """Check names, counts and parameters by building each cell's parts once."""
-    from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
-    from ..queries import (build_sampler, check_costmap_settings, check_tree_allow_unknown, is_grid_planner,
-                           split_grid_params, split_params, take_query_params, take_sampler_params)
-    from ..sampling.planners import make_planner
-    from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
+    from ..pose_queries import POSE_PLANNERS
+    from ..queries import is_grid_planner
 
     for planner in exp.planners:
         if not planner.name.startswith(OMPL_PREFIX):
@@ -702,67 +699,87 @@ def validate(exp: Experiment) -> None:
             worlds[world] = _check_world(world)
     used = exp.routed_keys()  # the shared settings some cell's planner is given (used by its search or not)
     for cell in exp.cells():
-        # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
-        own = routed_params(cell.planner.name, cell.params, cell.planner.params,
-                            cell.sampler.name if cell.sampler else None)
-        if cell.planner.name in POSE_PLANNERS:
-            _check_pose_params(cell.planner.name, cell.planner.params)
-        if cell.planner.name.startswith(OMPL_PREFIX):
-            check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
-            if not ompl_available():
-                raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
-                                      "pip install 'navlab[ompl]'")
-            check_ompl_query(cell.planner.name[len(OMPL_PREFIX):], own, exp.budget)
-            continue
-        if cell.world in exp.maps and own.get("resolution") is not None:
-            # (every trial was an ERROR row, docs/bench.md's own maps example among them: review and attack,
-            # session 22)
-            raise ExperimentError(f"resolution: world '{cell.world}' is a map, planned on its own cells; "
-                                  "leave resolution out")
-        if is_pose_query(cell.planner.name, own):  # (a bad motion named)
-            # its settings refused now, not by every trial as a run of ERROR rows (attack, session 22: exact_retry:
-            # [yes], heading_bins: [3]); a map world's settings alone (review, session 22), its map read by the trials
-            if own.get("goal_tolerance") not in (None, 0, 0.0):  # (as navlab.plan refuses it)
-                raise ExperimentError(f"goal_tolerance: {cell.planner.name} between poses ends exactly at the goal "
-                                      "pose; leave goal_tolerance out")
-            settings = {k: v for k, v in own.items() if k != "goal_tolerance"}
-            if cell.sampler is not None:  # a car-like tree's sampler, as its query builds it (attack, session 22)
-                build_sampler(cell.sampler.name, {**take_sampler_params(cell.sampler.name, settings),
-                                                  **cell.sampler.params})
-            check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
-                             cell.sampler.name if cell.sampler else "")
-            _check_raster(worlds.get(cell.world), own)
-            _check_turning_scale(worlds.get(cell.world), cell.world, own, exp.maps.get(cell.world))
-            continue
-        if cell.sampler is None and "costmap" in own and own["costmap"] is not False:  # as navlab.plan takes it
-            if own["costmap"] is not True:  # (0 passed as false, then every trial refused it: review, session 23)
-                raise ExperimentError(f"costmap must be true or false, got {shown(own['costmap'])}")
-            world = worlds.get(cell.world)
-            # a map world's robot, from its entry (its map is read by the trials: review and attack, session 23)
-            radius = exp.maps[cell.world].get("robot_radius", 0.0) if cell.world in exp.maps else world.robot_radius
-            check_costmap_settings(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"}, radius)
-            _check_raster(world, own)
-            continue
-        if cell.sampler is None:  # a grid algorithm: its settings only, no budget
-            split_grid_params(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"})
-            _check_raster(worlds.get(cell.world), own)
-            continue
-        params = {**own, **cell.sampler.params, **exp.budget}
-        # the query's own settings (goal_tolerance, allow_unknown, motion=holonomic), as navlab.plan takes them
-        # (goal_tolerance was refused here, "Did you mean 'goal_tolerance'?", though each trial takes it:
-        # review, session 22)
-        _, allow_unknown = take_query_params(params, grid=False)
-        if cell.world not in exp.maps:
-            check_tree_allow_unknown(worlds[cell.world], allow_unknown)
-        to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
-        planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
         try:
-            planner.check_fits()  # a budget no trial could run: refused now, not as a run of ERROR rows
+            _check_cell(exp, cell, worlds)
         except ValueError as exc:
-            raise ExperimentError(f"budget: {exc}") from None
+            # a swept value's refusal says so: "motion: ..." alone read as the planner's own setting (left
+            # alone in sessions 23-24)
+            swept = exp.swept(cell)
+            if not swept:
+                raise
+            values = ", ".join(f"{k}={shown(v)}" for k, v in swept.items())
+            raise ExperimentError(f"planner '{cell.planner.title}' with grid values {values}: {exc}") from None
     _check_shared_params_used(exp, used)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
+
+
+def _check_cell(exp: Experiment, cell: Cell, worlds: Dict[str, Any]) -> None:
+    """Check one cell's planner, sampler and settings as its trials will build them (``worlds``: the scenes
+    and world files loaded once, by name)."""
+    from ..pose_queries import POSE_PLANNERS, check_pose_query, is_pose_query
+    from ..queries import (build_sampler, check_costmap_settings, check_tree_allow_unknown, split_grid_params,
+                           split_params, take_query_params, take_sampler_params)
+    from ..sampling.planners import make_planner
+    from .ompl_planners import check_ompl_name, check_ompl_query, ompl_available
+
+    # (with its own settings: a car-like tree's own motion decides what it takes of the shared ones)
+    own = routed_params(cell.planner.name, cell.params, cell.planner.params,
+                        cell.sampler.name if cell.sampler else None)
+    if cell.planner.name in POSE_PLANNERS:
+        _check_pose_params(cell.planner.name, cell.planner.params)
+    if cell.planner.name.startswith(OMPL_PREFIX):
+        check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
+        if not ompl_available():
+            raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
+                                  "pip install 'navlab[ompl]'")
+        check_ompl_query(cell.planner.name[len(OMPL_PREFIX):], own, exp.budget)
+        return
+    if cell.world in exp.maps and own.get("resolution") is not None:
+        # (every trial was an ERROR row, docs/bench.md's own maps example among them: review and attack,
+        # session 22)
+        raise ExperimentError(f"resolution: world '{cell.world}' is a map, planned on its own cells; "
+                              "leave resolution out")
+    if is_pose_query(cell.planner.name, own):  # (a bad motion named)
+        # its settings refused now, not by every trial as a run of ERROR rows (attack, session 22: exact_retry:
+        # [yes], heading_bins: [3]); a map world's settings alone (review, session 22), its map read by the trials
+        if own.get("goal_tolerance") not in (None, 0, 0.0):  # (as navlab.plan refuses it)
+            raise ExperimentError(f"goal_tolerance: {cell.planner.name} between poses ends exactly at the goal "
+                                  "pose; leave goal_tolerance out")
+        settings = {k: v for k, v in own.items() if k != "goal_tolerance"}
+        if cell.sampler is not None:  # a car-like tree's sampler, as its query builds it (attack, session 22)
+            build_sampler(cell.sampler.name, {**take_sampler_params(cell.sampler.name, settings),
+                                              **cell.sampler.params})
+        check_pose_query(worlds.get(cell.world), cell.planner.name, settings,
+                         cell.sampler.name if cell.sampler else "")
+        _check_raster(worlds.get(cell.world), own)
+        _check_turning_scale(worlds.get(cell.world), cell.world, own, exp.maps.get(cell.world))
+        return
+    if cell.sampler is None and "costmap" in own and own["costmap"] is not False:  # as navlab.plan takes it
+        check_flag("costmap", own["costmap"])  # (0 passed as false, then every trial refused it: review, session 23)
+        world = worlds.get(cell.world)
+        # a map world's robot, from its entry (its map is read by the trials: review and attack, session 23)
+        radius = exp.maps[cell.world].get("robot_radius", 0.0) if cell.world in exp.maps else world.robot_radius
+        check_costmap_settings(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"}, radius)
+        _check_raster(world, own)
+        return
+    if cell.sampler is None:  # a grid algorithm: its settings only, no budget
+        split_grid_params(cell.planner.name, {k: v for k, v in own.items() if k != "costmap"})
+        _check_raster(worlds.get(cell.world), own)
+        return
+    params = {**own, **cell.sampler.params, **exp.budget}
+    # the query's own settings (goal_tolerance, allow_unknown, motion=holonomic), as navlab.plan takes them
+    # (goal_tolerance was refused here, "Did you mean 'goal_tolerance'?", though each trial takes it:
+    # review, session 22)
+    _, allow_unknown = take_query_params(params, grid=False)
+    if cell.world not in exp.maps:
+        check_tree_allow_unknown(worlds[cell.world], allow_unknown)
+    to_planner, to_sampler = split_params(cell.planner.name, cell.sampler.name, params)
+    planner = make_planner(cell.planner.name, sampler=build_sampler(cell.sampler.name, to_sampler), **to_planner)
+    try:
+        planner.check_fits()  # a budget no trial could run: refused now, not as a run of ERROR rows
+    except ValueError as exc:
+        raise ExperimentError(f"budget: {exc}") from None
 
 
 def _check_raster(world, settings: Dict[str, Any]) -> None:

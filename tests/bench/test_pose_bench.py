@@ -1,6 +1,8 @@
 """Planners between poses in the benchmark harness: Hybrid A* and RRT* with
 Reeds–Shepp steering on a heading scene, rows as navlab.plan gives them."""
 
+import re
+
 import pytest
 
 import navlab
@@ -59,9 +61,42 @@ def test_a_swept_values_refusal_names_the_planner_and_its_grid_values(where):
         load_experiment({**POSES, where: {"motion": value}, "planners": ["hybrid_astar"]})
     said = str(caught.value)
     assert "motion must be dubins or reeds_shepp, got 'holonomic'" in said
-    assert ("planner 'hybrid_astar' with grid values motion='holonomic': motion:" in said) == (where == "grid")
+    assert ("grid: planner 'hybrid_astar' where motion=holonomic: motion:" in said) == (where == "grid")
 
 
 def test_a_grid_algorithms_swept_connectivity_is_named_too():
-    with pytest.raises(ExperimentError, match="planner 'jps' with grid values connectivity=4: jps needs connectivity 8"):
-        load_experiment({"worlds": ["trap"], "planners": ["jps"], "grid": {"connectivity": [4, 8]}})
+    with pytest.raises(ExperimentError, match="grid: planner 'jps' where connectivity=4: jps needs connectivity 8"):
+        load_experiment({"worlds": ["trap"], "planners": ["jps"], "grid": {"connectivity": [4, 8], "smooth": [True]}})
+
+
+BASE = {"name": "x", "worlds": ["trap"], "trials": 1}
+
+
+@pytest.mark.parametrize("experiment, said", [
+    # a swept sampler setting names the sampler
+    ({"planners": ["rrt"], "samplers": ["gaussian"], "grid": {"sigma": [-1, 1]}},
+     "grid: sampler 'gaussian' of planner 'rrt' where sigma=-1: sigma must be positive"),
+    # a planner's label names it, as the report does
+    ({"planners": [{"name": "jps", "label": "fast"}], "grid": {"connectivity": [4, 8]}},
+     "grid: planner 'fast' where connectivity=4: "),
+])
+def test_a_swept_refusal_names_whose_setting_it_is(experiment, said):
+    with pytest.raises(ExperimentError, match=re.escape(said)):
+        load_experiment({**BASE, **experiment})
+
+
+@pytest.mark.parametrize("experiment", [
+    {"planners": [{"name": "jps", "connectivity": 4}], "grid": {"smooth": [True, False]}},  # the planner's own
+    {"planners": ["jps"], "params": {"connectivity": 4}, "grid": {"smooth": [True, False]}},  # shared
+    {"planners": [{"name": "jps", "connectivity": 4}], "grid": {"connectivity": [8]}},  # own over the sweep
+    {"planners": ["rrt_star"], "budget": {"max_iter": 10**12}, "grid": {"expand_dis": [0.5, 1.0]}},  # budget
+    # a refusal that lists the valid names, a swept one among them
+    {"planners": [{"name": "astar", "connectivty": 4}], "grid": {"weight": [1.0, 2.0]}},
+    {"planners": [{"name": "rrt", "keep_tree": "yes"}], "grid": {"expand_dis": [0.5, 1.0]}},
+])
+def test_a_refusal_of_what_is_not_swept_does_not_blame_the_sweep(experiment):
+    """The first version prefixed every refusal in a cell with swept values with all of them (review,
+    session 25: 'with grid values smooth=True: jps needs connectivity 8' for the planner's own connectivity)."""
+    with pytest.raises(ExperimentError) as caught:
+        load_experiment({**BASE, **experiment})
+    assert "grid:" not in str(caught.value) and " where " not in str(caught.value), str(caught.value)

@@ -26,6 +26,7 @@ import hashlib
 import itertools
 import json
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
@@ -702,16 +703,32 @@ def validate(exp: Experiment) -> None:
         try:
             _check_cell(exp, cell, worlds)
         except ValueError as exc:
-            # a swept value's refusal says so: "motion: ..." alone read as the planner's own setting (left
-            # alone in sessions 23-24)
-            swept = exp.swept(cell)
-            if not swept:
+            blamed = _swept_blamed(exp, cell, str(exc))
+            if not blamed:
                 raise
-            values = ", ".join(f"{k}={shown(v)}" for k, v in swept.items())
-            raise ExperimentError(f"planner '{cell.planner.title}' with grid values {values}: {exc}") from None
+            raise ExperimentError(f"{blamed}: {exc}") from None
     _check_shared_params_used(exp, used)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
+
+
+def _swept_blamed(exp: Experiment, cell: Cell, message: str) -> str:
+    """Where a refusal of ``cell`` came from when a swept value is in it ("grid: planner 'jps' where
+    connectivity=4"), or '' (the refusal then reads as it did: the setting is the planner's own, shared or the
+    budget's). A swept setting is blamed when the message names it and the cell's planner and sampler do not set
+    it themselves. Until session 25 a bad swept value read as the planner's own setting ("motion: ..."); a
+    first version named every swept value of the cell, whatever the refusal was about (review, session 25)."""
+    own = {**cell.planner.params, **(cell.sampler.params if cell.sampler else {})}
+    said = re.split(r"[;.,]? valid:|Did you mean", message)[0]  # (not the names a refusal lists as valid)
+    named = [k for k in exp.swept(cell) if k not in own and re.search(rf"\b{re.escape(k)}\b", said)]
+    if not named:
+        return ""
+    from ..queries import take_sampler_params
+
+    samplers = cell.sampler is not None and take_sampler_params(cell.sampler.name, dict.fromkeys(named))
+    part = f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'" if samplers else \
+        f"planner '{cell.planner.title}'"
+    return f"grid: {part} where " + " and ".join(f"{k}={exp.swept(cell)[k]}" for k in named)
 
 
 def _check_cell(exp: Experiment, cell: Cell, worlds: Dict[str, Any]) -> None:

@@ -289,6 +289,20 @@ def test_a_misspelt_query_setting_is_suggested_and_listed(typo, meant):
     assert "for the query: motion" in str(caught.value)
 
 
+@pytest.mark.parametrize("planner", ["astar", "rrt_star"])
+@pytest.mark.parametrize("typo, meant", [("radius", "robot_radius"), ("turn", "turning_radius")])
+def test_a_query_setting_a_grid_or_tree_planner_takes_is_listed_and_suggested(planner, typo, meant):
+    """'radius' given to astar was asked "Did you mean 'turning_radius'?", which astar refuses, while the
+    robot_radius it takes was in no list; 'turn', a prefix of turning_radius, got no hint (newcomer, session
+    25)."""
+    with pytest.raises(UnknownNameError, match=f"Did you mean '{meant}'") as caught:
+        navlab.plan("clutter", planner, max_iter=10, **{typo: 1}) if planner != "astar" else \
+            navlab.plan("clutter", planner, **{typo: 1})
+    assert "goal_tolerance, robot_radius" in str(caught.value)
+    assert navlab.plan("clutter", planner, **({"max_iter": 300} if planner != "astar" else {}),
+                       robot_radius=0.2).params
+
+
 def test_a_misspelt_goal_tolerance_is_suggested_for_hybrid_astar_too():
     with pytest.raises(UnknownNameError, match="Did you mean 'goal_tolerance'"):
         navlab.plan("parking", "hybrid_astar", goal_tolerence=1)

@@ -28,9 +28,13 @@ from .setting_names import COSTMAP_PARAMS, GRID_PARAMS, setting_hint
 _SAME_POINT = 1e-9
 #: settings of the query rather than of a planner, which every tree planner's --param takes
 #: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
-QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance")
+#: the query's own settings a tree planner's refusal names (``robot_radius`` is navlab.plan's argument, and
+#: ``--param robot_radius=`` reaches it: a refusal that left it out suggested turning_radius for 'radius')
+QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance", "robot_radius")
 QUERY_PARAMS_HELP = ("motion (holonomic, dubins or reeds_shepp; the last two with turning_radius and footprint), "
-                     "goal_tolerance")
+                     "goal_tolerance, robot_radius")
+#: the query's own settings a grid planner takes besides :data:`~navlab.setting_names.GRID_PARAMS`
+GRID_QUERY_PARAMS = ("goal_tolerance", "robot_radius")
 
 
 def planner_names() -> list[str]:
@@ -98,8 +102,9 @@ def split_grid_params(planner: str, params: dict) -> dict:
     for key in params:
         if key not in GRID_PARAMS:
             raise UnknownNameError(f"unknown parameter '{key}' for grid planner '{planner}'; "
-                                   f"valid: {', '.join(GRID_PARAMS)}; and costmap=true for A* on a costmap."
-                                   + setting_hint(key, planner, list(GRID_PARAMS) + ["costmap"]))
+                                   f"valid: {', '.join(GRID_PARAMS)}; for the query: {', '.join(GRID_QUERY_PARAMS)}; "
+                                   "and costmap=true for A* on a costmap."
+                                   + setting_hint(key, planner, [*GRID_PARAMS, *GRID_QUERY_PARAMS, "costmap"]))
     checked = check_grid_settings({**params, "algorithm": planner})  # (the algorithm's own rules too)
     checked.pop("algorithm")
     return checked

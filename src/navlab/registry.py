@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import difflib
 import inspect
-from typing import Any, Callable, Dict, Generic, Iterator, TypeVar
+from typing import Any, Callable, Dict, Generic, Iterator, Optional, TypeVar
 from .errors import NavlabError, ParameterError
 
 T = TypeVar("T")
@@ -22,16 +22,24 @@ class UnknownNameError(KeyError, NavlabError):
         return str(self.args[0])
 
 
-def suggest(name: str, valid: list[str]) -> str:
-    """Return a ``did you mean`` hint for ``name`` among ``valid`` (may be ''): the closest spelling (difflib's
-    ratio at least 0.6, its default: at 0.5, ``ackermann`` was told ``jackal``), else the one name that ``name``
-    begins (``pur`` for ``pure_pursuit``, too short to be close by spelling)."""
+def closest(name: Any, valid) -> Optional[str]:
+    """The name among ``valid`` that ``name`` most likely meant, or None: the closest spelling (difflib's ratio
+    at least 0.6, its default: at 0.5, ``ackermann`` was told ``jackal``), else the one name that ``name``
+    begins (``pur`` for ``pure_pursuit``, ``turn`` for ``turning_radius``: too short to be close by spelling).
+    Every "did you mean" of navlab (names, settings, choice options) asks this."""
     if not isinstance(name, str):  # a number or a list where a name belongs: nothing is "close"
-        return ""
+        return None
+    valid = list(dict.fromkeys(valid))
     close = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
     if not close and len(name) >= 2:
         close = [v for v in valid if v.startswith(name)]
-    return f" Did you mean '{close[0]}'?" if len(close) == 1 else ""
+    return close[0] if len(close) == 1 else None
+
+
+def suggest(name: str, valid: list[str]) -> str:
+    """Return a ``did you mean`` hint for ``name`` among ``valid`` (may be ''), by :func:`closest`."""
+    close = closest(name, valid)
+    return f" Did you mean '{close}'?" if close else ""
 
 
 class Registry(Generic[T]):

@@ -65,15 +65,15 @@ def setting_hint(key: str, planner: str, valid, sampler: str = "") -> str:
     str
         `` Did you mean 'x'?`` and/or `` 'x' is a setting of ...``, or "" when nothing is near.
     """
-    import difflib
+    from .registry import closest
 
     elsewhere = taken_elsewhere(key, planner, sampler)
     if elsewhere or not isinstance(key, str):
         return elsewhere
-    close = difflib.get_close_matches(key, list(valid) + _every_setting(), n=1, cutoff=0.5)
-    if not close:
+    close = closest(key, list(valid) + _every_setting())
+    if close is None:
         return ""
-    return f" Did you mean '{close[0]}'?" + ("" if close[0] in valid else taken_elsewhere(close[0], planner, sampler))
+    return f" Did you mean '{close}'?" + ("" if close in valid else taken_elsewhere(close, planner, sampler))
 
 
 def _every_setting() -> list:

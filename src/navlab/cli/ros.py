@@ -178,11 +178,13 @@ def demo_cmd(world, robot, start, yaw, goal, maze_size, real_time_factor, proces
     else:
         click.echo(f"{summary['status']}" + (f": {summary['reason']}" if summary["reason"] else ""))
         odom, true = (summary[key] for key in ("error_odom_m", "error_true_m"))
+        # (at 4 decimals: a 5-cell maze's goal printed as [2.7499999999999996, 2.7499999999999996])
+        goal = "[" + ", ".join(f"{round(float(v), 4):g}" for v in summary["goal"]) + "]"
         if math.isfinite(odom) and math.isfinite(true):
-            click.echo(f"  goal {summary['goal']}, odometry {odom * 1000:.0f} mm and true pose {true * 1000:.0f} mm "
+            click.echo(f"  goal {goal}, odometry {odom * 1000:.0f} mm and true pose {true * 1000:.0f} mm "
                        "from it")
         else:  # (it printed "inf mm" when the run ended before the robot was heard)
-            click.echo(f"  goal {summary['goal']}; the robot's pose was never heard")
+            click.echo(f"  goal {goal}; the robot's pose was never heard")
         click.echo(f"  {summary['sim_time_s']:.1f} s simulated in {summary['wall_time_s']:.1f} s, "
                    f"travelled {summary['travelled_m']:.2f} m"
                    + (f", plan {summary['plan_length_m']:.2f} m" if summary["plan_length_m"] else ""))

@@ -47,7 +47,8 @@ def test_grid_settings_from_the_command_line(param):
 @pytest.mark.parametrize("body, words", [
     ("grid: {heuristic: [0]}", "heuristic must be one of"),
     ("grid: {connectivity: [[1]]}", "connectivity must be 4 or 8"),
-    ("grid: {connectivity: [.inf]}", "connectivity must be 4 or 8"),
+    # (any non-finite number in an experiment is refused where it stands, since session 25: JSON cannot hold it)
+    ("grid: {connectivity: [.inf]}", r"grid.connectivity\[0\]: numbers must be finite, got inf"),
     ("grid: {resolution: [1.0e-300]}", "resolution must be between"),
     ("params: [1]", "'params' must be a mapping"),
     ("params: {heuristic: 0}", "heuristic must be one of"),
@@ -68,6 +69,31 @@ def test_experiment_files_are_checked_before_any_trial(tmp_path, body, words):
     path.write_text(f"name: t\nworlds: [trap]\nplanners: [astar]\ntrials: 1\n{body}\n")
     with pytest.raises(ExperimentError, match=words):
         load_experiment(path)
+
+
+@pytest.mark.parametrize("planners, grid, words", [
+    # a grid search's setting swept where no cell uses it ran, noted as unused (attack, session 25)
+    ("[dijkstra]", "{weight: [1, 0.5]}", "grid: weight=0.5: weight must be a finite number >= 1"),
+    ("[jps]", "{weight: [1, yes], heuristic: [octile, eucl]}", "grid: "),
+    ("[{name: astar, heuristic: none}]", "{weight: [1, .nan]}", r"grid.weight\[1\]: numbers must be finite"),
+    ("[rrt]", "{sigma: [.inf]}", r"grid.sigma\[0\]: numbers must be finite"),  # (experiment.json held NaN)
+])
+def test_a_swept_value_no_cell_uses_is_checked_too(tmp_path, planners, grid, words):
+    path = tmp_path / "e.yaml"
+    path.write_text(f"name: t\nworlds: [trap]\nplanners: {planners}\ntrials: 1\ngrid: {grid}\n")
+    with pytest.raises(ExperimentError, match=words):
+        load_experiment(path)
+
+
+def test_an_experiment_mapping_takes_numpys_scalars():
+    """load_experiment refused np.True_ and np.int64 ("a bool is not an experiment value ... got np.True_"),
+    which navlab.plan takes (attack, session 25); they are read as Python's."""
+    exp = load_experiment({"name": "z", "worlds": ["trap"], "trials": np.int64(2),
+                           "planners": [{"name": "astar", "connectivity": np.int64(4)}],
+                           "params": {"smooth": np.True_}, "grid": {"weight": [np.float32(1.5)]}})
+    assert exp.trials == 2 and type(exp.trials) is int
+    assert exp.planners[0].params == {"connectivity": 4} and type(exp.planners[0].params["connectivity"]) is int
+    assert exp.params["smooth"] is True and type(exp.grid["weight"][0]) is float
 
 
 def test_an_experiment_file_without_worlds_is_named(tmp_path):

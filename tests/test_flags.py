@@ -19,6 +19,10 @@ from navlab.grid.hybrid_astar import plan_hybrid
 from navlab.grid.occupancy import OccupancyGrid
 from navlab.limits import check_flag
 from navlab.world.sources import load_source
+from navlab.robots import make_robot
+from navlab.sim import Simulation
+from navlab.world.costmap import LayeredCostmap
+from navlab.world.footprint import Footprint
 from navlab.world.world import Bounds, World
 
 
@@ -49,6 +53,12 @@ CALLS = {
     "follower replan": ("replan", lambda v: make_controller("pure_pursuit", replan=v)),
     "rpp creep_when_blocked": ("creep_when_blocked", lambda v: make_controller("rpp", creep_when_blocked=v)),
     "rpp plan_poses": ("plan_poses", lambda v: make_controller("rpp", plan_poses=v)),
+    # the last three that skipped it: static="false" built the static layer, record_scans="no" recorded scans
+    # (attack, session 25)
+    "costmap static": ("static", lambda v: LayeredCostmap(_world(False), Footprint.disc(0.2), static=v)),
+    "simulation record_scans": ("record_scans", lambda v: Simulation(
+        _world(False), make_robot("omni3"), make_controller("goto_waypoint"), (1.0, 1.0), (9.0, 9.0),
+        path=[(1.0, 1.0), (9.0, 9.0)], record_scans=v)),
 }
 
 
@@ -74,3 +84,12 @@ def test_a_numpy_bool_is_kept_as_a_python_bool():
     assert result.params["smooth"] is False and result.params["allow_unknown"] is True
     json.dumps(result.params)  # (numpy's bool is not JSON)
     assert _world(np.True_).allow_unknown is True
+
+
+def test_a_moving_obstacles_loop_takes_numpys_bool():
+    """``motion.loop`` keeps its file-format error (MotionFormatError) but takes numpy's bool, as check_flag does."""
+    from navlab.world.motion import MotionFormatError, WaypointMotion
+
+    assert WaypointMotion(((0.0, 0.0), (1.0, 0.0)), 0.5, loop=np.True_).loop is True
+    with pytest.raises(MotionFormatError, match="expected true or false, got 'no'"):
+        WaypointMotion(((0.0, 0.0), (1.0, 0.0)), 0.5, loop="no")

@@ -44,7 +44,8 @@ def test_a_shared_costmap_setting_goes_to_astar_on_a_costmap_alone():
     ({"name": "astar", "costmap": True, "inflation_radius": 0.01}, "inflation_radius = 0.01 m is below the "
                                                                     "footprint's inscribed radius 0.15 m"),
     ({"name": "astar", "costmap": True, "connectivity": 4}, "unknown parameter 'connectivity' with costmap=true"),
-    ({"name": "astar", "costmap": True, "cost_travel_multiplier": float("inf")}, "cost_travel_multiplier must be"),
+    ({"name": "astar", "costmap": True, "cost_travel_multiplier": float("inf")},
+     "cost_travel_multiplier: numbers must be finite"),
     ({"name": "jps", "costmap": True}, "only astar plans on a costmap's costs, got 'jps'"),
 ])
 def test_a_bad_costmap_cell_is_refused_before_any_trial(planner, message):

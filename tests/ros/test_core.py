@@ -272,3 +272,17 @@ def test_a_pose_planner_keeps_the_goal_heading_and_the_odometry_heading():
         GoalPlanner(log, "hybrid_astar", sampler="gaussian")
     with pytest.raises(ValueError, match="turning_radius"):
         GoalPlanner(log, "hybrid_astar", turning_radius=-1.0)
+
+
+@pytest.mark.parametrize("value", [1, [1], "yes"])
+def test_a_tree_planner_publishing_its_tree_checks_keep_tree(value):
+    """keep_tree:=1 and [1] started the node: it set keep_tree true over whatever was given (attack, session 25)."""
+    with pytest.raises(ValueError, match="keep_tree must be true or false"):
+        GoalPlanner(Logbook(), algorithm="rrt", on_tree=lambda *_: None, keep_tree=value)
+
+
+def test_keep_tree_false_with_the_tree_published_is_refused_and_without_it_taken():
+    with pytest.raises(ValueError, match="publish_tree:=false"):
+        GoalPlanner(Logbook(), algorithm="rrt", on_tree=lambda *_: None, keep_tree=False)
+    assert GoalPlanner(Logbook(), algorithm="rrt", keep_tree=False).query["params"]["keep_tree"] is False
+    assert GoalPlanner(Logbook(), algorithm="rrt", on_tree=lambda *_: None, keep_tree=True).query["params"]["keep_tree"]

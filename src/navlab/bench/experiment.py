@@ -458,6 +458,8 @@ def check_plain(value: Any, path: str = "") -> None:
     elif isinstance(value, (list, tuple)):
         for i, item in enumerate(value):
             check_plain(item, f"{path}[{i}]")
+    elif isinstance(value, float) and not math.isfinite(value):  # (experiment.json held a bare NaN: attack, s. 25)
+        raise ExperimentError(f"{path}: numbers must be finite, got {shown(value)}")
     elif value is not None and not isinstance(value, (str, bool, int, float)):
         kind = {"bytes": "binary data", "date": "a date", "datetime": "a date and time", "set": "a set"}.get(
             type(value).__name__, f"a {type(value).__name__}")
@@ -466,7 +468,21 @@ def check_plain(value: Any, path: str = "") -> None:
                               f"and mappings are), got {got}")
 
 
+def plain_values(value: Any) -> Any:
+    """``value`` with numpy's scalars as Python's (``np.True_``, ``np.int64(4)``), in any list, tuple or mapping:
+    an experiment given as a mapping from Python takes what ``navlab.plan`` takes (``load_experiment`` refused
+    them, "a bool is not an experiment value ... got np.True_": attack, session 25)."""
+    if isinstance(value, dict):
+        return {plain_values(k): plain_values(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return type(value)(plain_values(v) for v in value)
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
+
+
 def _from_dict(data: Dict[str, Any]) -> Experiment:
+    data = plain_values(data)
     check_plain(data)
     for key in data:
         if key not in FIELDS:
@@ -707,6 +723,7 @@ def validate(exp: Experiment) -> None:
             if not blamed:
                 raise
             raise ExperimentError(f"{blamed}: {exc}") from None
+    _check_swept_grid_values(exp)
     _check_shared_params_used(exp, used)
     _check_unique_cells(exp)
     _check_claim_groups(exp)
@@ -729,6 +746,22 @@ def _swept_blamed(exp: Experiment, cell: Cell, message: str) -> str:
     part = f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'" if samplers else \
         f"planner '{cell.planner.title}'"
     return f"grid: {part} where " + " and ".join(f"{k}={exp.swept(cell)[k]}" for k in named)
+
+
+def _check_swept_grid_values(exp: Experiment) -> None:
+    """Refuse a bad value of a grid search's setting in ``grid:`` that no cell uses (``weight: [1, 0.5]`` beside
+    dijkstra ran, noted as unused; a cell that uses it is checked with its planner): by the grid planners' rule,
+    as the same value in ``params:`` is."""
+    from ..grid.settings import check_grid_settings
+    from ..setting_names import GRID_PARAMS
+
+    for key, values in exp.grid.items():
+        if key in GRID_PARAMS:
+            for value in values:
+                try:
+                    check_grid_settings({key: value})
+                except ValueError as exc:
+                    raise ExperimentError(f"grid: {key}={value}: {exc}") from None
 
 
 def _check_cell(exp: Experiment, cell: Cell, worlds: Dict[str, Any]) -> None:

@@ -36,7 +36,7 @@ import numpy as np
 
 from ..compile_clock import compile_clock, first_call_seconds, hold_interrupts_while_compiling
 from ..errors import ParameterError
-from ..limits import check_coordinate, check_flag, check_weight
+from ..limits import check_coordinate, check_flag, check_weight, is_finite_real, shown
 from ..registry import Registry
 from ..result import Result, Status, Tree
 from . import kernels as K
@@ -314,6 +314,14 @@ def _cell(value, what: str) -> Tuple[int, int]:
 STATS_KEYS = ("expanded", "time_s", "cost_cells", "length_m", "raw_cost_cells", "warmup_s")
 
 
+def check_connectivity(value: Any) -> int:
+    """A grid search's ``connectivity``, 4 or 8, as a Python int (numpy's ints and whole floats too: an np.int64
+    was refused by navlab.plan, and kept as one in navlab.grid.plan's params, which JSON cannot hold)."""
+    if not is_finite_real(value) or value not in (4, 8):
+        raise ParameterError(f"connectivity must be 4 or 8, got {shown(value)}")
+    return int(value)
+
+
 def check_jps_connectivity(algorithm: str, connectivity: int) -> None:
     """JPS prunes the 8-connected grid's symmetric paths: it searches no other (checked after the value's
     own check, which names a connectivity that is neither 4 nor 8)."""
@@ -506,11 +514,13 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
     check_grid(grid)
     GRID_ALGORITHMS.get(algorithm)
     hcode = HEURISTICS.get(heuristic)
-    if connectivity not in (4, 8):
-        raise ParameterError(f"connectivity must be 4 or 8, got {connectivity!r}")
+    connectivity = check_connectivity(connectivity)
+    # (before the warm-up: smooth=np.array([True, False]) was numpy's "truth value ... is ambiguous", and
+    # smooth="no" compiled the smoothing kernels before it was refused: attack, session 25)
+    smooth = check_flag("smooth", smooth)
     # compiling or loading this variant's kernels is timed apart (stats["warmup_s"]), as navlab.plan does:
     # it was 240–440 ms of a 0.7 ms search on a first call
-    warmup_s = warm_kernels(algorithm, connectivity, hcode, bool(smooth))
+    warmup_s = warm_kernels(algorithm, connectivity, hcode, smooth)
     # a signature the warm-up did not compile (another map's array types) is compiled in the call: warm-up too
     with compile_clock() as compiled:
         result = _plan_warm(grid, start, goal, algorithm, heuristic, hcode, connectivity, smooth, weight,

@@ -18,12 +18,15 @@ from ..limits import MAX_COORDINATE, MIN_LENGTH, check_flag, check_weight, is_fi
 
 def _name(key: str, value: Any, valid) -> str:
     if not isinstance(value, str) or value not in valid:
-        raise ParameterError(f"{key} must be one of {', '.join(valid)}; got {value!r}")
+        from ..registry import suggest
+
+        raise ParameterError(f"{key} must be one of {', '.join(valid)}; got {value!r}.{suggest(value, valid)}"
+                             .rstrip("."))
     return value
 
 
 def _number(key: str, value: Any) -> float:
-    if not isinstance(value, (int, float)) or not is_finite_real(value):
+    if not is_finite_real(value):  # (Python's or numpy's: np.float32(0.1) was 'not a finite number')
         raise ParameterError(f"{key} must be a finite number, got {shown(value)}")
     return float(value)
 
@@ -32,7 +35,7 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     """``params`` with every grid setting it has checked (values unchanged
     but for integral floats of ``connectivity``); unknown keys pass through
     (the caller reports them). Raises ``ParameterError`` naming the setting."""
-    from .planner import GRID_ALGORITHMS, HEURISTICS, check_jps_connectivity
+    from .planner import GRID_ALGORITHMS, HEURISTICS, check_connectivity, check_jps_connectivity
 
     out = dict(params)
     if "heuristic" in out:
@@ -40,10 +43,7 @@ def check_grid_settings(params: Dict[str, Any]) -> Dict[str, Any]:
     if "algorithm" in out:
         _name("algorithm", out["algorithm"], GRID_ALGORITHMS.names())
     if "connectivity" in out:
-        value = out["connectivity"]
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or value not in (4, 8):
-            raise ParameterError(f"connectivity must be 4 or 8, got {value!r}")
-        out["connectivity"] = int(value)
+        out["connectivity"] = check_connectivity(out["connectivity"])
     check_jps_connectivity(out.get("algorithm", ""), out.get("connectivity", 8))
     for key in ("smooth", "allow_unknown"):
         if key in out:

@@ -17,6 +17,7 @@ import numpy as np
 from ..control.base import REACHED, STALLED, Controller
 from ..errors import ParameterError
 from ..grid.occupancy import OccupancyGrid
+from ..limits import check_flag
 from ..planning import is_grid_planner, plan
 from ..pose_queries import POSE_PLANNERS, is_pose_query
 from ..result import Result
@@ -127,6 +128,11 @@ class GoalPlanner:
                 raise ParameterError(f"sampler '{sampler}' is for the tree planners; '{algorithm}' is a grid search")
             params = {**GRID_DEFAULTS, **params}
         elif on_tree is not None:
+            # the tree it publishes is the one the planner keeps: a keep_tree of the user's is checked, and false
+            # is refused (it was overwritten with true, and keep_tree:=1 or [1] passed unchecked: attack, s. 25)
+            if "keep_tree" in params and not check_flag("keep_tree", params["keep_tree"]):
+                raise ParameterError("keep_tree:=false: this node publishes the search tree on /plan_tree, which "
+                                     "needs it kept; give publish_tree:=false with it")
             params["keep_tree"] = True
         self.log, self.on_tree = log, on_tree
         self.query = dict(algorithm=algorithm, sampler=sampler, seed=seed, allow_unknown=allow_unknown,

@@ -22,7 +22,7 @@ import numpy as np
 from ..arrays import grown
 from ..control.base import REACHED, STALLED, Controller
 from ..errors import ParameterError
-from ..limits import is_finite_real, shown
+from ..limits import check_flag, is_finite_real, shown
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
 from ..sensors.timing import DelayLine, SensorTiming
@@ -205,7 +205,7 @@ class Simulation:
         if goal_heading is not None and not (isinstance(goal_heading, (int, float)) and math.isfinite(goal_heading)):
             raise ParameterError(f"goal_heading must be a finite number of radians, got {goal_heading!r}")
         self.goal_heading = None if goal_heading is None else float(goal_heading)
-        self.record_scans = record_scans
+        self.record_scans = check_flag("record_scans", record_scans)  # ("no" recorded them: attack, session 25)
         self.lidar_timing = SensorTiming.from_dict(lidar_timing, "lidar")
         self.odometry_timing = SensorTiming.from_dict(odometry_timing, "odometry")
         if controller.needs_path and getattr(controller, "replanner", False) is None:

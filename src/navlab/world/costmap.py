@@ -40,7 +40,7 @@ import numpy as np
 
 from ..errors import NavlabError
 from ..jit import njit
-from ..limits import check_length, is_finite_real, shown
+from ..limits import check_flag, check_length, is_finite_real, shown
 
 FREE_SPACE = 0
 INSCRIBED_INFLATED_OBSTACLE = 253
@@ -310,7 +310,8 @@ class LayeredCostmap:
                                                                           self.inscribed)
         self.obstacle_range = _length("obstacle_range", obstacle_range)
         self.raytrace_range = _length("raytrace_range", raytrace_range)
-        self.lethal_static, self.unknown, self.resolution, self.origin = _static_layer(source, resolution, static)
+        self.lethal_static, self.unknown, self.resolution, self.origin = _static_layer(source, resolution,
+                                                                                    check_flag("static", static))
         self.marked = np.zeros_like(self.lethal_static)
         self._static_costs: Optional[Costmap] = None
 

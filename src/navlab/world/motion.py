@@ -108,8 +108,9 @@ class WaypointMotion:
             raise MotionFormatError(key, f"expected exactly two points [a, b], got {len(pts)}")
         if all(p == pts[0] for p in pts):
             raise MotionFormatError(key, "all points are the same: the obstacle would not move")
-        if not isinstance(self.loop, bool):
+        if not isinstance(self.loop, (bool, np.bool_)):  # (numpy's bool, as check_flag takes it)
             raise MotionFormatError("motion.loop", f"expected true or false, got {self.loop!r}")
+        object.__setattr__(self, "loop", bool(self.loop))
         object.__setattr__(self, "waypoints", pts)
         object.__setattr__(self, "speed", _speed(self.speed))
 

@@ -65,6 +65,11 @@ def test_no_check_raises_a_bare_value_error():
     ("p", ["pure_pursuit"], ""),  # one letter begins too much to be a hint
     ("zzz", ["dwa", "rpp"], ""),
     (3, ["dwa"], ""),
+    # two equally close is no guess (difflib picked the alphabetically last: attack, session 25)
+    ("seed003", ["seed002", "seed004", "maze-astar"], ""),
+    ("cal", ["omni3", "diff", "jackal", "car"], ""),
+    ("RRT", ["rrt", "rrt_star"], " Did you mean 'rrt'?"),  # case
+    ("Mppi", ["dwa", "mppi"], " Did you mean 'mppi'?"),
 ])
 def test_suggest_names_the_closest_or_the_one_name_begun(name, valid, hint):
     from navlab.registry import suggest

@@ -23,14 +23,22 @@ class UnknownNameError(KeyError, NavlabError):
 
 
 def closest(name: Any, valid) -> Optional[str]:
-    """The name among ``valid`` that ``name`` most likely meant, or None: the closest spelling (difflib's ratio
-    at least 0.6, its default: at 0.5, ``ackermann`` was told ``jackal``), else the one name that ``name``
-    begins (``pur`` for ``pure_pursuit``, ``turn`` for ``turning_radius``: too short to be close by spelling).
-    Every "did you mean" of navlab (names, settings, choice options) asks this."""
+    """The name among ``valid`` that ``name`` most likely meant, or None: the one written the same but for
+    case, else the one closest in spelling (difflib's ratio at least 0.6, its default: at 0.5, ``ackermann`` was
+    told ``jackal``; none when two are equally close), else the one name that ``name`` begins (``pur`` for
+    ``pure_pursuit``, ``turn`` for ``turning_radius``: too short to be close by spelling). Every "did you mean"
+    of navlab (names, settings, choice options) asks this."""
     if not isinstance(name, str):  # a number or a list where a name belongs: nothing is "close"
         return None
-    valid = list(dict.fromkeys(valid))
-    close = difflib.get_close_matches(name, valid, n=1, cutoff=0.6)
+    valid = [v for v in dict.fromkeys(valid) if isinstance(v, str)]
+    same = [v for v in valid if v.casefold() == name.casefold()]  # RRT, TRAP, MPPI: difflib is case-sensitive
+    if same:
+        return same[0] if len(same) == 1 else None
+    scores = {v: difflib.SequenceMatcher(None, name, v).ratio() for v in valid}
+    best = max(scores.values(), default=0.0)
+    # two names equally close is no guess: difflib's own pick among them is the alphabetically last, so
+    # 'seed003' was told 'seed004', not 'seed002', and 'cal' 'jackal', not 'car' (attack, session 25)
+    close = [v for v, score in scores.items() if score == best and best >= 0.6]
     if not close and len(name) >= 2:
         close = [v for v in valid if v.startswith(name)]
     return close[0] if len(close) == 1 else None

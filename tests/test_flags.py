@@ -93,3 +93,11 @@ def test_a_moving_obstacles_loop_takes_numpys_bool():
     assert WaypointMotion(((0.0, 0.0), (1.0, 0.0)), 0.5, loop=np.True_).loop is True
     with pytest.raises(MotionFormatError, match="expected true or false, got 'no'"):
         WaypointMotion(((0.0, 0.0), (1.0, 0.0)), 0.5, loop="no")
+
+
+@pytest.mark.parametrize("name, setting", [("pure_pursuit", "replan"), ("rpp", "creep_when_blocked")])
+def test_a_nan_flag_is_told_true_or_false_not_finite(name, setting):
+    """make_controller's finite check ran first: 'replan must be finite, got nan', as if a number would do
+    (attack, session 25)."""
+    with pytest.raises(ParameterError, match=f"{setting} must be true or false, got nan"):
+        make_controller(name, **{setting: float("nan")})

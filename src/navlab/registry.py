@@ -122,11 +122,14 @@ def check_params(factory: Callable[..., Any], params: Dict[str, Any], what: str)
             )
 
 
-def check_finite(params: Dict[str, Any], what: str) -> None:
+def check_finite(params: Dict[str, Any], what: str, factory: Optional[Callable[..., Any]] = None) -> None:
     """Refuse NaN and infinite numbers anywhere in ``params`` (lists included),
     naming the parameter: a robot or controller setting of ``.nan`` or
     ``.inf`` would otherwise run, and end in NaN poses or a robot that never
-    turns. (For "no limit", a setting says so in its own terms, e.g. ``None``.)"""
+    turns. (For "no limit", a setting says so in its own terms, e.g. ``None``.)
+    The on/off settings of ``factory`` (a bool default) are left to its own
+    check: ``replan=.nan`` was told "replan must be finite", as if a number
+    would do (attack, session 25)."""
     from .limits import is_finite_real, shown  # (numpy: by now a robot or a controller has loaded it)
 
     def bad(value: Any) -> bool:
@@ -144,6 +147,7 @@ def check_finite(params: Dict[str, Any], what: str) -> None:
         except Exception:  # not numeric: left to the factory's own checks
             return False
 
+    flags = {k for k, default in parameters_of(factory).items() if isinstance(default, bool)} if factory else set()
     for key, value in params.items():
-        if bad(value):
+        if key not in flags and bad(value):
             raise ParameterError(f"{what}: {key} must be finite, got {shown(value)}")

@@ -894,6 +894,10 @@ def _check_shared_params_used(exp: Experiment, used: set) -> None:
         if key == "goal_tolerance":  # (the query's, which only planners for a point robot take)
             hint = (" A goal tolerance is for planners of a point robot: one between poses ends exactly at the "
                     "goal pose.")
+        if key == "base":  # (goal bias's base sampler is no shared setting: "not of planner rrt" beside a
+            # goal_bias sampler read as a contradiction: attack, session 25)
+            hint = (" The goal_bias sampler's base sampler is set on the sampler itself, not shared: samplers: "
+                    "[{name: goal_bias, base: gaussian}].")
         raise ExperimentError(f"parameter '{key}' applies to none of this experiment's planners ({names})." + hint)
 
 

@@ -74,7 +74,7 @@ def make_controller(name: str, **params) -> Controller:
 
     factory = CONTROLLERS.get(name)
     check_params(factory, params, f"controller '{name}'")
-    check_finite(params, f"controller '{name}'")
+    check_finite(params, f"controller '{name}'", factory)
     try:
         return factory(**params)
     except ValueError as exc:  # a setting out of range: say whose, as the checks above do (same type)

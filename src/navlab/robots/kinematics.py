@@ -366,5 +366,5 @@ def make_robot(name: str, **params) -> object:
 
     cls = ROBOTS.get(name)
     check_params(cls, params, f"robot '{name}'")
-    check_finite(params, f"robot '{name}'")
+    check_finite(params, f"robot '{name}'", cls)
     return cls(**params)

@@ -79,6 +79,11 @@ BASE = {"name": "x", "worlds": ["trap"], "trials": 1}
     # a planner's label names it, as the report does
     ({"planners": [{"name": "jps", "label": "fast"}], "grid": {"connectivity": [4, 8]}},
      "grid: planner 'fast' where connectivity=4: "),
+    # a setting of a planner's own entry names the entry: of two astar, which (attack, session 25)
+    ({"planners": [{"name": "astar", "label": "a"}, {"name": "astar", "label": "b", "smooth": 1}]},
+     "planner 'b': smooth must be true or false, got 1"),
+    ({"planners": ["rrt"], "samplers": [{"name": "gaussian", "sigma": -1}], "grid": {"expand_dis": [0.5, 1.0]}},
+     "sampler 'gaussian' of planner 'rrt': sigma must be positive"),
 ])
 def test_a_swept_refusal_names_whose_setting_it_is(experiment, said):
     with pytest.raises(ExperimentError, match=re.escape(said)):

@@ -719,7 +719,7 @@ def validate(exp: Experiment) -> None:
         try:
             _check_cell(exp, cell, worlds)
         except ValueError as exc:
-            blamed = _swept_blamed(exp, cell, str(exc))
+            blamed = _refused_where(exp, cell, str(exc))
             if not blamed:
                 raise
             raise ExperimentError(f"{blamed}: {exc}") from None
@@ -729,15 +729,25 @@ def validate(exp: Experiment) -> None:
     _check_claim_groups(exp)
 
 
-def _swept_blamed(exp: Experiment, cell: Cell, message: str) -> str:
-    """Where a refusal of ``cell`` came from when a swept value is in it ("grid: planner 'jps' where
-    connectivity=4"), or '' (the refusal then reads as it did: the setting is the planner's own, shared or the
-    budget's). A swept setting is blamed when the message names it and the cell's planner and sampler do not set
-    it themselves. Until session 25 a bad swept value read as the planner's own setting ("motion: ..."); a
-    first version named every swept value of the cell, whatever the refusal was about (review, session 25)."""
-    own = {**cell.planner.params, **(cell.sampler.params if cell.sampler else {})}
+def _refused_where(exp: Experiment, cell: Cell, message: str) -> str:
+    """Where a refusal of ``cell`` came from: a swept value ("grid: planner 'jps' where connectivity=4"), or a
+    setting of the planner's or the sampler's own entry ("planner 'b'", by its label), or '' (the refusal then
+    reads as it did: the setting is shared or the budget's). A setting is blamed when the message names it;
+    one a planner or sampler sets itself is its entry's, not the sweep's. Until session 25 a bad swept value
+    read as the planner's own setting ("motion: ..."), and of two labelled astar entries the refusal did not
+    say which (attack); a first version named every swept value of the cell, whatever the refusal was about
+    (review, session 25)."""
     said = re.split(r"[;.,]? valid:|Did you mean", message)[0]  # (not the names a refusal lists as valid)
-    named = [k for k in exp.swept(cell) if k not in own and re.search(rf"\b{re.escape(k)}\b", said)]
+
+    def names(keys) -> List[str]:
+        return [k for k in keys if re.search(rf"\b{re.escape(k)}\b", said)]
+
+    if cell.sampler is not None and names(cell.sampler.params):
+        return f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'"
+    if names(cell.planner.params):
+        return f"planner '{cell.planner.title}'"
+    own = {**cell.planner.params, **(cell.sampler.params if cell.sampler else {})}
+    named = [k for k in names(exp.swept(cell)) if k not in own]
     if not named:
         return ""
     from ..queries import take_sampler_params

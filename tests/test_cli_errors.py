@@ -119,6 +119,12 @@ def test_click_usage_errors_keep_their_status():
     (["grid", "plan", "x.map", "--algorithm", "jp"], "Did you mean 'jps'?"),
     (["bench", "--executor", "proc"], "Did you mean 'process'?"),
     (["sim", "clutter", "--controller", "pur"], "Did you mean 'pure_pursuit'?"),
+    # a setting's own choice of names too (attack, session 25)
+    (["plan", "trap", "--planner", "rrt", "--param", "index=grd"], "Did you mean 'grid'?"),
+    (["plan", "trap", "--planner", "astar", "--param", "heuristic=octil"], "Did you mean 'octile'?"),
+    (["sim", "clutter", "--robot", "jackal", "--controller", "dwa", "--controller-param", "layers=sens"],
+     "Did you mean 'sensor'?"),
+    (["plan", "trap", "--planner", "ompl:RRTstar"], "OMPL's planners (ompl:NAME) run in navlab bench only."),
 ])
 def test_real_commands(args, expected, tmp_path):
     result = CliRunner().invoke(main, args)

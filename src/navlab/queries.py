@@ -58,7 +58,10 @@ def is_grid_planner(name: str) -> bool:
     if name in GRID_ALGORITHMS:
         return True
     valid = planner_names()
-    raise UnknownNameError(f"unknown planner '{name}'; valid: {', '.join(valid)}." + suggest(str(name), valid))
+    # (an OMPL planner is a benchmark anchor only: --planner ompl:RRTstar was 'unknown planner' without a word)
+    ompl = " OMPL's planners (ompl:NAME) run in navlab bench only." if str(name).startswith("ompl:") else ""
+    raise UnknownNameError(f"unknown planner '{name}'; valid: {', '.join(valid)}." + suggest(str(name), valid)
+                           + ompl)
 
 
 def split_params(planner: str, sampler: str, params: dict) -> tuple[dict, dict]:

@@ -16,6 +16,7 @@ from typing import Dict
 import numpy as np
 
 from ..errors import ParameterError
+from ..registry import suggest
 from .base import REACHED, RUNNING, STALLED, Command, Controller, StallDetector, check_number  # noqa: F401
 
 
@@ -59,7 +60,8 @@ class CostmapController(Controller):
         self.costmap_resolution = check_number("costmap_resolution", costmap_resolution, high=100.0)
         self.footprint_padding = check_number("footprint_padding", footprint_padding, allow_low=True, high=10.0)
         if layers not in self.LAYERS:
-            raise ParameterError(f"layers must be one of {', '.join(self.LAYERS)}, got {layers!r}")
+            raise ParameterError(f"layers must be one of {', '.join(self.LAYERS)}, got {layers!r}."
+                                 f"{suggest(layers, list(self.LAYERS))}".rstrip("."))
         self.layers = layers
         self.needs_scan = "sensor" in layers
         self.replan_interval = check_number("replan_interval", replan_interval)

@@ -41,6 +41,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..jit import njit
 from ..limits import check_count
+from ..registry import suggest
 from ..world.costmap import INSCRIBED_INFLATED_OBSTACLE, MAX_NON_OBSTACLE, footprint_cost_one
 from .base import CONTROLLERS
 from .local import CostmapController, check_number
@@ -241,7 +242,8 @@ class MPPI(CostmapController):
         super().__init__(xy_goal_tolerance, stall_window, stall_progress, inflation_radius, cost_scaling_factor,
                          layers, replan_interval, footprint_padding, costmap_resolution)
         if motion_model not in ("diff", "omni"):
-            raise ParameterError(f"motion_model must be diff or omni, got {motion_model!r}")
+            raise ParameterError(f"motion_model must be diff or omni, got {motion_model!r}."
+                                 f"{suggest(motion_model, ['diff', 'omni'])}".rstrip("."))
         self.motion_model = motion_model
         self.holonomic = motion_model == "omni"
         self.batch_size = check_count("batch_size", batch_size, 1, 100_000)

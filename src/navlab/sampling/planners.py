@@ -21,7 +21,7 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..limits import MAX_COUNT, check_count, check_flag, check_length, check_memory, shown
-from ..registry import Registry, parameters_of
+from ..registry import Registry, parameters_of, suggest
 from ..result import Result, Status, Tree
 from . import tree_kernel as K
 from .regions import BoxRegion, InformedRegion
@@ -119,7 +119,8 @@ class TreePlanner:
             raise ParameterError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
                                  f"got {self.batch_size}")
         if self.index not in INDEXES:
-            raise ParameterError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}")
+            raise ParameterError(f"index must be one of {', '.join(INDEXES)}, got {self.index!r}."
+                                 f"{suggest(self.index, list(INDEXES))}".rstrip("."))
         self.keep_tree = check_flag("keep_tree", self.keep_tree)  # ('yes' and 2 were taken as true)
 
     def check_fits(self, max_iter: Optional[int] = None) -> None:

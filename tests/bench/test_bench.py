@@ -249,6 +249,9 @@ def test_experiment_file_and_cli(tmp_path):
     for name in ("samplers", "seed000"):  # the descriptive name and the old one
         res = runner.invoke(main, ["bench", "--suite", name, "--show"])
         assert res.exit_code == 0 and "integration" in res.output and "name: samplers" in res.output
+        # the template says its name names the results folder (an edited copy ran into the suite's: newcomer,
+        # session 25), as a comment, so the file still loads
+        assert res.output.startswith("# 'name' names the results folder (bench-results/samplers)")
 
 
 def test_ompl_anchor_rows(tmp_path):

@@ -196,7 +196,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if not (experiment or suite):
         exp.name = data["name"] = _adhoc_name(data, exp.fingerprint())
     if show:
-        click.echo(yaml.safe_dump(data, sort_keys=False))
+        # (an edited copy that kept the suite's name ran into the suite's own folder, "holds results of a
+        # different experiment": newcomer, session 25)
+        click.echo(f"# 'name' names the results folder (bench-results/{exp.name}): give your own study its own "
+                   "name\n" + yaml.safe_dump(data, sort_keys=False))
         return
     note_unused_settings(exp)
     folder = out or f"bench-results/{exp.name}"

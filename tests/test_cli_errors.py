@@ -96,7 +96,8 @@ def test_navlab_debug_shows_the_exception(monkeypatch):
     assert isinstance(result.exception, KeyError) and "internal error" not in result.output
 
 
-@pytest.mark.parametrize("args", [["sim", "clutter", "--robot", "zzz"], ["grid", "plan", "x.map", "--connectivity", "6"],
+@pytest.mark.parametrize("args", [["sim", "clutter", "--robot", "zzz"],
+                                  ["grid", "plan", "x.map", "--connectivity", "6"],
                                   # two shared letters of six made 'jackal' a guess at a 0.5 cutoff (review, session 25)
                                   ["sim", "clutter", "--robot", "ackermann"]])
 def test_a_choice_nothing_is_close_to_gets_no_hint(args):

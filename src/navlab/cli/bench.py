@@ -108,7 +108,8 @@ def export_cmd(folder, fmt, out) -> None:
                    "(default: dwa_barn).")
 @click.option("--straight-line", is_flag=True,
               help="--suite barn: score worlds without a path file against the 10 m straight line (OT 5 s).")
-@click.option("--lidar", "barn_lidar", type=SuggestingChoice(["exact", "rplidar_a1"]), default="exact", show_default=True,
+@click.option("--lidar", "barn_lidar", type=SuggestingChoice(["exact", "rplidar_a1"]), default="exact",
+              show_default=True,
               help="--suite barn: the Jackal's sensors. rplidar_a1: a noisy laser (RPLIDAR A1 datasheet), 2 % "
                    "wheel-speed noise, 1 % slip and a compass, so the runs of one world differ by seed as Gazebo's "
                    "do (give --trials N runs per world; the challenge ran 10).")

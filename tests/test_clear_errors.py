@@ -94,6 +94,12 @@ def test_an_experiment_mapping_takes_numpys_scalars():
     assert exp.trials == 2 and type(exp.trials) is int
     assert exp.planners[0].params == {"connectivity": 4} and type(exp.planners[0].params["connectivity"]) is int
     assert exp.params["smooth"] is True and type(exp.grid["weight"][0]) is float
+    # (a namedtuple of values, which the first version rebuilt by its class: a raw TypeError; second review)
+    from collections import namedtuple
+
+    pair = namedtuple("pair", "low high")
+    assert load_experiment({"name": "z", "worlds": ["trap"], "planners": ["astar"], "trials": 1,
+                            "grid": {"weight": pair(1.0, 2.0)}}).grid == {"weight": [1.0, 2.0]}
 
 
 def test_an_experiment_file_without_worlds_is_named(tmp_path):

@@ -70,6 +70,10 @@ def test_no_check_raises_a_bare_value_error():
     ("cal", ["omni3", "diff", "jackal", "car"], ""),
     ("RRT", ["rrt", "rrt_star"], " Did you mean 'rrt'?"),  # case
     ("Mppi", ["dwa", "mppi"], " Did you mean 'mppi'?"),
+    # case aside in the spelling and the prefix too (second review, session 25)
+    ("Theta", ["astar", "theta_star", "rrt_star"], " Did you mean 'theta_star'?"),
+    ("RRTstar", ["astar", "rrt", "rrt_star"], " Did you mean 'rrt_star'?"),
+    ("Informed", ["informed_rrt_star", "rrt_star"], " Did you mean 'informed_rrt_star'?"),
 ])
 def test_suggest_names_the_closest_or_the_one_name_begun(name, valid, hint):
     from navlab.registry import suggest

@@ -101,3 +101,28 @@ def test_a_nan_flag_is_told_true_or_false_not_finite(name, setting):
     (attack, session 25)."""
     with pytest.raises(ParameterError, match=f"{setting} must be true or false, got nan"):
         make_controller(name, **{setting: float("nan")})
+
+
+def test_numpy_numbers_are_taken_as_grid_settings_and_kept_plain():
+    """np.int64(4) connectivity was refused by navlab.plan and kept as numpy's in navlab.grid.plan's params (not
+    JSON); np.float32 resolution was 'not a finite number' (attack, session 25)."""
+    for connectivity in (np.int64(4), np.uint8(8), np.float64(8.0)):
+        result = grid_plan(_grid(), (1, 1), (10, 10), connectivity=connectivity)
+        assert type(result.params["connectivity"]) is int
+        json.dumps(result.params)
+        assert navlab.plan(_grid(), "astar", start=(1.5, 1.5), goal=(10.5, 10.5), connectivity=connectivity).success
+    assert navlab.plan("trap", "astar", resolution=np.float32(0.1)).success
+    for bad in (4.5, True, "8"):
+        with pytest.raises(ParameterError, match="connectivity must be 4 or 8"):
+            grid_plan(_grid(), (1, 1), (10, 10), connectivity=bad)
+
+
+def test_a_bad_smooth_is_refused_before_any_kernel_loads(monkeypatch):
+    """smooth=np.array([True, False]) was numpy's 'truth value of an array is ambiguous', and smooth='no' loaded
+    the smoothing kernels before it was refused (attack, session 25)."""
+    import navlab.grid.planner as grid_planner
+
+    monkeypatch.setattr(grid_planner, "warm_kernels", lambda *a: pytest.fail("warmed before the check"))
+    for bad in (np.array([True, False]), "no"):
+        with pytest.raises(ParameterError, match="smooth must be true or false"):
+            grid_plan(_grid(), (1, 1), (10, 10), smooth=bad)

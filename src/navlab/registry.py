@@ -31,16 +31,19 @@ def closest(name: Any, valid) -> Optional[str]:
     if not isinstance(name, str):  # a number or a list where a name belongs: nothing is "close"
         return None
     valid = [v for v in dict.fromkeys(valid) if isinstance(v, str)]
-    same = [v for v in valid if v.casefold() == name.casefold()]  # RRT, TRAP, MPPI: difflib is case-sensitive
+    # compared without case throughout: RRT, TRAP and MPPI had no hint (difflib is case-sensitive), nor Theta
+    # once the cutoff rose (attack and second review, session 25)
+    folded = name.casefold()
+    same = [v for v in valid if v.casefold() == folded]
     if same:
         return same[0] if len(same) == 1 else None
-    scores = {v: difflib.SequenceMatcher(None, name, v).ratio() for v in valid}
+    scores = {v: difflib.SequenceMatcher(None, folded, v.casefold()).ratio() for v in valid}
     best = max(scores.values(), default=0.0)
     # two names equally close is no guess: difflib's own pick among them is the alphabetically last, so
     # 'seed003' was told 'seed004', not 'seed002', and 'cal' 'jackal', not 'car' (attack, session 25)
     close = [v for v, score in scores.items() if score == best and best >= 0.6]
     if not close and len(name) >= 2:
-        close = [v for v in valid if v.startswith(name)]
+        close = [v for v in valid if v.casefold().startswith(folded)]
     return close[0] if len(close) == 1 else None
 
 

@@ -84,6 +84,9 @@ BASE = {"name": "x", "worlds": ["trap"], "trials": 1}
      "planner 'b': smooth must be true or false, got 1"),
     ({"planners": ["rrt"], "samplers": [{"name": "gaussian", "sigma": -1}], "grid": {"expand_dis": [0.5, 1.0]}},
      "sampler 'gaussian' of planner 'rrt': sigma must be positive"),
+    # the sweep that made the cell holonomic is the cause, not rrt's own turning_radius (second review)
+    ({"planners": [{"name": "rrt", "turning_radius": 1.0}], "grid": {"motion": ["holonomic", "dubins"]}},
+     "grid: planner 'rrt' where motion=holonomic: turning_radius applies only"),
 ])
 def test_a_swept_refusal_names_whose_setting_it_is(experiment, said):
     with pytest.raises(ExperimentError, match=re.escape(said)):

@@ -67,8 +67,12 @@ def loop_references(ir: str) -> list:
     for name, blocks in functions.items():
         labels = list(blocks)
         index = {label: i for i, label in enumerate(labels)}
-        edges = [(i, index[target]) for i, label in enumerate(labels) for line in blocks[label]
-                 for target in re.findall(r"label %([\w.$-]+)", line) if target in index]
+        targets = [(i, target) for i, label in enumerate(labels) for line in blocks[label]
+                   for target in re.findall(r"label %([\w.$-]+)", line)]
+        # every branch target is a block read above: a label the parse missed would hide a loop (second review)
+        unread = {target for _, target in targets if target not in index}
+        assert not unread, f"{name}: branch targets not parsed as blocks: {sorted(unread)[:5]}"
+        edges = [(i, index[target]) for i, target in targets]
         if not edges:
             continue
         rows, cols = zip(*edges)

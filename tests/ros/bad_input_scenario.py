@@ -211,6 +211,10 @@ def main(workdir):
     probe.nav_odom_pub.publish(odom)
     spin(0.3)
     out["nav_seeing_command"] = [probe.nav_cmds[-1].linear.x, probe.nav_cmds[-1].linear.y]
+    spin(0.8)  # longer than scan_timeout (0.5 s of wall time) with no scan: the one seen goes stale
+    probe.nav_odom_pub.publish(odom)
+    spin(0.3)
+    out["nav_stale_command"] = [probe.nav_cmds[-1].linear.x, probe.nav_cmds[-1].linear.y]
     nan_goal = PoseStamped()
     nan_goal.pose.position.x = math.nan
     probe.nav_goal_pub.publish(nan_goal)

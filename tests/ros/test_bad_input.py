@@ -77,7 +77,9 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     # listed it among the node warnings: newcomer, session 25)
     assert "waiting for the first /scan" in texts(seen["nav_logs"], INFO)
     warnings = texts(seen["nav_logs"], WARN)
-    assert "no recent /scan" not in warnings and "empty /scan" in warnings
+    assert "empty /scan" in warnings
+    # a scan that stops coming is a fault: it stops, and warns
+    assert "no recent /scan" in warnings and seen["nav_stale_command"] == [0.0, 0.0]
     # nothing in sight: straight from (0.5, 0.5) at the goal (3, 0), at the 0.3 m/s limit
     assert seen["nav_seeing_command"] == pytest.approx([0.3 * 2.5 / 6.5 ** 0.5, -0.3 * 0.5 / 6.5 ** 0.5], abs=1e-9)
     assert "non-finite" in texts(seen["nav_logs"], ERROR)

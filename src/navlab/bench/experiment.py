@@ -474,8 +474,8 @@ def plain_values(value: Any) -> Any:
     them, "a bool is not an experiment value ... got np.True_": attack, session 25)."""
     if isinstance(value, dict):
         return {plain_values(k): plain_values(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return type(value)(plain_values(v) for v in value)
+    if isinstance(value, (list, tuple)):  # (a tuple as a plain one: a namedtuple's class takes no sequence)
+        return [plain_values(v) for v in value] if isinstance(value, list) else tuple(plain_values(v) for v in value)
     if isinstance(value, np.generic):
         return value.item()
     return value
@@ -742,14 +742,14 @@ def _refused_where(exp: Experiment, cell: Cell, message: str) -> str:
     def names(keys) -> List[str]:
         return [k for k in keys if re.search(rf"\b{re.escape(k)}\b", said)]
 
-    if cell.sampler is not None and names(cell.sampler.params):
-        return f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'"
-    if names(cell.planner.params):
-        return f"planner '{cell.planner.title}'"
+    # a swept value the message names is the cell's own cause (rrt's own turning_radius is refused because the
+    # sweep made this cell holonomic: second review, session 25); else an entry's own setting it names
     own = {**cell.planner.params, **(cell.sampler.params if cell.sampler else {})}
     named = [k for k in names(exp.swept(cell)) if k not in own]
     if not named:
-        return ""
+        if cell.sampler is not None and names(cell.sampler.params):
+            return f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'"
+        return f"planner '{cell.planner.title}'" if names(cell.planner.params) else ""
     from ..queries import take_sampler_params
 
     samplers = cell.sampler is not None and take_sampler_params(cell.sampler.name, dict.fromkeys(named))

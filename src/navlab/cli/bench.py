@@ -199,8 +199,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if show:
         # (an edited copy that kept the suite's name ran into the suite's own folder, "holds results of a
         # different experiment": newcomer, session 25)
-        click.echo(f"# 'name' names the results folder (bench-results/{exp.name}): give your own study its own "
-                   "name\n" + yaml.safe_dump(data, sort_keys=False))
+        where = f"(bench-results/{exp.name}) without --out" if not out else "without --out"
+        click.echo(f"# 'name' names the results folder {where}: give your own study its own name\n"
+                   + yaml.safe_dump(data, sort_keys=False))
         return
     note_unused_settings(exp)
     folder = out or f"bench-results/{exp.name}"

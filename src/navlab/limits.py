@@ -70,6 +70,18 @@ def check_weight(weight: Any) -> float:
 SHOWN_LENGTH = 80
 
 
+def plain_values(value: Any) -> Any:
+    """``value`` with numpy's scalars as Python's (``np.True_``, ``np.int64(4)``), also inside lists, tuples (as
+    plain tuples: a namedtuple's class takes no sequence) and mappings; anything else unchanged."""
+    if isinstance(value, dict):
+        return {plain_values(k): plain_values(v) for k, v in value.items()}
+    if isinstance(value, list):
+        return [plain_values(v) for v in value]
+    if isinstance(value, tuple):
+        return tuple(plain_values(v) for v in value)
+    return value.item() if isinstance(value, np.generic) else value
+
+
 def check_flag(name: str, value: Any) -> bool:
     """``value`` as a Python bool if it is one (or numpy's), else ParameterError naming ``name``: a string
     or a number is refused, since ``bool("false")`` and ``bool(2)`` are true and a typo must not switch a

@@ -28,13 +28,14 @@ from .setting_names import COSTMAP_PARAMS, GRID_PARAMS, setting_hint
 _SAME_POINT = 1e-9
 #: settings of the query rather than of a planner, which every tree planner's --param takes
 #: (planning.plan reads them before the planner's own; "did you mean" looks among them too)
-#: the query's own settings a tree planner's refusal names (``robot_radius`` is navlab.plan's argument, and
-#: ``--param robot_radius=`` reaches it: a refusal that left it out suggested turning_radius for 'radius')
-QUERY_PARAMS = ("motion", "turning_radius", "footprint", "goal_tolerance", "robot_radius")
-QUERY_PARAMS_HELP = ("motion (holonomic, dubins or reeds_shepp; the last two with turning_radius and footprint), "
-                     "goal_tolerance, robot_radius")
 #: the query's own settings a grid planner takes besides :data:`~navlab.setting_names.GRID_PARAMS`
+#: (``robot_radius`` is navlab.plan's argument, and ``--param robot_radius=`` reaches it: a refusal that left it
+#: out suggested turning_radius for 'radius')
 GRID_QUERY_PARAMS = ("goal_tolerance", "robot_radius")
+#: the query's own settings a tree planner's refusal names
+QUERY_PARAMS = ("motion", "turning_radius", "footprint", *GRID_QUERY_PARAMS)
+QUERY_PARAMS_HELP = ("motion (holonomic, dubins or reeds_shepp; the last two with turning_radius and footprint), "
+                     + ", ".join(GRID_QUERY_PARAMS))
 
 
 def planner_names() -> list[str]:
@@ -134,7 +135,7 @@ def take_query_params(params: dict, grid: bool) -> Tuple[Optional[float], Option
     if goal_tolerance is not None:
         check_length("goal_tolerance", goal_tolerance)
     if allow_unknown is not None:
-        check_flag("allow_unknown", allow_unknown)
+        allow_unknown = check_flag("allow_unknown", allow_unknown)
     return goal_tolerance, allow_unknown
 
 

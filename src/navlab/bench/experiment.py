@@ -33,7 +33,7 @@ from typing import Any, Dict, Iterator, List, Optional, Tuple, Union
 
 import numpy as np
 
-from ..limits import MAX_COUNT, check_flag, digit_count, is_finite_real, shown, value_text
+from ..limits import MAX_COUNT, check_flag, digit_count, is_finite_real, plain_values, shown, value_text
 from ..registry import suggest
 from .errors import ExperimentError
 from ..yamlio import read_yaml
@@ -468,20 +468,9 @@ def check_plain(value: Any, path: str = "") -> None:
                               f"and mappings are), got {got}")
 
 
-def plain_values(value: Any) -> Any:
-    """``value`` with numpy's scalars as Python's (``np.True_``, ``np.int64(4)``), in any list, tuple or mapping:
-    an experiment given as a mapping from Python takes what ``navlab.plan`` takes (``load_experiment`` refused
-    them, "a bool is not an experiment value ... got np.True_": attack, session 25)."""
-    if isinstance(value, dict):
-        return {plain_values(k): plain_values(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):  # (a tuple as a plain one: a namedtuple's class takes no sequence)
-        return [plain_values(v) for v in value] if isinstance(value, list) else tuple(plain_values(v) for v in value)
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
 def _from_dict(data: Dict[str, Any]) -> Experiment:
+    # numpy's scalars as Python's: a mapping from Python takes what navlab.plan takes (load_experiment refused
+    # np.True_ as "a bool is not an experiment value": attack, session 25)
     data = plain_values(data)
     check_plain(data)
     for key in data:
@@ -745,7 +734,8 @@ def _refused_where(exp: Experiment, cell: Cell, message: str) -> str:
     # a swept value the message names is the cell's own cause (rrt's own turning_radius is refused because the
     # sweep made this cell holonomic: second review, session 25); else an entry's own setting it names
     own = {**cell.planner.params, **(cell.sampler.params if cell.sampler else {})}
-    named = [k for k in names(exp.swept(cell)) if k not in own]
+    swept = exp.swept(cell)
+    named = [k for k in names(swept) if k not in own]
     if not named:
         if cell.sampler is not None and names(cell.sampler.params):
             return f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'"
@@ -755,7 +745,7 @@ def _refused_where(exp: Experiment, cell: Cell, message: str) -> str:
     samplers = cell.sampler is not None and take_sampler_params(cell.sampler.name, dict.fromkeys(named))
     part = f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'" if samplers else \
         f"planner '{cell.planner.title}'"
-    return f"grid: {part} where " + " and ".join(f"{k}={exp.swept(cell)[k]}" for k in named)
+    return f"grid: {part} where " + " and ".join(f"{k}={swept[k]}" for k in named)
 
 
 def _check_swept_grid_values(exp: Experiment) -> None:

@@ -21,7 +21,7 @@ from typing import Any, Dict, Optional
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import check_count, check_length
+from ..limits import check_count, check_length, plain_values
 from ..registry import Registry, UnknownNameError, check_params, parameters_of, suggest
 from .regions import BoxRegion
 
@@ -45,9 +45,7 @@ def _length(name: str, value: Any) -> Optional[float]:
     """None, or a positive length in metres within navlab.limits."""
     if value is None:
         return None
-    if isinstance(value, np.generic):
-        value = value.item()
-    return check_length(name, value, allow_zero=False)
+    return check_length(name, plain_values(value), allow_zero=False)
 
 
 def _expired(deadline: Optional[float]) -> bool:

@@ -10,17 +10,12 @@ import numpy as np
 
 from ..angles import planned_heading
 from ..errors import ParameterError
-from ..limits import check_coordinate, check_flag, check_length
+from ..limits import check_coordinate, check_flag, check_length, plain_values
 from .footprint import Footprint
 from .shapes import Circle, Obstacle, Polygon, Rectangle
 
 if TYPE_CHECKING:  # the grid package imports nothing from world; keep it that way at run time
     from ..grid.occupancy import OccupancyGrid
-
-
-def _plain(value: Any) -> Any:
-    """A numpy scalar as the Python number it holds (other values unchanged)."""
-    return value.item() if isinstance(value, np.generic) else value
 
 
 def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[float]]:
@@ -30,7 +25,7 @@ def _query_point(value: Any, what: str) -> Tuple[Tuple[float, float], Optional[f
         value = value.tolist()
     if isinstance(value, (str, bytes, dict)) or not hasattr(value, "__len__") or len(value) not in (2, 3):
         raise ParameterError(f"{what} must be [x, y] in metres or a pose [x, y, theta] (rad), got {value!r}")
-    point = (check_coordinate(f"{what} x", _plain(value[0])), check_coordinate(f"{what} y", _plain(value[1])))
+    point = (check_coordinate(f"{what} x", plain_values(value[0])), check_coordinate(f"{what} y", plain_values(value[1])))
     return point, (_heading(f"{what} theta", value[2]) if len(value) == 3 else None)
 
 
@@ -61,7 +56,7 @@ class Bounds:
 
     def __post_init__(self) -> None:
         for what in ("xmin", "xmax", "ymin", "ymax"):
-            object.__setattr__(self, what, check_coordinate(f"bounds.{what}", _plain(getattr(self, what))))
+            object.__setattr__(self, what, check_coordinate(f"bounds.{what}", plain_values(getattr(self, what))))
         if not (self.xmax > self.xmin and self.ymax > self.ymin):
             raise ParameterError(f"bounds need max > min in x and y, got x=[{self.xmin}, {self.xmax}] y=[{self.ymin}, {self.ymax}]")
 
@@ -142,7 +137,7 @@ class World:
         for k, obstacle in enumerate(self.obstacles):
             _check_obstacle(k, obstacle)
         for what in ("robot_radius", "goal_tolerance"):
-            object.__setattr__(self, what, check_length(what, _plain(getattr(self, what))))
+            object.__setattr__(self, what, check_length(what, plain_values(getattr(self, what))))
         object.__setattr__(self, "allow_unknown", check_flag("allow_unknown", self.allow_unknown))
         if self.occupancy is not None:
             for what in ("blocked", "resolution", "origin"):

@@ -84,6 +84,8 @@ BASE = {"name": "x", "worlds": ["trap"], "trials": 1}
      "planner 'b': smooth must be true or false, got 1"),
     ({"planners": ["rrt"], "samplers": [{"name": "gaussian", "sigma": -1}], "grid": {"expand_dis": [0.5, 1.0]}},
      "sampler 'gaussian' of planner 'rrt': sigma must be positive"),
+    # text that reads as a number stays quoted in the cell's name (newcomer, session 25)
+    ({"planners": ["jps"], "grid": {"connectivity": ["8"]}}, "grid: planner 'jps' where connectivity='8': "),
     # the sweep that made the cell holonomic is the cause, not rrt's own turning_radius (second review)
     ({"planners": [{"name": "rrt", "turning_radius": 1.0}], "grid": {"motion": ["holonomic", "dubins"]}},
      "grid: planner 'rrt' where motion=holonomic: turning_radius applies only"),

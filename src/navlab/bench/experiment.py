@@ -745,7 +745,19 @@ def _refused_where(exp: Experiment, cell: Cell, message: str) -> str:
     samplers = cell.sampler is not None and take_sampler_params(cell.sampler.name, dict.fromkeys(named))
     part = f"sampler '{cell.sampler.title}' of planner '{cell.planner.title}'" if samplers else \
         f"planner '{cell.planner.title}'"
-    return f"grid: {part} where " + " and ".join(f"{k}={swept[k]}" for k in named)
+    return f"grid: {part} where " + " and ".join(f"{k}={_as_swept(swept[k])}" for k in named)
+
+
+def _as_swept(value: Any) -> str:
+    """A swept value as the report's groups write it (``motion=holonomic``), but text that reads as a number
+    quoted: "connectivity=8: connectivity must be 4 or 8, got '8'" said 8 twice (newcomer, session 25)."""
+    if isinstance(value, str):
+        try:
+            float(value)
+        except ValueError:
+            return value
+        return repr(value)
+    return str(value)
 
 
 def _check_swept_grid_values(exp: Experiment) -> None:

@@ -19,6 +19,20 @@ def test_describe_matches_numpy_and_scipy():
     assert describe([3.0, 3.0])["ci95"] == [3.0, 3.0]
 
 
+@pytest.mark.parametrize("n", [1, 2, 3, 8, 9, 25, 200])
+def test_describe_gives_numpys_numbers_to_the_bit(n):
+    """(describe skips numpy for one value and sorts once for the rest: the summary of 10 000 one-trial
+    cells took 7 s in numpy's per-call overhead)"""
+    x = np.random.default_rng(n).lognormal(2, 1, n)
+    d = describe([*x, None])
+    want = {"mean": np.mean(x), "median": np.median(x), "min": np.min(x), "max": np.max(x)}
+    assert {k: d[k] for k in want} == {k: float(v) for k, v in want.items()} and d["n"] == n
+    assert d["std"] == (float(np.std(x, ddof=1)) if n > 1 else None)
+    if n > 1:
+        half = sps.t.ppf(0.975, n - 1) * np.std(x, ddof=1) / np.sqrt(n)
+        assert d["ci95"] == pytest.approx([max(np.mean(x) - half, 0.0), np.mean(x) + half], rel=1e-12)
+
+
 def test_the_interval_of_a_quantity_that_cannot_be_negative_stops_at_zero():
     """(two costs of 1 and 30 m gave [−169, 200] m: newcomer, session 22)"""
     lo, hi = sps.t.interval(0.95, 1, loc=15.5, scale=sps.sem([1.0, 30.0]))

@@ -126,6 +126,26 @@ def test_the_stamp_needs_none_of_numbas_private_hashing(monkeypatch):
     assert "navlab.sampling.curves" in hashes and len(hashes["navlab.sampling.curves"]) == 32
 
 
+def test_a_navlab_kernel_that_cannot_be_cached_gets_numbas_warning(tmp_path, monkeypatch):
+    """(session 26: numba's warning reads the locator's ``_py_file``, which the dependency locator lacked, so
+    a kernel numba cannot cache, here one calling C through ctypes, raised AttributeError at its first call)"""
+    import importlib.util
+
+    from numba.core.errors import NumbaWarning
+
+    path = tmp_path / "jitfake_ctypes.py"
+    path.write_text("import ctypes\n\nfrom navlab.jit import njit\n\nlabs = ctypes.CDLL(None).labs\n"
+                    "labs.restype = ctypes.c_long\nlabs.argtypes = [ctypes.c_long]\n\n\n"
+                    "@njit(cache=True)\ndef absolute(x):\n    return labs(x)\n")
+    spec = importlib.util.spec_from_file_location("navlab.jitfake_ctypes", path)
+    module = importlib.util.module_from_spec(spec)
+    monkeypatch.setitem(sys.modules, spec.name, module)
+    spec.loader.exec_module(module)
+    with pytest.warns(NumbaWarning, match="Cannot cache compiled function \"absolute\""):
+        assert module.absolute(-7) == 7
+    assert isinstance(module.absolute._cache._impl.locator, jit.DependencyStampLocator)
+
+
 def test_only_navlab_functions_get_the_dependency_stamp():
     import numba
 

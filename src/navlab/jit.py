@@ -236,6 +236,13 @@ class DependencyStampLocator(caching._CacheLocator):
         self._inner = inner
         self._py_func = py_func
 
+    def __getattr__(self, name: str) -> Any:
+        # What numba reads of a locator beyond the methods below (``_py_file``, for the warning that a
+        # function cannot be cached: without it that warning was an AttributeError) is the inner one's.
+        if name.startswith("__") or name == "_inner":  # (copy and pickle probe dunders before __init__)
+            raise AttributeError(name)
+        return getattr(self._inner, name)
+
     def ensure_cache_path(self):
         return self._inner.ensure_cache_path()
 

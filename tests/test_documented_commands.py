@@ -196,8 +196,7 @@ def _command_line(cmd: Command, env: Dict[str, str]) -> Tuple[List[str], Dict[st
     if cmd.lang == "python":
         args = [sys.executable, "-c", cmd.text]
     else:
-        text = cmd.text + (" " + _added_flags(cmd) if _added_flags(cmd) else "")
-        args = ["bash", "-c", text]
+        args = ["bash", "-c", " ".join(filter(None, (cmd.text, _added_flags(cmd))))]
     if cmd.action in ("ros", "ros-script", "serve"):
         # a domain of its own per document too, for machines where unshare is refused
         domain = 40 + [str(d.relative_to(ROOT)) for d in DOCUMENTS].index(cmd.document)
@@ -208,15 +207,17 @@ def _command_line(cmd: Command, env: Dict[str, str]) -> Tuple[List[str], Dict[st
 
 
 def _added_flags(cmd: Command) -> str:
-    """The flags a rule adds to the command: all of ``add``'s argument, and what follows the first word
-    of ``ros``'s and ``needs``'s (``needs ompl --trials 2``)."""
-    if cmd.action == "add":
-        return cmd.argument
-    if cmd.action == "ros":
+    """The flags a rule adds to the command: ``add``'s and ``ros``'s argument, and what follows the
+    module that ``needs`` names (``needs ompl --trials 2``)."""
+    if cmd.action in ("add", "ros"):
         return cmd.argument
     if cmd.action == "needs":
         return cmd.argument.partition(" ")[2].strip()
     return ""
+
+
+def _needed_module(cmd: Command) -> str:
+    return cmd.argument.partition(" ")[0]
 
 
 def _run(cmd: Command, cwd: Path, env: Dict[str, str]) -> subprocess.CompletedProcess:
@@ -289,8 +290,9 @@ def run_document(document: Path, tmp_path: Path) -> Tuple[List[str], List[str], 
         if cmd.action in ("ros", "ros-script", "serve") and not _has_module("rclpy"):
             skipped.append(f"{cmd} (the ros2 extra is not installed)")
             continue
-        if cmd.action == "needs" and not _has_module(cmd.argument.split()[0]):
-            skipped.append(f"{cmd} (needs {cmd.argument.split()[0]}, an optional extra)")
+        module = _needed_module(cmd) if cmd.action == "needs" else ""
+        if cmd.action == "needs" and not (module and _has_module(module)):
+            skipped.append(f"{cmd} (needs {module or 'a module the rule does not name'}, an optional extra)")
             continue
         expected = int(cmd.argument) if cmd.action == "exit" else 0
         t0 = time.perf_counter()

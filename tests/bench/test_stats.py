@@ -19,16 +19,19 @@ def test_describe_matches_numpy_and_scipy():
     assert describe([3.0, 3.0])["ci95"] == [3.0, 3.0]
 
 
-@pytest.mark.parametrize("n", [1, 2, 3, 8, 9, 25, 200])
-def test_describe_gives_numpys_numbers_to_the_bit(n):
+@pytest.mark.parametrize("n, odd", [(1, None), (2, None), (3, None), (8, None), (9, None), (25, None),
+                                    (200, None), (1, np.nan), (4, np.nan), (5, np.inf), (6, -np.inf)])
+def test_describe_gives_numpys_numbers_to_the_bit(n, odd):
     """(describe skips numpy for one value and sorts once for the rest: the summary of 10 000 one-trial
     cells took 7 s in numpy's per-call overhead)"""
     x = np.random.default_rng(n).lognormal(2, 1, n)
+    if odd is not None:
+        x[n // 2] = odd
     d = describe([*x, None])
     want = {"mean": np.mean(x), "median": np.median(x), "min": np.min(x), "max": np.max(x)}
-    assert {k: d[k] for k in want} == {k: float(v) for k, v in want.items()} and d["n"] == n
-    assert d["std"] == (float(np.std(x, ddof=1)) if n > 1 else None)
-    if n > 1:
+    assert str({k: d[k] for k in want}) == str({k: float(v) for k, v in want.items()}) and d["n"] == n  # (nan)
+    assert str(d["std"]) == str(float(np.std(x, ddof=1)) if n > 1 else None)
+    if n > 1 and odd is None:
         half = sps.t.ppf(0.975, n - 1) * np.std(x, ddof=1) / np.sqrt(n)
         assert d["ci95"] == pytest.approx([max(np.mean(x) - half, 0.0), np.mean(x) + half], rel=1e-12)
 

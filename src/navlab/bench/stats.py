@@ -55,10 +55,13 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
         ci = [max(mean - half, 0.0) if x[0] >= 0 else mean - half, mean + half]
     else:  # every value the same
         ci = [mean, mean]
-    mid = n // 2
-    median = float(x[mid]) if n % 2 else float((x[mid - 1] + x[mid]) / 2)
-    return {"n": n, "mean": mean, "median": median, "min": float(x[0]), "max": float(x[-1]), "std": std,
-            "ci95": ci}
+    if math.isnan(mean):  # a NaN among them (sorted last): numpy's NaN-propagating answers
+        median, low, high = float(np.median(x)), float(np.min(x)), float(np.max(x))
+    else:
+        mid = n // 2
+        median = float(x[mid]) if n % 2 else float((x[mid - 1] + x[mid]) / 2)
+        low, high = float(x[0]), float(x[-1])
+    return {"n": n, "mean": mean, "median": median, "min": low, "max": high, "std": std, "ci95": ci}
 
 
 @functools.lru_cache(maxsize=256)

@@ -74,7 +74,9 @@ def write(folder, k=10, factor=2, k2=100, b=1000, scale=10000, text="hello"):
 
 
 def run(folder):
-    env = {**os.environ, "NUMBA_CACHE_DIR": str(folder / "cache")}
+    # no bytecode cache: a module rewritten at the same size within the same second (K = 10 -> 20) would
+    # be read from its stale .pyc (Python checks size and whole-second mtime), running the old code
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(folder / "cache"), "PYTHONDONTWRITEBYTECODE": "1"}
     out = subprocess.run([sys.executable, "-c", RUN, str(folder)], env=env, capture_output=True, text=True,
                          timeout=600)
     assert out.returncode == 0, out.stderr

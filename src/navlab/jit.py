@@ -239,9 +239,10 @@ class DependencyStampLocator(caching._CacheLocator):
     def __getattr__(self, name: str) -> Any:
         # What numba reads of a locator beyond the methods below (``_py_file``, for the warning that a
         # function cannot be cached: without it that warning was an AttributeError) is the inner one's.
-        if name.startswith("__") or name == "_inner":  # (copy and pickle probe dunders before __init__)
+        inner = self.__dict__.get("_inner")
+        if name.startswith("__") or inner is None:  # (copy and pickle probe dunders before __init__)
             raise AttributeError(name)
-        return getattr(self._inner, name)
+        return getattr(inner, name)
 
     def ensure_cache_path(self):
         return self._inner.ensure_cache_path()

@@ -31,6 +31,11 @@ def test_describe_gives_numpys_numbers_to_the_bit(n, odd):
     want = {"mean": np.mean(x), "median": np.median(x), "min": np.min(x), "max": np.max(x)}
     assert str({k: d[k] for k in want}) == str({k: float(v) for k, v in want.items()}) and d["n"] == n  # (nan)
     assert str(d["std"]) == str(float(np.std(x, ddof=1)) if n > 1 else None)
+    if odd is None:  # (the sign of a zero too: review, session 26)
+        for zeros in ([-0.0], [0.0, -0.0], [-0.0, 0.0], [0.0, -0.0, 1.0], [-0.0, -0.0], [-1.0, -0.0, 0.0]):
+            z = describe(zeros)
+            ref = {"mean": np.mean(zeros), "median": np.median(zeros), "min": np.min(zeros), "max": np.max(zeros)}
+            assert str({k: z[k] for k in ref}) == str({k: float(v) for k, v in ref.items()}), zeros
     if n > 1 and odd is None:
         half = sps.t.ppf(0.975, n - 1) * np.std(x, ddof=1) / np.sqrt(n)
         assert d["ci95"] == pytest.approx([max(np.mean(x) - half, 0.0), np.mean(x) + half], rel=1e-12)

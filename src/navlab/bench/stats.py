@@ -44,12 +44,12 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
         return {"n": 0, "mean": None, "median": None, "min": None, "max": None, "std": None,
                 "ci95": [None, None]}
     if n == 1:  # one value says nothing of the spread: no interval (it was a zero-width one: newcomer, session 22)
-        v = picked[0]
-        return {"n": 1, "mean": v, "median": v, "min": v, "max": v, "std": None, "ci95": [None, None]}
-    x = np.asarray(picked)
-    mean = float(x.sum() / n)  # np.mean's own arithmetic (the sum in the given order, then one division)
-    std = float(np.std(x, ddof=1))
-    x.sort()
+        v = picked[0]  # numpy's sums start from +0.0: the mean and median of -0.0 are 0.0
+        return {"n": 1, "mean": 0.0 + v, "median": 0.0 + v, "min": v, "max": v, "std": None, "ci95": [None, None]}
+    x0 = np.asarray(picked)
+    mean = float(x0.sum() / n)  # np.mean's own arithmetic (the sum in the given order, then one division)
+    std = float(np.std(x0, ddof=1))
+    x = np.sort(x0)
     if std > 0:
         half = _t975(n - 1) * std / math.sqrt(n)
         ci = [max(mean - half, 0.0) if x[0] >= 0 else mean - half, mean + half]
@@ -58,9 +58,10 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
     if math.isnan(mean):  # a NaN among them (sorted last): numpy's NaN-propagating answers
         median, low, high = float(np.median(x)), float(np.min(x)), float(np.max(x))
     else:
-        mid = n // 2
-        median = float(x[mid]) if n % 2 else float((x[mid - 1] + x[mid]) / 2)
-        low, high = float(x[0]), float(x[-1])
+        mid = n // 2  # numpy's median: the mean of the middle one or two (a sum from +0.0)
+        median = float(0.0 + x[mid]) if n % 2 else float((0.0 + x[mid - 1] + x[mid]) / 2)
+        # -0.0 and 0.0 sort as equals, in either order: at an end, numpy's min and max say which comes first
+        low, high = (float(np.min(x0)), float(np.max(x0))) if x[0] == 0 or x[-1] == 0 else (float(x[0]), float(x[-1]))
     return {"n": n, "mean": mean, "median": median, "min": low, "max": high, "std": std, "ci95": ci}
 
 

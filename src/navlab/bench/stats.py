@@ -48,7 +48,8 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
         return {"n": 1, "mean": 0.0 + v, "median": 0.0 + v, "min": v, "max": v, "std": None, "ci95": [None, None]}
     x0 = np.asarray(picked)
     mean = float(x0.sum() / n)  # np.mean's own arithmetic (the sum in the given order, then one division)
-    std = float(np.std(x0, ddof=1))
+    with np.errstate(invalid="ignore"):  # inf - inf: a NaN spread, without numpy's RuntimeWarning on stderr
+        std = float(np.std(x0, ddof=1))
     x = np.sort(x0)
     if std > 0:
         half = _t975(n - 1) * std / math.sqrt(n)

@@ -83,8 +83,8 @@ def pytest_collection_modifyitems(config, items):
     workers around it instead of leaving it to run alone at the end. Then the
     files with the most tests, as pytest-xdist orders them by itself; its own
     reordering is off (``--no-loadscope-reorder``), since it put this
-    ten-test file behind every file with more tests, so that it started
-    partway through the run instead of at once (found in session 26)."""
+    ten-test file behind a hundred others, which ran it at the end after all
+    (found in session 26)."""
     count = collections.Counter(item.nodeid.split("::")[0] for item in items)
 
     def rank(item):

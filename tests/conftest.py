@@ -1,4 +1,3 @@
-import collections
 import os
 import sys
 
@@ -80,18 +79,8 @@ def pytest_collection_modifyitems(config, items):
     """The documented-commands test first: it is the longest file (every
     document's commands, mostly waiting on simulated clocks and ROS nodes), so
     under pytest-xdist it starts at once and the other files fill the other
-    workers around it instead of leaving it to run alone at the end. Then the
-    files with the most tests, as pytest-xdist orders them by itself; its own
-    reordering is off (``--no-loadscope-reorder``), since it put this
-    ten-test file behind a hundred others, which ran it at the end after all
-    (found in session 26)."""
-    count = collections.Counter(item.nodeid.split("::")[0] for item in items)
-
-    def rank(item):
-        file = item.nodeid.split("::")[0]
-        return file != "tests/test_documented_commands.py", -count[file], file
-
-    items.sort(key=rank)  # (stable: a file's tests keep their order)
+    workers around it instead of leaving it to run alone at the end."""
+    items.sort(key=lambda item: item.nodeid.split("::")[0] != "tests/test_documented_commands.py")
 
 
 def pytest_xdist_auto_num_workers(config):

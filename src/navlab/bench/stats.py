@@ -35,35 +35,28 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
     at 0: from two costs of 1 and 30 m it read [−169, 200] m (newcomer, session 22).
 
     A summary describes nine metrics of every cell, and a sweep of 10 000 one-trial cells spent 7 s in
-    numpy's per-call overhead on one-element arrays: one value is described without numpy, the others
-    are sorted once (min, max and median read off the sorted values: numpy's numbers to the bit), and
-    the t quantile is computed once per sample size."""
+    numpy's per-call overhead on one-element arrays: one value is described without numpy (numpy's numbers:
+    its sums start from +0.0, so the mean and median of -0.0 are 0.0), and the t quantile is computed once
+    per sample size."""
     picked = [float(v) for v in values if v is not None]
     n = len(picked)
     if n == 0:
         return {"n": 0, "mean": None, "median": None, "min": None, "max": None, "std": None,
                 "ci95": [None, None]}
     if n == 1:  # one value says nothing of the spread: no interval (it was a zero-width one: newcomer, session 22)
-        v = picked[0]  # numpy's sums start from +0.0: the mean and median of -0.0 are 0.0
+        v = picked[0]
         return {"n": 1, "mean": 0.0 + v, "median": 0.0 + v, "min": v, "max": v, "std": None, "ci95": [None, None]}
-    x0 = np.asarray(picked)
-    mean = float(x0.sum() / n)  # np.mean's own arithmetic (the sum in the given order, then one division)
+    x = np.asarray(picked)
+    mean = float(np.mean(x))
     with np.errstate(invalid="ignore"):  # inf - inf: a NaN spread, without numpy's RuntimeWarning on stderr
-        std = float(np.std(x0, ddof=1))
-    x = np.sort(x0)
+        std = float(np.std(x, ddof=1))
     if std > 0:
         half = _t975(n - 1) * std / math.sqrt(n)
-        ci = [max(mean - half, 0.0) if x[0] >= 0 else mean - half, mean + half]
+        ci = [max(mean - half, 0.0) if x.min() >= 0 else mean - half, mean + half]
     else:  # every value the same
         ci = [mean, mean]
-    if math.isnan(mean):  # a NaN among them (sorted last): numpy's NaN-propagating answers
-        median, low, high = float(np.median(x)), float(np.min(x)), float(np.max(x))
-    else:
-        mid = n // 2  # numpy's median: the mean of the middle one or two (a sum from +0.0)
-        median = float(0.0 + x[mid]) if n % 2 else float((0.0 + x[mid - 1] + x[mid]) / 2)
-        # -0.0 and 0.0 sort as equals, in either order: at an end, numpy's min and max say which comes first
-        low, high = (float(np.min(x0)), float(np.max(x0))) if x[0] == 0 or x[-1] == 0 else (float(x[0]), float(x[-1]))
-    return {"n": n, "mean": mean, "median": median, "min": low, "max": high, "std": std, "ci95": ci}
+    return {"n": n, "mean": mean, "median": float(np.median(x)), "min": float(np.min(x)),
+            "max": float(np.max(x)), "std": std, "ci95": ci}
 
 
 @functools.lru_cache(maxsize=256)

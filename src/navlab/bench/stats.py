@@ -47,15 +47,17 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
         v = picked[0]
         return {"n": 1, "mean": 0.0 + v, "median": 0.0 + v, "min": v, "max": v, "std": None, "ci95": [None, None]}
     x = np.asarray(picked)
-    mean = float(np.mean(x))
-    with np.errstate(invalid="ignore"):  # inf - inf: a NaN spread, without numpy's RuntimeWarning on stderr
+    # inf - inf, or a sum past 1.8e308: NaN or inf, without numpy's RuntimeWarning on stderr (newcomer, s. 26)
+    with np.errstate(invalid="ignore", over="ignore"):
+        mean = float(np.mean(x))
         std = float(np.std(x, ddof=1))
+        median = float(np.median(x))
     if std > 0:
         half = _t975(n - 1) * std / math.sqrt(n)
         ci = [max(mean - half, 0.0) if x.min() >= 0 else mean - half, mean + half]
     else:  # every value the same
         ci = [mean, mean]
-    return {"n": n, "mean": mean, "median": float(np.median(x)), "min": float(np.min(x)),
+    return {"n": n, "mean": mean, "median": median, "min": float(np.min(x)),
             "max": float(np.max(x)), "std": std, "ci95": ci}
 
 

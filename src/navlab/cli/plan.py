@@ -41,9 +41,10 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
                    "the integration sampler: --param 'weights={goal: 0.1, uniform: 0.3, gaussian: 0.3, "
                    "boundary: 0.3}'; grid: resolution=0.05 heuristic=octile connectivity=8 smooth=true "
                    "allow_unknown=true weight=1.5 (resolution: a geometric world's cell size, default 1/200 "
-                   "of its longer side; a map keeps its own; weight: astar's and hybrid_astar's, default 1, "
-                   "above 1 weighted A*: usually fewer expansions, a path at most weight times the shortest "
-                   "the search can find under an admissible heuristic such as octile); astar on a costmap: "
+                   "of its longer side; a map keeps its own; weight: astar's, default 1; above 1, weighted A*: "
+                   "usually fewer expansions, for a path at most weight times the shortest under an "
+                   "admissible heuristic such as octile; hybrid_astar takes it too, without that bound); "
+                   "astar on a costmap: "
                    "costmap=true inflation_radius=0.55 "
                    "cost_scaling_factor=3.0 cost_travel_multiplier=2.0 allow_unknown=true (its cells 0.05 m on a "
                    "geometric world unless resolution= says).")

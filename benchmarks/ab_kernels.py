@@ -36,7 +36,10 @@ import numpy as np
 
 def load_kernels(path: str, name: str):
     """The kernels module at ``path``, imported as ``name`` with numba's caching off."""
+    # A copy outside the package cannot use the package's relative imports (``from ..jit import njit``,
+    # since session 19's cache locator): name them absolutely.
     source = open(path).read().replace("cache=True", "cache=False")
+    source = source.replace("from ..", "from navlab.").replace("from . ", "from navlab.grid ")
     copy = os.path.join(tempfile.mkdtemp(), name + ".py")
     with open(copy, "w") as f:
         f.write(source)

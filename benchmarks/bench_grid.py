@@ -5,6 +5,7 @@
     python benchmarks/bench_grid.py --large [--repeat 3]   # issue 22's maps: 4096² random 20 %, 1001² maze
     python benchmarks/bench_grid.py --large --scipy        # and Dijkstra against scipy's on them
     python benchmarks/bench_grid.py --large --bound        # could a bidirectional search expand fewer cells?
+    python benchmarks/bench_grid.py --threads [--repeat 3]  # random4096 queries on 1 and on 2 threads at once
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an
@@ -43,7 +44,15 @@ def main() -> None:
     ap.add_argument("--bound", action="store_true",
                     help="with --large: the fewest cells any front-to-end bidirectional search must expand on "
                          "each map (from two Dijkstra fields; no timing; peaks at about 2 GB on the 4096x4096 map)")
+    ap.add_argument("--threads", action="store_true",
+                    help="the 4096x4096 random map's corner-to-corner A* query alone, then two at once on two "
+                         "threads (each on its own grid, and both on one grid): do the searches run in parallel?")
     args = ap.parse_args()
+    if args.repeat < 1:
+        ap.error("--repeat must be at least 1")
+    if args.threads:
+        threads(args.repeat)
+        return
     if args.large and args.bound:
         for name, make in _large_maps():
             bidirectional_bound(name, make())
@@ -185,6 +194,39 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     print("astar-4 and pyastar2d's 4-connected mode solve the same problem. 'cpu' ratios: the same medians in")
     print("CPU time. B/expanded: search-state bytes per expanded cell: the cells the last query wrote (4 B of")
     print("state each, +1 legal-move byte), and the 4 KB pages of the state array it wrote.")
+    print(load_line("at end"))
+
+
+def threads(repeat: int) -> None:
+    """Wall time of random4096's corner-to-corner A* query on one thread, and of two such queries
+    started together on two threads, on two grids and on one grid (each thread leases its own
+    searcher); medians over ``repeat`` rounds. With the search releasing the GIL, two queries take
+    about the time of one on a machine with two idle cores; holding it, twice that."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from conditions import load_line
+
+    print(load_line("at start"))
+    name, make = next(iter(_large_maps()))
+    grids = [make(), make()]
+    free = np.argwhere(~grids[0].blocked)
+    s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+    layouts = {"one query": [grids[0]], "two threads, two grids": grids,
+               "two threads, one grid": [grids[0], grids[0]]}
+    with ThreadPoolExecutor(2) as pool:
+        for batch in layouts.values():  # every grid and searcher built before timing
+            list(pool.map(lambda g: plan(g, s, t), batch))
+        times = {label: [] for label in layouts}
+        for _ in range(repeat):
+            for label, batch in layouts.items():
+                wall = time.perf_counter()
+                results = list(pool.map(lambda g: plan(g, s, t), batch))
+                times[label].append(time.perf_counter() - wall)
+                assert all(r.cost == results[0].cost for r in results)
+    alone = statistics.median(times["one query"])
+    for label, walls in times.items():
+        print(f"{name} astar, {label:<24} {statistics.median(walls):.3f} s wall "
+              f"({statistics.median(walls) / alone:.2f}x one query)")
     print(load_line("at end"))
 
 

@@ -49,3 +49,19 @@ def test_tree_planners_on_one_map_from_threads_equal_the_single_threaded_answers
         together = list(pool.map(lambda a: navlab.plan(grid, planner="rrt_star", **a), args))
     for x, y in zip(alone, together):
         assert x.status == y.status and x.cost == y.cost and np.array_equal(x.path, y.path)
+
+
+def test_grid_search_kernels_release_the_gil():
+    """Threads planning at once run their searches in parallel (kernels compiled with ``nogil``): the
+    searches, the legal-move masks a new grid builds and the path read-back. Without it each search held
+    the GIL for its whole length and threads took turns (two random4096 queries on two threads: 0.40 s
+    against 0.20 s)."""
+    from navlab.grid import kernels as K
+    from navlab.grid.planner import astar_kernel, jps_kernel
+
+    kernels = [astar_kernel(conn, hcode, any_angle, wide)
+               for conn, hcode, any_angle in ((8, K.H_OCTILE, False), (4, K.H_MANHATTAN, False),
+                                               (8, K.H_ZERO, False), (8, K.H_EUCLIDEAN, True))
+               for wide in (False, True)]
+    kernels += [jps_kernel(False), jps_kernel(True), K.legal_moves, K.trace_back, K.trace_jumps]
+    assert all(kernel.targetoptions.get("nogil") for kernel in kernels)

@@ -321,7 +321,7 @@ LEAD = np.array([max(0, int(b).bit_length() - 1) for b in range(256)], dtype=np.
 LOOK = 5
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def legal_moves(blocked, unknown, out):
     """Each padded cell's legal 8-connected moves as a bit mask (bit k: move
     ``(MOVES_X[k], MOVES_Y[k])`` stays on free cells and, diagonally, cuts no
@@ -489,7 +489,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     a_one = state_type(1) << shift  # the start: no moves yet (a = 0 + 1)
     step_bits = state_steps(wide)
 
-    @njit(cache=True)
+    @njit(cache=True, nogil=True)
     def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack,
               resume=False):
         if not resume:
@@ -746,7 +746,7 @@ def _predecessor(moves, S, gs, v, n_moves, steps, value_mask):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def trace_back(moves, S, gs, start, goal, conn, steps, value_mask):
     """Cells (x, y) from start to goal of the path A* found, read from its
     packed state ``gs`` alone (A* keeps no parents; :func:`state_layout`;
@@ -859,7 +859,7 @@ def make_jps(wide: bool = False):
     a_one = state_type(1) << shift
     step_bits = state_steps(wide)
 
-    @njit(cache=True)
+    @njit(cache=True, nogil=True)
     def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
         """Jump Point Search for 8-connected grids without corner cutting.
 
@@ -1088,7 +1088,7 @@ def _jump_predecessor(moves, S, gs, v, steps, value_mask):
     return -1
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def trace_jumps(moves, S, gs, start, goal, steps, value_mask):
     """Cells (x, y) from start to goal of the path JPS found, every cell of
     each jump filled in, read from its packed state ``gs`` alone (JPS keeps no

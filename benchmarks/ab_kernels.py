@@ -26,6 +26,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import os
+import re
 import statistics
 import sys
 import tempfile
@@ -36,10 +37,12 @@ import numpy as np
 
 def load_kernels(path: str, name: str):
     """The kernels module at ``path``, imported as ``name`` with numba's caching off."""
-    # A copy outside the package cannot use the package's relative imports (``from ..jit import njit``,
-    # since session 19's cache locator): name them absolutely.
+    # A copy outside the package cannot use its relative imports (``from ..jit import njit``, since the
+    # kernels take numba's njit from navlab.jit): name them absolutely, at the start of a line only.
     source = open(path).read().replace("cache=True", "cache=False")
-    source = source.replace("from ..", "from navlab.").replace("from . ", "from navlab.grid ")
+    source = re.sub(r"^(\s*)from \.\.(?=\w)", r"\1from navlab.", source, flags=re.M)
+    source = re.sub(r"^(\s*)from \.(?=\w)", r"\1from navlab.grid.", source, flags=re.M)
+    source = re.sub(r"^(\s*)from \. import", r"\1from navlab.grid import", source, flags=re.M)
     copy = os.path.join(tempfile.mkdtemp(), name + ".py")
     with open(copy, "w") as f:
         f.write(source)

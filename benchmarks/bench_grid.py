@@ -5,7 +5,7 @@
     python benchmarks/bench_grid.py --large [--repeat 3]   # issue 22's maps: 4096² random 20 %, 1001² maze
     python benchmarks/bench_grid.py --large --scipy        # and Dijkstra against scipy's on them
     python benchmarks/bench_grid.py --large --bound        # could a bidirectional search expand fewer cells?
-    python benchmarks/bench_grid.py --threads [--repeat 3]  # random4096 queries on 1 and on 2 threads at once
+    python benchmarks/bench_grid.py --threads [--repeat 3] # random4096 queries on 1 and on 2 threads at once
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an
@@ -34,7 +34,9 @@ ANCHORS_MS = {"den312d": 0.05, "Berlin_1_256": 0.35, "maze512-32-9": 12.3}  # is
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--every", type=int, default=5, help="use every k-th scenario")
-    ap.add_argument("--repeat", type=int, default=3, help="runs per query (the fastest counts)")
+    ap.add_argument("--repeat", type=int, default=3,
+                    help="runs per query: the fastest counts (default mode); rounds, of which medians "
+                         "(--large, --threads)")
     ap.add_argument("--large", action="store_true",
                     help="corner-to-corner queries on a 4096x4096 random map (20%% blocked) and a 1001x1001 maze, "
                          "first query on a fresh grid timed apart, bytes per expanded cell")
@@ -51,6 +53,8 @@ def main() -> None:
     if args.repeat < 1:
         ap.error("--repeat must be at least 1")
     if args.threads:
+        if args.large or args.scipy or args.bound:
+            ap.error("--threads runs on its own: not with --large, --scipy or --bound")
         threads(args.repeat)
         return
     if args.large and args.bound:
@@ -204,7 +208,9 @@ def threads(repeat: int) -> None:
     about the time of one on a machine with two idle cores; holding it, twice that."""
     from concurrent.futures import ThreadPoolExecutor
 
-    from conditions import load_line
+    from conditions import load_line, spread
+
+    from navlab.grid.planner import pool_for
 
     print(load_line("at start"))
     name, make = next(iter(_large_maps()))
@@ -213,9 +219,11 @@ def threads(repeat: int) -> None:
     s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
     layouts = {"one query": [grids[0]], "two threads, two grids": grids,
                "two threads, one grid": [grids[0], grids[0]]}
+    for grid in grids:  # every grid's tables and searchers built before timing
+        plan(grid, s, t)
+    with pool_for(grids[0], False).lease():  # one searcher kept busy: this query builds the grid's second
+        plan(grids[0], s, t)
     with ThreadPoolExecutor(2) as pool:
-        for batch in layouts.values():  # every grid and searcher built before timing
-            list(pool.map(lambda g: plan(g, s, t), batch))
         times = {label: [] for label in layouts}
         for _ in range(repeat):
             for label, batch in layouts.items():
@@ -225,8 +233,8 @@ def threads(repeat: int) -> None:
                 assert all(r.cost == results[0].cost for r in results)
     alone = statistics.median(times["one query"])
     for label, walls in times.items():
-        print(f"{name} astar, {label:<24} {statistics.median(walls):.3f} s wall "
-              f"({statistics.median(walls) / alone:.2f}x one query)")
+        print(f"{name} astar, {label:<24} {statistics.median(walls):.3f} s wall ({spread(walls, 3, ' s')}; "
+              f"{statistics.median(walls) / alone:.2f}x one query)")
     print(load_line("at end"))
 
 

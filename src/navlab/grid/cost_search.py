@@ -71,7 +71,7 @@ def _pop(heap_f, heap_v, size):
     return top, size
 
 
-@njit(cache=True)
+@njit(cache=True, nogil=True)
 def costmap_astar(costs, passable, start, goal, multiplier, parent):
     """Cheapest 8-connected path cost (in cells) from cell ``start`` to ``goal``
     (flat indices ``y·W + x``) over ``passable`` cells, filling ``parent``;

@@ -52,6 +52,10 @@ def main() -> None:
     args = ap.parse_args()
     if args.repeat < 1:
         ap.error("--repeat must be at least 1")
+    if args.every < 1:
+        ap.error("--every must be at least 1")
+    if (args.scipy or args.bound) and not args.large:
+        ap.error("--scipy and --bound go with --large")
     if args.threads:
         if args.large or args.scipy or args.bound:
             ap.error("--threads runs on its own: not with --large, --scipy or --bound")

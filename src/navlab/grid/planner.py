@@ -499,7 +499,9 @@ def plan(grid: OccupancyGrid, start, goal, algorithm: str = "astar", heuristic: 
         (:data:`STATS_KEYS`): ``expanded``, ``time_s``, ``cost_cells`` (length
         in cells: 1 per straight step, √2 per diagonal, Euclidean between
         smoothed waypoints), ``length_m`` (= ``cost``), ``raw_cost_cells``
-        (before smoothing); ``inf`` where there is no path. When smoothed,
+        (before smoothing), ``inf`` where there is no path, and ``warmup_s``
+        (the kernels' compile or cache load before the query, apart from
+        ``time_s``). When smoothed,
         ``tree = {"raw_cells": ...}``, the path before smoothing (for drawing).
 
     References

@@ -57,9 +57,8 @@ def test_grid_search_kernels_release_the_gil():
     read-back, smoothing and line of sight. Without it each search held the GIL for its whole length and
     threads took turns (two random4096 queries on two threads: 0.40-0.48 s against 0.19-0.23 s)."""
     from navlab.grid import kernels as K
-    from navlab.grid.planner import astar_kernel, jps_kernel
-
     from navlab.grid.cost_search import costmap_astar
+    from navlab.grid.planner import astar_kernel, jps_kernel
 
     kernels = [astar_kernel(conn, hcode, False, wide)
                for conn, hcode in ((8, K.H_OCTILE), (4, K.H_MANHATTAN), (8, K.H_ZERO)) for wide in (False, True)]

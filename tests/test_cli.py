@@ -26,6 +26,12 @@ def test_plan_json_has_everything(run):
     assert len(traced["stats"]["cost_trace"]) == 400
 
 
+def test_plan_trace_without_json_is_refused():
+    res = CliRunner().invoke(main, ["plan", "squarefield", "--max-iter", "50", "--trace"])
+    assert res.exit_code == 2
+    assert "--trace adds the cost trace to the --json output: give it with --json" in res.output
+
+
 @pytest.fixture(scope="module")
 def maze(tmp_path_factory):
     """The issue's maze: `navlab grid maze --cells 10 10 --seed 1 --out maze.yaml`."""

@@ -65,6 +65,8 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     """
     from ..numba_start import collections_paused
 
+    if trace and not as_json:  # (it did nothing on its own, silently: newcomer check, session 26)
+        raise click.UsageError("--trace adds the cost trace to the --json output: give it with --json")
     # One query in a process of its own: what loads on the way (numba, its registries, the kernels) lives until
     # the exit, and the query's own objects are freed by reference counting, so collections would only walk
     # the ~110 000 long-lived objects again and again (~0.1 s of CPU); reference cycles wait for the exit.

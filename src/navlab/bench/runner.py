@@ -101,6 +101,7 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                   file=sys.stderr)
         specs = experiment.trial_specs()
         _note_rows_of_no_cell(store, specs, experiment.noise_specs())
+        _note_trials_past_the_count(store, specs, experiment.trials)
         done = store.finished()
         todo = interleave([s for s in specs if s["trial_id"] not in done])
         trials_todo = len(todo)
@@ -156,6 +157,21 @@ def _note_rows_of_no_cell(store: ResultStore, specs: List[Dict[str, Any]], repea
               f"{'belongs' if one else 'belong'} to no cell of this experiment as navlab now runs it (its cells are "
               f"split or merged differently since {'it' if one else 'they'} ran): kept in results.jsonl and "
               "results.csv, left out of the report", file=sys.stderr)
+
+
+def _note_trials_past_the_count(store: ResultStore, specs: List[Dict[str, Any]], trials: int) -> None:
+    """Say on stderr how many resumed trials of this experiment's cells lie past its trial count (an earlier
+    run with more ``--trials``): they stay in results.jsonl and results.csv, left out of the report, which
+    otherwise shrank without a word (newcomer, session 26)."""
+    cells = {s["cell_id"] for s in specs}
+    wanted = {s["trial_id"] for s in specs}
+    past = [row for row in store.rows.values() if row.get("cell_id") in cells and not row.get("repeat")
+            and row.get("trial_id") not in wanted and isinstance(row.get("trial"), int)]
+    if past:
+        most = max(row["trial"] for row in past) + 1
+        print(f"{store.folder}: {counted(len(past), 'kept trial')} past this run's {trials} per cell "
+              f"({'is' if len(past) == 1 else 'are'} in results.jsonl and results.csv, left out of the report: "
+              f"--trials {most} includes {'it' if len(past) == 1 else 'them'})", file=sys.stderr)
 
 
 def stopped(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]] = ()) -> Interrupted:

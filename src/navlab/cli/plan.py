@@ -31,10 +31,14 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
               help="Goal in metres (overrides the world's; required for maps); THETA as for --start.")
 @click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
               help="Robot radius in metres (overrides the world's; maps: 0).")
-@click.option("--max-iter", type=Count(), default=None, help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and growth_ratio_rrt).")
+@click.option("--max-iter", type=Count(), default=None,
+              help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and "
+                   "growth_ratio_rrt).")
 @click.option("--max-time", type=PositiveNumber(), default=None,
               help="Time limit in seconds (starts after warm-up).")
-@click.option("--seed", type=Count(low=0), default=0, show_default=True, help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random numbers).")
+@click.option("--seed", type=Count(low=0), default=0, show_default=True,
+              help="Random seed (same seed, same result; the grid planners and hybrid_astar draw no random "
+                   "numbers).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE",
               help="One planner, sampler or grid setting per --param (repeat it for more), e.g. "
                    "--param expand_dis=1.0 --param goal_sample_rate=0.05 (navlab list shows each part's); "
@@ -177,7 +181,8 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
         line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:
             line += f", {s['expanded']} cells expanded"
-        click.echo(line + f", planning {s['time_s'] * 1000:.1f} ms (rasterising {s.get('rasterize_s', 0) * 1000:.1f} ms)")
+        rasterising_ms = s.get("rasterize_s", 0) * 1000
+        click.echo(line + f", planning {s['time_s'] * 1000:.1f} ms (rasterising {rasterising_ms:.1f} ms)")
     if s.get("warmup_s", 0) > 0.0005:
         click.echo(f"  warm-up (compiling / loading kernels, not planning) {duration(s['warmup_s'])}")
     if plot:

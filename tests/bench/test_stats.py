@@ -18,6 +18,9 @@ def test_describe_matches_numpy_and_scipy():
     assert d["ci95"] == pytest.approx([lo, hi])
     assert describe([None, None])["n"] == 0 and describe([3.0])["ci95"] == [None, None]  # one value: no interval
     assert describe([3.0, 3.0])["ci95"] == [3.0, 3.0]
+    # a NaN or infinite value leaves no interval (it took the equal-values branch: [inf, inf]; newcomer, session 26)
+    for odd in ([1.0, np.inf], [np.nan, 2.0, 3.0], [np.inf, np.inf], [-np.inf, 1.0]):
+        assert describe(odd)["ci95"] == [None, None], odd
 
 
 @pytest.mark.parametrize("n, odd", [(1, None), (2, None), (3, None), (8, None), (9, None), (25, None),

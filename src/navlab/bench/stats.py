@@ -29,7 +29,8 @@ ALPHA = 0.05
 
 
 def describe(values: Sequence[float]) -> Dict[str, Any]:
-    """n, mean, median, min, max, sample std and the 95% t-interval of the mean (those two None from one value).
+    """n, mean, median, min, max, sample std and the 95% t-interval of the mean (those two None from one value;
+    the interval None where a value is NaN or infinite, which leaves the std NaN).
 
     The interval of a quantity that cannot be negative (every value ≥ 0: a length, a time, a count) stops
     at 0: from two costs of 1 and 30 m it read [−169, 200] m (newcomer, session 22).
@@ -55,8 +56,10 @@ def describe(values: Sequence[float]) -> Dict[str, Any]:
     if std > 0:
         half = _t975(n - 1) * std / math.sqrt(n)
         ci = [max(mean - half, 0.0) if x.min() >= 0 else mean - half, mean + half]
-    else:  # every value the same
+    elif std == 0:  # every value the same
         ci = [mean, mean]
+    else:  # NaN: a value was NaN or infinite, so there is no interval (it read [inf, inf]: newcomer, session 26)
+        ci = [None, None]
     return {"n": n, "mean": mean, "median": median, "min": float(np.min(x)),
             "max": float(np.max(x)), "std": std, "ci95": ci}
 

@@ -134,8 +134,8 @@ def test_resumed_rows_of_no_cell_are_said_and_left_out_of_the_report(tmp_path, c
     err = capsys.readouterr().err
     assert "belong" not in err  # (trials past the count are the same cell's: review)
     # but they are said: the report shrank to one trial without a word (newcomer, session 26)
-    assert ("2 kept trials past this run's 1 per cell (are in results.jsonl and results.csv, left out of the "
-            "report: --trials 3 includes them)") in err
+    assert ("2 kept trials lie past this run's 1 per cell: kept in results.jsonl and results.csv, left out of "
+            "the report (--trials 3 includes them)") in err
     assert fewer_again.ran == 0 and len(fewer_again.rows) == 1
     assert len(list(read_rows(tmp_path / "more" / "results.jsonl"))) == 3 + 2  # (and trials 0 and 1's noise repeats)
 

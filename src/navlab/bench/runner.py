@@ -169,9 +169,10 @@ def _note_trials_past_the_count(store: ResultStore, specs: List[Dict[str, Any]],
             and row.get("trial_id") not in wanted and isinstance(row.get("trial"), int)]
     if past:
         most = max(row["trial"] for row in past) + 1
-        print(f"{store.folder}: {counted(len(past), 'kept trial')} past this run's {trials} per cell "
-              f"({'is' if len(past) == 1 else 'are'} in results.jsonl and results.csv, left out of the report: "
-              f"--trials {most} includes {'it' if len(past) == 1 else 'them'})", file=sys.stderr)
+        one = len(past) == 1
+        print(f"{store.folder}: {counted(len(past), 'kept trial')} {'lies' if one else 'lie'} past this run's "
+              f"{trials} per cell: kept in results.jsonl and results.csv, left out of the report (--trials {most} "
+              f"includes {'it' if one else 'them'})", file=sys.stderr)
 
 
 def stopped(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]] = ()) -> Interrupted:

@@ -226,7 +226,7 @@ def state_costs(state: np.ndarray):
     return (state & closed) != 0, np.where(state == 0, np.inf, (a - 1.0) + b * SQRT2)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True)
 def touched_span(r, lo, hi, extent, S):
     """The flat indices ``range(first, last)`` of padded row ``r`` a query may have written: every
     cell within one of a recorded cell (each row's recorded columns in ``lo``/``hi``, its rows in

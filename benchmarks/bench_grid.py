@@ -54,11 +54,12 @@ def main() -> None:
         ap.error("--repeat must be at least 1")
     if args.every < 1:
         ap.error("--every must be at least 1")
-    if (args.scipy or args.bound) and not args.large:
-        ap.error("--scipy and --bound go with --large")
+    if args.threads and (args.large or args.scipy or args.bound):
+        ap.error("--threads runs on its own: not with --large, --scipy or --bound")
+    for flag in ("scipy", "bound"):
+        if getattr(args, flag) and not args.large:
+            ap.error(f"--{flag} goes with --large")
     if args.threads:
-        if args.large or args.scipy or args.bound:
-            ap.error("--threads runs on its own: not with --large, --scipy or --bound")
         threads(args.repeat)
         return
     if args.large and args.bound:

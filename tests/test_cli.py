@@ -30,6 +30,8 @@ def test_plan_trace_without_json_is_refused():
     res = CliRunner().invoke(main, ["plan", "squarefield", "--max-iter", "50", "--trace"])
     assert res.exit_code == 2
     assert "--trace adds the cost trace to the --json output: give it with --json" in res.output
+    grid = CliRunner().invoke(main, ["plan", "squarefield", "--planner", "astar", "--json", "--trace"])
+    assert grid.exit_code == 2 and "--trace: astar keeps no per-iteration cost trace" in grid.output
 
 
 @pytest.fixture(scope="module")

@@ -92,6 +92,8 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
                                            f"{settings[flag]} disagree: give one")
                 settings[flag] = value
         grid = planner in POSE_PLANNERS or is_grid_planner(planner)
+        if trace and grid:  # (an empty answer without a word: newcomer, session 27)
+            raise click.UsageError(f"--trace: {planner} keeps no per-iteration cost trace (the tree planners do)")
         if sampler is None:
             sampler = None if grid else "uniform"
         if plot and not grid:

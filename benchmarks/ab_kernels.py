@@ -60,12 +60,26 @@ def issue22_maps():
         yield name.split("-")[0], make().blocked
 
 
-def state_array(module, algorithm: str, cells: int) -> np.ndarray:
+def in_strips(module, algorithm: str) -> bool:
+    """Whether ``module``'s ``algorithm`` searches the strip layout (A* and Dijkstra since session 28)."""
+    return algorithm != "jps" and hasattr(module, "strip_shape")
+
+
+def state_array(module, algorithm: str, grid) -> np.ndarray:
     """The per-cell state ``module``'s ``algorithm`` searches in: packed (``state_layout``: A* and
-    Dijkstra since session 19, JPS with ``make_jps``) or one float64 per cell (older kernels)."""
+    Dijkstra since session 19, JPS with ``make_jps``) or one float64 per cell (older kernels), in the
+    strip layout or in padded rows (:func:`in_strips`)."""
+    cells = grid.strip_size if in_strips(module, algorithm) else grid.rows * grid.stride
     if hasattr(module, "make_jps" if algorithm == "jps" else "state_layout"):
         return np.zeros(cells, dtype=module.state_layout(False)[0])
     return np.zeros(cells)
+
+
+def state_rows(module, algorithm: str, grid, state: np.ndarray) -> np.ndarray:
+    """``state`` in padded rows, flat, whichever layout ``module`` searched it in."""
+    if in_strips(module, algorithm):
+        return module.to_rows(state, grid.rows, grid.stride).ravel()
+    return state
 
 
 def state_costs(module, state: np.ndarray):
@@ -81,11 +95,17 @@ def searcher_call(module, algorithm: str):
     make_astar call makes a new kernel)."""
     if algorithm == "jps":
         jps = module.make_jps(False) if hasattr(module, "make_jps") else module.jps
-        return lambda g, state, start, goal: jps(g.moves, g.stride, start, goal, state, g.lo, g.hi, g.extent, g.key,
-                                                 g.cell, g.next, g.head, g.stack)
+        return lambda g, state, start, goal: jps(g.grid.moves, g.stride, start, goal, state, g.lo, g.hi, g.extent,
+                                                 g.key, g.cell, g.next, g.head, g.stack)
     kernel = module.make_astar(8, 4 if algorithm == "astar" else 0, False)
-    return lambda g, state, start, goal: kernel(g.grid.no_free, g.moves, g.stride, start, goal, 1.0, state, g.parent,
-                                                g.lo, g.hi, g.extent, g.key, g.cell, g.next, g.head, g.stack)
+    if in_strips(module, algorithm):  # (the strip masks PaddedGrid builds with the installed kernels)
+        return lambda g, state, start, goal: kernel(
+            g.grid.no_free, g.stride, g.grid.strip_moves, g.grid.strip_height, g.grid.bits,
+            g.grid.strip_index(*start), g.grid.strip_index(*goal), 1.0, state, g.parent, g.flags, g.key, g.cell,
+            g.next, g.head, g.stack)
+    return lambda g, state, start, goal: kernel(  # (older kernels: padded rows)
+        g.grid.no_free, g.grid.moves, g.stride, g.grid.index(*start),
+        g.grid.index(*goal), 1.0, state, g.parent, g.lo, g.hi, g.extent, g.key, g.cell, g.next, g.head, g.stack)
 
 
 def main() -> None:
@@ -116,22 +136,23 @@ def main() -> None:
     for name, blocked in issue22_maps():
         free = np.argwhere(~blocked)
         grid = PaddedGrid(blocked)
-        start, goal = grid.index(*free[0][::-1]), grid.index(*free[-1][::-1])
+        start, goal = tuple(free[0][::-1]), tuple(free[-1][::-1])  # cells (x, y): each call indexes its layout
         searchers, states, answers = {}, {}, {}
         for tag, module in versions.items():
             searchers[tag] = GridSearcher(grid)
-            states[tag] = state_array(module, args.algorithm, grid.moves.size)
+            states[tag] = state_array(module, args.algorithm, grid)
             answer = calls[tag](searchers[tag], states[tag], start, goal)
             while answer[0] == module.OVERFLOW:
                 searchers[tag].grow()
                 answer = calls[tag](searchers[tag], states[tag], start, goal)
             answers[tag] = answer
-        decoded = {tag: state_costs(versions[tag], states[tag]) for tag in versions}
-        costs = {tag: float(g[goal]) for tag, (_, g) in decoded.items()}
+        rows = {tag: state_rows(versions[tag], args.algorithm, grid, states[tag]) for tag in versions}
+        decoded = {tag: state_costs(versions[tag], rows[tag]) for tag in versions}
+        costs = {tag: float(g[grid.index(*goal)]) for tag, (_, g) in decoded.items()}
         if args.loose:
             if answers["old"][0] != answers["new"][0] or abs(costs["old"] - costs["new"]) > 1e-9 * max(1.0, costs["old"]):
                 sys.exit(f"{name}: the versions disagree: {answers} costs {costs}")
-        elif answers["old"] != answers["new"] or not _same_state(states, decoded):
+        elif answers["old"] != answers["new"] or not _same_state(rows, decoded):
             sys.exit(f"{name}: the versions disagree (status, expanded: {answers}); rerun with --loose if meant")
         times = {"old": [], "new": []}
         ratios = []

@@ -306,10 +306,10 @@ def bidirectional_bound(name: str, grid) -> None:
     fields = []
     for a, b in ((s, t), (t, s)):
         with pool.lease() as searcher:
-            searcher.search("dijkstra", searcher.index(*a), searcher.index(*b), 8, K.H_ZERO, 1.0)
-            fields.append(K.state_costs(searcher.written))  # (closed, exact distances)
+            searcher.search("dijkstra", a, b, 8, K.H_ZERO, 1.0)
+            fields.append(K.state_costs(searcher.written_rows().ravel()))  # (closed, exact distances)
     with pool.lease() as searcher:
-        expanded = searcher.search("astar", searcher.index(*s), searcher.index(*t), 8, K.H_OCTILE, 1.0)[1]
+        expanded = searcher.search("astar", s, t, 8, K.H_OCTILE, 1.0)[1]
     stride = grid.width + 2
     xs, ys = np.divmod(np.arange(fields[0][0].size), stride)[::-1]
 
@@ -336,7 +336,7 @@ def touched_bytes(grid):
     from navlab.grid.planner import pool_for
 
     (searcher,) = pool_for(grid, False)._idle
-    state = searcher.written  # the packed uint32 state of A*, Dijkstra and JPS
+    state = searcher.written  # the packed uint32 state of A*, Dijkstra (strip layout) or JPS (rows)
     written = state != 0
     per_cell = state.itemsize + 1  # and the legal-move byte (A* and JPS build no padded copy of the grid)
     page = 4096 // state.itemsize

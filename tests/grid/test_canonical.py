@@ -27,10 +27,10 @@ def settle_everything(blocked, start):
     pool = SearcherPool(blocked)
     h, w = blocked.shape
     with pool.lease() as searcher:
-        status, expanded = searcher.search("dijkstra", searcher.index(*start), 0, 8, K.H_ZERO, 1.0)
+        status, expanded = searcher.search("dijkstra", start, (-1, -1), 8, K.H_ZERO, 1.0)
         assert status == 0
-        closed, g = K.state_costs(searcher.written)
-    return closed.reshape(h + 2, w + 2)[1:-1, 1:-1], g.reshape(h + 2, w + 2)[1:-1, 1:-1], expanded
+        closed, g = K.state_costs(searcher.written_rows())
+    return closed[1:-1, 1:-1], g[1:-1, 1:-1], expanded
 
 
 def maps():

@@ -107,11 +107,12 @@ def test_jps_takes_no_references_in_its_loop():
     (8, K.H_OCTILE, False, True), (8, K.H_EUCLIDEAN, True, False)])
 def test_astar_variants_take_no_references_in_their_loops(conn, hcode, any_angle, wide):
     grid, s, a, b = small_query()
-    parent = np.empty(grid.moves.size, dtype=np.int32)
-    state = np.zeros(grid.moves.size, dtype=np.float64 if any_angle else K.state_layout(wide)[0])
+    parent = np.empty(grid.strip_size, dtype=np.int32)
+    state = np.zeros(grid.strip_size, dtype=np.float64 if any_angle else K.state_layout(wide)[0])
     kernel = K.make_astar(conn, hcode, any_angle, wide)
-    ir = kernel_ir(kernel.py_func, (grid.free, grid.moves, grid.stride, a, b, 1.0, state, parent, s.lo, s.hi,
-                                    s.extent, s.key, s.cell, s.next, s.head, s.stack))
+    ir = kernel_ir(kernel.py_func, (grid.free, grid.stride, grid.strip_moves, grid.strip_height, grid.bits,
+                                    grid.strip_index(0, 0), grid.strip_index(7, 7), 1.0, state, parent, s.flags,
+                                    s.key, s.cell, s.next, s.head, s.stack))
     assert "call void @NRT_incref" in ir
     assert loop_references(ir) == []
 

@@ -31,14 +31,21 @@ def mask_by_rule(blocked):
 
 
 @pytest.mark.parametrize("shape, density, seed", [((1, 1), 0.0, 0), ((1, 7), 0.2, 1), ((9, 1), 0.3, 2),
-                                                  ((23, 31), 0.3, 3), ((40, 17), 0.6, 4), ((12, 12), 0.0, 5)])
+                                                  ((23, 31), 0.3, 3), ((40, 17), 0.6, 4), ((12, 12), 0.0, 5),
+                                                  ((6, 300), 0.3, 6), ((5, 1100), 0.25, 7), ((3, 1023), 0.1, 8)])
 def test_masks_equal_the_rule(shape, density, seed):
+    """In padded rows (JPS's) and in strips (A*'s, Dijkstra's, Theta*'s: 1 to 128 columns wide here), where
+    the columns past the padded grid in the last strip hold no move either."""
     blocked = np.random.default_rng(seed).random(shape) < density
     padded = PaddedGrid(blocked)
-    got = padded.moves.reshape(shape[0] + 2, shape[1] + 2)
-    assert np.array_equal(got[1:-1, 1:-1], mask_by_rule(blocked))
-    assert not got[[0, -1], :].any() and not got[:, [0, -1]].any()  # the border is never entered
-    assert not padded.moves.flags.writeable
+    rows, stride = shape[0] + 2, shape[1] + 2
+    strips = K.to_rows(padded.strip_moves, rows, stride)
+    for got in (padded.moves.reshape(rows, stride), strips):
+        assert np.array_equal(got[1:-1, 1:-1], mask_by_rule(blocked))
+        assert not got[[0, -1], :].any() and not got[:, [0, -1]].any()  # the border is never entered
+    assert int(padded.strip_moves.sum()) == int(strips.sum())  # nothing in the columns past the grid
+    assert padded.strip_moves.size == padded.strip_size < 1.125 * rows * stride + 1
+    assert not padded.moves.flags.writeable and not padded.strip_moves.flags.writeable
 
 
 def test_unknown_cells_have_no_moves_unless_allowed():

@@ -23,6 +23,11 @@ from grid.test_search import explicit_graph  # tests/ is on the path (pyproject:
 ALGORITHMS = [("astar", 8), ("dijkstra", 8), ("jps", 8), ("theta_star", 8), ("astar", 4), ("dijkstra", 4)]
 
 
+
+def state_arrays(searcher):
+    """Every per-cell state array of a searcher (strip layout and rows)."""
+    return [getattr(searcher, name) for name in ("state", "state_wide", "g", "row_state", "row_state_wide")]
+
 def legal_steps(grid, cells, connectivity):
     """Every step moves to a free 8- (or 4-) neighbour without cutting a blocked corner."""
     assert not grid.blocked[cells[:, 1], cells[:, 0]].any()
@@ -63,8 +68,8 @@ def test_one_grid_answers_a_mixed_stream_of_queries_like_fresh_grids():
         else:
             assert got.success and got.cost == pytest.approx(d, abs=1e-9)
             legal_steps(shared, got.cells, connectivity)
-    (s,) = pool_for(shared, False)._idle  # A* and Theta* write different arrays: only the last one written is dirty
-    assert all(not np.any(a) for a in (s.state, s.state_wide, s.g) if a is not s.written)
+    (s,) = pool_for(shared, False)._idle  # A*, Theta* and JPS write different arrays: only the last one written is dirty
+    assert all(not np.any(a) for a in state_arrays(s) if a is not s.written)
 
 
 def sawtooth(width: int, amplitude: int = 20) -> np.ndarray:
@@ -93,7 +98,9 @@ def test_a_path_too_long_for_the_narrow_state_is_searched_wide(blocked, moves):
         legal_steps(grid, got.cells, 8)
         pool = pool_for(grid, False)
         (s,) = pool._idle
-        assert pool.grid.needs_wide and s.state.size == 0  # the narrow attempt's array went
+        narrow = s.row_state if algorithm == "jps" else s.state
+        assert pool.grid.needs_wide and narrow.size == 0  # the narrow attempt's array went
+        assert s.written is (s.row_state_wide if algorithm == "jps" else s.state_wide)
     short = plan(grid, start, tuple(int(v) for v in free[40][::-1]))
     assert short.success and short.cost == plan(OccupancyGrid(blocked), start, tuple(free[40][::-1])).cost
     assert s.written is s.state_wide
@@ -186,9 +193,9 @@ def test_the_next_query_starts_from_all_zero_state(algorithm):
         plan(grid, (sx, sy), (gx, gy), algorithm=algorithm)
         (s,) = pool._idle
         assert np.any(s.written != 0)
-        K.clear_touched(s.written, s.stride, s.lo, s.hi, s.extent)
-        assert not any(np.any(a != 0) for a in (s.state, s.state_wide, s.g))
-        assert np.all(s.lo == s.stride) and np.all(s.hi == -1)
+        s.clear()
+        assert not any(np.any(a != 0) for a in state_arrays(s))
+        assert np.all(s.lo == s.stride) and np.all(s.hi == -1) and not s.flags.any()
 
 
 @pytest.mark.parametrize("heuristic, weight", [("octile", 1.5), ("octile", 40.0), ("manhattan", 1.0),

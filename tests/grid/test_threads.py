@@ -63,6 +63,6 @@ def test_grid_search_kernels_release_the_gil():
     kernels = [astar_kernel(conn, hcode, False, wide)
                for conn, hcode in ((8, K.H_OCTILE), (4, K.H_MANHATTAN), (8, K.H_ZERO)) for wide in (False, True)]
     kernels += [astar_kernel(8, K.H_EUCLIDEAN, True), jps_kernel(False), jps_kernel(True), costmap_astar]
-    kernels += [K.legal_moves, K.clear_touched, K.widen_state, K.trace_back, K.trace_jumps, K.trace_path,
-                K.smooth_path, K.step_counts, K.los_supercover, K.los_bresenham]
+    kernels += [K.legal_moves, K.clear_touched, K.clear_blocks, K.widen_state, K.trace_back, K.trace_jumps,
+                K.trace_path, K.smooth_path, K.step_counts, K.los_supercover, K.los_bresenham]
     assert all(kernel.targetoptions.get("nogil") for kernel in kernels)

@@ -1,14 +1,16 @@
 """Compiled grid search: A* (and Dijkstra, weighted A*), JPS and Theta*.
 
-The grid is a flat ``uint8`` array of passable cells padded with a blocked
-border one cell wide, so neighbour lookups need no bounds checks: cell (x, y)
-sits at index ``(y + 1) * S + (x + 1)`` with stride ``S = W + 2``.
+The grid is padded with a blocked border one cell wide, so neighbour lookups
+need no bounds checks, and flattened in one of two layouts. JPS, line of sight
+and smoothing read it row by row: padded cell (x, y) at ``y * S + x`` with
+stride ``S = W + 2``. A*, Dijkstra and Theta* read it in vertical strips
+(:func:`strip_index`), where the cells near one another share memory pages.
 
 Per-cell search state is one packed integer per cell for A*, Dijkstra and
 JPS (a uint32: :func:`state_layout`), one float64 and a parent index for
-Theta*, allocated once per grid; a query clears only the
-rows and columns the previous one wrote (:func:`clear_touched`). The open
-list is described below.
+Theta*, allocated once per grid; a query clears only what the previous one
+wrote (:func:`clear_blocks` in the strip layout, :func:`clear_touched` in
+rows). The open list is described below.
 """
 
 from __future__ import annotations
@@ -48,6 +50,108 @@ def cell_xy(u, S):
     fix-up after the quotient and the remainder that cost A* 3-5 % of its time (paired in-process
     A/B, 21 pairs, twice: random4096 0.961-0.964, maze1001 0.950-0.967)."""
     return np.int64(np.uint64(u) % np.uint64(S)), np.int64(np.uint64(u) // np.uint64(S))
+
+
+# -- the strip layout ------------------------------------------------------------
+# A*, Dijkstra and Theta* keep the legal moves and their search state in vertical strips of
+# 2**bits padded columns, each strip stored row after row: padded cell (x, y) at
+# ``(x >> bits) * SH + y * 2**bits + (x & (2**bits - 1))`` with SH = rows * 2**bits. A row-major
+# 4096-wide grid puts each row of uint32 state on four 4 KB pages of its own, so the cells around
+# one another lie on three pages and the cells a search front holds on thousands; on this VM the
+# address translations of 4 KB pages are what it misses (the host maps its guest's huge pages in 4
+# KB pieces: random reads over 16 MB took 20 ns on 4096 distinct pages, 5 ns packed into 64 of
+# them). In strips of 128 columns a 4 KB page of state is 8 rows of one strip: random4096 A* 0.87x
+# the time, maze1001 0.98x (the same expansions and state, cell for cell; prototype in-process
+# A/B, session 28). Only a move east or west across a strip's edge is not a constant offset
+# (:func:`strip_sides`).
+#: the widest strip (columns): 64 to 256 measured alike on random4096, 16 and 32 slower
+STRIP_BITS = 7
+#: a block of the strip layout: 2**10 cells (4 KB of uint32 state), the unit a search marks as
+#: written (``flags``) and the next query clears (:func:`clear_blocks`)
+BLOCK_BITS = 10
+
+
+def strip_bits(stride: int) -> int:
+    """The strip width (as a power of two) for padded rows ``stride`` cells long: the widest up to
+    ``2**STRIP_BITS`` that is at most an eighth of the row, so the last strip's unused columns add
+    at most an eighth to the arrays (a 3-cell-wide grid is stored a column at a time)."""
+    bits = 0
+    while bits < STRIP_BITS and (2 << bits) <= max(1, stride // 8):
+        bits += 1
+    return bits
+
+
+def strip_shape(rows: int, stride: int):
+    """``(bits, SH, size)`` of the strip layout of ``rows`` padded rows of ``stride`` cells:
+    :func:`strip_bits`, the cells of one strip, and of all of them."""
+    bits = strip_bits(stride)
+    strips = -(-stride // (1 << bits))
+    return bits, rows << bits, strips * (rows << bits)
+
+
+@njit(cache=True, inline="always")
+def strip_index(x, y, SH, bits):
+    """The strip-layout index of padded cell (x, y) (see above)."""
+    return (x >> bits) * SH + (y << bits) + (x & ((1 << bits) - 1))
+
+
+@njit(cache=True, inline="always")
+def divider(d, n):
+    """``(magic, shift)`` with ``(u * magic) >> shift == u // d`` for every ``0 <= u < n``
+    (``1 <= d <= n <= 2**31``; uint64): Granlund & Montgomery's round-up reciprocal, exact
+    because ``magic * d - 2**shift < d <= 2**(shift - N)`` for ``u < 2**N``, and ``u * magic <
+    2**(2N + 1)`` fits. A multiply and a shift instead of a division per expansion (:func:`strip_xy`;
+    random4096 A* 0.985x the time)."""
+    N = 1
+    while (1 << N) < n:
+        N += 1
+    L = 0
+    while (1 << L) < d:
+        L += 1
+    return np.uint64(((1 << (N + L)) + d - 1) // d), np.uint64(N + L)
+
+
+@njit(cache=True, inline="always")
+def strip_xy(u, SH, bits, magic, shift):
+    """Padded (x, y) of strip-layout index ``u`` (``magic, shift``: :func:`divider` of SH)."""
+    s = (np.uint64(u) * magic) >> shift
+    r = np.uint64(u) - s * np.uint64(SH)
+    b = np.uint64(bits)
+    return np.int64((s << b) | (r & ((np.uint64(1) << b) - np.uint64(1)))), np.int64(r >> b)
+
+
+@njit(cache=True, inline="always")
+def strip_sides(u, SH, bits):
+    """``(east, west)``: what a move east adds to strip-layout index ``u`` and a move west takes
+    away: 1 within a strip, and from a strip's last (first) column to the next (previous) strip's
+    first (last) column of the same row, ``SH - width + 1``."""
+    width = 1 << bits
+    column = u & (width - 1)
+    cross = SH - width + 1
+    return (cross if column == width - 1 else 1), (cross if column == 0 else 1)
+
+
+@njit(cache=True, inline="always")
+def strip_step(u, k, bits, east, west):
+    """The strip-layout index of the cell move k (:data:`MOVES_X`) leads to from ``u``
+    (``east, west``: :func:`strip_sides` of u)."""
+    return u + (_DY[np.uint64(k)] << bits) + _EAST[np.uint64(k)] * east - _WEST[np.uint64(k)] * west
+
+
+def to_rows(flat: np.ndarray, rows: int, stride: int) -> np.ndarray:
+    """A strip-layout array (:func:`strip_shape`) as padded rows ``(rows, stride)`` (a copy)."""
+    bits = strip_bits(stride)
+    strips = -(-stride // (1 << bits))
+    return flat.reshape(strips, rows, 1 << bits).transpose(1, 0, 2).reshape(rows, strips << bits)[:, :stride].copy()
+
+
+@njit(cache=True, nogil=True)
+def clear_blocks(gs, flags):
+    """Zero the blocks of ``gs`` (strip layout) a query marked in ``flags``, and the marks."""
+    for b in range(flags.shape[0]):
+        if flags[b]:
+            gs[b << BLOCK_BITS:min((b + 1) << BLOCK_BITS, gs.shape[0])] = 0
+            flags[b] = 0
 
 
 TIE = 1e-9  # f values closer than this are equal (distinct a + b√2 lengths differ by far more)
@@ -257,15 +361,17 @@ def clear_touched(gs, S, lo, hi, extent):
 
 
 @njit(cache=True, nogil=True)
-def widen_state(narrow, wide, S, lo, hi, extent):
-    """Move what a query wrote in the narrow packed state into the wide one (:func:`state_layout`),
-    zeroing the narrow cells: the region :func:`clear_touched` would clear. The records stay: they now
-    describe ``wide``, in which the stopped search can go on (``make_astar``'s ``resume``)."""
+def widen_state(narrow, wide, flags):
+    """Move what a query wrote in the narrow packed state into the wide one (:func:`state_layout`;
+    strip layout), zeroing the narrow cells: the blocks :func:`clear_blocks` would clear. The marks
+    stay: they now describe ``wide``, in which the stopped search can go on (``make_astar``'s
+    ``resume``)."""
     shift32, a_mask, b_mask, closed32 = NARROW_LAYOUT
     shift64, closed64 = WIDE_LAYOUT[0], WIDE_LAYOUT[3]
-    for r in range(extent[0] - 1, extent[1] + 2):
-        first, last = touched_span(r, lo, hi, extent, S)
-        for v in range(first, last):
+    for b in range(flags.shape[0]):
+        if not flags[b]:
+            continue
+        for v in range(b << BLOCK_BITS, min((b + 1) << BLOCK_BITS, narrow.shape[0])):
             p = narrow[v]
             if p != 0:
                 moved = (np.uint64((p >> shift32) & a_mask) << shift64) | np.uint64(p & b_mask)
@@ -283,6 +389,9 @@ MOVES_Y = (0, 0, 1, -1, 1, 1, -1, -1)
 _DX = np.array(MOVES_X, dtype=np.int64)
 _DY = np.array(MOVES_Y, dtype=np.int64)
 _STEP = np.array([1.0] * 4 + [SQRT2] * 4)
+#: 1 for the moves with an eastward (westward) part: their strip-layout step (:func:`strip_step`)
+_EAST = np.array([int(dx > 0) for dx in MOVES_X], dtype=np.int64)
+_WEST = np.array([int(dx < 0) for dx in MOVES_X], dtype=np.int64)
 
 
 def _canonical_table():
@@ -321,8 +430,23 @@ LEAD = np.array([max(0, int(b).bit_length() - 1) for b in range(256)], dtype=np.
 LOOK = 5
 
 
+@njit(cache=True, inline="always")
+def _move_mask(so, me, no, c):
+    """The legal-move mask (see :func:`legal_moves`) of the cell in ring column ``c`` of row ``me``,
+    between rows ``so`` (south) and ``no`` (north)."""
+    one = np.uint64(1)
+    east = np.int32(me[c + one])
+    west = np.int32(me[c - one])
+    north = np.int32(no[c])
+    south = np.int32(so[c])
+    m = (east | (west << 1) | (north << 2) | (south << 3)
+         | ((east & north & np.int32(no[c + one])) << 4) | ((west & north & np.int32(no[c - one])) << 5)
+         | ((east & south & np.int32(so[c + one])) << 6) | ((west & south & np.int32(so[c - one])) << 7))
+    return np.uint8(m * np.int32(me[c]))
+
+
 @njit(cache=True, nogil=True)
-def legal_moves(blocked, unknown, out):
+def legal_moves(blocked, unknown, out, bits=-1):
     """Each padded cell's legal 8-connected moves as a bit mask (bit k: move
     ``(MOVES_X[k], MOVES_Y[k])`` stays on free cells and, diagonally, cuts no
     blocked corner; 0 for blocked and border cells; the 4-connected moves are
@@ -343,8 +467,10 @@ def legal_moves(blocked, unknown, out):
     4096 x 4096 grid 18-23 -> 4.5-5.0 ms CPU (medians of 5, three
     interleaved pairs of processes, load 14).
 
-    Written into ``out`` (``(h + 2) * (w + 2)`` bytes), which the caller
-    allocates with numpy: numpy asks for transparent huge pages on arrays
+    Written into ``out`` in padded rows (``(h + 2) * (w + 2)`` bytes), or
+    with ``bits`` >= 0 in the strip layout of that width (:func:`strip_shape`'s
+    size; the columns past the padded grid 0), which the caller allocates with
+    numpy: numpy asks for transparent huge pages on arrays
     of 4 MB or more (``madvise(MADV_HUGEPAGE)``), numba's allocator does
     not, so a fresh 4096 x 4096 grid maps 7 huge pages (and its unaligned
     ends in small ones: ~520 faults) instead of about 4100 small pages, and
@@ -354,11 +480,22 @@ def legal_moves(blocked, unknown, out):
     """
     h, w = blocked.shape
     S = w + 2
-    if out.ndim != 1 or out.shape[0] != (h + 2) * S:  # the writes below index it unchecked
-        raise ValueError("legal_moves: out must be a 1-D array of (h + 2) * (w + 2) bytes")
-    out[:S] = 0
-    out[(h + 1) * S:] = 0
-    ring = np.zeros((3, S), dtype=np.uint8)  # padded row p in slot p % 3; the border columns stay 0
+    rows = h + 2
+    # the row length in ``out``: S, or whole strips
+    width = S if bits < 0 else -(-S // (1 << bits)) << bits
+    if out.ndim != 1 or out.shape[0] != rows * width:  # the writes below index it unchecked
+        raise ValueError("legal_moves: out must be a 1-D array of (h + 2) * (w + 2) bytes (in strips: whole strips)")
+    SH = rows << max(bits, 0)
+    strips = width >> max(bits, 0)
+    if bits < 0:
+        out[:S] = 0
+        out[(h + 1) * S:] = 0
+    else:
+        for s in range(strips):  # the first and last padded rows of every strip
+            out[s * SH:s * SH + (1 << bits)] = 0
+            out[(s + 1) * SH - (1 << bits):(s + 1) * SH] = 0
+    # padded row p in slot p % 3, padded column x in ring column x + 1: the columns around the grid stay 0
+    ring = np.zeros((3, width + 2), dtype=np.uint8)
     closed_unknown = unknown.shape[0] > 0
     for r in range(0, h + 1):
         nxt = (r + 1) % 3
@@ -366,10 +503,10 @@ def legal_moves(blocked, unknown, out):
             row = ring[nxt]
             if closed_unknown:
                 for x in range(w):
-                    row[x + 1] = np.uint8(1) ^ (np.uint8(blocked[r, x]) | np.uint8(unknown[r, x]))
+                    row[x + 2] = np.uint8(1) ^ (np.uint8(blocked[r, x]) | np.uint8(unknown[r, x]))
             else:
                 for x in range(w):
-                    row[x + 1] = np.uint8(1) ^ np.uint8(blocked[r, x])
+                    row[x + 2] = np.uint8(1) ^ np.uint8(blocked[r, x])
         else:
             ring[nxt, :] = 0
         if r == 0:
@@ -377,19 +514,19 @@ def legal_moves(blocked, unknown, out):
         so = ring[(r - 1) % 3]
         me = ring[r % 3]
         no = ring[nxt]
-        base = np.uint64(r * S)
-        out[base] = 0
-        out[base + np.uint64(w + 1)] = 0
         one = np.uint64(1)
-        for x in range(one, np.uint64(w + 1)):
-            east = np.int32(me[x + one])
-            west = np.int32(me[x - one])
-            north = np.int32(no[x])
-            south = np.int32(so[x])
-            m = (east | (west << 1) | (north << 2) | (south << 3)
-                 | ((east & north & np.int32(no[x + one])) << 4) | ((west & north & np.int32(no[x - one])) << 5)
-                 | ((east & south & np.int32(so[x + one])) << 6) | ((west & south & np.int32(so[x - one])) << 7))
-            out[base + x] = np.uint8(m * np.int32(me[x]))
+        if bits < 0:
+            base = np.uint64(r * S)
+            out[base] = 0
+            out[base + np.uint64(w + 1)] = 0
+            for x in range(one, np.uint64(w + 1)):
+                out[base + x] = _move_mask(so, me, no, x + one)
+        else:
+            for s in range(strips):
+                base = np.uint64(s * SH + (r << bits))
+                first = np.uint64(s << bits)
+                for j in range(np.uint64(1 << bits)):
+                    out[base + j] = _move_mask(so, me, no, first + j + one)
     return out
 
 
@@ -429,7 +566,7 @@ JPS_LOOK = 8
 
 
 def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
-    """A* over padded flat indices, compiled for one connectivity, heuristic
+    """A* over the strip layout's indices, compiled for one connectivity, heuristic
     and any-angle setting (Dijkstra with ``hcode`` 0; Theta* with
     ``any_angle``) and state width: as compile-time constants they cost nothing in the inner
     loop (about 8% of A*'s time when they were arguments). Numba caches each
@@ -439,15 +576,16 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     ``wide``), or for Theta* a float64 per cell (its g is a sum of square roots).
     With ``resume`` (A* and Dijkstra, wide) the kernel goes on with a search the
     narrow state stopped (WIDEN), its state moved into ``gs`` by
-    :func:`widen_state`: the records are kept, and every cell reached and not
+    :func:`widen_state`: the marks are kept, and every cell reached and not
     closed is opened again with all its moves; it returns WIDEN when their
     keys do not fit the bucket window (the caller starts over).
 
-    The returned kernel ``astar(free, moves, S, start, goal, weight, gs,
-    parent, lo, hi, extent, key, cell, nxt, head, stack)`` (``moves``: the
-    grid's :func:`legal_moves`) keeps all per-cell state in
-    ``gs``, first clearing what the previous query wrote (:func:`clear_touched`);
-    ``parent`` is written only with ``any_angle`` (A*'s paths are read back
+    The returned kernel ``astar(free, S, moves, SH, wbits, start, goal, weight, gs, parent, flags,
+    key, cell, nxt, head, stack)`` searches the strip layout (:func:`strip_shape`: ``SH`` and
+    ``wbits``, its width's bits; ``moves``, the grid's :func:`legal_moves` in it; ``start`` and ``goal`` its
+    indices) and keeps all per-cell state in ``gs``, first clearing what the previous query wrote
+    (:func:`clear_blocks`; it marks in ``flags`` every block it writes); ``free`` (padded rows of
+    stride ``S``) is read and ``parent`` written only with ``any_angle`` (A*'s paths are read back
     from ``gs`` by :func:`trace_back`).
     Every array is indexed through ``np.uint64``: numba wraps a signed index
     that could be negative (a shift, an and and an add per access), which
@@ -490,12 +628,12 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     step_bits = state_steps(wide)
 
     @njit(cache=True, nogil=True)
-    def astar(free, moves, S, start, goal, weight, gs, parent, lo, hi, extent, key, cell, nxt, head, stack,
+    def astar(free, S, moves, SH, wbits, start, goal, weight, gs, parent, flags, key, cell, nxt, head, stack,
               resume=False):
         if not resume:
-            clear_touched(gs, S, lo, hi, extent)  # what the previous query wrote
-        gx = goal % S
-        gy = goal // S
+            clear_blocks(gs, flags)  # what the previous query wrote
+        magic, dshift = divider(SH, gs.shape[0])
+        gx, gy = strip_xy(goal, SH, wbits, magic, dshift)
         mask = N_BUCKETS - 1
         inv_width = (N_BUCKETS - 3) / (SQRT2 + 2.0 * weight)  # buckets per unit of f: the window fits, with room
         for b in range(N_BUCKETS):
@@ -517,13 +655,15 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
             # running search's do, with a consistent heuristic); else (WIDEN) the caller starts over.
             fcur = math.inf
             fmax = -math.inf
-            for r in range(extent[0] - 1, extent[1] + 2):
-                first, last = touched_span(r, lo, hi, extent, S)
-                for v in range(first, last):
+            for blk in range(flags.shape[0]):
+                if not flags[blk]:
+                    continue
+                for v in range(blk << BLOCK_BITS, min((blk + 1) << BLOCK_BITS, gs.shape[0])):
                     pv = gs[np.uint64(v)]
                     if pv == zero or pv >= closed_bit:
                         continue
-                    f = state_g(pv, shift, a_mask, b_mask) + weight * heuristic(hcode, v % S, v // S, gx, gy)
+                    vx, vy = strip_xy(v, SH, wbits, magic, dshift)
+                    f = state_g(pv, shift, a_mask, b_mask) + weight * heuristic(hcode, vx, vy, gx, gy)
                     fcur = min(fcur, f)
                     fmax = max(fmax, f)
                     if bump == cap_pool:
@@ -551,7 +691,9 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 parent[start] = start
             else:
                 gs[np.uint64(start)] = a_one
-            fcur = 1.0 + weight * heuristic(hcode, start % S, start // S, gx, gy)  # keys are (g + 1) + weight * h
+            flags[np.uint64(start >> BLOCK_BITS)] = 1
+            sx, sy = strip_xy(start, SH, wbits, magic, dshift)
+            fcur = 1.0 + weight * heuristic(hcode, sx, sy, gx, gy)  # keys are (g + 1) + weight * h
             cb = np.int64(fcur * inv_width) & mask
             stack[np.uint64(0)] = start * 256 + 255  # open entries: cell * 256 + the moves it may expand
             top = 1
@@ -597,22 +739,22 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 # loading their state and moves, which a first visit finds in memory, not in cache
                 # (4% of A*'s time on random4096, 5% on maze1001, paired in-process A/B). The address
                 # may lie outside the arrays near the border: a prefetch never faults.
+                # (Across a strip's edge the line bends: that prefetch is wasted, never wrong.)
                 lead = LEAD[np.uint64(allowed)]
-                ahead = u + LOOK * (_DX[np.uint64(lead)] + _DY[np.uint64(lead)] * S)
+                ahead = u + LOOK * (_DX[np.uint64(lead)] + (_DY[np.uint64(lead)] << wbits))
                 _prefetch(gs, ahead)
                 _prefetch(moves, ahead)
             if top > 0:
                 # The cell below on the stack is usually expanded next, and far from this one: start
-                # loading its three rows of state and grid now (A* waits on memory, not arithmetic:
-                # 11-16% faster on random4096, 9% on maze1001), and the cell below that (1.8% more).
+                # loading its state and grid now (A* waits on memory, not arithmetic: 11-16% faster on
+                # random4096, 9% on maze1001), and the cell below that (1.8% more). In rows the lines of
+                # the rows above and below were prefetched as well; in strips that measured as noise.
                 w = stack[np.uint64(top - 1)] >> 8
-                for row in (w - S, w, w + S):
-                    _prefetch(gs, row)
+                _prefetch(gs, w)
                 _prefetch(moves, w)
                 if top > 1:
                     w = stack[np.uint64(top - 2)] >> 8
-                    for row in (w - S, w, w + S):
-                        _prefetch(gs, row)
+                    _prefetch(gs, w)
                     _prefetch(moves, w)
             if any_angle:
                 gu = gs[np.uint64(u)]
@@ -631,24 +773,12 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 gs[np.uint64(u)] = pu | closed_bit
                 gu = state_g(pu, shift, a_mask, b_mask)
             expanded += 1
-            ux, uy = cell_xy(u, S)
-            # rows and columns this expansion may write around (what clear_touched resets)
-            if ux < lo[np.uint64(uy)]:
-                # A row's first expansion records the rows spanned, in ``extent`` itself: two running
-                # row bounds tested at every expansion cost 5% of A*'s time (registers the loop needs
-                # elsewhere; paired in-process A/B, random4096 and maze1001).
-                if lo[np.uint64(uy)] == S:
-                    if uy < extent[0]:
-                        extent[0] = uy
-                    if uy > extent[1]:
-                        extent[1] = uy
-                lo[np.uint64(uy)] = ux
-            if ux > hi[np.uint64(uy)]:
-                hi[np.uint64(uy)] = ux
+            ux, uy = strip_xy(u, SH, wbits, magic, dshift)
             if u == goal:
                 status = 1
                 break
             grandparent = parent[u] if any_angle else u  # Theta*: the parent a child may inherit
+            east, west = strip_sides(u, SH, wbits)
             mu = np.int64(moves[np.uint64(u)])
             m = mu & legal & allowed
             for j in range(slots):  # the legal moves, lowest bit first (orthogonal before diagonal)
@@ -665,7 +795,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                         continue
                 dx = _DX[np.uint64(k)]
                 dy = _DY[np.uint64(k)]
-                v = u + dx + dy * S
+                v = strip_step(u, k, wbits, east, west)
                 if any_angle:
                     gv = gs[np.uint64(v)]
                     if gv < 0.0:
@@ -673,7 +803,7 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                     ng = gu + _STEP[np.uint64(k)]
                     par = u
                     if grandparent != u:
-                        qx, qy = cell_xy(grandparent, S)
+                        qx, qy = strip_xy(grandparent, SH, wbits, magic, dshift)
                         if los_supercover(free, S, qx - 1, qy - 1, ux + dx - 1, uy + dy - 1):
                             ng = -gs[np.uint64(grandparent)] + math.sqrt((ux + dx - qx) ** 2 + (uy + dy - qy) ** 2)
                             par = grandparent
@@ -690,6 +820,10 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                         parent[v] = par
                     else:
                         gs[np.uint64(v)] = pn
+                    # its block, for the next query to clear: a byte stored per write, where bounds on
+                    # each row's columns took two loads, two compares and their branches per expansion
+                    # (random4096 A* 0.955x the time in strips, paired in-process A/B)
+                    flags[np.uint64(v >> BLOCK_BITS)] = 1
                     if canonical:
                         entry = v * 256 + np.int64(CANONICAL[np.uint64(k * 256 + mu)])
                     else:
@@ -729,14 +863,15 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
 
 
 @njit(cache=True)
-def _predecessor(moves, S, gs, v, n_moves, steps, value_mask):
+def _predecessor(moves, SH, bits, gs, v, n_moves, steps, value_mask):
     """A reached neighbour u of v with ``state(u) + steps[k] == state(v)``
     (packed states without their closed bit, :func:`state_layout`; ``steps``:
     what each move k adds, :func:`state_steps`), over a legal move
-    (``moves``: the legal-move masks); -1 if there is none."""
+    (``moves``: the legal-move masks; all in the strip layout); -1 if there is none."""
     pv = gs[v] & value_mask
+    east, west = strip_sides(v, SH, bits)
     for k in range(n_moves):
-        u = v - MOVES_X[k] - MOVES_Y[k] * S
+        u = v - (MOVES_Y[k] << bits) - _EAST[k] * west + _WEST[k] * east  # move k's start: the step back
         pu = gs[u] & value_mask
         if (moves[u] >> k) & 1 == 0 or pu == 0:  # u cannot step to v, or was never reached
             continue
@@ -746,10 +881,11 @@ def _predecessor(moves, S, gs, v, n_moves, steps, value_mask):
 
 
 @njit(cache=True, nogil=True)
-def trace_back(moves, S, gs, start, goal, conn, steps, value_mask):
+def trace_back(moves, SH, bits, gs, start, goal, conn, steps, value_mask):
     """Cells (x, y) from start to goal of the path A* found, read from its
     packed state ``gs`` alone (A* keeps no parents; :func:`state_layout`;
-    ``steps`` and ``value_mask`` of the state's dtype: :func:`trace_back_args`).
+    ``steps`` and ``value_mask`` of the state's dtype: :func:`trace_back_args`;
+    ``moves`` and ``gs`` in the strip layout of ``SH`` and ``bits``).
 
     Why this works: every reached cell v other than the start got its state
     as ``state[u] + step(u, v)`` (one more straight or diagonal move) from a
@@ -764,20 +900,22 @@ def trace_back(moves, S, gs, start, goal, conn, steps, value_mask):
     breaks (which would be a bug in the search).
     """
     n_moves = 8 if conn == 8 else 4
+    magic, shift = divider(SH, gs.shape[0])
     count = 1
     v = goal
     while v != start:
-        v = _predecessor(moves, S, gs, v, n_moves, steps, value_mask)
+        v = _predecessor(moves, SH, bits, gs, v, n_moves, steps, value_mask)
         if v < 0:
             return np.empty((0, 2), dtype=np.int64)
         count += 1
     out = np.empty((count, 2), dtype=np.int64)
     v = goal
     for m in range(count - 1, -1, -1):
-        out[m, 0] = v % S - 1
-        out[m, 1] = v // S - 1
+        x, y = strip_xy(v, SH, bits, magic, shift)
+        out[m, 0] = x - 1
+        out[m, 1] = y - 1
         if m > 0:
-            v = _predecessor(moves, S, gs, v, n_moves, steps, value_mask)
+            v = _predecessor(moves, SH, bits, gs, v, n_moves, steps, value_mask)
     return out
 
 
@@ -1127,9 +1265,10 @@ def trace_jumps(moves, S, gs, start, goal, steps, value_mask):
 
 
 @njit(cache=True, nogil=True)
-def trace_path(parent, goal, S):
+def trace_path(parent, goal, SH, bits):
     """Cells (x, y) from start to goal along Theta*'s parent chain (its
-    waypoints: consecutive cells see each other)."""
+    waypoints: consecutive cells see each other; strip-layout indices)."""
+    magic, shift = divider(SH, parent.shape[0])
     count = 1
     v = goal
     while parent[v] != v:
@@ -1138,8 +1277,9 @@ def trace_path(parent, goal, S):
     out = np.empty((count, 2), dtype=np.int64)
     v = goal
     for m in range(count - 1, -1, -1):
-        out[m, 0] = v % S - 1
-        out[m, 1] = v // S - 1
+        x, y = strip_xy(v, SH, bits, magic, shift)
+        out[m, 0] = x - 1
+        out[m, 1] = y - 1
         v = parent[v]
     return out
 

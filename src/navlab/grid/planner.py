@@ -66,24 +66,27 @@ class PaddedGrid:
     with a blocked border one cell wide, flattened: read-only, shared by every query
     (but for ``needs_wide``, a hint on the state's width that changes no answer).
 
-    ``moves`` is built at once, straight from ``blocked`` (and ``unknown``
-    cells, also closed unless None), and is all A*, Dijkstra and JPS read;
-    ``free`` (one byte per padded cell) only when first asked for, by Theta*,
-    smoothing or line of sight: its 4 KB pages were a first query's to map
-    (about 4100 on a 4096 x 4096 grid; ``kernels.legal_moves``). No
+    Each is built when first asked for, straight from ``blocked`` (and
+    ``unknown`` cells, also closed unless None): ``strip_moves`` (the strip
+    layout, ``kernels.strip_shape``: ``bits``, ``strip_height``, ``strip_size``)
+    by A*, Dijkstra and Theta*, ``moves`` (padded rows of ``stride`` cells) by
+    JPS, and ``free`` (one byte per padded cell, in rows) by Theta*, smoothing
+    or line of sight: the pages of each were a first query's to map (about
+    4100 for ``free`` on a 4096 x 4096 grid; ``kernels.legal_moves``). No
     whole-grid temporaries either, which on a first query cost as much as
-    the search's own state (fresh pages).
+    the search's own state (fresh pages). Two threads asking at once may
+    both build one: equal arrays, either kept.
     """
 
     def __init__(self, blocked: np.ndarray, unknown: Optional[np.ndarray] = None) -> None:
         h, w = blocked.shape
         self.stride = w + 2
+        self.rows = h + 2
+        self.bits, self.strip_height, self.strip_size = K.strip_shape(self.rows, self.stride)
+        if self.strip_size > 2**31:  # (kernels.divider's domain; MAX_CELLS grids stay far below)
+            raise ValueError(f"a {h}x{w} grid is too large to search: over 2**31 cells in strips")
         self.blocked = blocked
         self.unknown = unknown if unknown is not None and unknown.any() else None
-        closed = np.zeros((0, 0), dtype=bool) if self.unknown is None else self.unknown
-        # one byte per cell: the legal moves A* reads; numpy's allocation (huge pages, kernels.legal_moves)
-        self.moves = K.legal_moves(blocked, closed, np.empty((h + 2) * self.stride, dtype=np.uint8))
-        self.moves.flags.writeable = False
         # what the A* kernels get for ``free`` when they are not Theta*, the only one whose line of sight reads it
         self.no_free = np.zeros(1, dtype=np.uint8)
         self.no_free.flags.writeable = False
@@ -93,10 +96,26 @@ class PaddedGrid:
         # whole numbers, so their searches are the same; the one thing here that changes.
         self.needs_wide = False
 
+    def _legal_moves(self, bits: int, size: int) -> np.ndarray:
+        closed = np.zeros((0, 0), dtype=bool) if self.unknown is None else self.unknown
+        # one byte per cell; numpy's allocation (huge pages, kernels.legal_moves)
+        moves = K.legal_moves(self.blocked, closed, np.empty(size, dtype=np.uint8), bits)
+        moves.flags.writeable = False
+        return moves
+
+    @functools.cached_property
+    def strip_moves(self) -> np.ndarray:
+        """The legal moves A*, Dijkstra and Theta* read, in the strip layout."""
+        return self._legal_moves(self.bits, self.strip_size)
+
+    @functools.cached_property
+    def moves(self) -> np.ndarray:
+        """The legal moves JPS reads, in padded rows."""
+        return self._legal_moves(-1, self.rows * self.stride)
+
     @functools.cached_property
     def free(self) -> np.ndarray:
-        """Passable cells as 0/1 bytes, padded (two threads asking at once may both
-        build it: equal arrays, either kept)."""
+        """Passable cells as 0/1 bytes, padded."""
         h, w = self.blocked.shape
         padded = np.zeros((h + 2, w + 2), dtype=np.uint8)
         inner = padded[1:-1, 1:-1].view(np.bool_)
@@ -111,7 +130,13 @@ class PaddedGrid:
         return not self.blocked[y, x] and not (self.unknown is not None and self.unknown[y, x])
 
     def index(self, x: int, y: int) -> int:
+        """Cell (x, y)'s index in padded rows."""
         return (y + 1) * self.stride + (x + 1)
+
+    def strip_index(self, x: int, y: int) -> int:
+        """Cell (x, y)'s index in the strip layout (``kernels.strip_index``)."""
+        x, y = x + 1, y + 1
+        return (x >> self.bits) * self.strip_height + (y << self.bits) + (x & ((1 << self.bits) - 1))
 
 
 class GridSearcher:
@@ -120,32 +145,39 @@ class GridSearcher:
     Queries lease one from the grid's :class:`SearcherPool`, so threads planning
     on the same grid never share it; a searcher is reused by later queries,
     so only the first query on a grid (per concurrent thread) pays for its
-    arrays. ``state`` holds all of A*'s, Dijkstra's and JPS's per-cell state, packed
-    in 32 bits (``kernels.state_layout``; ``state_wide``, 64, on a grid where a
-    path was too long for that: ``PaddedGrid.needs_wide``), ``g`` Theta*'s (one float64 per cell), which also
-    adds ``parent``: each allocated when first used. ``lo``, ``hi`` and
-    ``extent`` record what the last query wrote in ``written``, which the next
-    clears (``kernels.clear_touched``), whichever array it uses.
+    arrays. ``state`` holds A*'s and Dijkstra's per-cell state, packed in 32
+    bits (``kernels.state_layout``; ``state_wide``, 64, on a grid where a path
+    was too long for that: ``PaddedGrid.needs_wide``), ``g`` Theta*'s (one
+    float64 per cell), which also adds ``parent``, all in the strip layout
+    (``kernels.strip_shape``); ``row_state`` and ``row_state_wide`` hold JPS's,
+    in padded rows. Each is allocated when first used. Only ``written`` holds
+    anything but zeros, and the next query clears what the last one wrote
+    there: the blocks marked in ``flags`` (``kernels.clear_blocks``), or in
+    rows the spans ``lo``, ``hi`` and ``extent`` record
+    (``kernels.clear_touched``).
     """
+
+    #: the state arrays in padded rows (JPS's); the others are in the strip layout
+    ROW_STATES = ("row_state", "row_state_wide")
 
     def __init__(self, grid: PaddedGrid) -> None:
         self.stride = grid.stride
         self.grid = grid
-        self.moves = grid.moves
-        n = self.moves.size
-        rows = n // self.stride
+        rows = grid.rows
         # zero pages are mapped when first written: a search pays for the cells it reaches
-        self.state = np.zeros(0, dtype=K.state_layout(False)[0])
-        self.state_wide = np.zeros(0, dtype=K.state_layout(True)[0])
+        narrow, wide = K.state_layout(False)[0], K.state_layout(True)[0]
+        self.state, self.state_wide = np.zeros(0, dtype=narrow), np.zeros(0, dtype=wide)
+        self.row_state, self.row_state_wide = np.zeros(0, dtype=narrow), np.zeros(0, dtype=wide)
         self.g = np.zeros(0)
         self.written = self.g  # the array the records below describe (all the others are zero)
         self.parent = np.empty(0, dtype=np.int32)
-        self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned
+        self.flags = np.zeros(-(-grid.strip_size >> K.BLOCK_BITS), dtype=np.uint8)  # blocks written (strips)
+        self.lo = np.full(rows, self.stride, dtype=np.int64)  # columns each row's expansions spanned (rows)
         self.hi = np.full(rows, -1, dtype=np.int64)
         self.extent = np.array([rows, -1], dtype=np.int64)  # and the rows they spanned
         # The open list (a bucket queue's node pool) and the same-f stack;
         # grown (and the query rerun) if one fills up.
-        room = min(n + 16, 1 << 16)
+        room = min(grid.strip_size + 16, 1 << 16)
         self.stack = np.empty(room, dtype=np.int64)
         self._pool(room)
 
@@ -155,44 +187,49 @@ class GridSearcher:
         self.next = np.empty(room, dtype=np.int32)
         self.head = np.empty(K.N_BUCKETS, dtype=np.int32)
 
-    def index(self, x: int, y: int) -> int:
-        return (y + 1) * self.stride + (x + 1)
+    def _indices(self, algorithm: str, start, goal) -> Tuple[int, int]:
+        """Cells ``start`` and ``goal`` (x, y) as the flat indices ``algorithm``'s kernel reads: in rows
+        for JPS, else in the strip layout."""
+        index = self.grid.index if algorithm == "jps" else self.grid.strip_index
+        return index(*start), index(*goal)
 
-    def search(self, algorithm: str, a: int, b: int, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
-        """One query from flat index ``a`` to ``b``, rerun with larger open
-        lists until they suffice, and in the wide state if its path
-        outgrew the narrow one (A* and Dijkstra go on where they stopped, JPS
-        starts over): (status, expanded) as the kernels return."""
+    def search(self, algorithm: str, start, goal, connectivity: int, hcode: int, weight: float) -> Tuple[int, int]:
+        """One query from cell ``start`` to cell ``goal`` (x, y; a padded border cell such as (-1, -1) is a
+        goal never reached), rerun with larger open lists until they suffice, and in the wide state if its
+        path outgrew the narrow one (A* and Dijkstra go on where they stopped, JPS starts over):
+        (status, expanded) as the kernels return."""
+        grid = self.grid
+        a, b = self._indices(algorithm, start, goal)
         if algorithm == "theta_star" and self.parent.size == 0:
-            self.parent = np.empty(self.moves.size, dtype=np.int32)
+            self.parent = np.empty(grid.strip_size, dtype=np.int32)
         resume, before = False, 0  # (expanded by the narrow search a resumed one goes on from)
         while True:
-            wide = self.grid.needs_wide
+            wide = grid.needs_wide
             if algorithm == "jps":
-                state = self._writing("state_wide" if wide else "state")
-                status, expanded = jps_kernel(wide)(self.moves, self.stride, a, b, state, self.lo, self.hi,
+                state = self._writing("row_state_wide" if wide else "row_state")
+                status, expanded = jps_kernel(wide)(grid.moves, self.stride, a, b, state, self.lo, self.hi,
                                                     self.extent, self.key, self.cell, self.next, self.head, self.stack)
             else:
                 any_angle = algorithm == "theta_star"
                 wide = wide and not any_angle
                 kernel = astar_kernel(connectivity, hcode, any_angle, wide)
-                free = self.grid.free if any_angle else self.grid.no_free
+                free = grid.free if any_angle else grid.no_free
                 state = self.written if resume else self._writing("g" if any_angle else "state_wide" if wide
                                                                   else "state")
-                status, expanded = kernel(free, self.moves, self.stride, a, b, weight, state, self.parent, self.lo,
-                                          self.hi, self.extent, self.key, self.cell, self.next,
+                status, expanded = kernel(free, self.stride, grid.strip_moves, grid.strip_height, grid.bits, a, b,
+                                          weight, state, self.parent, self.flags, self.key, self.cell, self.next,
                                           self.head, self.stack, resume)
             if status == K.WIDEN and not resume and not wide and algorithm != "jps":
                 # a path of over 32 766 straight or 65 535 diagonal moves (a big maze's): the stopped search's
                 # state moves to the wide array, where it goes on (make_maze(300, 300, seed=1) corner to corner:
                 # 146 ms, against 129 for a search wide from the start; starting over took 1.4-2.5x that)
-                self.grid.needs_wide = True
+                grid.needs_wide = True
                 narrow = self.state
                 self._writing("state_wide", keep_records=True)
-                K.widen_state(narrow, self.state_wide, self.stride, self.lo, self.hi, self.extent)
+                K.widen_state(narrow, self.state_wide, self.flags)
                 resume, before = True, expanded
             elif status == K.WIDEN:  # JPS, or a resumed search whose open keys did not fit: start over wide
-                self.grid.needs_wide = True
+                grid.needs_wide = True
                 resume, before = False, 0
             elif status == K.OVERFLOW:
                 self.grow()  # (a resumed search that ran out of room may have half-expanded a cell: start over)
@@ -206,27 +243,45 @@ class GridSearcher:
         records then describe ``name``): only ``written`` ever holds anything but zeros."""
         array = getattr(self, name)
         if array.size == 0:
-            array = np.zeros(self.moves.size, dtype=array.dtype)
+            size = self.grid.rows * self.stride if name in self.ROW_STATES else self.grid.strip_size
+            array = np.zeros(size, dtype=array.dtype)
             setattr(self, name, array)
         if array is not self.written:
             if not keep_records:
-                K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
+                self.clear()
             self.written = array
-        if name == "state_wide" and self.state.size:  # once wide, never narrow again: its bytes go
-            self.state = np.zeros(0, dtype=self.state.dtype)
+        for narrow, wide in (("state", "state_wide"), ("row_state", "row_state_wide")):
+            if name == wide and getattr(self, narrow).size:  # once wide, never narrow again: its bytes go
+                setattr(self, narrow, np.zeros(0, dtype=getattr(self, narrow).dtype))
         return array
 
-    def cells(self, algorithm: str, connectivity: int, a: int, b: int) -> np.ndarray:
-        """The path the last search (from ``a``, which reached ``b``) found, as cells (x, y)."""
-        if algorithm == "theta_star":
-            return K.trace_path(self.parent, b, self.stride)
-        wide = self.written is self.state_wide
-        if algorithm == "jps":
-            cells = K.trace_jumps(self.moves, self.stride, self.written, a, b, *_TRACE_BACK[wide])
+    def clear(self) -> None:
+        """Zero what the last query wrote in ``written`` (by its records, which are left empty)."""
+        if any(self.written is getattr(self, name) for name in self.ROW_STATES):
+            K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
         else:
-            cells = K.trace_back(self.moves, self.stride, self.written, a, b, connectivity, *_TRACE_BACK[wide])
+            K.clear_blocks(self.written, self.flags)
+
+    def written_rows(self) -> np.ndarray:
+        """``written`` in padded rows ``(rows, stride)`` (a copy), whichever its layout."""
+        if any(self.written is getattr(self, name) for name in self.ROW_STATES):
+            return self.written.reshape(self.grid.rows, self.stride).copy()
+        return K.to_rows(self.written, self.grid.rows, self.stride)
+
+    def cells(self, algorithm: str, connectivity: int, start, goal) -> np.ndarray:
+        """The path the last search (from cell ``start``, which reached cell ``goal``) found, as cells (x, y)."""
+        grid = self.grid
+        a, b = self._indices(algorithm, start, goal)
+        if algorithm == "theta_star":
+            return K.trace_path(self.parent, b, grid.strip_height, grid.bits)
+        wide = self.written is self.state_wide or self.written is self.row_state_wide
+        if algorithm == "jps":
+            cells = K.trace_jumps(grid.moves, self.stride, self.written, a, b, *_TRACE_BACK[wide])
+        else:
+            cells = K.trace_back(grid.strip_moves, grid.strip_height, grid.bits, self.written, a, b, connectivity,
+                                 *_TRACE_BACK[wide])
         if len(cells) == 0:  # impossible after a successful search (kernels.trace_back); never report it as found
-            raise RuntimeError(f"grid search state broken: no predecessor chain from {b} back to {a}")
+            raise RuntimeError(f"grid search state broken: no predecessor chain from {goal} back to {start}")
         return cells
 
     def grow(self) -> None:
@@ -414,9 +469,8 @@ def _warmed(algorithm: str, connectivity: int, hcode: int, smooth: bool) -> floa
     pool = pool_for(OccupancyGrid(blocked), False)
     code = search_heuristic(algorithm, hcode)
     with pool.lease() as s:
-        a, b = pool.grid.index(0, 1), pool.grid.index(3, 2)
-        s.search(algorithm, a, b, connectivity, code, 1.0)
-        cells = s.cells(algorithm, connectivity, a, b)
+        s.search(algorithm, (0, 1), (3, 2), connectivity, code, 1.0)
+        cells = s.cells(algorithm, connectivity, (0, 1), (3, 2))
     if smooth:
         for bresenham in (True, False):
             K.smooth_path(pool.grid.free, pool.grid.stride, np.ascontiguousarray(cells), bresenham)
@@ -554,16 +608,15 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
             return Result(status=status, params=params, stats=_stats(t0, warmup_s=warmup_s), cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"{label} cell {cell} is {kind}")
     code = search_heuristic(algorithm, hcode)
-    a, b = pool.grid.index(*s_cell), pool.grid.index(*g_cell)
     with pool.lease() as s:  # the search state belongs to this call until the path is read out
-        status, expanded = s.search(algorithm, a, b, connectivity, code,
+        status, expanded = s.search(algorithm, s_cell, g_cell, connectivity, code,
                                     float(weight) if algorithm == "astar" else 1.0)
         if status != 1:
             return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded, warmup_s=warmup_s),
                           cells=np.empty((0, 2), dtype=np.int64),
                           reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)" + unknown_hint(
                               grid, allow_unknown))
-        cells = s.cells(algorithm, connectivity, a, b)
+        cells = s.cells(algorithm, connectivity, s_cell, g_cell)
     raw = None
     raw_cost = path_cost(cells)
     if smooth and len(cells) > 2:

@@ -65,11 +65,22 @@ def in_strips(module, algorithm: str) -> bool:
     return algorithm != "jps" and hasattr(module, "strip_shape")
 
 
+def strip_layout(module, grid):
+    """``(bits, SH, size, moves)``: ``module``'s strip layout of ``grid`` and its legal moves in it, built
+    by the module's own ``legal_moves`` (once per grid and module)."""
+    cache = vars(grid).setdefault("_ab_layouts", {})
+    if module.__name__ not in cache:
+        bits, SH, size = module.strip_shape(grid.rows, grid.stride)
+        moves = module.legal_moves(grid.blocked, np.zeros((0, 0), bool), np.empty(size, np.uint8), bits)
+        cache[module.__name__] = bits, SH, size, moves
+    return cache[module.__name__]
+
+
 def state_array(module, algorithm: str, grid) -> np.ndarray:
     """The per-cell state ``module``'s ``algorithm`` searches in: packed (``state_layout``: A* and
     Dijkstra since session 19, JPS with ``make_jps``) or one float64 per cell (older kernels), in the
     strip layout or in padded rows (:func:`in_strips`)."""
-    cells = grid.strip_size if in_strips(module, algorithm) else grid.rows * grid.stride
+    cells = strip_layout(module, grid)[2] if in_strips(module, algorithm) else grid.rows * grid.stride
     if hasattr(module, "make_jps" if algorithm == "jps" else "state_layout"):
         return np.zeros(cells, dtype=module.state_layout(False)[0])
     return np.zeros(cells)
@@ -98,11 +109,16 @@ def searcher_call(module, algorithm: str):
         return lambda g, state, start, goal: jps(g.grid.moves, g.stride, start, goal, state, g.lo, g.hi, g.extent,
                                                  g.key, g.cell, g.next, g.head, g.stack)
     kernel = module.make_astar(8, 4 if algorithm == "astar" else 0, False)
-    if in_strips(module, algorithm):  # (the strip masks PaddedGrid builds with the installed kernels)
-        return lambda g, state, start, goal: kernel(
-            g.grid.no_free, g.stride, g.grid.strip_moves, g.grid.strip_height, g.grid.bits,
-            g.grid.strip_index(*start), g.grid.strip_index(*goal), 1.0, state, g.parent, g.flags, g.key, g.cell,
-            g.next, g.head, g.stack)
+    if in_strips(module, algorithm):
+        flags = {}  # the blocks each searcher's state holds, in the module's layout
+
+        def call(g, state, start, goal):
+            bits, SH, size, moves = strip_layout(module, g.grid)
+            marks = flags.setdefault(id(g), np.zeros(-(-size >> module.BLOCK_BITS), np.uint8))
+            a, b = (module.strip_index(x + 1, y + 1, SH, bits) for x, y in (start, goal))
+            return kernel(g.grid.no_free, g.stride, moves, SH, bits, a, b, 1.0, state, g.parent, marks, g.key,
+                          g.cell, g.next, g.head, g.stack)
+        return call
     return lambda g, state, start, goal: kernel(  # (older kernels: padded rows)
         g.grid.no_free, g.grid.moves, g.stride, g.grid.index(*start),
         g.grid.index(*goal), 1.0, state, g.parent, g.lo, g.hi, g.extent, g.key, g.cell, g.next, g.head, g.stack)

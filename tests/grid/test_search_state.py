@@ -69,7 +69,8 @@ def test_one_grid_answers_a_mixed_stream_of_queries_like_fresh_grids():
             assert got.success and got.cost == pytest.approx(d, abs=1e-9)
             legal_steps(shared, got.cells, connectivity)
     (s,) = pool_for(shared, False)._idle  # A*, Theta* and JPS write different arrays: only the last one written is dirty
-    assert all(not np.any(a) for a in state_arrays(s) if a is not s.written)
+    assert all(not np.any(a) for a in state_arrays(s) if not np.shares_memory(a, s.written))
+    assert s.row_state.size == 0 or np.shares_memory(s.row_state, s.state)  # JPS's rows: A*'s memory
 
 
 def sawtooth(width: int, amplitude: int = 20) -> np.ndarray:

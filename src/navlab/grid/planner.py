@@ -84,7 +84,7 @@ class PaddedGrid:
         self.rows = h + 2
         self.bits, self.strip_height, self.strip_size = K.strip_shape(self.rows, self.stride)
         if self.strip_size > 2**31:  # (kernels.divider's domain; MAX_CELLS grids stay far below)
-            raise ValueError(f"a {h}x{w} grid is too large to search: over 2**31 cells in strips")
+            raise ParameterError(f"blocked: a {h}x{w} grid is too large to search (over 2**31 cells in strips)")
         self.blocked = blocked
         self.unknown = unknown if unknown is not None and unknown.any() else None
         # what the A* kernels get for ``free`` when they are not Theta*, the only one whose line of sight reads it
@@ -150,15 +150,17 @@ class GridSearcher:
     was too long for that: ``PaddedGrid.needs_wide``), ``g`` Theta*'s (one
     float64 per cell), which also adds ``parent``, all in the strip layout
     (``kernels.strip_shape``); ``row_state`` and ``row_state_wide`` hold JPS's,
-    in padded rows. Each is allocated when first used. Only ``written`` holds
+    in padded rows, at the start of ``state``'s and ``state_wide``'s memory (never
+    used at once: a grid searched by A* and JPS keeps 4 bytes of state per cell,
+    not 8). Each is allocated when first used. Only ``written`` holds
     anything but zeros, and the next query clears what the last one wrote
     there: the blocks marked in ``flags`` (``kernels.clear_blocks``), or in
     rows the spans ``lo``, ``hi`` and ``extent`` record
     (``kernels.clear_touched``).
     """
 
-    #: the state arrays in padded rows (JPS's); the others are in the strip layout
-    ROW_STATES = ("row_state", "row_state_wide")
+    #: the state arrays in padded rows (JPS's), each the start of a strip-layout array's memory
+    ROW_STATES = {"row_state": "state", "row_state_wide": "state_wide"}
 
     def __init__(self, grid: PaddedGrid) -> None:
         self.stride = grid.stride
@@ -243,15 +245,19 @@ class GridSearcher:
         records then describe ``name``): only ``written`` ever holds anything but zeros."""
         array = getattr(self, name)
         if array.size == 0:
-            size = self.grid.rows * self.stride if name in self.ROW_STATES else self.grid.strip_size
-            array = np.zeros(size, dtype=array.dtype)
+            strips = self.ROW_STATES.get(name, name)
+            memory = getattr(self, strips)
+            if memory.size == 0:
+                memory = np.zeros(self.grid.strip_size, dtype=memory.dtype)
+                setattr(self, strips, memory)
+            array = memory[:self.grid.rows * self.stride] if name in self.ROW_STATES else memory
             setattr(self, name, array)
         if array is not self.written:
             if not keep_records:
                 self.clear()
             self.written = array
-        for narrow, wide in (("state", "state_wide"), ("row_state", "row_state_wide")):
-            if name == wide and getattr(self, narrow).size:  # once wide, never narrow again: its bytes go
+        if name in ("state_wide", "row_state_wide"):  # once wide, never narrow again: its bytes go
+            for narrow in ("state", "row_state"):
                 setattr(self, narrow, np.zeros(0, dtype=getattr(self, narrow).dtype))
         return array
 

@@ -106,8 +106,8 @@ def searcher_call(module, algorithm: str):
     make_astar call makes a new kernel)."""
     if algorithm == "jps":
         jps = module.make_jps(False) if hasattr(module, "make_jps") else module.jps
-        return lambda g, state, start, goal: jps(g.grid.moves, g.stride, start, goal, state, g.lo, g.hi, g.extent,
-                                                 g.key, g.cell, g.next, g.head, g.stack)
+        return lambda g, state, start, goal: jps(g.grid.moves, g.stride, g.grid.index(*start), g.grid.index(*goal),
+                                                 state, g.lo, g.hi, g.extent, g.key, g.cell, g.next, g.head, g.stack)
     kernel = module.make_astar(8, 4 if algorithm == "astar" else 0, False)
     if in_strips(module, algorithm):
         flags = {}  # the blocks each searcher's state holds, in the module's layout

@@ -23,10 +23,10 @@ from grid.test_search import explicit_graph  # tests/ is on the path (pyproject:
 ALGORITHMS = [("astar", 8), ("dijkstra", 8), ("jps", 8), ("theta_star", 8), ("astar", 4), ("dijkstra", 4)]
 
 
-
 def state_arrays(searcher):
     """Every per-cell state array of a searcher (strip layout and rows)."""
     return [getattr(searcher, name) for name in ("state", "state_wide", "g", "row_state", "row_state_wide")]
+
 
 def legal_steps(grid, cells, connectivity):
     """Every step moves to a free 8- (or 4-) neighbour without cutting a blocked corner."""

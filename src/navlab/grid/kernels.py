@@ -46,9 +46,9 @@ def heuristic(code, ax, ay, bx, by):
 @njit(cache=True, inline="always")
 def cell_xy(u, S):
     """(x, y) of the padded flat index ``u`` (never negative) in rows of stride ``S`` (at least 1),
-    by one unsigned division: numba divides signed integers with Python's floor rounding, a sign
-    fix-up after the quotient and the remainder that cost A* 3-5 % of its time (paired in-process
-    A/B, 21 pairs, twice: random4096 0.961-0.964, maze1001 0.950-0.967)."""
+    by one unsigned division (JPS's; the strip layout's kernels use :func:`strip_xy`): numba divides
+    signed integers with Python's floor rounding, a sign fix-up after the quotient and the remainder
+    that cost A* 3-5 % of its time when it searched padded rows (paired in-process A/B, session 27)."""
     return np.int64(np.uint64(u) % np.uint64(S)), np.int64(np.uint64(u) // np.uint64(S))
 
 
@@ -60,9 +60,10 @@ def cell_xy(u, S):
 # one another lie on three pages and the cells a search front holds on thousands; on this VM the
 # address translations of 4 KB pages are what it misses (the host maps its guest's huge pages in 4
 # KB pieces: random reads over 16 MB took 20 ns on 4096 distinct pages, 5 ns packed into 64 of
-# them). In strips of 128 columns a 4 KB page of state is 8 rows of one strip: random4096 A* 0.87x
-# the time, maze1001 0.98x (the same expansions and state, cell for cell; prototype in-process
-# A/B, session 28). Only a move east or west across a strip's edge is not a constant offset
+# them). In strips of 128 columns a 4 KB page of state is 8 rows of one strip: with the written
+# blocks marked (:func:`clear_blocks`) and the reciprocal of :func:`divider`, random4096 A* 0.90x
+# the time, maze1001 1.00x (the same expansions and state, cell for cell; paired in-process A/B,
+# session 28). Only a move east or west across a strip's edge is not a constant offset
 # (:func:`strip_sides`).
 #: the widest strip (columns): 64 to 256 measured alike on random4096, 16 and 32 slower
 STRIP_BITS = 7
@@ -72,9 +73,10 @@ BLOCK_BITS = 10
 
 
 def strip_bits(stride: int) -> int:
-    """The strip width (as a power of two) for padded rows ``stride`` cells long: the widest up to
-    ``2**STRIP_BITS`` that is at most an eighth of the row, so the last strip's unused columns add
-    at most an eighth to the arrays (a 3-cell-wide grid is stored a column at a time)."""
+    """The strip width's bits for padded rows ``stride`` cells long: the widest strip up to
+    ``2**STRIP_BITS`` columns that is at most an eighth of the row, so the last strip's unused
+    columns add at most an eighth to the arrays (a grid under 14 cells wide is stored a column at
+    a time)."""
     bits = 0
     while bits < STRIP_BITS and (2 << bits) <= max(1, stride // 8):
         bits += 1
@@ -82,8 +84,16 @@ def strip_bits(stride: int) -> int:
 
 
 def strip_shape(rows: int, stride: int):
-    """``(bits, SH, size)`` of the strip layout of ``rows`` padded rows of ``stride`` cells:
-    :func:`strip_bits`, the cells of one strip, and of all of them."""
+    """The strip layout of ``rows`` padded rows of ``stride`` cells.
+
+    Returns
+    -------
+    bits : int
+        The strip width's bits (:func:`strip_bits`).
+    SH : int
+        The cells of one strip (``rows << bits``).
+    size : int
+        The cells of all the strips (a multiple of SH)."""
     bits = strip_bits(stride)
     strips = -(-stride // (1 << bits))
     return bits, rows << bits, strips * (rows << bits)
@@ -97,11 +107,26 @@ def strip_index(x, y, SH, bits):
 
 @njit(cache=True, inline="always")
 def divider(d, n):
-    """``(magic, shift)`` with ``(u * magic) >> shift == u // d`` for every ``0 <= u < n``
-    (``1 <= d <= n <= 2**31``; uint64): Granlund & Montgomery's round-up reciprocal, exact
-    because ``magic * d - 2**shift < d <= 2**(shift - N)`` for ``u < 2**N``, and ``u * magic <
-    2**(2N + 1)`` fits. A multiply and a shift instead of a division per expansion (:func:`strip_xy`;
-    random4096 A* 0.985x the time)."""
+    """A multiply and a shift that divide by ``d``: ``(u * magic) >> shift == u // d``.
+
+    The round-up reciprocal, exact because ``magic * d - 2**shift < d <= 2**(shift - N)`` for
+    ``u < 2**N``, and ``u * magic < 2**(2N + 1)`` fits in 64 bits. One per expansion instead of a
+    division (:func:`strip_xy`; random4096 A* 0.985x the time, in-process A/B).
+
+    Parameters
+    ----------
+    d, n : int
+        The divisor and a bound on the dividends: ``1 <= d <= n <= 2**31``.
+
+    Returns
+    -------
+    magic, shift : np.uint64
+
+    References
+    ----------
+    T. Granlund and P. L. Montgomery, "Division by invariant integers using multiplication",
+    PLDI 1994.
+    """
     N = 1
     while (1 << N) < n:
         N += 1
@@ -140,9 +165,15 @@ def strip_step(u, k, bits, east, west):
 
 def to_rows(flat: np.ndarray, rows: int, stride: int) -> np.ndarray:
     """A strip-layout array (:func:`strip_shape`) as padded rows ``(rows, stride)`` (a copy)."""
-    bits = strip_bits(stride)
-    strips = -(-stride // (1 << bits))
+    bits, SH, size = strip_shape(rows, stride)
+    strips = size // SH
     return flat.reshape(strips, rows, 1 << bits).transpose(1, 0, 2).reshape(rows, strips << bits)[:, :stride].copy()
+
+
+@njit(cache=True, inline="always")
+def block_span(b, size):
+    """The indices ``range(first, last)`` of block ``b`` of a strip-layout array of ``size`` cells."""
+    return b << BLOCK_BITS, min((b + 1) << BLOCK_BITS, size)
 
 
 @njit(cache=True, nogil=True)
@@ -150,7 +181,8 @@ def clear_blocks(gs, flags):
     """Zero the blocks of ``gs`` (strip layout) a query marked in ``flags``, and the marks."""
     for b in range(flags.shape[0]):
         if flags[b]:
-            gs[b << BLOCK_BITS:min((b + 1) << BLOCK_BITS, gs.shape[0])] = 0
+            first, last = block_span(b, gs.shape[0])
+            gs[first:last] = 0
             flags[b] = 0
 
 
@@ -273,9 +305,10 @@ def los_bresenham(free, S, x0, y0, x1, y1):
 # legal-move byte (:func:`legal_moves`) 5; Theta*, whose g is a sum of square roots, keeps one
 # float64 (0.0 unseen, g + 1 while open, -(g + 1) once closed; g + 1 > 0 keeps the start's g = 0
 # apart from "unseen"). The state starts
-# as np.zeros (untouched pages stay unallocated), and a query records the rows and columns it
-# expanded so that the next query can zero just those (:func:`clear_touched`) instead of the
-# whole grid.
+# as np.zeros (untouched pages stay unallocated), and a query records what it wrote so that the
+# next query can zero just that instead of the whole grid: A*, Dijkstra and Theta* mark the blocks
+# of the strip layout they write (:func:`clear_blocks`), JPS the rows and columns it expanded
+# (:func:`clear_touched`).
 
 
 #: the packed state's (shift, a_mask, b_mask, closed) for each width (:func:`state_layout`)
@@ -371,7 +404,8 @@ def widen_state(narrow, wide, flags):
     for b in range(flags.shape[0]):
         if not flags[b]:
             continue
-        for v in range(b << BLOCK_BITS, min((b + 1) << BLOCK_BITS, narrow.shape[0])):
+        first, last = block_span(b, narrow.shape[0])
+        for v in range(first, last):
             p = narrow[v]
             if p != 0:
                 moved = (np.uint64((p >> shift32) & a_mask) << shift64) | np.uint64(p & b_mask)
@@ -658,7 +692,8 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
             for blk in range(flags.shape[0]):
                 if not flags[blk]:
                     continue
-                for v in range(blk << BLOCK_BITS, min((blk + 1) << BLOCK_BITS, gs.shape[0])):
+                first, last = block_span(blk, gs.shape[0])
+                for v in range(first, last):
                     pv = gs[np.uint64(v)]
                     if pv == zero or pv >= closed_bit:
                         continue
@@ -998,7 +1033,8 @@ def make_jps(wide: bool = False):
     def jps(moves, S, start, goal, gs, lo, hi, extent, key, cell, nxt, head, stack):
         """Jump Point Search for 8-connected grids without corner cutting.
 
-        Same per-cell state (``gs``, packed as :func:`state_layout` says; recorded rows) and return
+        The same packed per-cell state (``gs``, as :func:`state_layout` says, but in padded rows, with
+        the rows and columns expanded recorded in ``lo``, ``hi`` and ``extent``) and return
         values as the A* kernel (:func:`make_astar`; a jump adds its n moves to one field at once, and
         a field it would carry over stops the search with WIDEN), and like A* no parents: an open entry
         carries the move that reached its cell (which successors to try: the

@@ -22,7 +22,8 @@ from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length,
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
 #: 5 cm. At that size a map loads in about 0.65 GB and one A* search adds
-#: 5 bytes per cell of state, as Dijkstra and JPS (0.88 and 0.84 GB peaks measured, docs/grid.md).
+#: 5 bytes per cell of state, as Dijkstra and JPS (6 where both A* and JPS ran; 0.88 and 0.84 GB
+#: peaks measured, docs/grid.md).
 #: Larger inputs are refused, with one line, before they are decoded or allocated.
 MAX_CELLS = 100_000_000
 

@@ -96,35 +96,45 @@ class PaddedGrid:
         # whole numbers, so their searches are the same; the one thing here that changes.
         self.needs_wide = False
 
+    def _built(self, name: str, build) -> np.ndarray:
+        """The read-only array ``name``, built by ``build()`` when first asked for. Not
+        ``functools.cached_property``: on Python 3.11 its lock is one for all grids, so a thread
+        building one grid's array would hold up every other thread's first query on any grid."""
+        array = self.__dict__.get(name)
+        if array is None:
+            array = build()
+            array.flags.writeable = False
+            array = self.__dict__.setdefault(name, array)
+        return array
+
     def _legal_moves(self, bits: int, size: int) -> np.ndarray:
         closed = np.zeros((0, 0), dtype=bool) if self.unknown is None else self.unknown
         # one byte per cell; numpy's allocation (huge pages, kernels.legal_moves)
-        moves = K.legal_moves(self.blocked, closed, np.empty(size, dtype=np.uint8), bits)
-        moves.flags.writeable = False
-        return moves
+        return K.legal_moves(self.blocked, closed, np.empty(size, dtype=np.uint8), bits)
 
-    @functools.cached_property
+    @property
     def strip_moves(self) -> np.ndarray:
         """The legal moves A*, Dijkstra and Theta* read, in the strip layout."""
-        return self._legal_moves(self.bits, self.strip_size)
+        return self._built("strip_moves", lambda: self._legal_moves(self.bits, self.strip_size))
 
-    @functools.cached_property
+    @property
     def moves(self) -> np.ndarray:
         """The legal moves JPS reads, in padded rows."""
-        return self._legal_moves(-1, self.rows * self.stride)
+        return self._built("moves", lambda: self._legal_moves(-1, self.rows * self.stride))
 
-    @functools.cached_property
+    @property
     def free(self) -> np.ndarray:
         """Passable cells as 0/1 bytes, padded."""
+        return self._built("free", self._free)
+
+    def _free(self) -> np.ndarray:
         h, w = self.blocked.shape
         padded = np.zeros((h + 2, w + 2), dtype=np.uint8)
         inner = padded[1:-1, 1:-1].view(np.bool_)
         np.logical_not(self.blocked, out=inner)
         if self.unknown is not None:
             inner[self.unknown] = False
-        free = padded.ravel()
-        free.flags.writeable = False
-        return free
+        return padded.ravel()
 
     def is_free(self, x: int, y: int) -> bool:
         return not self.blocked[y, x] and not (self.unknown is not None and self.unknown[y, x])
@@ -135,8 +145,7 @@ class PaddedGrid:
 
     def strip_index(self, x: int, y: int) -> int:
         """Cell (x, y)'s index in the strip layout (``kernels.strip_index``)."""
-        x, y = x + 1, y + 1
-        return (x >> self.bits) * self.strip_height + (y << self.bits) + (x & ((1 << self.bits) - 1))
+        return int(K.strip_index(x + 1, y + 1, self.strip_height, self.bits))
 
 
 class GridSearcher:
@@ -261,16 +270,19 @@ class GridSearcher:
                 setattr(self, narrow, np.zeros(0, dtype=getattr(self, narrow).dtype))
         return array
 
+    def _written_in_rows(self) -> bool:
+        return any(self.written is getattr(self, name) for name in self.ROW_STATES)
+
     def clear(self) -> None:
         """Zero what the last query wrote in ``written`` (by its records, which are left empty)."""
-        if any(self.written is getattr(self, name) for name in self.ROW_STATES):
+        if self._written_in_rows():
             K.clear_touched(self.written, self.stride, self.lo, self.hi, self.extent)
         else:
             K.clear_blocks(self.written, self.flags)
 
     def written_rows(self) -> np.ndarray:
         """``written`` in padded rows ``(rows, stride)`` (a copy), whichever its layout."""
-        if any(self.written is getattr(self, name) for name in self.ROW_STATES):
+        if self._written_in_rows():
             return self.written.reshape(self.grid.rows, self.stride).copy()
         return K.to_rows(self.written, self.grid.rows, self.stride)
 

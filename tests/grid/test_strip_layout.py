@@ -40,7 +40,7 @@ def test_the_reciprocal_divides_exactly(d):
         if not d <= n <= 2**31:  # (its domain)
             continue
         magic, shift = K.divider(d, n)
-        multiples = np.arange(0, n, d, dtype=np.uint64)[:100_000]
+        multiples = np.arange(0, min(n, d * 100_000), d, dtype=np.uint64)
         u = np.concatenate([multiples, multiples + np.uint64(d - 1), multiples - np.uint64(1),
                             rng.integers(0, n, 100_000).astype(np.uint64), np.array([n - 1], np.uint64)])
         u = u[u < np.uint64(n)]  # (0 - 1 wrapped)

@@ -58,9 +58,9 @@ def cell_xy(u, S):
 # ``(x >> bits) * SH + y * 2**bits + (x & (2**bits - 1))`` with SH = rows * 2**bits. A row-major
 # 4096-wide grid puts each row of uint32 state on four 4 KB pages of its own, so the cells around
 # one another lie on three pages and the cells a search front holds on thousands; on this VM the
-# address translations of 4 KB pages are what it misses (the host maps its guest's huge pages in 4
-# KB pieces: random reads over 16 MB took 20 ns on 4096 distinct pages, 5 ns packed into 64 of
-# them). In strips of 128 columns a 4 KB page of state is 8 rows of one strip: with the written
+# address translations of 4 KB pages are what it misses, the guest's huge pages notwithstanding
+# (the host apparently maps them in 4 KB pieces: dependent reads of 4096 cache lines took 20 ns
+# each spread over 4096 pages of a 16 MB array, 5 ns packed into 64 pages). In strips of 128 columns a 4 KB page of state is 8 rows of one strip: with the written
 # blocks marked (:func:`clear_blocks`) and the reciprocal of :func:`divider`, random4096 A* 0.90x
 # the time, maze1001 1.00x (the same expansions and state, cell for cell; paired in-process A/B,
 # session 28). Only a move east or west across a strip's edge is not a constant offset

@@ -95,6 +95,8 @@ class OccupancyGrid:
     name: str = "grid"
     probability: Optional[np.ndarray] = None
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
+    #: built with no unknown cells (``unknown=None``): known all False without reading it
+    _no_unknown: bool = field(default=False, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         put = object.__setattr__  # frozen: fields are set once, here
@@ -121,6 +123,7 @@ class OccupancyGrid:
         y = check_coordinate("origin y", origin[1])
         yaw = finite_number("origin yaw", origin[2])
         put(self, "origin", (x, y, yaw))
+        put(self, "_no_unknown", self.unknown is None)
         unknown = np.zeros(blocked.shape, bool) if self.unknown is None else self.unknown
         unknown = _mask(unknown, "unknown")
         if unknown.shape != blocked.shape:
@@ -137,11 +140,14 @@ class OccupancyGrid:
 
     def __reduce__(self):
         # rebuilt through the constructor: read-only arrays, and no cache carried along
-        return (_rebuild, (self.blocked, self.resolution, self.origin, self.unknown, self.name, self.probability))
+        return (_rebuild, (self.blocked, self.resolution, self.origin, None if self._no_unknown else self.unknown,
+                           self.name, self.probability))
 
     # -- new grids from this one ------------------------------------------------
     def replace(self, **changes: Any) -> "OccupancyGrid":
         """A new grid with some fields changed (validated like the constructor)."""
+        if self._no_unknown and "unknown" not in changes:
+            changes["unknown"] = None  # (still none: the new grid knows it without reading its zeros)
         return dataclasses.replace(self, **changes)
 
     def with_blocked(self, blocked: np.ndarray) -> "OccupancyGrid":

@@ -365,7 +365,10 @@ def pool_for(grid: OccupancyGrid, allow_unknown: bool) -> SearcherPool:
     pool = grid._cache.get(key)
     if pool is None:
         # setdefault is atomic: two threads' first queries end up sharing one pool
-        pool = grid._cache.setdefault(key, SearcherPool(grid.blocked, None if allow_unknown else grid.unknown))
+        # (a grid built without unknown cells passes none: 0.9 ms of a fresh 4096² grid's first query went
+        # on reading its 16 MB of zeros)
+        closed = None if allow_unknown or grid._no_unknown else grid.unknown
+        pool = grid._cache.setdefault(key, SearcherPool(grid.blocked, closed))
     return pool
 
 

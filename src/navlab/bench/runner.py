@@ -22,7 +22,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Set
 
 from ..atomic import write_text_atomic
 from ..wording import counted
@@ -100,8 +100,9 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                   f"{store.folder / 'results.rejected.jsonl'} (with the reason); their trials run again",
                   file=sys.stderr)
         specs = experiment.trial_specs()
-        _note_rows_of_no_cell(store, specs, experiment.noise_specs())
-        _note_trials_past_the_count(store, specs, experiment.trials)
+        cells = {s["cell_id"] for s in specs}
+        _note_rows_of_no_cell(store, cells)
+        _note_trials_past_the_count(store, specs, cells, experiment.trials)
         done = store.finished()
         todo = interleave([s for s in specs if s["trial_id"] not in done])
         trials_todo = len(todo)
@@ -143,12 +144,12 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 
-def _note_rows_of_no_cell(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]]) -> None:
+def _note_rows_of_no_cell(store: ResultStore, cells: Set[str]) -> None:
     """Say on stderr how many resumed rows belong to no cell of the experiment as it is routed now (a setting
     that came to split a planner's cells or to merge them, after an upgrade: a run sweeping ``weight`` before
     Hybrid A* took it ran hybrid_astar as one cell): they stay in results.jsonl and results.csv, left out of
-    the report (attack, session 24: they were left without a word)."""
-    cells = {s["cell_id"] for s in specs}  # (a cell's trials past --trials are not of another cell)
+    the report (attack, session 24: they were left without a word). ``cells``: the experiment's cell ids (a
+    cell's trials past ``--trials`` are not of another cell: :func:`_note_trials_past_the_count`)."""
     stale = [row for row in store.rows.values() if row.get("cell_id") not in cells]
     if stale:
         labels = sorted({str(row.get("label") or row.get("planner") or "?") for row in stale})
@@ -159,11 +160,11 @@ def _note_rows_of_no_cell(store: ResultStore, specs: List[Dict[str, Any]], repea
               "results.csv, left out of the report", file=sys.stderr)
 
 
-def _note_trials_past_the_count(store: ResultStore, specs: List[Dict[str, Any]], trials: int) -> None:
+def _note_trials_past_the_count(store: ResultStore, specs: List[Dict[str, Any]], cells: Set[str],
+                                trials: int) -> None:
     """Say on stderr how many resumed trials of this experiment's cells lie past its trial count (an earlier
     run with more ``--trials``): they stay in results.jsonl and results.csv, left out of the report, which
-    otherwise shrank without a word (newcomer, session 26)."""
-    cells = {s["cell_id"] for s in specs}
+    otherwise shrank without a word (newcomer, session 26). ``cells``: the cell ids of ``specs``."""
     wanted = {s["trial_id"] for s in specs}
     past = [row for row in store.rows.values() if row.get("cell_id") in cells and not row.get("repeat")
             and row.get("trial_id") not in wanted and isinstance(row.get("trial"), int)]

@@ -138,6 +138,8 @@ def main() -> None:
         if not os.path.isfile(path):
             ap.error(f"{path}: not a file")
 
+    import bench_grid
+
     from navlab.grid.planner import GridSearcher, PaddedGrid
 
     versions = {}
@@ -152,7 +154,7 @@ def main() -> None:
     for name, blocked in issue22_maps():
         free = np.argwhere(~blocked)
         grid = PaddedGrid(blocked)
-        start, goal = tuple(free[0][::-1]), tuple(free[-1][::-1])  # cells (x, y): each call indexes its layout
+        start, goal = bench_grid.corners(free)  # cells (x, y): each call indexes its layout
         searchers, states, answers = {}, {}, {}
         for tag, module in versions.items():
             searchers[tag] = GridSearcher(grid)

@@ -123,6 +123,11 @@ def _large_maps():
     yield "maze1001", lambda: make_maze(100, 100, seed=1, cell_size=0.5, wall=0.05, resolution=0.05)
 
 
+def corners(free: np.ndarray):
+    """The first and last free cells (x, y) of ``np.argwhere(~blocked)``: the corner-to-corner query."""
+    return tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+
+
 def timed(fn):
     """(wall seconds, this thread's CPU seconds, result) of one call: on a
     shared machine the CPU time is what other jobs' load inflates least."""
@@ -165,7 +170,7 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     for name, make in _large_maps():
         grid = make()
         free = np.argwhere(~grid.blocked)
-        s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+        s, t = corners(free)
         weights = np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
         for label, kw, diagonal in (("astar", {}, True), ("jps", {"algorithm": "jps"}, True),
                                     ("astar-4", {"connectivity": 4, "heuristic": "manhattan"}, False)):
@@ -221,7 +226,7 @@ def threads(repeat: int) -> None:
     name, make = next(iter(_large_maps()))
     grids = [make(), make()]
     free = np.argwhere(~grids[0].blocked)
-    s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+    s, t = corners(free)
     layouts = {"one query": [grids[0]], "two threads, two grids": grids,
                "two threads, one grid": [grids[0], grids[0]]}
     for grid in grids:  # every grid's tables and searchers built before timing
@@ -301,7 +306,7 @@ def bidirectional_bound(name: str, grid) -> None:
     from navlab.grid.planner import SearcherPool
 
     free = np.argwhere(~grid.blocked)
-    s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
+    s, t = corners(free)
     pool = SearcherPool(grid.blocked, grid.unknown)
     fields = []
     for a, b in ((s, t), (t, s)):

@@ -29,6 +29,7 @@ def test_indices_steps_and_coordinates_agree_with_the_layout(h, w):
                 east, west = K.strip_sides(u, SH, bits)
                 for k in range(8):
                     assert K.strip_step(u, k, bits, east, west) == ids[y + K.MOVES_Y[k], x + K.MOVES_X[k]]
+                    assert K.strip_step_back(u, k, bits, east, west) == ids[y - K.MOVES_Y[k], x - K.MOVES_X[k]]
 
 
 @pytest.mark.parametrize("d", [1, 2, 3, 7, 128, 4098 * 128, 1003 * 64, 10_002 * 128, 2**31 - 1])

@@ -163,6 +163,13 @@ def strip_step(u, k, bits, east, west):
     return u + (_DY[np.uint64(k)] << bits) + _EAST[np.uint64(k)] * east - _WEST[np.uint64(k)] * west
 
 
+@njit(cache=True, inline="always")
+def strip_step_back(v, k, bits, east, west):
+    """The strip-layout index of the cell move k leads to ``v`` from: :func:`strip_step` undone
+    (``east, west``: :func:`strip_sides` of v)."""
+    return v - (_DY[np.uint64(k)] << bits) - _EAST[np.uint64(k)] * west + _WEST[np.uint64(k)] * east
+
+
 def to_rows(flat: np.ndarray, rows: int, stride: int) -> np.ndarray:
     """A strip-layout array (:func:`strip_shape`) as padded rows ``(rows, stride)`` (a copy)."""
     bits, SH, size = strip_shape(rows, stride)
@@ -904,7 +911,7 @@ def _predecessor(moves, SH, bits, gs, v, n_moves, steps, value_mask):
     pv = gs[v] & value_mask
     east, west = strip_sides(v, SH, bits)
     for k in range(n_moves):
-        u = v - (MOVES_Y[k] << bits) - _EAST[k] * west + _WEST[k] * east  # move k's start: the step back
+        u = strip_step_back(v, k, bits, east, west)
         pu = gs[u] & value_mask
         if (moves[u] >> k) & 1 == 0 or pu == 0:  # u cannot step to v, or was never reached
             continue

@@ -48,6 +48,10 @@ def test_a_grid_built_without_unknown_cells_is_not_read_for_them():
     fresh 4096² grid's first query). A grid given an ``unknown`` array is read as before."""
     import pickle
 
+    import pytest
+
+    from navlab.errors import ParameterError
+
     rng = np.random.default_rng(13)
     blocked = rng.random((25, 30)) < 0.25
     unknown = rng.random((25, 30)) < 0.1
@@ -60,6 +64,9 @@ def test_a_grid_built_without_unknown_cells_is_not_read_for_them():
                  OccupancyGrid(blocked, unknown=np.zeros_like(blocked))):
         assert not grid._no_unknown
         assert (pool_for(grid, False).grid.unknown is None) == (not grid.unknown.any())
+    for grid in (plain, OccupancyGrid(blocked, unknown=np.zeros_like(blocked))):  # either way, alike
+        with pytest.raises(ParameterError, match="unknown has shape"):
+            grid.with_blocked(np.zeros((3, 3), bool))
     free = np.argwhere(~(blocked | unknown))
     s, t = tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
     for algorithm in ("astar", "jps", "theta_star"):  # the same answers as a grid told its unknown cells are none

@@ -146,8 +146,11 @@ class OccupancyGrid:
     # -- new grids from this one ------------------------------------------------
     def replace(self, **changes: Any) -> "OccupancyGrid":
         """A new grid with some fields changed (validated like the constructor)."""
-        if self._no_unknown and "unknown" not in changes:
-            changes["unknown"] = None  # (still none: the new grid knows it without reading its zeros)
+        if self._no_unknown and "unknown" not in changes and np.shape(changes.get("blocked", self.blocked)) == \
+                self.blocked.shape:
+            # still none: the new grid knows it without reading its zeros (a blocked of another shape is refused
+            # against the unknown cells, as on a grid given them)
+            changes["unknown"] = None
         return dataclasses.replace(self, **changes)
 
     def with_blocked(self, blocked: np.ndarray) -> "OccupancyGrid":

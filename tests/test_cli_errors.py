@@ -45,6 +45,14 @@ def numpy_memory_error():
     pytest.skip("this machine allocated 4 EiB")
 
 
+def returned_with_an_exception_set(cause):
+    """The ``SystemError`` Python raises when a C function returns a result with ``cause`` pending (as
+    numba's dispatcher did with a Ctrl-C: fuzz test_real_command_ctrl_c_is_one_line, session 29)."""
+    exc = SystemError("CPUDispatcher(<function _build at 0x7f>) returned a result with an exception set")
+    exc.__cause__ = cause
+    return exc
+
+
 @pytest.mark.parametrize("exc, status, expected", [
     (WorldFormatError("w.yaml: field 'start': expected a pair"), 2, "Error: w.yaml: field 'start': expected a pair"),
     (MapFormatError("m.yaml: field 'resolution': must be positive"), 2, "Error: m.yaml: field 'resolution'"),
@@ -72,6 +80,8 @@ def numpy_memory_error():
     (TypeError("unsupported operand"), 1, "Error: internal error: TypeError: unsupported operand"),
     (OverflowError("cannot convert float infinity to integer"), 1, "Error: internal error: OverflowError"),
     (KeyboardInterrupt(), 130, "Interrupted."),
+    (returned_with_an_exception_set(KeyboardInterrupt()), 130, "Interrupted."),
+    (returned_with_an_exception_set(ValueError("x")), 1, "Error: internal error: SystemError: CPUDispatcher"),
 ])
 @pytest.mark.parametrize("command", [["boom"], ["sub", "deeper"]])
 def test_every_error_is_one_line(exc, status, expected, command, monkeypatch):
@@ -231,3 +241,21 @@ def test_a_coordinate_past_floats_range_is_named_not_called_inf(value):
 
     res = CliRunner().invoke(main, ["plan", "squarefield", "--start", value, "1"])
     assert res.exit_code == 2 and "past the largest number a float holds" in res.output and "got inf" not in res.output
+
+
+def test_bench_stopped_by_a_ctrl_c_inside_a_kernel_prints_the_resume_command(tmp_path, monkeypatch):
+    """A Ctrl-C that reaches ``navlab bench`` as the SystemError above (raised inside a compiled kernel's
+    call) ends as a KeyboardInterrupt there does: status 130 and the command that resumes the run."""
+    import navlab.bench
+
+    def stopped(*args, **kwargs):
+        raise returned_with_an_exception_set(KeyboardInterrupt())
+
+    monkeypatch.delenv("NAVLAB_DEBUG", raising=False)
+    monkeypatch.setattr(navlab.bench, "run_experiment", stopped)
+    out = tmp_path / "o"
+    result = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "rrt", "--trials", "2", "--out",
+                                       str(out), "--no-plots", "-q"])
+    assert result.exit_code == 130, result.output
+    assert f"interrupted: the finished trials are kept in {out}" in result.output
+    assert result.output.strip().endswith("--resume") and "Traceback" not in result.output

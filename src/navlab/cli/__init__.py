@@ -16,7 +16,8 @@ STARTED = time.perf_counter()
 
 import click  # noqa: E402 - after the clock starts
 
-from .common import CUT_STATUS, EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error
+from .common import (CUT_STATUS, EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error,
+                     interrupted_by_ctrl_c)
 
 
 def _quick_exit() -> None:
@@ -270,6 +271,9 @@ class NavlabGroup(SuggestingGroup):
             click.echo("Interrupted.", err=True)
             sys.exit(EXIT_INTERRUPTED)
         except Exception as exc:
+            if interrupted_by_ctrl_c(exc) and not debug_enabled():
+                click.echo("Interrupted.", err=True)
+                sys.exit(EXIT_INTERRUPTED)
             if isinstance(exc, BrokenPipeError) and _stdout_reader_gone():
                 # `navlab list | head -1`: the reader has what it wanted; no message, like ls or cat (and the
                 # status of the answer, where a verb answers with one: status_if_output_is_cut)

@@ -14,10 +14,8 @@ import yaml
 
 from ..bench.suites import suite_help
 from ..wording import counted, listed
-from .common import Count, PositiveNumber, SuggestingChoice, parse_params
+from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, interrupted_by_ctrl_c, parse_params
 
-#: the exit status of a run stopped by Ctrl-C (128 + SIGINT), as shells use
-EXIT_INTERRUPTED = 130
 
 
 class BenchCommand(click.Command):
@@ -219,7 +217,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
                    f"run the rest with: {_resume_command()}", err=True)
         sys.exit(EXIT_INTERRUPTED)
-    except KeyboardInterrupt:  # before or after the trials: every finished trial is on disk
+    except (KeyboardInterrupt, SystemError) as exc:  # before or after the trials: every finished trial is on disk
+        if not interrupted_by_ctrl_c(exc):
+            raise
         click.echo(f"\ninterrupted: the finished trials are kept in {folder}; continue with: {_resume_command()}",
                    err=True)
         sys.exit(EXIT_INTERRUPTED)

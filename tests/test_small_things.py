@@ -51,3 +51,15 @@ def test_durations_read_in_ms_then_seconds():
 
     assert [duration(t) for t in (0.0412, 9.9994, 9.9996, 10.0, 53.881)] == ["41 ms", "9999 ms", "10.0 s", "10.0 s",
                                                                              "53.9 s"]
+
+
+def test_one_expanded_cell_is_singular():
+    """"(1 cells expanded)" was a failed grid search's reason (session 28's left-alone list)."""
+    import numpy as np
+
+    from navlab.grid import OccupancyGrid, plan
+
+    walled = OccupancyGrid(np.array([[False, True, False]]))
+    assert plan(walled, (0, 0), (2, 0)).reason == "no path from (0, 0) to (2, 0) (1 cell expanded)"
+    wider = OccupancyGrid(np.array([[False, False, True, False]]))
+    assert plan(wider, (0, 0), (3, 0)).reason == "no path from (0, 0) to (3, 0) (2 cells expanded)"

@@ -182,7 +182,7 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
     elif "time_s" in s and s.get("grid"):  # a grid planner that searched (not one refused at its start)
         line = f"  grid {s['grid']} at {result.params.get('resolution', 0):g} m"
         if "expanded" in s:
-            line += f", {s['expanded']} cells expanded"
+            line += f", {counted(s['expanded'], 'cell')} expanded"
         rasterising_ms = s.get("rasterize_s", 0) * 1000
         click.echo(line + f", planning {s['time_s'] * 1000:.1f} ms (rasterising {rasterising_ms:.1f} ms)")
     if s.get("warmup_s", 0) > 0.0005:

@@ -158,9 +158,13 @@ class OccupancyGrid:
         return self.replace(blocked=blocked)
 
     def with_unknown(self, unknown: np.ndarray) -> "OccupancyGrid":
+        """The same grid with ``unknown`` replaced: a boolean array of ``blocked``'s shape (True: cells of
+        unknown occupancy, which planners treat as blocked unless asked to allow them), or None for none."""
         return self.replace(unknown=unknown)
 
     def with_origin(self, origin) -> "OccupancyGrid":
+        """The same grid with ``origin`` replaced: the world pose (x, y[, yaw]) of the outer corner of cell
+        (0, 0), in m and rad, as in ROS map_server."""
         return self.replace(origin=origin)
 
     # -- geometry ---------------------------------------------------------------

@@ -39,6 +39,7 @@ from ..errors import ParameterError
 from ..limits import check_coordinate, check_flag, check_weight, is_finite_real, shown
 from ..registry import Registry
 from ..result import Result, Status, Tree
+from ..wording import counted
 from . import kernels as K
 from .occupancy import OccupancyGrid, check_grid
 
@@ -635,7 +636,7 @@ def _plan_warm(grid: OccupancyGrid, start, goal, algorithm: str, heuristic: str,
         if status != 1:
             return Result(status=Status.FAILED, params=params, stats=_stats(t0, expanded, warmup_s=warmup_s),
                           cells=np.empty((0, 2), dtype=np.int64),
-                          reason=f"no path from {s_cell} to {g_cell} ({expanded} cells expanded)" + unknown_hint(
+                          reason=f"no path from {s_cell} to {g_cell} ({counted(expanded, 'cell')} expanded)" + unknown_hint(
                               grid, allow_unknown))
         cells = s.cells(algorithm, connectivity, s_cell, g_cell)
     raw = None

@@ -1,6 +1,7 @@
 """The simulator: statuses, determinism, bad input, the seeds' experiments."""
 
 import json
+import math
 
 import numpy as np
 import pytest
@@ -76,8 +77,11 @@ def test_cli_experiment_json_and_bad_input(tmp_path):
     res = runner.invoke(main, ["sim", "--experiment", "seed004", "--runs", "1", "--json"])
     assert res.exit_code == 0, res.output
     rows = [json.loads(line) for line in res.output.splitlines()]
-    assert len(rows) == 8 and {"target", "obstacle", "status", "final_true", "final_odom", "error_true_mm",
+    assert len(rows) == 8 and {"target_mm", "obstacle", "status", "final_true_mm", "final_odom_mm", "error_true_mm",
                                "error_odom_mm", "time_s"} <= set(rows[0])
+    # every length in mm says so in its key: "final_true" is metres in navlab sim --json (newcomer, session 29)
+    assert not {"target", "final_true", "final_odom"} & set(rows[0])
+    assert rows[0]["error_true_mm"] == pytest.approx(math.dist(rows[0]["final_true_mm"], rows[0]["target_mm"]))
     # a goal the robot cannot stand on is an answer about the world, as navlab plan's INVALID_GOAL (exit 1)
     res = runner.invoke(main, ["sim", "squarefield", "--goal", "50.0", "5.0"])
     assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "outside the bounds" in res.output

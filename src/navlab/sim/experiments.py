@@ -58,7 +58,9 @@ def seed004_simulation(target, obstacle: bool, dt: float = 0.05):
 @EXPERIMENTS.register("seed004")
 def seed004(runs: int = 5, seed: int = 0, plot_dir: Optional[str] = None, **_: Any) -> List[Dict[str, Any]]:
     """One row per run: target, obstacle, status, final true and odometry
-    positions (mm), their errors (mm) and the time (s)."""
+    positions, their errors and the time: lengths in mm as the seed's tables
+    give them, each such key ending ``_mm`` (``final_true`` and ``target``
+    were mm here and metres in ``navlab sim --json``: newcomer, session 29)."""
     rows = []
     for target in SEED004_TARGETS:
         for obstacle in (False, True):
@@ -68,10 +70,10 @@ def seed004(runs: int = 5, seed: int = 0, plot_dir: Optional[str] = None, **_: A
                                                    int(obstacle), run]).generate_state(1)[0]
                 result = sim.run(int(run_seed))
                 rows.append({
-                    "experiment": "seed004", "target": [1000 * target[0], 1000 * target[1]], "obstacle": obstacle,
+                    "experiment": "seed004", "target_mm": [1000 * target[0], 1000 * target[1]], "obstacle": obstacle,
                     "run": run + 1, "seed": int(run_seed), "status": result.status.name,
-                    "final_true": (1000 * result.final_true[:2]).tolist(),
-                    "final_odom": (1000 * result.final_odom[:2]).tolist(),
+                    "final_true_mm": (1000 * result.final_true[:2]).tolist(),
+                    "final_odom_mm": (1000 * result.final_odom[:2]).tolist(),
                     "error_true_mm": 1000 * result.error_true, "error_odom_mm": 1000 * result.error_odom,
                     "time_s": result.time_s, "wall_time_s": result.wall_time_s,
                     "real_time_factor": result.real_time_factor})
@@ -208,23 +210,23 @@ def seed004_table(rows: List[Dict[str, Any]]) -> str:
     lines = []
     keys = []
     for r in rows:
-        key = (tuple(r["target"]), r["obstacle"])
+        key = (tuple(r["target_mm"]), r["obstacle"])
         if key not in keys:
             keys.append(key)
     head = (f"{'No':>3} {'target X':>9} {'Y':>7} | {'true X':>8} {'Y':>8} {'error':>7} | "
             f"{'odom X':>8} {'Y':>8} {'error':>7} | {'time s':>6}  status")
     for target, obstacle in keys:
-        group = [r for r in rows if tuple(r["target"]) == target and r["obstacle"] == obstacle]
+        group = [r for r in rows if tuple(r["target_mm"]) == target and r["obstacle"] == obstacle]
         lines.append(f"\nTarget ({target[0]:g}, {target[1]:g}) mm, {'with' if obstacle else 'without'} obstacle")
         lines.append(head)
         for r in group:
-            tx, ty = r["final_true"]
-            ox, oy = r["final_odom"]
+            tx, ty = r["final_true_mm"]
+            ox, oy = r["final_odom_mm"]
             lines.append(f"{r['run']:>3} {target[0]:>9.0f} {target[1]:>7.0f} | {tx:>8.1f} {ty:>8.1f} "
                          f"{r['error_true_mm']:>7.1f} | {ox:>8.1f} {oy:>8.1f} {r['error_odom_mm']:>7.1f} | "
                          f"{r['time_s']:>6.2f}  {r['status']}")
-        true_x, true_y = _mae(group, "final_true", 0, target[0]), _mae(group, "final_true", 1, target[1])
-        odom_x, odom_y = _mae(group, "final_odom", 0, target[0]), _mae(group, "final_odom", 1, target[1])
+        true_x, true_y = _mae(group, "final_true_mm", 0, target[0]), _mae(group, "final_true_mm", 1, target[1])
+        odom_x, odom_y = _mae(group, "final_odom_mm", 0, target[0]), _mae(group, "final_odom_mm", 1, target[1])
         lines.append(f"{'MAE':>3} {'':>9} {'':>7} | {true_x:>8.1f} {true_y:>8.1f} "
                      f"{np.mean([r['error_true_mm'] for r in group]):>7.1f} | {odom_x:>8.1f} {odom_y:>8.1f} "
                      f"{np.mean([r['error_odom_mm'] for r in group]):>7.1f} | "

@@ -218,3 +218,24 @@ def test_a_start_the_robot_fits_at_is_valid_for_a_star_and_rrt_star_alike(tmp_pa
     assert 0 < margin_room(grid, 0.105, [(0.35, 0.35)]) < 0.07
     path = plan_path(grid, 0.105, (0.35, 0.35, 0.0), (4.8, 4.8), planner)
     assert isinstance(path, np.ndarray) and np.allclose(path[0], (0.35, 0.35)) and np.allclose(path[-1], (4.8, 4.8))
+
+
+def test_a_world_radius_the_simulated_robot_lacks_is_noted(tmp_path):
+    """A world's robot_radius is navlab plan's; the simulator moves the robot's own footprint, and says so
+    when the two differ (a start 0.2 m from a wall, refused by plan for 0.5 m, ran to REACHED without a
+    word: newcomer, session 29)."""
+    (tmp_path / "near.yaml").write_text("bounds: {x: [0, 10], y: [0, 10]}\nstart: [1, 1]\ngoal: [9, 9]\n"
+                                        "robot_radius: 0.5\nobstacles:\n"
+                                        "  - {type: rectangle, min: [0.5, 1.2], max: [1.5, 2]}\n")
+    runner = CliRunner()
+    res = runner.invoke(main, ["sim", str(tmp_path / "near.yaml"), "--robot", "diff"])
+    assert res.exit_code == 0 and res.stdout.startswith("REACHED"), res.output
+    assert res.stderr == ("note: the world's robot_radius 0.5 m is navlab plan's; the simulated robot is its own "
+                          "footprint, a disc of radius 0.105 m (--robot-param radius=0.5 gives it that size)\n")
+    res = runner.invoke(main, ["sim", str(tmp_path / "near.yaml"), "--robot", "diff", "--robot-param", "radius=0.5"])
+    assert res.exit_code == 1 and res.stdout.startswith("INVALID_START (") and "note:" not in res.output
+    # the robot at least as large as the world's radius (omni3's 0.16 m, trap's 0.15 m): no note
+    res = runner.invoke(main, ["sim", str(tmp_path / "near.yaml"), "--robot-param", "radius=0.6"])
+    assert res.exit_code == 1 and res.stdout.startswith("INVALID_START (") and res.stderr == ""
+    res = runner.invoke(main, ["sim", "trap"])
+    assert res.exit_code == 0 and res.stderr == "", res.output

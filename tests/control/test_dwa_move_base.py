@@ -50,3 +50,26 @@ def test_a_sensed_costmap_is_planned_on_by_move_base_at_its_frequency():
         slow.command(k * 0.05, pose)
     assert slow.stats["replans"] == 3  # at 0, 0.2 and 0.4 s
     assert make_controller("dwa", layers="sensor").replan_interval == 1.0  # planner_frequency 0: the feed's
+
+
+def test_the_paths_move_base_plans_are_the_runs_replans_and_the_robot_follows_the_last():
+    """DWA's global planner replaces the path the run started with (here after its local planner failed):
+    those paths are the result's replans (drawn, and counted by navlab sim), and the robot follows them.
+    The run had reported only its first path, 3.1 m from where the robot drove (newcomer, session 29)."""
+    from click.testing import CliRunner
+
+    from navlab.cli import main
+    from navlab.sim.polyline import distance_to_polyline
+    from navlab.sim.runner import simulate
+
+    result, _, sim = simulate("clutter", robot="diff", controller="dwa")
+    assert result.status.name == "REACHED" and sim.controller.stats["replans"] >= 1
+    assert len(result.replans) == sim.controller.stats["replans"]
+    assert all(np.allclose(path[-1], result.goal, atol=0.05) for path in result.replans)
+    last = result.replans[-1]
+    since = int(np.argmin(np.hypot(*(result.true_poses[:, :2] - last[0]).T)))  # where it was planned from
+    assert np.max(distance_to_polyline(result.true_poses[since:, :2], last)) < 0.5
+    assert result.tracking_error() > 2.0  # from the first path, which the robot left
+    out = CliRunner().invoke(main, ["sim", "clutter", "--robot", "diff", "--controller", "dwa"]).output
+    assert (f"planned a {len(result.path)}-waypoint path and replanned {len(result.replans)} times (the last plan "
+            f"{len(last)} waypoints); the farthest from the first path: {result.tracking_error():.3f} m") in out

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import click
 
+from ..wording import counted
 from .common import (Count, PointOrPoseOption, SuggestingChoice, before_first_kernel, check_output_file,
                      parse_params, status_if_output_is_cut)
 
@@ -162,7 +163,13 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         if "goal_heading" in result.meta:
             click.echo(f"  final heading {result.final_true[2]:.3f} rad, {result.meta['heading_error_rad']:.3f} rad "
                        f"from the goal's {result.meta['goal_heading']:.3f}")
-        if result.path is not None:
+        if result.path is not None and result.replans and not sim.scene.dynamic:
+            # the error is the distance from the first path, which the robot stopped following at a replan
+            # (DWA on clutter: "max tracking error 3.116 m" from a path it dropped at once; newcomer, session 29)
+            click.echo(f"  planned a {len(result.path)}-waypoint path and replanned {counted(len(result.replans), 'time')}"
+                       f" (the last plan {len(result.replans[-1])} waypoints); the farthest from the first path: "
+                       f"{result.tracking_error():.3f} m")
+        elif result.path is not None:
             click.echo(f"  followed a {len(result.path)}-waypoint path, max tracking error "
                        f"{result.tracking_error():.3f} m")
         if sim.scene.dynamic:

@@ -325,6 +325,9 @@ class DWA(CostmapController):
         self._last_plan = -math.inf
         self._replan_now = False
         self.stats = {"cycles": 0, "forward": 0, "rotate": 0, "escape": 0, "failed": 0, "replans": 0}
+        #: the global paths move_base's planner made during the run (for the run's result and its plot: the
+        #: path a run plotted and measured its tracking error against was only the first one; newcomer, s. 29)
+        self.paths: list = []
 
     def set_path(self, path) -> None:
         super().set_path(path)
@@ -361,6 +364,7 @@ class DWA(CostmapController):
             return
         self._no_plan_since = None
         self.set_path(path)
+        self.paths.append(self.path.copy())
         self.stats["replans"] += 1
 
     def local_plan(self, pose: np.ndarray) -> np.ndarray:

@@ -322,7 +322,8 @@ class Simulation:
                          cmds[:n].copy(), self.goal.copy(), self.path,
                          None if scans is None else scans[:n].copy(), reason, meta,
                          replans=list(getattr(replanner, "paths", ())[replans_before:])
-                         + (self.costmap_feed.paths if self.costmap_feed is not None else []))
+                         + (self.costmap_feed.paths if self.costmap_feed is not None else [])
+                         + list(getattr(self.controller, "paths", ())))  # (a controller's own global planner: DWA's)
 
     def min_clearance(self, result: SimResult) -> float:
         """Smallest gap (m) between the robot's disc and any obstacle, where

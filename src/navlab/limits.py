@@ -191,8 +191,11 @@ def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX
     if isinstance(value, np.integer):
         value = int(value)
     if isinstance(value, bool) or not isinstance(value, int) or value < low or (high is not None and value > high):
-        span = f"from {low} to {high:.3g}" if high is not None and high > 1e6 else \
-            f"from {low} to {high}" if high is not None else f"of at least {low}"
+        # MAX_COUNT, the compiled loops' own bound, is named only to a number past it: "from 1 to 4.61e+18,
+        # got 0" read as a limit that means something (newcomer, session 29)
+        past = isinstance(value, int) and not isinstance(value, bool) and high is not None and value > high
+        span = f"of at least {low}" if high is None or (high == MAX_COUNT and not past) else \
+            f"from {low} to {high:.3g}" if high > 1e6 else f"from {low} to {high}"
         shown = f"a number of {digit_count(value)} digits" if isinstance(value, int) and abs(value) >= 10 ** 20 \
             else repr(value)
         raise ParameterError(f"{name} must be a whole number {span}, got {shown}")

@@ -1,6 +1,7 @@
 """The benchmark harness: seeds, storage, resume, executors, crashes, report."""
 
 import json
+import re
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -230,6 +231,20 @@ def test_report_renders_with_embedded_images(tmp_path):
 def test_bad_experiments_are_refused_before_anything_runs(change, message):
     with pytest.raises(ValueError, match=f"(?i){message}"):  # (a field set to None: left out)
         load_experiment({k: v for k, v in {**TINY, **change}.items() if v is not None})
+
+
+@pytest.mark.parametrize("document, message", [
+    ({"bounds": {"x": [0, 10], "y": [0, 10]}, "start": [1, 1], "goal": [9, 9], "obstacles": []},
+     "this is a world file ('bounds' and 'obstacles'), not an experiment: benchmark it with --world FILE --planner"),
+    ({"image": "m.pgm", "resolution": 0.05, "origin": [0, 0, 0]},
+     "this is a map file ('image' and 'resolution'), not an experiment: benchmark it with --world FILE --start X Y"),
+    # an experiment with a stray world field is an experiment with an unknown field
+    ({**TINY, "bounds": {"x": [0, 1]}}, "unknown field 'bounds'"),
+])
+def test_a_world_or_map_given_as_an_experiment_says_how_to_benchmark_it(document, message):
+    """`navlab bench my_world.yaml` listed the experiment fields 'bounds' is not one of (newcomer, session 29)."""
+    with pytest.raises(ValueError, match=re.escape(message)):
+        load_experiment(document)
 
 
 def test_experiment_file_and_cli(tmp_path):

@@ -35,6 +35,7 @@ import numpy as np
 
 from ..limits import MAX_COUNT, check_flag, digit_count, is_finite_real, plain_values, shown, value_text
 from ..registry import suggest
+from ..wording import listed
 from .errors import ExperimentError
 from ..yamlio import read_yaml
 
@@ -473,6 +474,15 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
     # np.True_ as "a bool is not an experiment value": attack, session 25)
     data = plain_values(data)
     check_plain(data)
+    if not set(data) & {"worlds", "planners"}:
+        # a world or map file given where an experiment goes (`navlab bench my_world.yaml`: newcomer, session 29)
+        world_keys = [key for key in ("bounds", "obstacles", "robot_radius") if key in data]
+        if {"image", "resolution"} <= set(data):
+            raise ExperimentError("this is a map file ('image' and 'resolution'), not an experiment: benchmark it "
+                                  "with --world FILE --start X Y --goal X Y --planner NAME")
+        if world_keys:
+            raise ExperimentError(f"this is a world file ({listed(repr(k) for k in world_keys[:2])}), not an "
+                                  "experiment: benchmark it with --world FILE --planner NAME")
     for key in data:
         if key not in FIELDS:
             raise ExperimentError(f"unknown field '{key}'; valid: {', '.join(FIELDS)}." + suggest(key, list(FIELDS)))

@@ -17,6 +17,7 @@ from click.testing import CliRunner
 
 from navlab.bench import ExperimentError, load_experiment, run_experiment
 from navlab.bench.store import FolderLock, read_rows
+from navlab.extras import install_command
 from navlab.cli import main
 
 TINY = {"name": "tiny", "worlds": ["trap"], "planners": ["rrt_star"], "samplers": ["uniform"],
@@ -143,7 +144,7 @@ def test_missing_ompl_is_one_error_before_anything_runs(tmp_path, monkeypatch):
     import navlab.bench.ompl_planners as ompl_planners
 
     monkeypatch.setattr(ompl_planners, "ompl_available", lambda: False)
-    with pytest.raises(ExperimentError, match=r"'ompl:RRTstar' needs OMPL.*pip install 'navlab\[ompl\]'"):
+    with pytest.raises(ExperimentError, match=r"'ompl:RRTstar' needs OMPL.*" + re.escape(install_command("ompl"))):
         load_experiment({**TINY, "planners": ["rrt_star", "ompl:RRTstar"]})
 
 
@@ -154,7 +155,7 @@ def test_missing_dask_and_an_unreachable_scheduler_are_one_line_exit_2(tmp_path,
     args = ["bench", "--suite", "smoke", "--executor", "dask", "--out", str(tmp_path / "a")]
     res = CliRunner().invoke(main, args)
     assert res.exit_code == 2 and res.output.strip() == (
-        "Error: the dask executor needs Dask, which is not installed: pip install 'navlab[dask]'")
+        "Error: the dask executor needs Dask, which is not installed: " + install_command("dask"))
     monkeypatch.undo()
     pytest.importorskip("distributed")
     monkeypatch.setattr(executors, "DASK_CONNECT_TIMEOUT", 1)

@@ -174,8 +174,10 @@ def check_executor(name: str, scheduler: Optional[str] = None) -> None:
     try:
         import distributed  # noqa: F401
     except ImportError:
-        raise ExperimentError("the dask executor needs Dask, which is not installed: "
-                              "pip install 'navlab[dask]'") from None
+        from ..extras import install_command
+
+        raise ExperimentError(f"the dask executor needs Dask, which is not installed: {install_command('dask')}") \
+            from None
     if scheduler is not None:
         _client(scheduler).close()
 

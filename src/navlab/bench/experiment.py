@@ -803,8 +803,10 @@ def _check_cell(exp: Experiment, cell: Cell, worlds: Dict[str, Any]) -> None:
     if cell.planner.name.startswith(OMPL_PREFIX):
         check_ompl_name(cell.planner.name[len(OMPL_PREFIX):])
         if not ompl_available():
+            from ..extras import install_command
+
             raise ExperimentError(f"planner '{cell.planner.name}' needs OMPL, which is not installed: "
-                                  "pip install 'navlab[ompl]'")
+                                  f"{install_command('ompl')}")
         check_ompl_query(cell.planner.name[len(OMPL_PREFIX):], own, exp.budget)
         return
     if cell.world in exp.maps and own.get("resolution") is not None:

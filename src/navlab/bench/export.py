@@ -71,13 +71,15 @@ def write_csv(results: Path, target: Path) -> int:
 
 
 def write_parquet(results: Path, target: Path) -> int:
-    """results.jsonl → Parquet (needs pyarrow: ``pip install 'navlab[parquet]'``)."""
+    """results.jsonl → Parquet (needs pyarrow, the parquet extra: :func:`navlab.extras.install_command`)."""
     try:
         import pyarrow as pa
         import pyarrow.parquet as pq
     except ImportError:
-        raise ExperimentError("--format parquet needs pyarrow: pip install 'navlab[parquet]' "
-                              "(or use --format csv)") from None
+        from ..extras import install_command
+
+        raise ExperimentError(f"--format parquet needs pyarrow: {install_command('parquet')} (or use --format csv)") \
+            from None
     names = columns(read_rows(results))
     table: Dict[str, list] = {n: [] for n in names}
     count = 0

@@ -102,7 +102,9 @@ def plan_ompl(world, name: str, seed: int, max_iter: Optional[int] = None, max_t
     try:
         from ompl import base as ob, geometric as og, util as ou
     except ImportError:
-        raise ImportError("OMPL is not installed: pip install 'navlab[ompl]'") from None
+        from ..extras import install_command
+
+        raise ImportError(f"OMPL is not installed: {install_command('ompl')}") from None
     ou.setLogLevel(ou.LOG_ERROR)
     if max_iter is None and max_time is None:
         raise ParameterError("an OMPL run needs max_iter or max_time")

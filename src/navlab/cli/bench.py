@@ -46,7 +46,7 @@ class BenchCommand(click.Command):
 @click.command("export", context_settings={"help_option_names": ["-h", "--help"]})
 @click.argument("folder", type=click.Path(file_okay=False))
 @click.option("--format", "fmt", type=SuggestingChoice(["csv", "parquet"]), default="csv", show_default=True,
-              help="csv, or parquet (needs the parquet extra: pip install 'navlab[parquet]').")
+              help="csv, or parquet (needs pyarrow, navlab's parquet extra).")
 @click.option("--out", type=click.Path(dir_okay=False), default=None,
               help="Output file (default: FOLDER/results.csv or results.parquet).")
 def export_cmd(folder, fmt, out) -> None:

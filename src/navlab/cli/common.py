@@ -193,8 +193,9 @@ def describe_error(exc: BaseException) -> Tuple[int, str]:
     if isinstance(exc, ModuleNotFoundError) and exc.name:
         top = exc.name.split(".")[0]
         if top in _EXTRAS:
-            return EXIT_USAGE, (f"Error: this needs the optional package '{top}': "
-                                f"pip install 'navlab[{_EXTRAS[top]}]'")
+            from ..extras import install_command
+
+            return EXIT_USAGE, f"Error: this needs the optional package '{top}': {install_command(_EXTRAS[top])}"
     if isinstance(exc, OSError):
         what = exc.strerror or _one_line(exc) or type(exc).__name__
         if exc.filename is not None:

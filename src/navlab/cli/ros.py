@@ -12,14 +12,18 @@ import click
 from ..ros.launch import NODES
 from .common import EXIT_INTERRUPTED, Count, SuggestingChoice, SuggestingGroup, parse_params
 
-ROS_HINT = "ROS 2 is not installed: pip install 'navlab[ros2]'"
+def ros_hint() -> str:
+    """What a ros verb says without the ros2 extra (:func:`navlab.extras.install_command`)."""
+    from ..extras import install_command
+
+    return f"ROS 2 is not installed: {install_command('ros2')}"
 
 
 def _require_rclpy() -> None:
     try:
         import rclpy  # noqa: F401
     except ImportError as exc:
-        error = click.ClickException(f"{ROS_HINT} ({exc})")
+        error = click.ClickException(f"{ros_hint()} ({exc})")
         error.exit_code = 2  # a setting that cannot work, as every input error
         raise error from None
 
@@ -68,7 +72,7 @@ class NodeCommand(click.Command):
             formatter.write(parameter_help(cls.PARAMETERS) + "\n")
         except ImportError:
             formatter.write_paragraph()
-            formatter.write_text(ROS_HINT)
+            formatter.write_text(ros_hint())
 
     def run(self) -> None:
         _require_rclpy()

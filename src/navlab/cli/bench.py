@@ -226,7 +226,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     summary = run.summary
     repeats = run.breakdown.get("repeats", 0)
     ran = f"{run.ran - repeats} run now, {counted(run.errors, 'error')}" + (
-        f"; {counted(repeats, 'noise repeat')} besides" if repeats else "")
+        # what a noise repeat is, where it is counted ("36 noise repeats besides" was unexplained: newcomer, s. 29)
+        f"; {counted(repeats, 'noise repeat')} besides, each timing a trial again to measure the noise and in no "
+        "statistic" if repeats else "")
     # (the elapsed time is the run's wall time, warm-up included; the times per cell below are each trial's own:
     # "in 74.7 s; times are thread CPU time" read as 74.7 s of CPU for trials that took 25.9, newcomer run)
     click.echo(f"{counted(len(run.rows), 'trial')} ({ran}) in {run.elapsed_s:.1f} s of wall time; each trial's time "

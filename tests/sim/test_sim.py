@@ -84,7 +84,8 @@ def test_cli_experiment_json_and_bad_input(tmp_path):
     assert rows[0]["error_true_mm"] == pytest.approx(math.dist(rows[0]["final_true_mm"], rows[0]["target_mm"]))
     # a goal the robot cannot stand on is an answer about the world, as navlab plan's INVALID_GOAL (exit 1)
     res = runner.invoke(main, ["sim", "squarefield", "--goal", "50.0", "5.0"])
-    assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "outside the bounds" in res.output
+    # a point's own description, not "the goal is in collision: ... is outside the bounds" (newcomer, session 29)
+    assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (the goal (50, 5) is outside the bounds ")
     res = runner.invoke(main, ["sim", "trap", "--goal", "7.8", "6.0"])  # inside the trap's wall
     assert res.exit_code == 1 and res.output.startswith("INVALID_GOAL (") and "inside obstacle" in res.output
     res = runner.invoke(main, ["sim", "clutter", "--goal", "4.75", "10.45"])  # 0.04 m from circle 0 (r 0.3 at y 10.11)

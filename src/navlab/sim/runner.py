@@ -210,10 +210,17 @@ def check_endpoints(scene_world, robot, start, goal, goal_heading: Optional[floa
     from ..sim.scene import Scene
 
     scene = Scene(scene_world, robot.radius, getattr(robot, "footprint", None))
+
+    def why(what: str, p) -> str:
+        # "the goal is in collision: (100, 100) is outside the bounds" read oddly (newcomer, session 29): a
+        # point's own description says what is wrong, a footprint's contact follows "in collision"
+        text = scene.describe(p)
+        return f"the {what} {text}" if text.startswith("(") else f"the {what} is in collision: {text}"
+
     if not scene.free(np.asarray(start, float)):
-        raise NoPathError(f"the start is in collision: {scene.describe(start)}", "INVALID_START")
+        raise NoPathError(why("start", start), "INVALID_START")
     if not scene.free_at_some_heading(goal, goal_heading):
-        raise NoPathError(f"the goal is in collision: {scene.describe(goal)}", "INVALID_GOAL")
+        raise NoPathError(why("goal", goal), "INVALID_GOAL")
 
 
 def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform",

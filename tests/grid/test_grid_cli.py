@@ -135,8 +135,11 @@ def test_a_weight_past_greedy_is_refused_and_a_refused_setting_gets_no_note():
 def test_scen_prints_the_length_at_the_stored_optimums_digits():
     """(a row read 'stored 20.313709, got 20.313708 (EXACT, match, ...)': the file stores 20.31370850)"""
     res = run("grid", "scen", DATA / "random-32-32-10-random-1.scen", "--algorithm", "dijkstra")
-    worst = [line for line in res.stdout.splitlines() if "stored" in line]
+    worst = [line for line in res.stdout.splitlines() if line.startswith("    #")]
     assert res.exit_code == 0 and len(worst) == 5
+    # what the rows rank by, and what a match's difference is (newcomer run, session 29)
+    assert "  worst 5 by length minus the stored optimum (cells (x, y); a match is within the stored value's " \
+           "rounding):" in res.stdout
     for line in worst:
         stored, got = line.split("stored ")[1].split(" (")[0].split(", got ")
         assert stored == got and len(stored.split(".")[1]) == 8, line

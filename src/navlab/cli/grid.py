@@ -187,14 +187,18 @@ def scen_report(s) -> str:
     lines.append(f"  time per query: median {s['time_median_ms']:.3f} ms, p95 {s['time_p95_ms']:.3f} ms, "
                  + (f"total {total:.3f} s" if total >= 1.0 else f"total {1000 * total:.3f} ms"))
     if s["worst"]:
-        lines.append(f"  worst {len(s['worst'])} (length - optimum):")
+        # what the rows rank by, and that a match's excess is the stored value's rounding ("match, excess
+        # 4.9182e-05" read as an error; the cells were not said to be (x, y): newcomer run, session 29)
+        lines.append(f"  worst {len(s['worst'])} by length minus the stored optimum (cells (x, y); a match is "
+                     "within the stored value's rounding):")
         for w in s["worst"]:
             # the length at the stored optimum's own printed digits, which it is compared at
             digits = printed_decimals(w["optimal_text"])
             got = "-" if w["length"] is None else f"{w['length']:.{digits}f}"
-            lines.append(f"    #{w['index']}: {w['start']} -> {w['goal']}: stored {w['optimal_text']}, "
+            (sx, sy), (gx, gy) = w["start"], w["goal"]
+            lines.append(f"    #{w['index']}: ({sx}, {sy}) -> ({gx}, {gy}): stored {w['optimal_text']}, "
                          f"got {got} ({w['status']}, {'match' if w['match'] else 'MISMATCH'}, "
-                         f"excess {fmt(w['excess'])})")
+                         f"length - optimum {fmt(w['excess'])})")
     return "\n".join(lines)
 
 

@@ -2,6 +2,7 @@
 
 import json
 import math
+import re
 
 import numpy as np
 import pytest
@@ -240,3 +241,18 @@ def test_a_world_radius_the_simulated_robot_lacks_is_noted(tmp_path):
     assert res.exit_code == 1 and res.stdout.startswith("INVALID_START (") and res.stderr == ""
     res = runner.invoke(main, ["sim", "trap"])
     assert res.exit_code == 0 and res.stderr == "", res.output
+
+
+def test_the_runs_help_gives_each_experiments_own_default():
+    """--runs said no default (newcomer, session 29): the help lists each experiment's, which must be the
+    experiment function's own."""
+    import inspect
+
+    import navlab.sim.latency  # noqa: F401 - registers sensor-latency
+    from navlab.sim.experiments import EXPERIMENTS
+
+    # (the help's words run on, whatever the wrapping: click may break a line after a name's hyphen)
+    text = "".join(CliRunner().invoke(main, ["sim", "--help"]).output.split()).replace("-", "")
+    for name in ("omni-potential-field", "maze-astar", "sensor-latency", "hybrid-vs-field"):
+        default = inspect.signature(EXPERIMENTS.get(name)).parameters["runs"].default
+        assert re.search(rf"[ ,]{default}(for)?{name.replace('-', '')}[,)]", text.replace(",", ", ")), name

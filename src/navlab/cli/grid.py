@@ -214,7 +214,8 @@ def progress_bar(total: int, unit: str, quiet: bool = False, threshold: int = 0)
 @grid_group.command("maze")
 @click.option("--cells", nargs=2, type=Count(), default=(10, 10), show_default=True, metavar="W H",
               help="Maze size in cells.")
-@click.option("--seed", type=Count(low=0), default=0, show_default=True)
+@click.option("--seed", type=Count(low=0), default=0, show_default=True,
+              help="Seed of the maze's layout: same seed and size, same maze.")
 @click.option("--cell-size", type=PositiveNumber(), default=0.5, show_default=True,
               help="Distance between cell centres, m.")
 @click.option("--wall", type=PositiveNumber(), default=0.1, show_default=True,

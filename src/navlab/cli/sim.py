@@ -59,13 +59,17 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
                    "every step, no delay).")
 @click.option("--odom-timing", "odom_timing", multiple=True, metavar="KEY=VALUE[,...]",
               help="Odometry rate [Hz], latency [s] and jitter [s], e.g. rate=50,latency=0.08.")
-@click.option("--seed", type=Count(low=0), default=0, show_default=True)
+@click.option("--seed", type=Count(low=0), default=0, show_default=True,
+              help="Random seed of the run's noise (sensors, wheels; MPPI's samples) and of a tree planner, or an "
+                   "experiment's base seed: same seed, same run.")
 @click.option("--experiment", type=SuggestingChoice(EXPERIMENT_NAMES), default=None,
               help="Run an experiment instead (no WORLD): omni-potential-field (alias seed004), maze-astar "
                    "(seed002), sensor-latency (seed004-latency: seed 004 with its measured topic delays and a "
                    "crossing obstacle), hybrid-vs-field (random-clutter).")
 @click.option("--runs", type=Count(high=MAX_EXPERIMENT_RUNS), default=None,
-              help=f"Runs per setting (with --experiment; at most {MAX_EXPERIMENT_RUNS}).")
+              help=f"Runs per setting (with --experiment; at most {MAX_EXPERIMENT_RUNS}; default: the "
+                   "experiment's own, 5 for omni-potential-field, 1 maze-astar, 3 sensor-latency, 20 "
+                   "hybrid-vs-field).")
 @click.option("--plot-dir", type=click.Path(file_okay=False), default=None,
               help="Experiments: write a PNG per run here (seed002 default: sim-results/seed002).")
 @click.option("--json", "as_json", is_flag=True, help="JSON output (one object per run for experiments).")

@@ -164,8 +164,11 @@ def test_an_experiment_records_a_world_without_a_path_and_goes_on(monkeypatch):
     rows = experiments.hybrid_vs_field(runs=2)
     assert [r["status"] for r in rows][2:] == [rows[2]["status"], "NO_PATH"] and len(rows) == 4
     assert "APPROXIMATE" in rows[3]["reason"]
-    hybrid = next(line for line in experiments.hybrid_table(rows).splitlines() if line.split()[0] == "hybrid")
+    table = experiments.hybrid_table(rows).splitlines()
+    hybrid = next(line for line in table if line.split()[0] == "hybrid")
     assert int(hybrid.split()[3]) == 1  # counted under "other"
+    # a line says what ran (the bare table did not: newcomer, session 29)
+    assert table[0].startswith("The omni3 robot from (1, 1) to (9, 9) in 2 seeded random cluttered worlds ")
 
 
 def test_reached_is_judged_on_the_true_pose_not_the_controllers_estimate():

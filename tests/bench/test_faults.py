@@ -80,6 +80,51 @@ def test_a_sigkilled_run_leaves_no_worker_and_resumes_with_every_trial_once(tmp_
     assert len(ids) == 2 * 2 * 15 + 2 * 2 * 2  # every trial and noise repeat, once
 
 
+def _sleep(seconds):
+    time.sleep(seconds)
+    return seconds
+
+
+def test_an_interrupted_pool_kills_its_workers_at_once():
+    """On Ctrl-C the pool's workers are killed, not left to finish their trials: joins on workers still
+    busy, and a second Ctrl-C landing in them, hung a run for good (attack, session 29)."""
+    from concurrent.futures import ProcessPoolExecutor
+
+    from navlab.bench.executors import _stop_workers
+
+    pool = ProcessPoolExecutor(2)
+    busy = [pool.submit(_sleep, 60) for _ in range(3)]
+    assert wait_for(lambda: len(pool._processes) == 2 and all(alive(p) for p in pool._processes), timeout=30)
+    workers = list(pool._processes.values())
+    began = time.monotonic()
+    _stop_workers(pool)
+    assert time.monotonic() - began < 10 and not any(w.is_alive() for w in workers)
+    assert busy[2].cancelled() or busy[2].done()
+
+
+def test_a_pooled_run_stopped_by_two_ctrl_cs_exits_130_leaving_no_worker(tmp_path):
+    """Ctrl-C, then another 0.1 s later, as an impatient user does: the run ends (it hung, its main
+    thread and the pool's manager each waiting on a worker: attack, session 29), says how to resume, exits
+    130, and no worker outlives it."""
+    exp = tmp_path / "slow.yaml"
+    exp.write_text(SLOW)
+    out = tmp_path / "out"
+    run = bench(exp, "--out", out, "--jobs", 2, "-q", "--no-plots", start_new_session=True)
+    assert wait_for(lambda: lines(out / "results.jsonl") >= 2), run.communicate()
+    workers = children_of(run.pid)
+    run.send_signal(signal.SIGINT)
+    time.sleep(0.1)
+    run.send_signal(signal.SIGINT)
+    try:
+        _, stderr = run.communicate(timeout=60)
+    finally:
+        if run.poll() is None:
+            os.killpg(run.pid, signal.SIGKILL)
+    assert run.returncode == 130, stderr
+    assert "--resume" in stderr and "Traceback" not in stderr and "Exception ignored" not in stderr, stderr
+    assert wait_for(lambda: not any(alive(w) for w in workers), timeout=10), "workers outlived the run"
+
+
 def test_a_lock_left_by_a_dead_run_is_taken_over_with_a_line(tmp_path, capsys):
     dead = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True, text=True)
     (tmp_path / LOCK_FILE).write_text(dead.stdout)

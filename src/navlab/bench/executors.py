@@ -142,12 +142,34 @@ def _pool_rounds(queue: List[Spec], in_doubt: List[Spec], jobs: int, trial: Call
             except BrokenProcessPool:
                 pass  # submit() on a broken pool; those in flight are handled below
             except BaseException:  # Ctrl-C, or the consumer stopped: do not wait for queued trials
-                pool.shutdown(wait=False, cancel_futures=True)
+                _stop_workers(pool)
                 raise
             in_doubt.extend(running.values())
         for spec in in_doubt:
             yield _alone(spec, trial)
         in_doubt = []
+
+
+def _stop_workers(pool: ProcessPoolExecutor) -> None:
+    """End the pool now: cancel the queued trials and kill the workers, whose trials in flight are lost
+    anyway (their rows are never written; ``--resume`` runs them). Shutting down without waiting left the
+    workers to finish their trials, and a second Ctrl-C landing in the joins that followed (the pool's
+    ``with``, then concurrent.futures' exit-time join of its manager thread) hung the run for good: the
+    main thread waiting on one worker, the manager on another, each blocked on the pool's pipes (attack,
+    session 29: 4 of 11 double Ctrl-Cs). ``_processes`` is the executor's own record of its workers
+    (Python 3.14 adds ``terminate_workers`` for this)."""
+    workers = list((getattr(pool, "_processes", None) or {}).values())
+    pool.shutdown(wait=False, cancel_futures=True)
+    for worker in workers:
+        try:
+            worker.kill()
+        except (OSError, ValueError, AttributeError):
+            pass  # gone already, or closed
+    for worker in workers:
+        try:
+            worker.join(5.0)
+        except (OSError, ValueError, AssertionError):
+            pass
 
 
 def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any]:

@@ -194,3 +194,53 @@ def test_the_command_asks_whether_it_is_the_command_once(tmp_path):
     out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stderr.splitlines()[-1] == "ASKED 1" and "clutter" in out.stdout
+
+
+CTRL_C_WHILE_IMPORTING = """
+import sys
+
+class Interrupting:  # Ctrl-C while the command's modules import: navlab.cli's import is interrupted
+    def find_spec(self, name, path=None, target=None):
+        if name == "navlab.cli":
+            raise KeyboardInterrupt
+        return None
+
+sys.meta_path.insert(0, Interrupting())
+from navlab.command import main
+main()
+"""
+
+
+def test_ctrl_c_while_the_command_imports_is_one_line_and_130():
+    """The console script imports its entry point outside any handler: a Ctrl-C in the first tenth of a
+    second printed a KeyboardInterrupt traceback (attack, session 29). navlab.command's own import is
+    guarded."""
+    out = subprocess.run([sys.executable, "-c", CTRL_C_WHILE_IMPORTING], capture_output=True, text=True, timeout=60)
+    assert (out.returncode, out.stderr) == (130, "Interrupted.\n")
+
+
+def test_the_console_script_is_the_guarded_entry_point():
+    import tomllib
+    from pathlib import Path
+
+    scripts = tomllib.loads((Path(__file__).resolve().parents[1] / "pyproject.toml").read_text())["project"]["scripts"]
+    assert scripts["navlab"] == "navlab.command:main"
+
+
+AFTER_THE_LAST_LINE = """
+import atexit, signal, sys
+from navlab.cli import main
+atexit.register(lambda: print("IGNORED" if signal.getsignal(signal.SIGINT) is signal.SIG_IGN else "HANDLED",
+                              flush=True))
+main.main(["--version"], the_command=THE_COMMAND)
+"""
+
+
+@pytest.mark.parametrize("the_command, expected", [(True, "IGNORED"), (False, "HANDLED")])
+def test_once_the_command_is_done_ctrl_c_is_ignored_in_its_own_process_only(the_command, expected):
+    """A Ctrl-C while the interpreter shut down, after the command's last line, ended the process by the
+    signal with no message (attack, session 29): the navlab command ignores it once it is done; a program
+    calling main keeps its handler."""
+    code = AFTER_THE_LAST_LINE.replace("THE_COMMAND", str(the_command))
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0 and out.stdout.splitlines()[-1] == expected, out.stdout + out.stderr

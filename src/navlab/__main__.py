@@ -1,5 +1,5 @@
 """``python -m navlab``: the navlab command."""
 
-from .cli import main
+from .command import main
 
 main()

@@ -259,3 +259,24 @@ def test_bench_stopped_by_a_ctrl_c_inside_a_kernel_prints_the_resume_command(tmp
     assert result.exit_code == 130, result.output
     assert f"interrupted: the finished trials are kept in {out}" in result.output
     assert result.output.strip().endswith("--resume") and "Traceback" not in result.output
+
+
+@pytest.mark.parametrize("kept, repeats_kept, said", [
+    (4, 2, "interrupted: 4 of 4 trials and 2 of 2 noise repeats are kept in {out}, every one; the summary and "
+           "report were not written: navlab bench"),
+    (4, 1, "interrupted: 4 of 4 trials and 1 of 2 noise repeats are kept in {out}; run the rest with: navlab bench"),
+])
+def test_bench_stopped_after_its_last_trial_says_only_the_report_is_missing(kept, repeats_kept, said, tmp_path,
+                                                                            monkeypatch):
+    """"50 of 50 trials ... run the rest with" after the last trial (attack, session 29)."""
+    import navlab.bench
+    from navlab.bench.runner import Interrupted
+
+    def stopped(exp, folder, **kwargs):
+        raise Interrupted(folder, kept, 4, repeats_kept, 2)
+
+    monkeypatch.setattr(navlab.bench, "run_experiment", stopped)
+    out = tmp_path / "o"
+    result = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "rrt", "--trials", "2", "--out",
+                                       str(out), "--no-plots", "-q"])
+    assert result.exit_code == 130 and said.format(out=out) in result.output, result.output

@@ -44,6 +44,8 @@ class Interrupted(Exception):
                                                      else "")
         super().__init__(f"interrupted: {self.counts} kept in {folder}")
         self.folder, self.kept, self.total = folder, kept, total
+        #: every trial and noise repeat on disk: only the summary and the report are missing
+        self.complete = kept == total and repeats_kept == repeats
 
 
 @dataclass

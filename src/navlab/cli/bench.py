@@ -214,13 +214,17 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
                              overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)
     except Interrupted as stop:
-        click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
-                   f"run the rest with: {_resume_command()}", err=True)
+        if stop.complete:  # ("50 of 50 trials ... run the rest with" after the last one: attack, session 29)
+            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}, every one; the summary and report "
+                       f"were not written: {_resume_command()} writes them", err=True)
+        else:
+            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
+                       f"run the rest with: {_resume_command()}", err=True)
         sys.exit(EXIT_INTERRUPTED)
     except (KeyboardInterrupt, SystemError) as exc:  # before or after the trials: every finished trial is on disk
         if not interrupted_by_ctrl_c(exc):
             raise
-        click.echo(f"\ninterrupted: the finished trials are kept in {folder}; continue with: {_resume_command()}",
+        click.echo(f"\ninterrupted: the finished trials are kept in {folder}; run the rest with: {_resume_command()}",
                    err=True)
         sys.exit(EXIT_INTERRUPTED)
     summary = run.summary

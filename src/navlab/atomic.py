@@ -38,9 +38,9 @@ def atomic_path(target: Union[str, os.PathLike]) -> Iterator[Path]:
             OSError(errno.EEXIST, "exists and is not a regular file (navlab writes files only)", str(target))
     fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix or ".tmp",
                                     dir=target.parent if str(target.parent) else ".")
-    os.close(fd)
     tmp = Path(tmp_name)
-    try:
+    try:  # (from the file's creation on: a Ctrl-C before the try left an empty one behind: attack, session 29)
+        os.close(fd)
         yield tmp
         os.chmod(tmp, _public_mode(tmp))
         os.replace(tmp, target)

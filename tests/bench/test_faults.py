@@ -224,3 +224,23 @@ def test_the_bar_is_drawn_on_a_terminal_only(monkeypatch):
     with _progress(3, "e", enabled=False) as bar:
         bar.update(3)
     assert quiet.getvalue() == ""
+
+
+def test_a_ctrl_c_handed_back_as_a_system_error_in_a_trial_ends_the_run(tmp_path, monkeypatch):
+    """The SystemError Python raises for a Ctrl-C inside a compiled kernel's call (its cause the
+    KeyboardInterrupt) was stored as an ERROR row, and a serial run went on (review, session 29)."""
+    import navlab.bench.trial as trial
+    from navlab.bench.runner import Interrupted
+
+    def interrupted(spec):
+        exc = SystemError("CPUDispatcher(<function _build>) returned a result with an exception set")
+        exc.__cause__ = KeyboardInterrupt()
+        raise exc
+
+    no_warm_up = lambda spec: 0.0  # noqa: E731
+    with pytest.raises(KeyboardInterrupt):
+        trial.run_trial(load_experiment(TINY).trial_specs()[0], runner=interrupted, warm=no_warm_up)
+    monkeypatch.setattr(trial.run_trial, "__defaults__", (interrupted, no_warm_up))  # what the executors call
+    with pytest.raises(Interrupted):
+        run_experiment(load_experiment(TINY), tmp_path / "o", executor="serial", progress=False, plots=False)
+    assert not (tmp_path / "o" / "results.jsonl").exists() or lines(tmp_path / "o" / "results.jsonl") == 0

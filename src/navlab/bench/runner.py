@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any, Dict, List, Optional, Sequence, Set
 
 from ..atomic import write_text_atomic
+from ..errors import interrupted_by_ctrl_c
 from ..wording import counted
 from .analysis import by_world, compared_rows, judge_claims, scope_text, summarize, timed
 from .executors import EXECUTORS, check_executor
@@ -124,7 +125,9 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                     store.append(row)
                     new_rows.append(row)
                     bar.update(1)
-            except KeyboardInterrupt:
+            except (KeyboardInterrupt, SystemError) as exc:
+                if not interrupted_by_ctrl_c(exc):
+                    raise
                 bar.close()
                 raise stopped(store, specs, experiment.noise_specs()) from None
             bar.close()

@@ -23,6 +23,7 @@ from typing import Any, Callable, Dict, Optional
 import numpy as np
 
 from ..angles import HeadingWarning
+from ..errors import interrupted_by_ctrl_c
 from ..result import Result, _jsonable
 from .experiment import OMPL_PREFIX
 
@@ -187,7 +188,9 @@ def run_trial(spec: Dict[str, Any], runner: Callable[[Dict[str, Any]], Result] =
         if spec.get("keep_tree") and result.tree is not None and "nodes" in result.tree:
             row["tree"] = {"nodes": np.asarray(result.tree["nodes"]), "parent": np.asarray(result.tree["parent"]),
                            "path": np.asarray(result.path, dtype=float)}
-    except Exception:  # noqa: BLE001 - any failure of one trial is data, not the end of the run
+    except Exception as exc:  # noqa: BLE001 - any failure of one trial is data, not the end of the run
+        if interrupted_by_ctrl_c(exc):  # a Ctrl-C handed back as a SystemError ends the run, as any Ctrl-C does
+            raise KeyboardInterrupt from exc
         row.update(error_fields(traceback.format_exc()))
     return row
 

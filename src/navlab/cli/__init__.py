@@ -16,8 +16,8 @@ STARTED = time.perf_counter()
 
 import click  # noqa: E402 - after the clock starts
 
-from .common import (CUT_STATUS, EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error,
-                     interrupted_by_ctrl_c)
+from ..errors import interrupted_by_ctrl_c
+from .common import CUT_STATUS, EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error
 
 
 def _quick_exit() -> None:

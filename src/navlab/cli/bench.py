@@ -13,8 +13,9 @@ import click
 import yaml
 
 from ..bench.suites import suite_help
+from ..errors import interrupted_by_ctrl_c
 from ..wording import counted, listed
-from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, interrupted_by_ctrl_c, parse_params
+from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, parse_params
 
 
 

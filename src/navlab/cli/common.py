@@ -158,16 +158,6 @@ def debug_enabled() -> bool:
     return os.environ.get("NAVLAB_DEBUG", "").strip() not in ("", "0")
 
 
-def interrupted_by_ctrl_c(exc: BaseException) -> bool:
-    """Whether ``exc`` is a Ctrl-C: a ``KeyboardInterrupt``, or the ``SystemError`` Python raises in its
-    place when the interrupt's handler ran inside a C function that then returned a result anyway ("...
-    returned a result with an exception set", the interrupt its ``__cause__``): numba's dispatcher of a
-    compiled kernel did so (fuzz test_real_command_ctrl_c_is_one_line, a full local run under load,
-    session 29), and the command printed an internal error and exited 1 instead of 130."""
-    return isinstance(exc, KeyboardInterrupt) or (isinstance(exc, SystemError)
-                                                  and isinstance(exc.__cause__, KeyboardInterrupt))
-
-
 def _one_line(text: str, limit: int = 2000) -> str:
     """``text`` on one line: whitespace runs (line breaks too) as one space, other control characters escaped
     (a file name holding ESC [31m turned the terminal red; newcomer run, session 21), cut at ``limit``."""

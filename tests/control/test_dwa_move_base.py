@@ -64,7 +64,7 @@ def test_the_paths_move_base_plans_are_the_runs_replans_and_the_robot_follows_th
 
     result, _, sim = simulate("clutter", robot="diff", controller="dwa")
     assert result.status.name == "REACHED" and sim.controller.stats["replans"] >= 1
-    assert len(result.replans) == sim.controller.stats["replans"]
+    assert len(result.replans) == result.replan_count == sim.controller.stats["replans"]
     assert all(np.allclose(path[-1], result.goal, atol=0.05) for path in result.replans)
     last = result.replans[-1]
     since = int(np.argmin(np.hypot(*(result.true_poses[:, :2] - last[0]).T)))  # where it was planned from
@@ -73,3 +73,17 @@ def test_the_paths_move_base_plans_are_the_runs_replans_and_the_robot_follows_th
     out = CliRunner().invoke(main, ["sim", "clutter", "--robot", "diff", "--controller", "dwa"]).output
     assert (f"planned a {len(result.path)}-waypoint path and replanned {len(result.replans)} times (the last plan "
             f"{len(last)} waypoints); the farthest from the first path: {result.tracking_error():.3f} m") in out
+
+
+def test_a_run_keeps_move_bases_last_plans_and_counts_them_all():
+    """At 20 Hz (dwa_barn) every plan kept took 50 MB over a 341 s run (review, session 29): the run keeps
+    the last KEPT_PLANS and counts them all; the costmap feed plans nothing of its own (replan_interval is
+    infinite: it planned at t = 0, a path replaced in the same cycle, counted as a replan)."""
+    from navlab.control.dwa import KEPT_PLANS
+    from navlab.sim.runner import simulate
+
+    result, _, sim = simulate("clutter", robot="diff", controller="dwa_barn", max_time=8.0)
+    assert sim.costmap_feed.paths == [] and sim.controller.replan_interval == math.inf
+    assert result.replan_count == sim.controller.stats["replans"] == result.steps > KEPT_PLANS  # one per cycle
+    assert len(result.replans) == KEPT_PLANS
+    assert np.array_equal(result.replans[-1], sim.controller.path)  # the last one is the path it ended on

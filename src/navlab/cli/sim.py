@@ -167,17 +167,18 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         if "goal_heading" in result.meta:
             click.echo(f"  final heading {result.final_true[2]:.3f} rad, {result.meta['heading_error_rad']:.3f} rad "
                        f"from the goal's {result.meta['goal_heading']:.3f}")
-        if result.path is not None and result.replans and not sim.scene.dynamic:
+        if result.path is not None and result.replans:
             # the error is the distance from the first path, which the robot stopped following at a replan
             # (DWA on clutter: "max tracking error 3.116 m" from a path it dropped at once; newcomer, session 29)
-            click.echo(f"  planned a {len(result.path)}-waypoint path and replanned {counted(len(result.replans), 'time')}"
-                       f" (the last plan {len(result.replans[-1])} waypoints); the farthest from the first path: "
-                       f"{result.tracking_error():.3f} m")
+            click.echo(f"  planned a {len(result.path)}-waypoint path and replanned "
+                       f"{counted(result.replan_count, 'time')} (the last plan {len(result.replans[-1])} waypoints); "
+                       f"the farthest from the first path: {result.tracking_error():.3f} m")
         elif result.path is not None:
             click.echo(f"  followed a {len(result.path)}-waypoint path, max tracking error "
                        f"{result.tracking_error():.3f} m")
         if sim.scene.dynamic:
-            replans = getattr(getattr(sim.controller, "replanner", None), "count", 0)
+            # the follower's replanner counts its tries, found or not; others (DWA's move_base) their paths
+            replans = getattr(getattr(sim.controller, "replanner", None), "count", result.replan_count)
             click.echo(f"  {len(sim.scene.moving)} moving obstacle(s); closest approach "
                        f"{1000 * sim.min_clearance(result):.0f} mm; {replans} replan(s)")
         for what, name in (("trajectory", trajectory), ("plot", plot), ("animation", gif)):

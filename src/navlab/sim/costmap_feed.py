@@ -66,7 +66,10 @@ class CostmapFeed:
         self.controller.set_costmap(costmap, self.footprint)
         if getattr(self.controller, "wants_pose_plan", False):
             self._plan_poses(t, pose, costmap)
-        if self.sensing and t - self._last_plan >= self.controller.replan_interval:
+        # (an infinite interval plans never: 0 - (-inf) >= inf planned at t = 0, a path DWA's own planner
+        # replaced in the same cycle, counted as a replan: review, session 29)
+        interval = self.controller.replan_interval
+        if self.sensing and math.isfinite(interval) and t - self._last_plan >= interval:
             self._last_plan = t
             path, _, _ = plan_on_costmap(costmap, pose, self.goal, allow_unknown=True)
             if path is not None:

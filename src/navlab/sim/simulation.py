@@ -75,8 +75,10 @@ class SimResult:
     scans: Optional[np.ndarray] = None  #: (N, beams) when recorded
     reason: str = ""
     meta: Dict[str, Any] = field(default_factory=dict)
-    #: paths planned during the run (replans), each from the robot's pose then
+    #: paths planned during the run (replans), each from the robot's pose then (a controller that plans at
+    #: a high rate keeps its last ones only: ``replan_count`` counts them all)
     replans: List[np.ndarray] = field(default_factory=list)
+    replan_count: int = 0
 
     @property
     def real_time_factor(self) -> float:
@@ -318,12 +320,15 @@ class Simulation:
         if self.goal_heading is not None:
             meta = {"goal_heading": self.goal_heading,
                     "heading_error_rad": abs(math.remainder(true[n - 1, 2] - self.goal_heading, 2.0 * math.pi))}
+        # the paths planned during the run: the replanner's (followers), the costmap feed's and a controller's
+        # own global planner's (DWA's move_base, which keeps its last ones and counts them all)
+        replanned = list(getattr(replanner, "paths", ())[replans_before:]) + (
+            self.costmap_feed.paths if self.costmap_feed is not None else [])
+        own = list(getattr(self.controller, "paths", ()))
         return SimResult(status, steps * dt, steps, wall, np.arange(n) * dt, true[:n].copy(), odo[:n].copy(),
                          cmds[:n].copy(), self.goal.copy(), self.path,
-                         None if scans is None else scans[:n].copy(), reason, meta,
-                         replans=list(getattr(replanner, "paths", ())[replans_before:])
-                         + (self.costmap_feed.paths if self.costmap_feed is not None else [])
-                         + list(getattr(self.controller, "paths", ())))  # (a controller's own global planner: DWA's)
+                         None if scans is None else scans[:n].copy(), reason, meta, replans=replanned + own,
+                         replan_count=len(replanned) + getattr(self.controller, "plans_made", len(own)))
 
     def min_clearance(self, result: SimResult) -> float:
         """Smallest gap (m) between the robot's disc and any obstacle, where

@@ -244,3 +244,17 @@ def test_a_ctrl_c_handed_back_as_a_system_error_in_a_trial_ends_the_run(tmp_path
     with pytest.raises(Interrupted):
         run_experiment(load_experiment(TINY), tmp_path / "o", executor="serial", progress=False, plots=False)
     assert not (tmp_path / "o" / "results.jsonl").exists() or lines(tmp_path / "o" / "results.jsonl") == 0
+
+
+def test_a_ctrl_c_while_the_report_is_written_says_every_trial_is_kept(tmp_path, monkeypatch):
+    """The report's plotting takes seconds after the last trial; a Ctrl-C there said "the finished trials
+    are kept ...; run the rest with" (review, session 29): it is an Interrupted with every trial kept."""
+    import navlab.bench.runner as runner
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "write_report", interrupted)
+    with pytest.raises(runner.Interrupted) as stop:
+        run_experiment(load_experiment(TINY), tmp_path / "o", executor="serial", progress=False, plots=False)
+    assert stop.value.complete and stop.value.kept == stop.value.total == 4

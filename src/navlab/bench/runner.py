@@ -139,13 +139,21 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         phases["repeats"] = sum(bool(r.get("repeat")) for r in new_rows)
         rows = store.current_rows(specs)
         repeats = [store.rows[s["trial_id"]] for s in experiment.noise_specs() if s["trial_id"] in store.rows]
-        summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
-                               time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
-                               plot_jobs=1 if executor == "serial" else min(phases["workers"], os.cpu_count() or 1))
-        try:  # the same trials as one flat table, for pandas, R or a spreadsheet
-            write_csv(store.results_path, store.folder / "results.csv")
-        except OSError as exc:
-            raise write_error(store.folder / "results.csv", exc) from None
+        try:
+            summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
+                                   time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
+                                   plot_jobs=1 if executor == "serial" else min(phases["workers"],
+                                                                                os.cpu_count() or 1))
+            try:  # the same trials as one flat table, for pandas, R or a spreadsheet
+                write_csv(store.results_path, store.folder / "results.csv")
+            except OSError as exc:
+                raise write_error(store.folder / "results.csv", exc) from None
+        except (KeyboardInterrupt, SystemError) as exc:
+            # every trial is on disk: the Ctrl-C says so (it said "run the rest with", as if trials were missing,
+            # through the report's seconds of plotting: review, session 29)
+            if not interrupted_by_ctrl_c(exc):
+                raise
+            raise stopped(store, specs, experiment.noise_specs()) from None
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 

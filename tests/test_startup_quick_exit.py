@@ -228,19 +228,26 @@ def test_the_console_script_is_the_guarded_entry_point():
 
 
 AFTER_THE_LAST_LINE = """
-import atexit, signal, sys
+import atexit, os, signal, sys
 from navlab.cli import main
-atexit.register(lambda: print("IGNORED" if signal.getsignal(signal.SIGINT) is signal.SIG_IGN else "HANDLED",
-                              flush=True))
-main.main(["--version"], the_command=THE_COMMAND)
+atexit.register(lambda: os.kill(os.getpid(), signal.SIGINT))  # Ctrl-C while the interpreter shuts down
+atexit.register(lambda: print("EXITING", flush=True))
+main.main(ARGS, the_command=THE_COMMAND)
 """
 
 
-@pytest.mark.parametrize("the_command, expected", [(True, "IGNORED"), (False, "HANDLED")])
-def test_once_the_command_is_done_ctrl_c_is_ignored_in_its_own_process_only(the_command, expected):
+@pytest.mark.parametrize("args, status", [(["--version"], 0), (["plan", "trap", "--max-iter", "-1"], 2)])
+def test_once_the_command_is_done_ctrl_c_ends_it_with_its_own_status(args, status):
     """A Ctrl-C while the interpreter shut down, after the command's last line, ended the process by the
-    signal with no message (attack, session 29): the navlab command ignores it once it is done; a program
-    calling main keeps its handler."""
-    code = AFTER_THE_LAST_LINE.replace("THE_COMMAND", str(the_command))
+    signal with no message and no status of its own (attack, session 29): once the navlab command is done,
+    it ends the process with the command's status, output flushed."""
+    code = AFTER_THE_LAST_LINE.replace("ARGS", repr(args)).replace("THE_COMMAND", "True")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
-    assert out.returncode == 0 and out.stdout.splitlines()[-1] == expected, out.stdout + out.stderr
+    assert out.returncode == status and out.stdout.splitlines()[-1] == "EXITING", out.stdout + out.stderr
+    assert "KeyboardInterrupt" not in out.stderr and "Traceback" not in out.stderr, out.stderr
+
+
+def test_a_program_calling_main_keeps_its_own_ctrl_c():
+    code = AFTER_THE_LAST_LINE.replace("ARGS", '["--version"]').replace("THE_COMMAND", "False")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60)
+    assert out.returncode == -2 or "KeyboardInterrupt" in out.stderr, (out.returncode, out.stderr)

@@ -210,16 +210,27 @@ def _stdout_reader_gone() -> bool:
     return True
 
 
-def _done_with_ctrl_c() -> None:
-    """Once the command has said its last (its output written, its exit status chosen, after Ctrl-C too),
-    a Ctrl-C is ignored: one landing while the interpreter shut down ended the process by the signal, with no
-    message and no status of its own (attack, session 29: 18 of 18 Ctrl-Cs 0-20 ms after the last line;
-    and a second Ctrl-C after navlab bench's resume line). Only in the navlab command's own process: a
-    program calling :func:`main` keeps its handlers."""
+def _done_with_ctrl_c(code) -> None:
+    """Once the command has said its last (its output written, its exit status ``code`` chosen, after Ctrl-C
+    too), a Ctrl-C ends the process at once with that status, its output flushed: one landing while the
+    interpreter shut down ended it by the signal, with no message and no status of its own (attack, session
+    29: 18 of 18 Ctrl-Cs 0-20 ms after the last line; and a second Ctrl-C after navlab bench's resume line),
+    and ignoring it would leave a hang at exit (a pool's or a Dask cluster's join) with no way out but kill.
+    Only in the navlab command's own process: a program calling :func:`main` keeps its handlers."""
     import signal
 
+    status = code if isinstance(code, int) else 0 if code is None else 1  # (as sys.exit reads its argument)
+
+    def end(signum, frame) -> None:
+        for stream in (sys.stdout, sys.stderr):
+            try:
+                stream.flush()
+            except (OSError, ValueError, RuntimeError, AttributeError):
+                pass  # gone, closed, or being written this very moment
+        os._exit(status)
+
     if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGINT, signal.SIG_IGN)
+        signal.signal(signal.SIGINT, end)
 
 
 class NavlabGroup(SuggestingGroup):
@@ -246,9 +257,10 @@ class NavlabGroup(SuggestingGroup):
         _quick_exit()
         try:
             self._main(args, prog_name, complete_var, **extra)
-        finally:
+        except SystemExit as exc:
             if the_command:
-                _done_with_ctrl_c()
+                _done_with_ctrl_c(exc.code)
+            raise
 
     def _main(self, args, prog_name, complete_var, **extra):
         """:meth:`main`'s run of the command, ending in ``SystemExit`` with its status."""

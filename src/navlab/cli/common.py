@@ -9,14 +9,13 @@ from typing import Any, Dict, Optional, Tuple
 
 import click
 
+from ..command import EXIT_INTERRUPTED  # noqa: F401 (the verbs take it from here)
 from ..wording import escaped
 
 #: exit status for bad input (a malformed file, an unknown name, a value out of range)
 EXIT_USAGE = 2
 #: exit status for an unexpected failure inside navlab (a bug: please report it)
 EXIT_INTERNAL = 1
-#: exit status after Ctrl-C (128 + SIGINT, as shells report it)
-EXIT_INTERRUPTED = 130
 
 #: optional packages and the extra that installs them
 _EXTRAS = {"dask": "dask", "distributed": "dask", "ompl": "ompl", "pyastar2d": "bench",

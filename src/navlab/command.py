@@ -11,8 +11,7 @@ for the same reason (in ``navlab.cli.scripts`` their import went through ``navla
 import sys
 from typing import Callable
 
-#: the exit status after Ctrl-C (128 + SIGINT, as shells report it)
-EXIT_INTERRUPTED = 130
+from .errors import EXIT_INTERRUPTED
 
 
 def _command() -> Callable:

@@ -32,6 +32,10 @@ class ParameterError(NavlabError):
     with another; the message names it."""
 
 
+#: the exit status after Ctrl-C (128 + SIGINT, as shells report it)
+EXIT_INTERRUPTED = 130
+
+
 def interrupted_by_ctrl_c(exc: BaseException) -> bool:
     """Whether ``exc`` is a Ctrl-C: a ``KeyboardInterrupt``, or the ``SystemError`` Python raises in its
     place when the interrupt's handler ran inside a C function that then returned a result anyway ("...

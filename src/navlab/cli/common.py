@@ -9,7 +9,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import click
 
-from ..command import EXIT_INTERRUPTED  # noqa: F401 (the verbs take it from here)
+from ..errors import EXIT_INTERRUPTED  # noqa: F401 (the verbs take it from here)
 from ..wording import escaped
 
 #: exit status for bad input (a malformed file, an unknown name, a value out of range)

@@ -1,6 +1,8 @@
 """The top-level error handler: one ``Error:`` line, the documented exit status, never a traceback."""
 
 import errno
+import shlex
+import sys
 
 import click
 import numpy as np
@@ -75,7 +77,7 @@ def returned_with_an_exception_set(cause):
     (OSError(errno.ENAMETOOLONG, "File name too long", "a" * 100_000 + ".pgm"), 2,
      "Error: " + "a" * 150 + "..." + "a" * 71 + ".pgm (a name of 100004 characters): File name too long"),
     (MemoryError(), 2, "Error: the request is too large for this machine's memory"),
-    (ModuleNotFoundError("No module named 'dask'", name="dask"), 2, "needs the optional package 'dask': pip install "),
+    (ModuleNotFoundError("No module named 'dask'", name="dask"), 2, "needs the optional package 'dask': " + sys.executable),
     (KeyError("time_s"), 1, "Error: internal error: KeyError: 'time_s' (run with NAVLAB_DEBUG=1 for the traceback)"),
     (TypeError("unsupported operand"), 1, "Error: internal error: TypeError: unsupported operand"),
     (OverflowError("cannot convert float infinity to integer"), 1, "Error: internal error: OverflowError"),

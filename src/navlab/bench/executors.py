@@ -179,6 +179,9 @@ def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any
         except BrokenProcessPool:
             return crash_row(spec, "the worker process running this trial died (crash or killed); "
                                    "it died again when the trial was rerun alone")
+        except BaseException:  # Ctrl-C: as for the pool (_stop_workers), not a wait for the trial to end
+            _stop_workers(solo)
+            raise
 
 
 #: seconds to wait for a Dask scheduler before giving up

@@ -239,6 +239,13 @@ def test_a_world_radius_the_simulated_robot_lacks_is_noted(tmp_path):
                           "footprint, a disc of radius 0.105 m (--robot-param radius=0.5 gives it that size)\n")
     res = runner.invoke(main, ["sim", str(tmp_path / "near.yaml"), "--robot", "diff", "--robot-param", "radius=0.5"])
     assert res.exit_code == 1 and res.stdout.startswith("INVALID_START (") and "note:" not in res.output
+    # a polygon footprint is changed with footprint=, not radius= (which sizes a disc: review, session 29)
+    (tmp_path / "open.yaml").write_text("bounds: {x: [0, 10], y: [0, 10]}\nstart: [2, 2]\ngoal: [8, 8]\n"
+                                        "robot_radius: 0.5\nobstacles: []\n")
+    res = runner.invoke(main, ["sim", str(tmp_path / "open.yaml"), "--robot", "jackal", "--controller", "rpp"])
+    assert res.exit_code == 0 and res.stderr.startswith("note: the world's robot_radius 0.5 m is navlab plan's; the "
+                                                        "simulated robot is its own footprint, a 4-gon of "), res.output
+    assert res.stderr.endswith("(--robot-param footprint=[[x, y], ...] gives it another shape)\n")
     # the robot at least as large as the world's radius (omni3's 0.16 m, trap's 0.15 m): no note
     res = runner.invoke(main, ["sim", str(tmp_path / "near.yaml"), "--robot-param", "radius=0.6"])
     assert res.exit_code == 1 and res.stdout.startswith("INVALID_START (") and res.stderr == ""

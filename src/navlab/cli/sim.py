@@ -222,9 +222,11 @@ def _note_the_robots_own_size(world, robot) -> None:
     session 29). A robot larger than the world's radius keeps more room than it asks: nothing to say."""
     size = getattr(world, "robot_radius", 0.0)
     if size > robot.planning_radius + 1e-9:
+        # radius= sizes a disc; a polygon footprint (jackal, car) is changed with footprint= (review, s. 29)
+        remedy = f"--robot-param radius={size:g} gives it that size" if getattr(robot, "footprint", None) is None \
+            else "--robot-param footprint=[[x, y], ...] gives it another shape"
         click.echo(f"note: the world's robot_radius {size:g} m is navlab plan's; the simulated robot is its own "
-                   f"footprint, {robot.shape.describe()} (--robot-param radius={size:g} gives it that size)",
-                   err=True)
+                   f"footprint, {robot.shape.describe()} ({remedy})", err=True)
 
 
 def _timing(items, flag: str):

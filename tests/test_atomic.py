@@ -65,3 +65,18 @@ def test_a_file_the_writer_made_executable_stays_executable(tmp_path):
     with atomic_path(plain) as tmp:
         tmp.write_text("x")
     assert not plain.stat().st_mode & 0o111
+
+
+def test_a_ctrl_c_right_after_the_temporary_is_made_leaves_none(tmp_path, monkeypatch):
+    """Ctrl-C between the temporary's creation and the writer's first byte left an empty
+    .report.html.*.html in a bench folder (attack, session 29)."""
+    import navlab.atomic as atomic
+
+    def interrupted(fd):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(atomic.os, "close", interrupted)
+    with pytest.raises(KeyboardInterrupt), atomic_path(tmp_path / "report.html"):
+        pass
+    monkeypatch.undo()
+    assert list(tmp_path.iterdir()) == []

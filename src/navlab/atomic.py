@@ -38,15 +38,15 @@ def atomic_path(target: Union[str, os.PathLike]) -> Iterator[Path]:
             OSError(errno.EEXIST, "exists and is not a regular file (navlab writes files only)", str(target))
     fd, tmp_name = tempfile.mkstemp(prefix=f".{target.name}.", suffix=target.suffix or ".tmp",
                                     dir=target.parent if str(target.parent) else ".")
-    tmp = Path(tmp_name)
     try:  # (from the file's creation on: a Ctrl-C before the try left an empty one behind: attack, session 29)
         os.close(fd)
+        tmp = Path(tmp_name)
         yield tmp
         os.chmod(tmp, _public_mode(tmp))
         os.replace(tmp, target)
     except BaseException:
         with contextlib.suppress(OSError):
-            tmp.unlink()
+            os.unlink(tmp_name)
         raise
 
 

@@ -78,7 +78,7 @@ def sensor_latency(runs: int = 3, seed: int = 0, speeds=(0.3, 0.4, 0.5, 0.6, 0.8
                 for run in range(runs):
                     run_seed = int(np.random.SeedSequence([seed, int(target[0]) + 10, int(target[1]) + 10,
                                                            len(obstacle), len(delays), run]).generate_state(1)[0])
-                    rows.append(_row(sim, sim.run(run_seed), part="table", target=[1000 * target[0], 1000 * target[1]],
+                    rows.append(_row(sim, sim.run(run_seed), part="table", target_mm=[1000 * target[0], 1000 * target[1]],
                                      obstacle=obstacle, delays=delays, max_speed=0.3, run=run + 1))
     # speed against the static cylinder (the crossing one's outcome depends on when the two arrive, not on speed)
     for speed in speeds:
@@ -87,7 +87,7 @@ def sensor_latency(runs: int = 3, seed: int = 0, speeds=(0.3, 0.4, 0.5, 0.6, 0.8
                 sim = _simulation(target, "static", timing, max_speed=speed)
                 for run in range(runs):
                     rows.append(_row(sim, sim.run(seed * 100 + run), part="speed",
-                                     target=[1000 * target[0], 1000 * target[1]], obstacle="static",
+                                     target_mm=[1000 * target[0], 1000 * target[1]], obstacle="static",
                                      delays=delays, max_speed=speed, run=run + 1))
     return rows
 

@@ -138,8 +138,8 @@ def test_scen_prints_the_length_at_the_stored_optimums_digits():
     worst = [line for line in res.stdout.splitlines() if line.startswith("    #")]
     assert res.exit_code == 0 and len(worst) == 5
     # what the rows rank by, and what a match's difference is (newcomer run, session 29)
-    assert "  worst 5 by length minus the stored optimum (cells (x, y); a match is within the stored value's " \
-           "rounding):" in res.stdout
+    assert "  worst 5: failed first, then by |length - stored optimum| (cells (x, y); a match is within the " \
+           "stored value's rounding):" in res.stdout
     for line in worst:
         stored, got = line.split("stored ")[1].split(" (")[0].split(", got ")
         assert stored == got and len(stored.split(".")[1]) == 8, line

@@ -189,8 +189,8 @@ def scen_report(s) -> str:
     if s["worst"]:
         # what the rows rank by, and that a match's excess is the stored value's rounding ("match, excess
         # 4.9182e-05" read as an error; the cells were not said to be (x, y): newcomer run, session 29)
-        lines.append(f"  worst {len(s['worst'])} by length minus the stored optimum (cells (x, y); a match is "
-                     "within the stored value's rounding):")
+        lines.append(f"  worst {len(s['worst'])}: failed first, then by |length - stored optimum| (cells (x, y); a "
+                     "match is within the stored value's rounding):")
         for w in s["worst"]:
             # the length at the stored optimum's own printed digits, which it is compared at
             digits = printed_decimals(w["optimal_text"])

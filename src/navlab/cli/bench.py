@@ -18,7 +18,6 @@ from ..wording import counted, listed
 from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, parse_params
 
 
-
 class BenchCommand(click.Command):
     """``navlab bench`` with one sub-verb: ``navlab bench export DIR`` converts
     a results folder (an experiment file named ``export`` is ``./export``)."""

@@ -12,6 +12,7 @@ import click
 from ..ros.launch import NODES
 from .common import EXIT_INTERRUPTED, Count, SuggestingChoice, SuggestingGroup, parse_params
 
+
 def ros_hint() -> str:
     """What a ros verb says without the ros2 extra (:func:`navlab.extras.install_command`)."""
     from ..extras import install_command

@@ -127,7 +127,9 @@ class SimNode(NavlabNode):
         self.tf_type = tf_message_type()
         self.tf_pub = self.create_publisher(self.tf_type, "tf", STREAM_QOS) if self.tf_type else None
         if self.tf_pub is None:
-            self.log("warn", "tf2_msgs is not installed (pip install ros_interfaces/tf2_msgs in the navlab repository builds it): "
+            from ..extras import install_command
+
+            self.log("warn", f"tf2_msgs is not installed ({install_command('ros2')} builds it): "
                              "odom → base_link is not published on /tf; /odom carries the same pose")
         elif p["static_map_odom"]:
             self.tf_static_pub = self.create_publisher(self.tf_type, "tf_static", MAP_QOS)

@@ -149,15 +149,21 @@ def seed002(runs: int = 1, seed: int = 0, plot_dir: Optional[str] = ".", **_: An
     return rows
 
 
-def random_clutter_world(seed: int, obstacles: int = 18) -> World:
-    """A 10 m × 10 m world from (1, 1) to (9, 9) with ``obstacles`` random
+#: the random-clutter worlds (:func:`random_clutter_world`): side [m], start, goal, obstacles; and the robot
+#: hybrid-vs-field drives there
+CLUTTER_SIDE, CLUTTER_START, CLUTTER_GOAL, CLUTTER_OBSTACLES = 10.0, (1.0, 1.0), (9.0, 9.0), 18
+CLUTTER_ROBOT = "omni3"
+
+
+def random_clutter_world(seed: int, obstacles: int = CLUTTER_OBSTACLES) -> World:
+    """A 10 m × 10 m world from (1, 1) to (9, 9) (:data:`CLUTTER_SIDE` ...) with ``obstacles`` random
     circles (radius 0.2–0.7 m) and boxes (0.4–1.6 m sides), none within
     1.2 m of the start or the goal (seeded: the same seed, the same world)."""
     rng = np.random.default_rng(seed)
-    start, goal = np.array((1.0, 1.0)), np.array((9.0, 9.0))
+    start, goal = np.array(CLUTTER_START), np.array(CLUTTER_GOAL)
     shapes = []
     while len(shapes) < obstacles:
-        c = rng.uniform(0.5, 9.5, 2)
+        c = rng.uniform(0.5, CLUTTER_SIDE - 0.5, 2)
         if min(np.hypot(*(c - start)), np.hypot(*(c - goal))) < 1.2:
             continue
         if rng.random() < 0.5:
@@ -165,7 +171,8 @@ def random_clutter_world(seed: int, obstacles: int = 18) -> World:
         else:
             half = rng.uniform(0.2, 0.8, 2)
             shapes.append(Rectangle(tuple(c - half), tuple(c + half)))
-    return World(f"random_clutter_{seed}", Bounds(0.0, 10.0, 0.0, 10.0), (1.0, 1.0), (9.0, 9.0), tuple(shapes))
+    return World(f"random_clutter_{seed}", Bounds(0.0, CLUTTER_SIDE, 0.0, CLUTTER_SIDE), CLUTTER_START, CLUTTER_GOAL,
+                 tuple(shapes))
 
 
 @EXPERIMENTS.register("hybrid-vs-field")
@@ -180,7 +187,7 @@ def hybrid_vs_field(runs: int = 20, seed: int = 0, **_: Any) -> List[Dict[str, A
         world = random_clutter_world(seed * 1000 + k)
         for controller in ("potential_field", "hybrid"):
             try:
-                result, _, sim = simulate(world, robot="omni3", controller=controller, seed=k)
+                result, _, sim = simulate(world, robot=CLUTTER_ROBOT, controller=controller, seed=k)
             except NoPathError as exc:  # a world whose passages are too narrow for the robot's plan
                 rows.append({"experiment": "hybrid-vs-field", "world": world.name, "controller": controller,
                              "status": "NO_PATH", "reason": str(exc), "time_s": 0.0, "error_true_mm": None,
@@ -197,8 +204,10 @@ def hybrid_table(rows: List[Dict[str, Any]]) -> str:
     """What ran (a line: the table alone said nothing of it; newcomer, session 29), then reached, stalled
     and other endings with the mean time of the runs that reached, per controller."""
     worlds = len({r["world"] for r in rows})
-    lines = [f"The omni3 robot from (1, 1) to (9, 9) in {counted(worlds, 'seeded random cluttered world')} "
-             "(10 m x 10 m, 18 circles and boxes), with the plain potential field and with the hybrid navigator:",
+    (sx, sy), (gx, gy) = CLUTTER_START, CLUTTER_GOAL
+    lines = [f"The {CLUTTER_ROBOT} robot from ({sx:g}, {sy:g}) to ({gx:g}, {gy:g}) in "
+             f"{counted(worlds, 'seeded random cluttered world')} ({CLUTTER_SIDE:g} m x {CLUTTER_SIDE:g} m, "
+             f"{CLUTTER_OBSTACLES} circles and boxes), with the plain potential field and with the hybrid navigator:",
              f"{'controller':>16} {'reached':>8} {'stalled':>8} {'other':>6} {'mean time s':>12}"]
     for controller in ("potential_field", "hybrid"):
         group = [r for r in rows if r["controller"] == controller]

@@ -1,6 +1,7 @@
 """``navlab sim``: moving worlds, tree planners on maps, timings, one-line errors, GIF writing."""
 
 import errno
+import math
 
 import pytest
 from click.testing import CliRunner
@@ -157,6 +158,12 @@ def test_a_goal_a_lopsided_footprint_fits_at_one_heading_only_is_not_invalid():
     check_endpoints(world, robot, world.start, (3.85, 1.35))  # no NoPathError
     with pytest.raises(Exception, match="the goal is in collision"):
         check_endpoints(world, robot, world.start, (3.85, 1.35), goal_heading=0.0)
+    # refused at its own heading only, it is described at that heading (facing +x it read "is free": review,
+    # session 29): free facing east 0.3 m from the west edge, the footprint leaves the bounds facing west
+    check_endpoints(world, robot, world.start, (-0.7, 1.35), goal_heading=0.0)
+    with pytest.raises(Exception, match=r"the goal is in collision: at \(-0.7, 1.35\) the robot's footprint left "
+                                        "the bounds"):
+        check_endpoints(world, robot, world.start, (-0.7, 1.35), goal_heading=math.pi)
 
 
 def test_a_goal_at_the_start_has_a_tracking_error_not_nan():

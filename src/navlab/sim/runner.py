@@ -220,7 +220,8 @@ def check_endpoints(scene_world, robot, start, goal, goal_heading: Optional[floa
     if not scene.free(np.asarray(start, float)):
         raise NoPathError(why("start", start), "INVALID_START")
     if not scene.free_at_some_heading(goal, goal_heading):
-        raise NoPathError(why("goal", goal), "INVALID_GOAL")
+        # at its heading, when it has one (described facing +x it read "the goal (x, y) is free": review, s. 29)
+        raise NoPathError(why("goal", goal if goal_heading is None else (*goal[:2], goal_heading)), "INVALID_GOAL")
 
 
 def plan_path(scene_world, robot, start, goal, planner: Optional[str], sampler: str = "uniform",

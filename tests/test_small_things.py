@@ -63,3 +63,13 @@ def test_one_expanded_cell_is_singular():
     assert plan(walled, (0, 0), (2, 0)).reason == "no path from (0, 0) to (2, 0) (1 cell expanded)"
     wider = OccupancyGrid(np.array([[False, False, True, False]]))
     assert plan(wider, (0, 0), (3, 0)).reason == "no path from (0, 0) to (3, 0) (2 cells expanded)"
+
+
+def test_a_tree_that_did_not_grow_has_no_path_at_an_infinite_cost():
+    """A FAILED tree plan reported the root as a path of cost 0.0: the best of any runs compared by cost
+    (API attack, session 29). Result says: no path, cost inf."""
+    import math
+
+    r = navlab.plan("trap", planner="rrt", max_iter=1, max_time=0.5, seed=0)
+    assert r.status.name == "FAILED" and r.reason == "the tree did not grow in 1 iteration"
+    assert r.path.shape == (0, 2) and r.cost == math.inf and r.to_dict()["cost"] is None

@@ -164,7 +164,8 @@ def _print_summary(world, result, planner, sampler, seed, plot) -> None:
                 click.echo(f"  {bound}")
     if "iterations" in s:
         first = s.get("first_solution_iteration")
-        click.echo(f"  {s['iterations']} iterations, {s['nodes']} nodes, {s['collision_checks']} collision checks, "
+        click.echo(f"  {counted(s['iterations'], 'iteration')}, {counted(s['nodes'], 'node')}, "
+                   f"{counted(s['collision_checks'], 'collision check')}, "
                    f"planning {s['time_s'] * 1000:.1f} ms"
                    + (f", first solution at iteration {first}" if first is not None else ""))
     elif "expansions" in s:  # a heading-aware planner

@@ -23,6 +23,7 @@ from ..errors import ParameterError
 from ..limits import MAX_COUNT, check_count, check_flag, check_length, check_memory, shown
 from ..registry import Registry, parameters_of, suggest
 from ..result import Result, Status, Tree
+from ..wording import counted
 from . import tree_kernel as K
 from .regions import BoxRegion, InformedRegion
 from .samplers import Sampler, make_sampler
@@ -227,10 +228,13 @@ class TreePlanner:
             node = int(np.argmin(np.linalg.norm(tree.xy[: tree.size] - goal, axis=1)))
             path = tree.branch(node)
             status = Status.APPROXIMATE if tree.size > 1 else Status.FAILED
-            reason = (f"goal not reached in {iterations} iterations; the path ends "
+            reason = (f"goal not reached in {counted(iterations, 'iteration')}; the path ends "
                       f"{np.linalg.norm(path[-1] - goal):.4g} m from the goal") if tree.size > 1 else \
-                     f"the tree did not grow in {iterations} iterations"
-        cost = float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) if len(path) > 1 else 0.0
+                     f"the tree did not grow in {counted(iterations, 'iteration')}"
+        if status == Status.FAILED:  # no path: none, at cost inf, as Result says (the root alone read as a path of
+            path = np.empty((0, 2))  # cost 0.0, the best of any runs compared by cost: API attack, session 29)
+        cost = float(np.sum(np.linalg.norm(np.diff(path, axis=0), axis=1))) if len(path) > 1 else \
+            0.0 if len(path) else math.inf
         treedata = Tree(nodes=tree.nodes(), parent=tree.parents()) if self.keep_tree else None
         return Result(status=status, path=path, cost=cost, stats=stats, reason=reason,
                       tree=treedata, params=params)

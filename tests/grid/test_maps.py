@@ -147,3 +147,25 @@ def test_maze_bad_parameters():
         make_maze(0, 5)
     with pytest.raises(ValueError, match="wall"):
         make_maze(5, 5, cell_size=0.1, wall=0.2)
+
+
+@pytest.mark.parametrize("name", ["x\n4 4\n255\n", "a\rb\x1b[31m", "ünï"])
+def test_a_grid_name_never_rewrites_the_saved_images_header(name, tmp_path):
+    """The name goes into the PGM's comment line: a line break in it rewrote the header, and the map read
+    back was 4 x 4 with other cells blocked (API attack, session 29)."""
+    blocked = np.zeros((10, 10), bool)
+    blocked[2:8, 5] = True
+    save_map(OccupancyGrid(blocked, name=name), tmp_path / "m.yaml")
+    assert np.array_equal(load_map(tmp_path / "m.yaml").blocked, blocked)
+
+
+@pytest.mark.parametrize("grid, path, field", [("grid", "m.yaml", "grid"), (None, "m.yaml", "grid"),
+                                               ("ok", None, "yaml_path"), ("ok", 5, "yaml_path"),
+                                               ("ok", "s\x00.yaml", "yaml_path")])
+def test_save_map_names_what_it_cannot_take(grid, path, field, tmp_path):
+    from navlab.errors import ParameterError
+
+    grid = OccupancyGrid(np.zeros((3, 3), bool)) if grid == "ok" else np.zeros((3, 3), bool) if grid else grid
+    path = str(tmp_path / path) if isinstance(path, str) else path
+    with pytest.raises(ParameterError, match=f"^{field}: "):
+        save_map(grid, path)

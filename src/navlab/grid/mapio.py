@@ -26,6 +26,7 @@ import yaml
 from ..atomic import atomic_path
 from ..errors import NavlabError, ParameterError
 from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number, short_name, shown
+from ..wording import escaped
 from ..yamlio import read_yaml, regular_file
 from ..yamlcore import number_text
 from .occupancy import MAX_CELLS, OccupancyGrid
@@ -451,6 +452,10 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     so a full disk leaves no truncated file; the OSError names the file.
     Probabilities (``grid.probability``) are not written.
     """
+    if not isinstance(grid, OccupancyGrid):
+        raise ParameterError(f"grid: expected an OccupancyGrid, got {type(grid).__name__}")
+    if not isinstance(yaml_path, (str, os.PathLike)) or "\0" in os.fspath(yaml_path):
+        raise ParameterError(f"yaml_path: expected a file name (text without NUL), got {shown(yaml_path)}")
     ypath = Path(yaml_path)
     if ypath.name in ("", ".", ".."):  # '' is Path('.'): with_suffix's ValueError was an internal error
         raise ParameterError(f"{os.fspath(yaml_path)!r}: not a file name for the map's YAML (say maze.yaml)")
@@ -459,7 +464,10 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     pixels[grid.unknown] = 205
     pixels[grid.blocked] = 0
     pixels = np.flipud(pixels)
-    header = f"P5\n# navlab {grid.name}\n{grid.width} {grid.height}\n255\n".encode()
+    # the name on one line of printable text: a line break in it rewrote the header, and the map read back
+    # was 4 x 4 with other cells blocked (API attack, session 29)
+    header = f"P5\n# navlab {escaped(' '.join(str(grid.name).split()))}\n{grid.width} {grid.height}\n255\n"
+    header = header.encode()
     meta = {
         "image": image.name,
         "mode": "trinary",

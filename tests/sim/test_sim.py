@@ -266,3 +266,19 @@ def test_the_runs_help_gives_each_experiments_own_default():
     for name in ("omni-potential-field", "maze-astar", "sensor-latency", "hybrid-vs-field"):
         default = inspect.signature(EXPERIMENTS.get(name)).parameters["runs"].default
         assert re.search(rf"[ ,]{default}(for)?{name.replace('-', '')}[,)]", text.replace(",", ", ")), name
+
+
+@pytest.mark.parametrize("path, said", [
+    ([[6, 6], [np.nan, 6], [16, 6]], "path: waypoints must be finite"),  # ran to COLLIDED with NaN poses
+    ([[1e308, 6], [16, 6]], "path: waypoints must be finite and within"),  # numpy's overflow warnings
+    ([], "path: expected (N, 2) waypoints"),  # an IndexError
+    (np.zeros((3, 2, 2)), "path: expected (N, 2) waypoints"),  # a TypeError
+    ("ab", "path: expected (N, 2) waypoints"),
+])
+def test_a_path_the_simulation_cannot_follow_is_refused_naming_it(path, said):
+    """(API attack, session 29)"""
+    from navlab.errors import ParameterError
+    from navlab.world import load_world
+
+    with pytest.raises(ParameterError, match=re.escape(said)):
+        Simulation(load_world("trap"), Omni3(), make_controller("pure_pursuit"), (6, 6, 0), (16, 6), path=path)

@@ -22,7 +22,7 @@ import numpy as np
 from ..arrays import grown
 from ..control.base import REACHED, STALLED, Controller
 from ..errors import ParameterError
-from ..limits import check_flag, is_finite_real, shown
+from ..limits import MAX_COORDINATE, check_flag, is_finite_real, shown
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
 from ..sensors.timing import DelayLine, SensorTiming
@@ -133,6 +133,23 @@ def check_progress(progress: Any) -> None:
         raise ParameterError(f"progress must be a function of (t, max_time) or None, got {shown(progress)}")
 
 
+
+def _checked_path(path) -> np.ndarray:
+    """``path`` as an (N, 2) or (N, 3) float array of N >= 1 finite points within the coordinate limits, or a
+    ParameterError naming it (a NaN waypoint ran to COLLIDED at step 1 with NaN poses and numpy's warnings;
+    an empty one was an IndexError: API attack, session 29)."""
+    try:
+        points = np.asarray(path, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"path: expected (N, 2) waypoints [m], got {shown(path)}") from None
+    if points.ndim != 2 or points.shape[1] not in (2, 3) or len(points) == 0:
+        raise ParameterError(f"path: expected (N, 2) waypoints [m] (or (N, 3) poses), N >= 1, got shape "
+                             f"{points.shape}")
+    if not np.isfinite(points).all() or np.abs(points[:, :2]).max() > MAX_COORDINATE:
+        raise ParameterError(f"path: waypoints must be finite and within ±{MAX_COORDINATE:g} m "
+                             f"(navlab.limits), got {shown(points.tolist())}")
+    return points
+
 class Simulation:
     """One robot in one world.
 
@@ -200,7 +217,7 @@ class Simulation:
         self.dt, self.max_time = float(dt), float(max_time)
         self.start = np.array(start, float) if len(start) == 3 else np.array((*start, 0.0))
         self.goal = np.asarray(goal, float)[:2]
-        self.path = None if path is None else np.asarray(path, float)
+        self.path = None if path is None else _checked_path(path)
         self.direction = None if direction is None else np.asarray(direction, float)
         if self.direction is not None and (self.path is None or len(self.direction) != len(self.path)):
             raise ParameterError("direction needs a path with one direction per pose")

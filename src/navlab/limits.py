@@ -181,6 +181,9 @@ def check_length(name: str, value: Any, allow_zero: bool = True) -> float:
 #: the largest count (iterations, expansions) navlab's compiled loops take: they count in int64
 MAX_COUNT = 2 ** 62
 
+#: the most worker processes a benchmark run takes (``navlab bench --jobs``, ``run_experiment(jobs=)``)
+MAX_JOBS = 256
+
 
 def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX_COUNT) -> int:
     """``value`` as an int if it is a whole number in [low, high] (``high`` None: no upper bound), else

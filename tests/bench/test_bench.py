@@ -564,3 +564,27 @@ def test_ompl_prmstar_finishes_its_time_budget():
     rows = [line.split() for line in out.stdout.splitlines()]
     assert len(rows) == 5 and all(status in ("EXACT", "APPROXIMATE", "FAILED") and iterations == "None"
                                   for status, iterations in rows)  # (PRM counts no iterations)
+
+
+@pytest.mark.parametrize("source", [5, None, []])
+def test_load_experiment_names_a_source_it_cannot_read(source):
+    """(a TypeError from pathlib: API attack, session 29)"""
+    with pytest.raises(ValueError, match="experiment: expected a YAML file's path, a suite name or a mapping"):
+        load_experiment(source)
+
+
+@pytest.mark.parametrize("change, message", [
+    ({"jobs": -1}, "jobs must be a whole number from 1 to 256, got -1"),
+    ({"jobs": "a"}, "jobs must be a whole number"),
+    ({"time_kind": "foo"}, "time_kind: expected one of cpu, wall, got 'foo'"),  # a KeyError after every trial
+    ({"plots": "no"}, "plots must be true or false, got 'no'"),  # 'no' drew the plots
+    ({"resume": "yes"}, "resume must be true or false"),
+    ({"out": None}, "out: expected an output folder's path, got None"),
+    ({"experiment": dict(TINY)}, "experiment: expected what load_experiment returns, got dict"),
+])
+def test_run_experiment_refuses_what_it_cannot_take_before_any_trial(change, message, tmp_path):
+    """(API attack, session 29)"""
+    kwargs = {"experiment": load_experiment(TINY), "out": tmp_path / "o", "executor": "serial", **change}
+    with pytest.raises(ValueError, match=re.escape(message)):
+        run_experiment(**kwargs)
+    assert not (tmp_path / "o").exists()

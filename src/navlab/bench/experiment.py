@@ -26,6 +26,7 @@ import hashlib
 import itertools
 import json
 import math
+import os
 import re
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -435,6 +436,9 @@ def load_experiment(source: Union[str, Path, Dict[str, Any]], where: str = "expe
     """Read an experiment from a YAML file, a built-in suite name or a mapping,
     and check every name and parameter before anything runs."""
     data = source
+    if not isinstance(source, (dict, str, os.PathLike)):  # (5, None, a list: a TypeError from pathlib: API attack)
+        raise ExperimentError(f"{where}: expected a YAML file's path, a suite name or a mapping, got "
+                              f"{type(source).__name__}")
     if not isinstance(source, dict):
         data, where = experiment_data(source)
     if not isinstance(data, dict):

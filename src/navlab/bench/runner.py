@@ -26,8 +26,10 @@ from typing import Any, Dict, List, Optional, Sequence, Set
 
 from ..atomic import write_text_atomic
 from ..errors import interrupted_by_ctrl_c
+from ..limits import MAX_JOBS, check_count, check_flag, shown
 from ..wording import counted
 from .analysis import by_world, compared_rows, judge_claims, scope_text, summarize, timed
+from .errors import ExperimentError
 from .executors import EXECUTORS, check_executor
 from .export import write_csv
 from .experiment import OMPL_PREFIX, Experiment
@@ -66,6 +68,24 @@ class BenchRun:
         return sum(r.get("status") == "ERROR" for r in self.rows)
 
 
+#: the clocks a run's times can be summarised in (``time_kind``)
+TIME_KINDS = ("cpu", "wall")
+
+
+def _check_run_arguments(experiment, out, jobs, time_kind) -> None:
+    """ExperimentError naming the argument of :func:`run_experiment` it cannot take, before anything runs (a
+    plain mapping, an output folder of None, jobs=-1 or 'a': raw errors; time_kind='foo' a KeyError after
+    every trial had run: API attack, session 29)."""
+    if not isinstance(experiment, Experiment):
+        raise ExperimentError(f"experiment: expected what load_experiment returns, got {type(experiment).__name__}")
+    if not isinstance(out, (str, os.PathLike)) or not os.fspath(out):
+        raise ExperimentError(f"out: expected an output folder's path, got {shown(out)}")
+    if jobs is not None:
+        check_count("jobs", jobs, 1, MAX_JOBS)
+    if time_kind not in TIME_KINDS:
+        raise ExperimentError(f"time_kind: expected one of {', '.join(TIME_KINDS)}, got {shown(time_kind)}")
+
+
 def interleave(specs: List[Dict[str, Any]]) -> List[Dict[str, Any]]:
     """Trial 0 of every cell, then trial 1 of every cell, ...; cells in their
     order of first appearance."""
@@ -91,6 +111,9 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
     Interrupted
         Ctrl-C; the rows written so far are kept (``--resume`` runs the rest).
     """
+    _check_run_arguments(experiment, out, jobs, time_kind)
+    resume, overwrite = check_flag("resume", resume), check_flag("overwrite", overwrite)
+    progress, plots = check_flag("progress", progress), check_flag("plots", plots)
     check_executor(executor, scheduler)
     run_trials = EXECUTORS.get(executor)
     phases: Dict[str, Any] = {}

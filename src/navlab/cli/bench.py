@@ -14,6 +14,7 @@ import yaml
 
 from ..bench.suites import suite_help
 from ..errors import interrupted_by_ctrl_c
+from ..limits import MAX_JOBS
 from ..wording import counted, listed
 from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, parse_params
 
@@ -86,8 +87,8 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--seed", type=Count(low=0), default=None, help="Base seed of the per-trial seeds.")
 @click.option("--executor", type=SuggestingChoice(["process", "serial", "dask"]), default="process", show_default=True,
               help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")
-@click.option("--jobs", "-j", type=Count(1, 256), default=None,
-              help="Worker processes, 1 to 256 (default: all cores).")
+@click.option("--jobs", "-j", type=Count(1, MAX_JOBS), default=None,
+              help=f"Worker processes, 1 to {MAX_JOBS} (default: all cores).")
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
 @click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")
 @click.option("--overwrite", is_flag=True, help="Discard the results in --out and start again.")

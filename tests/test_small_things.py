@@ -73,3 +73,17 @@ def test_a_tree_that_did_not_grow_has_no_path_at_an_infinite_cost():
     r = navlab.plan("trap", planner="rrt", max_iter=1, max_time=0.5, seed=0)
     assert r.status.name == "FAILED" and r.reason == "the tree did not grow in 1 iteration"
     assert r.path.shape == (0, 2) and r.cost == math.inf and r.to_dict()["cost"] is None
+
+
+def test_numpy_numbers_are_numbers_for_the_time_settings():
+    """np.float32(0.5) was refused as "max_time must be a positive number" (API attack, session 29)."""
+    import numpy as np
+
+    from navlab.sim.runner import simulate
+
+    r = navlab.plan("trap", planner="rrt_star", max_iter=200, max_time=np.float32(5), connect_circle_dist=np.float32(30))
+    assert r.success and type(r.params["max_time"]) is float
+    result, _, _ = simulate("trap", dt=np.float32(0.05), max_time=np.float32(1))
+    assert result.time_s == pytest.approx(1.0)
+    with pytest.raises(ValueError, match=r"max_time must be a positive number, got np.float32\(-1.0\)"):
+        navlab.plan("trap", planner="rrt", max_iter=10, max_time=np.float32(-1))

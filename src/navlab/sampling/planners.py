@@ -20,7 +20,7 @@ from typing import Any, Dict, Optional, Union
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import MAX_COUNT, check_count, check_flag, check_length, check_memory, shown
+from ..limits import MAX_COUNT, check_count, check_flag, check_length, check_memory, is_finite_real, shown
 from ..registry import Registry, parameters_of, suggest
 from ..result import Result, Status, Tree
 from ..wording import counted
@@ -41,14 +41,16 @@ INDEXES = ("grid", "scan")
 MAX_BATCH_SIZE = 65536
 
 
-def _check_positive(name: str, value: Any, required: bool = False) -> None:
+def _check_positive(name: str, value: Any, required: bool = False) -> Optional[float]:
+    """``value`` as a float if it is a positive finite number (numpy's too: np.float32(0.5) was refused as
+    "must be a positive number": API attack, session 29), None if it is None and not ``required``."""
     if value is None and not required:
-        return
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not value > 0 or (
-            isinstance(value, float) and not math.isfinite(value)):
-        raise ParameterError(f"{name} must be a positive number, got {value!r}")
+        return None
+    if not is_finite_real(value) or not value > 0:
+        raise ParameterError(f"{name} must be a positive number, got {shown(value)}")
     if value > MAX_COUNT:  # the compiled loops count in int64
         raise ParameterError(f"{name} must be at most {MAX_COUNT:.3g}, got {shown(value)}")
+    return float(value)
 
 
 def rrt_star_gamma(world) -> float:
@@ -114,7 +116,7 @@ class TreePlanner:
             check_length("expand_dis", self.expand_dis, allow_zero=False)  # a positive length within [1e-9, 1e7] m
         if self.max_iter is not None:  # 1e4 from a command line or a YAML file is a whole number
             self.max_iter = check_count("max_iter", self.max_iter)
-        _check_positive("max_time", self.max_time)
+        self.max_time = _check_positive("max_time", self.max_time)
         self.batch_size = check_count("batch_size", self.batch_size)
         if self.batch_size > MAX_BATCH_SIZE:
             raise ParameterError(f"batch_size must be at most {MAX_BATCH_SIZE} (samples drawn at once), "
@@ -318,7 +320,7 @@ class RRTStar(TreePlanner):
 
     def _validate(self) -> None:
         super()._validate()
-        _check_positive("connect_circle_dist", self.connect_circle_dist)
+        self.connect_circle_dist = _check_positive("connect_circle_dist", self.connect_circle_dist)
 
     def resolved_params(self, world) -> Dict[str, Any]:
         params = super().resolved_params(world)
@@ -387,7 +389,7 @@ class GrowthRatioRRT(TreePlanner):
 
     def _validate(self) -> None:
         super()._validate()
-        _check_positive("p_min", self.p_min)
+        self.p_min = _check_positive("p_min", self.p_min)
 
     def resolved_params(self, world) -> Dict[str, Any]:
         params = super().resolved_params(world)

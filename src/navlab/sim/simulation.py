@@ -191,14 +191,14 @@ class Simulation:
                  max_time: float = 120.0, path=None, record_scans: bool = False,
                  lidar_timing: Optional[SensorTiming] = None, odometry_timing: Optional[SensorTiming] = None,
                  direction=None, goal_heading: Optional[float] = None) -> None:
-        if not (isinstance(dt, (int, float)) and is_finite_real(dt) and dt > 0):
+        if not (is_finite_real(dt) and dt > 0):  # (numpy's numbers too: np.float32 was refused, API attack)
             raise ParameterError(f"time step dt must be a positive number of seconds, got {shown(dt)}")
         if dt < MIN_DT:
             raise ParameterError(f"time step dt = {dt:g} s is below the smallest supported step, {MIN_DT:g} s")
         if dt > MAX_DT:
             raise ParameterError(f"time step dt = {dt:g} s is above the largest supported step, {MAX_DT:g} s "
                                  "(the controller acts once a step: a longer step drives blind past goals and gaps)")
-        if not (isinstance(max_time, (int, float)) and is_finite_real(max_time) and max_time > 0):
+        if not (is_finite_real(max_time) and max_time > 0):
             raise ParameterError(f"max_time must be a positive, finite number of seconds, got {shown(max_time)}")
         if max_time / dt > MAX_STEPS:
             raise ParameterError(f"max_time / dt = {max_time / dt:.3g} steps, more than the {MAX_STEPS:.0e} a run "

@@ -169,3 +169,17 @@ def test_save_map_names_what_it_cannot_take(grid, path, field, tmp_path):
     path = str(tmp_path / path) if isinstance(path, str) else path
     with pytest.raises(ParameterError, match=f"^{field}: "):
         save_map(grid, path)
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    ({"seed": -1}, "seed must be a non-negative whole number"), ({"seed": "a"}, "seed must be"),
+    ({"seed": 1.5}, "seed must be"), ({"progress": 5}, "progress must be a callable"),
+    ({"cells_x": 0}, "cells_x must be a whole number of at least 1, got 0"),
+])
+def test_make_maze_names_what_it_cannot_take(kwargs, message):
+    """numpy's ValueError and TypeError came through for these (API attack, session 29)."""
+    from navlab.errors import ParameterError
+
+    with pytest.raises(ParameterError, match=message):
+        make_maze(**kwargs)
+    assert make_maze(np.int64(3), np.int64(2), seed=np.int64(1)).blocked.shape == make_maze(3, 2).blocked.shape

@@ -7,7 +7,7 @@ from typing import Callable, Optional
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, available_memory, check_length
+from ..limits import MAX_COORDINATE, available_memory, check_count, check_length, check_seed, shown
 from .occupancy import MAX_CELLS, OccupancyGrid
 
 #: Bytes a maze cell costs while it is carved: three bool arrays and, at
@@ -124,9 +124,12 @@ def make_maze(cells_x: int = 10, cells_y: int = 10, seed=0, cell_size: float = 0
     Cell (i, j) of the maze has its centre at world
     ``(wall/2 + (i + 0.5)·cell_size, wall/2 + (j + 0.5)·cell_size)``.
     """
-    for name, v in (("cells_x", cells_x), ("cells_y", cells_y)):
-        if isinstance(v, bool) or not isinstance(v, int) or v < 1:
-            raise ParameterError(f"{name} must be a positive integer, got {v!r}")
+    # numpy's integers count too, and the seed and progress are checked here, not by numpy (a raw ValueError
+    # or TypeError for seed=-1 or progress=5: API attack, session 29)
+    cells_x, cells_y = (check_count(name, v) for name, v in (("cells_x", cells_x), ("cells_y", cells_y)))
+    check_seed(seed)
+    if progress is not None and not callable(progress):
+        raise ParameterError(f"progress must be a callable taking a count, or None, got {shown(progress)}")
     if cells_x * cells_y > MAX_CELLS:
         raise ParameterError(f"a {cells_x}x{cells_y}-cell maze has more than the {MAX_CELLS:.0e} cells navlab supports")
     nx, ny = maze_size(cells_x, cells_y, cell_size, wall, resolution)

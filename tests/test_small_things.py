@@ -87,3 +87,16 @@ def test_numpy_numbers_are_numbers_for_the_time_settings():
     assert result.time_s == pytest.approx(1.0)
     with pytest.raises(ValueError, match=r"max_time must be a positive number, got np.float32\(-1.0\)"):
         navlab.plan("trap", planner="rrt", max_iter=10, max_time=np.float32(-1))
+
+
+@pytest.mark.parametrize("call", [
+    lambda: navlab.plan("trap", planner="rrt", sampler="", max_iter=50),
+    lambda: __import__("navlab.sim.runner", fromlist=["simulate"]).simulate("trap", controller="", max_time=1),
+    lambda: __import__("navlab.sim.runner", fromlist=["simulate"]).simulate("trap", planner="", max_time=1),
+])
+def test_an_empty_name_is_no_name_not_the_default(call):
+    """'' fell back to the default sampler, controller or planner where None does (API attack, session 29)."""
+    from navlab.registry import UnknownNameError
+
+    with pytest.raises(UnknownNameError, match="unknown (sampler|controller|planner) ''"):
+        call()

@@ -171,7 +171,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
     if is_pose_query(planner, params):  # a bad motion is named before any file is read
         if planner in POSE_PLANNERS and sampler not in (None, "uniform"):
             raise ParameterError(f"sampler: planner '{planner}' draws no samples; leave the sampler out")
-        tree_sampler = None if planner in POSE_PLANNERS else sampler or "uniform"
+        tree_sampler = None if planner in POSE_PLANNERS else "uniform" if sampler is None else sampler
         return _pose_plan(source, planner, tree_sampler, start, goal, seed, robot_radius, params)
     goal_tolerance, allow_unknown = take_query_params(params, grid)  # the query's, for every planner
     on_costs = check_flag("costmap", params.get("costmap", False))
@@ -190,7 +190,7 @@ def plan(source: Any, planner: str = "rrt_star", sampler: Optional[str] = "unifo
                                  f"(got '{sampler}')")
         settings = split_grid_params(planner, params)
     else:
-        sampler = sampler or "uniform"
+        sampler = "uniform" if sampler is None else sampler  # ("" is a name no registry holds: API attack, s. 29)
         SAMPLERS.get(sampler)
         # unknown names and bad values fail before any file is read or kernel loaded (a first compile takes a
         # while: expand_dis=-1 waited 23 s for it; newcomer run, session 21)

@@ -81,7 +81,7 @@ def plan_pose_path(scene_world, robot, start, goal, planner: Optional[str], plan
     from ..planning import plan
     from ..pose_queries import POSE_PLANNERS, TREE_POSE_PLANNERS
 
-    planner = planner or DEFAULT_POSE_PLANNER
+    planner = DEFAULT_POSE_PLANNER if planner is None else planner
     params = dict(plan_params)
     if planner not in POSE_PLANNERS and planner not in TREE_POSE_PLANNERS:
         raise ParameterError(f"planner '{planner}' plans for a point; a run between poses needs "

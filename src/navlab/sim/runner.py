@@ -126,13 +126,14 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         if controller is not None and controller not in POSE_FOLLOWERS:
             raise ParameterError(f"controller '{controller}' cannot follow a path of poses with reverse stretches (this "
                                  f"run plans between poses); use {', '.join(POSE_FOLLOWERS)}")
-        follower = controller or POSE_FOLLOWERS[0]
+        follower = POSE_FOLLOWERS[0] if controller is None else controller
         if getattr(bot, "steers", False):
             params = {**CAR_FOLLOWER[follower], **params}
     elif controller is None and DEFAULT_CONTROLLER.get(robot) in REPLANNING_FOLLOWERS and _has_moving(scene_world):
         # the default follower watches the path ahead where obstacles move (crossing): blind, it drove into them
         params.setdefault("replan", True)
-    name = controller or (POSE_FOLLOWERS[0] if poses else DEFAULT_CONTROLLER[robot])
+    # ("" is a name no registry holds, not the default: API attack, session 29)
+    name = controller if controller is not None else POSE_FOLLOWERS[0] if poses else DEFAULT_CONTROLLER[robot]
     ctrl = make_controller(name, **_speed_within_robot(name, params, controller_params or {}, bot))
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:

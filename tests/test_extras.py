@@ -64,3 +64,16 @@ def test_this_installation_is_named():
     folder, _ = extras._installed_from()
     if folder is not None:  # (an installer that keeps no PEP 610 record, or another copy: the generic form)
         assert Path(folder).resolve() == Path(__file__).resolve().parents[1] and folder in command
+
+
+def test_the_extras_are_pyprojects_and_no_other_is_named():
+    import tomllib
+
+    from navlab.errors import ParameterError
+
+    extras_declared = tomllib.loads((Path(__file__).resolve().parents[1] / "pyproject.toml").read_text())["project"][
+        "optional-dependencies"]
+    assert set(extras.EXTRAS) == set(extras_declared)
+    for bad in (None, 5, ["ros2"], "\n", "nosuch"):
+        with pytest.raises(ParameterError, match="extra must be one of"):
+            extras.install_command(bad)

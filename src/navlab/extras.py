@@ -24,6 +24,8 @@ from urllib.parse import urlparse
 
 #: what the ros2 extra needs beside its PyPI wheels: the message package built from the repository
 ROS_MESSAGES = "ros_interfaces/tf2_msgs"
+#: navlab's optional extras (pyproject.toml's optional-dependencies; a test keeps the two alike)
+EXTRAS = ("ros2", "dask", "ompl", "parquet", "bench", "irsim", "test")
 
 
 def _installed_from() -> Tuple[Optional[str], bool]:
@@ -64,6 +66,10 @@ def install_command(extra: str) -> str:
     """``python -m pip install ...`` adding ``extra`` (``ros2``, ``dask``, ``ompl``, ``parquet``, ``bench``) to
     this installation of navlab, with this interpreter's pip (a bare ``pip`` may be another environment's:
     the README's venv is used as ``.venv/bin/navlab``, not activated)."""
+    if extra not in EXTRAS:  # (None, 5 or 'nosuch' gave "pip install '.[None]'": API attack, session 29)
+        from .errors import ParameterError
+
+        raise ParameterError(f"extra must be one of {', '.join(EXTRAS)}, got {extra!r}")
     folder, editable = _installed_from()
     base = folder if folder is not None else "."
     command = f"{shlex.quote(sys.executable)} -m pip install " + ("-e " if editable else "") + \

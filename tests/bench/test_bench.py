@@ -207,6 +207,7 @@ def test_report_renders_with_embedded_images(tmp_path):
     ({"planners": ["rrt_str"]}, "did you mean 'rrt_star'"),
     ({"worlds": ["clutterr"]}, "clutter"),
     ({"sampels": ["uniform"]}, "unknown field 'sampels'"),
+    ({"claims": 5}, "'claims' must be a list of claims, got 5"),  # a TypeError (API attack, session 29)
     ({"grid": {"expand_dis": []}}, "grid is empty"),
     ({"samplers": []}, "empty"),
     ({"trials": 0}, "positive integer"),

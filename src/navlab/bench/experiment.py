@@ -538,7 +538,7 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
         # (null: not given, as for the budget's fields; it was "must be a positive integer, got None")
         trials=20 if data.get("trials") is None else data["trials"],
         seed=DEFAULT_SEED if data.get("seed") is None else data["seed"],
-        claims=[_claim(c) for c in data.get("claims") or []],
+        claims=[_claim(c) for c in _claims_list(data.get("claims"))],
     )
 
 
@@ -641,6 +641,16 @@ def _claim(entry: Any) -> Dict[str, Any]:
     if entry.get("metric", "cost") not in CLAIM_METRICS:
         raise ExperimentError(f"claim metric must be one of {', '.join(CLAIM_METRICS)}, got {entry['metric']!r}")
     return {"metric": "cost", **entry}
+
+
+def _claims_list(value: Any) -> list:
+    """The experiment's claims: a list (of mappings, :func:`_claim`), or none (claims: 5 was a TypeError:
+    API attack, session 29)."""
+    if value is None:
+        return []
+    if not isinstance(value, list):
+        raise ExperimentError(f"'claims' must be a list of claims, got {shown(value)}")
+    return value
 
 
 def _as_list(value: Any, what: str) -> list:

@@ -282,3 +282,21 @@ def test_a_path_the_simulation_cannot_follow_is_refused_naming_it(path, said):
 
     with pytest.raises(ParameterError, match=re.escape(said)):
         Simulation(load_world("trap"), Omni3(), make_controller("pure_pursuit"), (6, 6, 0), (16, 6), path=path)
+
+
+@pytest.mark.parametrize("robot, controller, start, goal, field", [
+    ("omni3", "ok", (6, 6, 0), (16, 6), "robot"), (None, "potential_field", (6, 6, 0), (16, 6), "controller"),
+    (None, "ok", None, (16, 6), "start"), (None, "ok", "ab", (16, 6), "start"),
+    (None, "ok", (6, 6, 0, 0), (16, 6), "start"), (None, "ok", (6, 6, 0), "ab", "goal"),
+    (None, "ok", (6, 6, 0), (np.nan, 6), "goal"),
+])
+def test_the_simulation_names_a_part_it_cannot_take(robot, controller, start, goal, field):
+    """A robot or a controller given by name, a start of None or text: AttributeError, TypeError or
+    numpy's ValueError inside (API attack, session 29)."""
+    from navlab.errors import ParameterError
+    from navlab.world import load_world
+
+    robot = Omni3() if robot is None else robot
+    controller = PotentialField() if controller == "ok" else controller
+    with pytest.raises(ParameterError, match=f"^{field}: expected"):
+        Simulation(load_world("trap"), robot, controller, start, goal, lidar=Lidar())

@@ -134,6 +134,25 @@ def check_progress(progress: Any) -> None:
 
 
 
+def _check_parts(robot, controller, start, goal) -> None:
+    """ParameterError naming a robot, controller, start or goal the simulation cannot take: a robot or a
+    controller given by name, a start of None or text, met AttributeError or TypeError inside (API attack,
+    session 29; :func:`navlab.sim.runner.simulate` takes names)."""
+    if not isinstance(controller, Controller):
+        raise ParameterError(f"controller: expected a Controller (navlab.control.make_controller), got "
+                             f"{shown(controller)}")
+    if not all(hasattr(robot, part) for part in ("radius", "holonomic", "shape")):
+        raise ParameterError(f"robot: expected a robot (navlab.robots.make_robot), got {shown(robot)}")
+    for name, point, sizes in (("start", start, (2, 3)), ("goal", goal, (2, 3))):  # (a goal's heading: its own)
+        try:
+            values = np.asarray(point, dtype=float)
+        except (TypeError, ValueError):
+            values = np.empty(0)
+        if values.ndim != 1 or len(values) not in sizes or not np.isfinite(values).all():
+            raise ParameterError(f"{name}: expected {' or '.join(f'{n} numbers' for n in sizes)} "
+                                 f"(x, y [m][, heading rad]), got {shown(point)}")
+
+
 def _checked_path(path) -> np.ndarray:
     """``path`` as an (N, 2) or (N, 3) float array of N >= 1 finite points within the coordinate limits, or a
     ParameterError naming it (a NaN waypoint ran to COLLIDED at step 1 with NaN poses and numpy's warnings;
@@ -203,6 +222,7 @@ class Simulation:
         if max_time / dt > MAX_STEPS:
             raise ParameterError(f"max_time / dt = {max_time / dt:.3g} steps, more than the {MAX_STEPS:.0e} a run "
                                  f"supports; lower max_time or raise dt")
+        _check_parts(robot, controller, start, goal)
         if controller.needs_scan and lidar is None:
             raise ParameterError(f"controller {type(controller).__name__} reads LiDAR points: give a lidar")
         if controller.needs_path and path is None:

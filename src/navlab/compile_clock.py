@@ -154,11 +154,18 @@ def hold_interrupts_while_compiling() -> None:
                 return
             self._depth -= 1
             if self._depth == 0 and self._previous is not None:
-                signal.signal(signal.SIGINT, self._previous)
+                # put the handler back only if nobody replaced ours meanwhile (the navlab command's end-of-run
+                # handler, cli.common.end_at_ctrl_c, was overwritten with Python's default, and a second
+                # Ctrl-C then ended a bench run by the signal: session 29)
+                mine = signal.getsignal(signal.SIGINT) == self._note
+                if mine:
+                    signal.signal(signal.SIGINT, self._previous)
                 self._previous = None
                 if self._noted:
                     self._noted = False
-                    raise KeyboardInterrupt  # here, in numba's own Python frame: it reaches the caller
+                    if mine and signal.getsignal(signal.SIGINT) is signal.default_int_handler:
+                        raise KeyboardInterrupt  # here, in numba's own Python frame: it reaches the caller
+                    signal.raise_signal(signal.SIGINT)  # to whoever handles it now
 
     held = HoldInterrupts()
     event.register("numba:compile", held)

@@ -5,6 +5,7 @@ do not depend on which executor computed them (seeds travel with the trials).
 
 from __future__ import annotations
 
+import contextlib
 import glob
 import os
 import shutil
@@ -158,18 +159,44 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
     main thread waiting on one worker, the manager on another, each blocked on the pool's pipes (attack,
     session 29: 4 of 11 double Ctrl-Cs). ``_processes`` is the executor's own record of its workers
     (Python 3.14 adds ``terminate_workers`` for this)."""
-    workers = list((getattr(pool, "_processes", None) or {}).values())
-    pool.shutdown(wait=False, cancel_futures=True)
-    for worker in workers:
-        try:
-            worker.kill()
-        except (OSError, ValueError, AttributeError):
-            pass  # gone already, or closed
-    for worker in workers:
-        try:
-            worker.join(5.0)
-        except (OSError, ValueError, AssertionError):
-            pass
+    # a second Ctrl-C while the workers are stopped waits until they are (it cut the stop short, leaving the
+    # pool's manager to join at exit: session 29), then takes effect
+    with _ctrl_c_held():
+        workers = list((getattr(pool, "_processes", None) or {}).values())
+        pool.shutdown(wait=False, cancel_futures=True)
+        for worker in workers:
+            try:
+                worker.kill()
+            except (OSError, ValueError, AttributeError):
+                pass  # gone already, or closed
+        for worker in workers:
+            try:
+                worker.join(5.0)
+            except (OSError, ValueError, AssertionError):
+                pass
+        # and the pool's manager thread, which then closes its wake-up pipe: left running, concurrent.futures'
+        # exit-time hook wrote to that pipe after the manager had gone, a BrokenPipeError traceback under the
+        # resume line (session 29)
+        manager = getattr(pool, "_executor_manager_thread", None)
+        if manager is not None:
+            manager.join(5.0)
+
+
+@contextlib.contextmanager
+def _ctrl_c_held():
+    """Within it, a Ctrl-C is only noted; it is raised when the block ends (on the main thread; elsewhere
+    signals are not delivered and nothing changes)."""
+    if threading.current_thread() is not threading.main_thread() or signal.getsignal(signal.SIGINT) is None:
+        yield  # (None: a handler set outside Python, which could not be put back)
+        return
+    noted = []
+    previous = signal.signal(signal.SIGINT, lambda signum, frame: noted.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if noted:
+            signal.raise_signal(signal.SIGINT)
 
 
 def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any]:

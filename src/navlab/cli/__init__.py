@@ -17,7 +17,8 @@ STARTED = time.perf_counter()
 import click  # noqa: E402 - after the clock starts
 
 from ..errors import interrupted_by_ctrl_c
-from .common import CUT_STATUS, EXIT_INTERRUPTED, SuggestingGroup, debug_enabled, describe_error
+from .common import (CUT_STATUS, EXIT_INTERRUPTED, THE_COMMAND, SuggestingGroup, debug_enabled, describe_error,
+                     end_at_ctrl_c)
 
 
 def _quick_exit() -> None:
@@ -210,29 +211,6 @@ def _stdout_reader_gone() -> bool:
     return True
 
 
-def _done_with_ctrl_c(code) -> None:
-    """Once the command has said its last (its output written, its exit status ``code`` chosen, after Ctrl-C
-    too), a Ctrl-C ends the process at once with that status, its output flushed: one landing while the
-    interpreter shut down ended it by the signal, with no message and no status of its own (attack, session
-    29: 18 of 18 Ctrl-Cs 0-20 ms after the last line; and a second Ctrl-C after navlab bench's resume line),
-    and ignoring it would leave a hang at exit (a pool's or a Dask cluster's join) with no way out but kill.
-    Only in the navlab command's own process: a program calling :func:`main` keeps its handlers."""
-    import signal
-
-    status = code if isinstance(code, int) else 0 if code is None else 1  # (as sys.exit reads its argument)
-
-    def end(signum, frame) -> None:
-        for stream in (sys.stdout, sys.stderr):
-            try:
-                stream.flush()
-            except (OSError, ValueError, RuntimeError, AttributeError):
-                pass  # gone, closed, or being written this very moment
-        os._exit(status)
-
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGINT, end)
-
-
 class NavlabGroup(SuggestingGroup):
     """The top-level group: no Python traceback ever reaches a user.
 
@@ -255,11 +233,12 @@ class NavlabGroup(SuggestingGroup):
         the_command = _is_the_command() if the_command is None else the_command
         _one_blas_thread(the_command)  # before a verb imports numpy
         _quick_exit()
+        self.the_command = the_command  # (for invoke: the verbs' context says it, THE_COMMAND)
         try:
             self._main(args, prog_name, complete_var, **extra)
         except SystemExit as exc:
             if the_command:
-                _done_with_ctrl_c(exc.code)
+                end_at_ctrl_c(exc.code)
             raise
 
     def _main(self, args, prog_name, complete_var, **extra):
@@ -293,6 +272,7 @@ class NavlabGroup(SuggestingGroup):
         sys.exit(code if isinstance(code, int) else 0)
 
     def invoke(self, ctx):
+        ctx.meta[THE_COMMAND] = getattr(self, "the_command", False)
         try:
             with heading_notes():
                 return super().invoke(ctx)
@@ -301,10 +281,12 @@ class NavlabGroup(SuggestingGroup):
         except KeyboardInterrupt:
             if debug_enabled():
                 raise
+            end_at_ctrl_c(EXIT_INTERRUPTED, ctx)  # a second Ctrl-C now ends it as this one does
             click.echo("Interrupted.", err=True)
             sys.exit(EXIT_INTERRUPTED)
         except Exception as exc:
             if interrupted_by_ctrl_c(exc) and not debug_enabled():
+                end_at_ctrl_c(EXIT_INTERRUPTED, ctx)
                 click.echo("Interrupted.", err=True)
                 sys.exit(EXIT_INTERRUPTED)
             if isinstance(exc, BrokenPipeError) and _stdout_reader_gone():

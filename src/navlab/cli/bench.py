@@ -16,7 +16,7 @@ from ..bench.suites import suite_help
 from ..errors import interrupted_by_ctrl_c
 from ..limits import MAX_JOBS
 from ..wording import counted, listed
-from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, parse_params
+from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, end_at_ctrl_c, parse_params
 
 
 class BenchCommand(click.Command):
@@ -215,6 +215,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
                              overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)
     except Interrupted as stop:
+        end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())  # a second Ctrl-C now ends it as this one
         if stop.complete:  # ("50 of 50 trials ... run the rest with" after the last one: attack, session 29)
             click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}, every one; the summary and report "
                        f"were not written: {_resume_command()} writes them", err=True)
@@ -225,6 +226,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     except (KeyboardInterrupt, SystemError) as exc:  # before or after the trials: every finished trial is on disk
         if not interrupted_by_ctrl_c(exc):
             raise
+        end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())
         click.echo(f"\ninterrupted: the finished trials are kept in {folder}; run the rest with: {_resume_command()}",
                    err=True)
         sys.exit(EXIT_INTERRUPTED)

@@ -51,7 +51,10 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
     # and RRT* on exact geometry alike: the margin gives way there (a fixed margin made the same start
     # INVALID_START for RRT* and not for A*, whose inflation is measured between cell centres)
     room = margin_room(scene_world, robot_radius, [start[:2], goal])
-    if isinstance(scene_world, OccupancyGrid) and is_grid_planner("astar" if planner is None else planner):
+    on_map = isinstance(scene_world, OccupancyGrid)
+    # the default planner: A* on a map, RRT* on shapes ("" is a name no registry holds, not the default)
+    planner = ("astar" if on_map else "rrt_star") if planner is None else planner
+    if on_map and is_grid_planner(planner):
         from ..grid import plan_world
 
         inflated = scene_world.inflate(robot_radius + PLAN_MARGIN)
@@ -62,9 +65,8 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
         for (cx, cy), ok in zip(ends, inside):
             if ok and not scene_world.blocked[cy, cx]:
                 blocked[cy, cx] = False
-        result = plan_world(inflated.with_blocked(blocked), start[:2], goal, algorithm="astar" if planner is None else planner,
-                            smooth=True)
-    elif isinstance(scene_world, OccupancyGrid):  # a tree planner on the map's exact cells
+        result = plan_world(inflated.with_blocked(blocked), start[:2], goal, algorithm=planner, smooth=True)
+    elif on_map:  # a tree planner on the map's exact cells
         from ..planning import plan
 
         settings = {"max_iter": MAP_TREE_ITERATIONS, **(params or {})}
@@ -77,9 +79,9 @@ def plan_path(scene_world, robot_radius: float, start, goal, planner: Optional[s
                         obstacles=tuple(scene_world.obstacles) + tuple(extra),
                         robot_radius=robot_radius + min(PLAN_MARGIN, room), goal_tolerance=0.0)
         settings = dict(params or {})
-        if is_grid_planner("rrt_star" if planner is None else planner):
+        if is_grid_planner(planner):
             settings.setdefault("smooth", True)  # as on maps: a follower wants few waypoints, not every cell
-        result = plan(world, planner="rrt_star" if planner is None else planner, sampler=sampler, seed=seed, **settings)
+        result = plan(world, planner=planner, sampler=sampler, seed=seed, **settings)
     if not result.success:
         return result
     path = np.asarray(result.path, float)

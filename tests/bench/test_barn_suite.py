@@ -140,3 +140,19 @@ def test_the_per_world_plot_holds_a_long_navigator_label_without_a_warning(tmp_p
         name = _plot(types.SimpleNamespace(worlds=[0, 36]), summary, tmp_path)
     width, height = Image.open(tmp_path / name).size
     assert width > 1.5 * height  # the legend beside the axes, whole
+
+
+def test_a_ctrl_c_in_the_report_says_every_run_is_kept(tmp_path, monkeypatch):
+    """BARN's suite caught a bare KeyboardInterrupt around its runs only: a Ctrl-C while its report was
+    written went up as a traceback (review, session 30). Now it is exit 130 naming every run as kept."""
+    import navlab.bench.barn_report as barn_report
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(barn_report, "write_barn_report", interrupted)
+    out = tmp_path / "barn"
+    result = _run("--data", str(BARN), "--worlds", "0", "--controller", "rpp", "--out", str(out))
+    assert result.exit_code == 130, result.output
+    assert f"interrupted: 1 of 1 runs are kept in {out}, every one" in result.output
+    assert "Traceback" not in result.output and len((out / "results.jsonl").read_text().splitlines()) == 1

@@ -259,3 +259,32 @@ def test_a_ctrl_c_while_the_report_is_written_says_every_trial_is_kept(tmp_path,
     with pytest.raises(runner.Interrupted) as stop:
         run_experiment(load_experiment(TINY), tmp_path / "o", executor="serial", progress=False, plots=False)
     assert stop.value.complete and stop.value.kept == stop.value.total == 4
+
+
+def test_a_second_ctrl_c_while_the_workers_stop_is_the_same_request(tmp_path, monkeypatch):
+    """The first Ctrl-C landed between two rows (here: as a row was stored), the second while the executor's
+    generator stopped its workers: the generator, dropped rather than closed, raised it as it was freed, and
+    "Exception ignored in: <generator object process>" with a traceback came above the resume line (CI,
+    session 29, 1 run in many). Now the run closes it and ends as interrupted, with nothing unraisable."""
+    import navlab.bench.runner as runner
+    from navlab.bench.trial import run_trial
+
+    closed, unraisable = [], []
+
+    def executor(specs, jobs=None, scheduler=None):
+        try:
+            for spec in specs:
+                yield run_trial(spec)
+        finally:
+            closed.append(True)
+            raise KeyboardInterrupt  # the second Ctrl-C, held while the workers stopped and raised after
+
+    def first_ctrl_c(self, row):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "EXECUTORS", {"serial": executor})
+    monkeypatch.setattr(runner.ResultStore, "append", first_ctrl_c)
+    monkeypatch.setattr(sys, "unraisablehook", unraisable.append)
+    with pytest.raises(runner.Interrupted) as stop:
+        run_experiment(load_experiment(TINY), tmp_path / "o", executor="serial", progress=False, plots=False)
+    assert closed == [True] and unraisable == [] and stop.value.kept == 0

@@ -262,7 +262,7 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
 
     from ..atomic import write_text_atomic
     from .executors import EXECUTORS, check_executor
-    from .runner import _progress, stopped
+    from .runner import _progress, stopped, stops_at_ctrl_c
     from .store import ResultStore, write_error
 
     for nav in study.navigators:
@@ -277,28 +277,28 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
         if todo:
             bar = _progress(len(todo), f"BARN: {len(study.worlds)} worlds × {len(study.navigators)} navigators × "
                             f"{study.runs} runs", progress)
-            try:
-                for row in run_trials(todo, jobs=jobs, scheduler=scheduler, trial=run_barn_trial):
+            trials = run_trials(todo, jobs=jobs, scheduler=scheduler, trial=run_barn_trial)
+            # (a bare KeyboardInterrupt caught here missed the SystemError form of a Ctrl-C, and the report's
+            # Ctrl-C went up as a traceback: review, session 30)
+            with stops_at_ctrl_c(lambda: stopped(store, specs, unit="runs"), trials, bar):
+                for row in trials:
                     store.append(row)
                     bar.update(1)
-            except KeyboardInterrupt:
-                bar.close()
-                raise stopped(store, specs) from None
-            bar.close()
         rows = store.current_rows(specs)
         elapsed = time.perf_counter() - t0
         summary = summarize(study, rows)
         summary["elapsed_s"] = elapsed
         summary["ran"] = len(todo)
-        write_text_atomic(store.folder / "summary.json", json.dumps(summary, indent=1, default=str))
         from .barn_report import write_barn_report
         from .export import write_csv
 
-        write_barn_report(study, rows, summary, store.folder, plots=plots)
-        try:  # the same runs as one flat table, as every navlab bench folder has
-            write_csv(store.results_path, store.folder / "results.csv")
-        except OSError as exc:
-            raise write_error(store.folder / "results.csv", exc) from None
+        with stops_at_ctrl_c(lambda: stopped(store, specs, unit="runs")):
+            write_text_atomic(store.folder / "summary.json", json.dumps(summary, indent=1, default=str))
+            write_barn_report(study, rows, summary, store.folder, plots=plots)
+            try:  # the same runs as one flat table, as every navlab bench folder has
+                write_csv(store.results_path, store.folder / "results.csv")
+            except OSError as exc:
+                raise write_error(store.folder / "results.csv", exc) from None
     return store.folder, rows, summary
 
 

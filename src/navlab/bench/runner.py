@@ -16,13 +16,14 @@ the noise-measuring repeats run last.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import sys
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, Dict, List, Optional, Sequence, Set
+from typing import Any, Callable, Dict, Iterator, List, Optional, Sequence, Set
 
 from ..atomic import write_text_atomic
 from ..errors import interrupted_by_ctrl_c
@@ -41,9 +42,10 @@ from .trial import execute, machine
 class Interrupted(Exception):
     """Ctrl-C during a run: the rows written so far are kept."""
 
-    def __init__(self, folder: Path, kept: int, total: int, repeats_kept: int = 0, repeats: int = 0) -> None:
+    def __init__(self, folder: Path, kept: int, total: int, repeats_kept: int = 0, repeats: int = 0,
+                 unit: str = "trials") -> None:
         # the progress bar counted the noise repeats too: say them, so the two counts add up
-        self.counts = f"{kept} of {total} trials" + (f" and {repeats_kept} of {repeats} noise repeats" if repeats
+        self.counts = f"{kept} of {total} {unit}" + (f" and {repeats_kept} of {repeats} noise repeats" if repeats
                                                      else "")
         super().__init__(f"interrupted: {self.counts} kept in {folder}")
         self.folder, self.kept, self.total = folder, kept, total
@@ -140,20 +142,15 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         if todo:
             bar = _progress(len(todo), _bar_label(experiment.name, len(specs), trials_todo, len(repeats_todo)),
                             progress)
-            try:
-                for row in run_trials(todo, jobs=jobs, scheduler=scheduler):
+            trials = run_trials(todo, jobs=jobs, scheduler=scheduler)
+            with stops_at_ctrl_c(lambda: stopped(store, specs, experiment.noise_specs()), trials, bar):
+                for row in trials:
                     tree = row.pop("tree", None)
                     if tree is not None:
                         trees[row["cell_id"]] = tree
                     store.append(row)
                     new_rows.append(row)
                     bar.update(1)
-            except (KeyboardInterrupt, SystemError) as exc:
-                if not interrupted_by_ctrl_c(exc):
-                    raise
-                bar.close()
-                raise stopped(store, specs, experiment.noise_specs()) from None
-            bar.close()
         elapsed = time.perf_counter() - t0
         phases["trials"] = elapsed
         phases["workers"] = 1 if executor == "serial" else (jobs or os.cpu_count() or 1)
@@ -162,7 +159,9 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         phases["repeats"] = sum(bool(r.get("repeat")) for r in new_rows)
         rows = store.current_rows(specs)
         repeats = [store.rows[s["trial_id"]] for s in experiment.noise_specs() if s["trial_id"] in store.rows]
-        try:
+        # every trial is on disk: a Ctrl-C here says so (it said "run the rest with", as if trials were missing,
+        # through the report's seconds of plotting: review, session 29)
+        with stops_at_ctrl_c(lambda: stopped(store, specs, experiment.noise_specs())):
             summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
                                    time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
                                    plot_jobs=1 if executor == "serial" else min(phases["workers"],
@@ -171,13 +170,40 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                 write_csv(store.results_path, store.folder / "results.csv")
             except OSError as exc:
                 raise write_error(store.folder / "results.csv", exc) from None
-        except (KeyboardInterrupt, SystemError) as exc:
-            # every trial is on disk: the Ctrl-C says so (it said "run the rest with", as if trials were missing,
-            # through the report's seconds of plotting: review, session 29)
-            if not interrupted_by_ctrl_c(exc):
-                raise
-            raise stopped(store, specs, experiment.noise_specs()) from None
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
+
+
+@contextlib.contextmanager
+def stops_at_ctrl_c(stop: Callable[[], Interrupted], trials: Optional[Iterator[Dict[str, Any]]] = None, bar=None):
+    """A Ctrl-C within the block raises ``stop()`` (an :class:`Interrupted`) instead; a Ctrl-C handed back as a
+    SystemError (:func:`~navlab.errors.interrupted_by_ctrl_c`) is one too. ``trials``, the executor's row
+    generator, is closed when the block ends early, stopping its workers, and ``bar`` is closed.
+
+    The generator is closed here, not left to be freed: a Ctrl-C that reached this process between two rows
+    left it to be closed as it was freed, and a second Ctrl-C while its workers stopped printed "Exception
+    ignored in: <generator object process>" and a traceback above the resume line (CI, session 29). A second
+    Ctrl-C then asks for what the first did.
+    """
+    try:
+        yield
+    except BaseException as exc:
+        if trials is not None:
+            _close_quietly(trials)
+        if bar is not None:
+            bar.close()
+        if interrupted_by_ctrl_c(exc):
+            raise stop() from None
+        raise
+
+
+def _close_quietly(trials: Iterator[Dict[str, Any]]) -> None:
+    close = getattr(trials, "close", None)  # an executor may return a plain iterator
+    try:
+        if close is not None:
+            close()
+    except (KeyboardInterrupt, SystemError) as exc:
+        if not interrupted_by_ctrl_c(exc):
+            raise
 
 
 def _note_rows_of_no_cell(store: ResultStore, cells: Set[str]) -> None:
@@ -212,13 +238,14 @@ def _note_trials_past_the_count(store: ResultStore, specs: List[Dict[str, Any]],
               f"includes {'it' if one else 'them'})", file=sys.stderr)
 
 
-def stopped(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]] = ()) -> Interrupted:
+def stopped(store: ResultStore, specs: List[Dict[str, Any]], repeats: Sequence[Dict[str, Any]] = (),
+            unit: str = "trials") -> Interrupted:
     """After Ctrl-C: close the store (releasing its lock) and say how many of ``specs`` (and of the
-    noise ``repeats``) are on disk."""
+    noise ``repeats``) are on disk, counted in ``unit``."""
     store.close()
     kept = {r["trial_id"] for r in read_rows(store.results_path)} if store.results_path.exists() else set()
     return Interrupted(store.folder, len(kept & {s["trial_id"] for s in specs}), len(specs),
-                       len(kept & {s["trial_id"] for s in repeats}), len(repeats))
+                       len(kept & {s["trial_id"] for s in repeats}), len(repeats), unit)
 
 
 def _bar_label(name: str, trials: int, trials_todo: int, repeats_todo: int) -> str:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import difflib
 import os
 import shlex
@@ -136,7 +137,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     from ..bench import load_experiment, run_experiment
     from ..bench.experiment import (ExperimentError, check_max_iter, check_max_time, check_plain, check_seed,
                                     check_trials, experiment_data)
-    from ..bench.runner import Interrupted, breakdown_lines
+    from ..bench.runner import breakdown_lines
 
     if resume and overwrite:
         raise click.UsageError("--resume keeps the finished trials and --overwrite discards them: give one")
@@ -211,25 +212,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
 
     if resume and not (Path(folder) / RESULTS_FILE).is_file():  # (it began afresh without a word: newcomer,
         click.echo(f"note: nothing to resume in {folder} (no results there): a new run", err=True)  # session 23)
-    try:
+    with _ends_at_ctrl_c(folder, "trials"):
         run = run_experiment(exp, folder, executor=executor, jobs=jobs, scheduler=scheduler, resume=resume,
                              overwrite=overwrite, progress=not quiet, plots=not no_plots, time_kind=time_kind)
-    except Interrupted as stop:
-        end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())  # a second Ctrl-C now ends it as this one
-        if stop.complete:  # ("50 of 50 trials ... run the rest with" after the last one: attack, session 29)
-            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}, every one; the summary and report "
-                       f"were not written: {_resume_command()} writes them", err=True)
-        else:
-            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
-                       f"run the rest with: {_resume_command()}", err=True)
-        sys.exit(EXIT_INTERRUPTED)
-    except (KeyboardInterrupt, SystemError) as exc:  # before or after the trials: every finished trial is on disk
-        if not interrupted_by_ctrl_c(exc):
-            raise
-        end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())
-        click.echo(f"\ninterrupted: the finished trials are kept in {folder}; run the rest with: {_resume_command()}",
-                   err=True)
-        sys.exit(EXIT_INTERRUPTED)
     summary = run.summary
     repeats = run.breakdown.get("repeats", 0)
     ran = f"{run.ran - repeats} run now, {counted(run.errors, 'error')}" + (
@@ -290,7 +275,6 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
           overwrite, no_plots, quiet, straight_line, lidar, other) -> None:
     """``navlab bench --suite barn``: see :mod:`navlab.bench.barn_run`."""
     from ..bench.barn_run import Navigator, make_study, run_barn
-    from ..bench.runner import Interrupted
 
     if other:
         raise click.UsageError("--suite barn takes --data, --worlds, --controller, --planner, --param, --trials "
@@ -310,13 +294,9 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
     study = make_study(data, worlds, navigators, runs=runs or 1, seed=seed or 0, straight_line=straight_line,
                        lidar=lidar)
     folder = out or "bench-results/barn"
-    try:
+    with _ends_at_ctrl_c(folder, "runs"):
         folder, rows, summary = run_barn(study, folder, executor=executor, jobs=jobs, scheduler=scheduler,
                                          resume=resume, overwrite=overwrite, progress=not quiet, plots=not no_plots)
-    except Interrupted as stop:
-        click.echo(f"\ninterrupted: {stop.kept} of {stop.total} runs are kept in {stop.folder}; "
-                   f"run the rest with: {_resume_command()}", err=True)
-        sys.exit(EXIT_INTERRUPTED)
     from ..bench.barn_report import disclaimer, means_table
 
     # ("1 runs (1 run now) in 5.6 s", read against 12.3 s of wall time: the report's plots come after; newcomer run)
@@ -427,6 +407,34 @@ def _adhoc_name(data, fingerprint: str) -> str:
 
     parts = [short(w) for w in data.get("worlds", [])[:2]] + [short(p) for p in data.get("planners", [])[:2]]
     return "-".join(["adhoc", *parts, fingerprint[:8]])
+
+
+@contextlib.contextmanager
+def _ends_at_ctrl_c(folder, unit: str):
+    """A Ctrl-C within the block ends the command with exit 130 and a line saying what is kept and the command
+    that resumes; from then on a second Ctrl-C ends it the same way. ``unit``: what the run counts (trials, or
+    BARN's runs, whose suite said nothing of a Ctrl-C outside its trials and no "every one" after the last:
+    review, session 30)."""
+    from ..bench.runner import Interrupted
+
+    try:
+        yield
+    except Interrupted as stop:
+        end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())
+        if stop.complete:  # ("50 of 50 trials ... run the rest with" after the last one: attack, session 29)
+            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}, every one; the summary and report "
+                       f"were not written: {_resume_command()} writes them", err=True)
+        else:
+            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
+                       f"run the rest with: {_resume_command()}", err=True)
+        sys.exit(EXIT_INTERRUPTED)
+    except (KeyboardInterrupt, SystemError) as exc:  # before or after the trials: every finished one is on disk
+        if not interrupted_by_ctrl_c(exc):
+            raise
+        end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())
+        click.echo(f"\ninterrupted: the finished {unit} are kept in {folder}; run the rest with: {_resume_command()}",
+                   err=True)
+        sys.exit(EXIT_INTERRUPTED)
 
 
 def _resume_command() -> str:

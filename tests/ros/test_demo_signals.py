@@ -160,3 +160,18 @@ def test_ctrl_c_ends_a_pathplanner_node_that_has_loaded_its_kernels(tmp_path):
         pytest.fail(f"the pathplanner node still ran {EXIT_LIMIT:g} s after Ctrl-C")
     reader.join(timeout=EXIT_LIMIT)
     assert proc.returncode in (0, 130) and "Traceback" not in "".join(lines), "".join(lines)[-4000:]
+
+
+def test_ctrl_c_while_the_nodes_are_built_stops_after_the_one_being_built(tmp_path):
+    """The in-process demo built every node before it looked at a Ctrl-C: 19 s on a first start, the
+    pathplanner compiling its kernels (attack, session 30). Now it stops after the node being built, and
+    says on stderr that it waits for it."""
+    import json
+
+    from ros_helpers import run_isolated
+
+    proc = run_isolated([sys.executable, str(Path(__file__).with_name("demo_stop_scenario.py"))], timeout=120)
+    assert proc.returncode == 0, proc.stderr[-4000:]
+    seen = json.loads(proc.stdout.strip().splitlines()[-1])
+    assert seen["built"] == ["map_server"] and seen["reason"] == "interrupted", seen
+    assert "stopping once the map_server node is built" in seen["stderr"], seen

@@ -21,6 +21,7 @@ import math
 import os
 import shutil
 import signal
+import sys
 import tempfile
 import threading
 import time
@@ -172,8 +173,25 @@ def _alive(pid: int) -> bool:
     return True
 
 
+class _StopRequest(threading.Event):
+    """Set by SIGINT or SIGTERM (:meth:`request`). While the demo builds its in-process nodes, ``starting``
+    names the one being built: a stop then waits for it (a node is built whole), and says so on stderr,
+    since a first start compiles the node's kernels for many seconds."""
+
+    def __init__(self) -> None:
+        super().__init__()
+        self.starting: Optional[str] = None
+
+    def request(self, signum=None, frame=None) -> None:
+        if self.starting is not None and not self.is_set():
+            sys.stderr.write(f"stopping once the {self.starting} node is built (its first start compiles its "
+                             "kernels) ...\n")
+            sys.stderr.flush()
+        self.set()
+
+
 @contextlib.contextmanager
-def _stop_requests() -> Iterator[threading.Event]:
+def _stop_requests() -> Iterator[_StopRequest]:
     """An event set by SIGINT or SIGTERM while the demo runs.
 
     The demo handles these itself instead of rclpy's handlers: those shut the
@@ -184,8 +202,8 @@ def _stop_requests() -> Iterator[threading.Event]:
     within one 50 ms turn and ends the mission "interrupted", and shutdown
     happens once, in order, in ``_run``'s ``finally``.
     """
-    stop = threading.Event()
-    previous = {sig: signal.signal(sig, lambda *_: stop.set()) for sig in (signal.SIGINT, signal.SIGTERM)}
+    stop = _StopRequest()
+    previous = {sig: signal.signal(sig, stop.request) for sig in (signal.SIGINT, signal.SIGTERM)}
     try:
         yield stop
     finally:
@@ -218,8 +236,16 @@ def _run_until(stop, specs, goal, processes, record, max_time, timeout, toleranc
         else:
             launcher = None
             for name, params in specs:
+                # a Ctrl-C while the nodes are built ends the run after the one being built (it waited for them
+                # all: 19 s on a first start, which compiles the pathplanner's kernels; attack, session 30)
+                if stop.is_set():
+                    break
                 overrides = [Parameter(k, value=v) for k, v in params.items()]
-                nodes.append(node_class(name)(parameter_overrides=overrides))
+                stop.starting = name
+                try:
+                    nodes.append(node_class(name)(parameter_overrides=overrides))
+                finally:
+                    stop.starting = None
                 executor.add_node(nodes[-1])
         wall0 = time.monotonic()
         with launcher or contextlib.nullcontext():

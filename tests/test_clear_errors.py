@@ -476,3 +476,29 @@ def test_a_resolution_too_fine_to_count_names_no_inf():
     with pytest.raises(navlab.NavlabError, match=r"to 6e\+300 x 6e\+300 cells, more than 1e\+08") as err:
         navlab.plan("narrow_aisle", planner="hybrid_astar", resolution=1e-300)
     assert "inf" not in str(err.value)
+
+
+@pytest.mark.parametrize("call, words", [
+    (lambda: load_map(None), "path: expected a file name (text without NUL), got None"),
+    (lambda: read_scen(3), "path: expected a file name (text without NUL), got 3"),
+    (lambda: load_map("a\0b.yaml"), "path: expected a file name"),
+    (lambda: navlab.grid.OccupancyGrid(np.zeros((4, 4), bool)).world_to_cell("ab"),
+     "world points: expected (x, y) numbers or an (N, 2) array, got 'ab'"),
+    (lambda: navlab.grid.OccupancyGrid(np.zeros((4, 4), bool)).world_to_cell([1.0, 2.0, 3.0]),
+     "world points: expected (x, y) numbers"),
+    (lambda: navlab.grid.OccupancyGrid(np.zeros((4, 4), bool)).cell_to_world("ab"),
+     "cells: expected (x, y) numbers or an (N, 2) array"),
+    # checked before the view is copied: 40 GB were asked for first
+    (lambda: navlab.grid.OccupancyGrid(np.broadcast_to(np.zeros(1, bool), (200_000, 200_000))),
+     "blocked has 40000000000 cells, more than the 1e+08"),
+])
+def test_wrong_types_in_the_grid_api_are_named(call, words):
+    """Each was Python's or numpy's own TypeError, ValueError or MemoryError (API attack, session 29)."""
+    with pytest.raises(navlab.errors.ParameterError, match=re.escape(words)):
+        call()
+
+
+def test_world_to_cell_still_takes_one_point_and_many():
+    grid = navlab.grid.OccupancyGrid(np.zeros((4, 4), bool), resolution=0.5)
+    assert grid.world_to_cell((1.2, 0.3)).tolist() == [2, 0]
+    assert grid.world_to_cell([[1.2, 0.3], [0.1, 1.9]]).tolist() == [[2, 0], [0, 3]]

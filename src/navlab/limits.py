@@ -185,6 +185,17 @@ MAX_COUNT = 2 ** 62
 MAX_JOBS = 256
 
 
+def check_path(name: str, value: Any):
+    """``value`` as a :class:`pathlib.Path`: a file name given as text or a path object, without NUL;
+    else a ParameterError naming ``name`` (``load_map(None)`` raised Python's own TypeError: API attack,
+    session 29)."""
+    from pathlib import Path
+
+    if not isinstance(value, (str, os.PathLike)) or "\0" in os.fspath(value):
+        raise ParameterError(f"{name}: expected a file name (text without NUL), got {shown(value)}")
+    return Path(value)
+
+
 def check_count(name: str, value: Any, low: int = 1, high: Optional[float] = MAX_COUNT) -> int:
     """``value`` as an int if it is a whole number in [low, high] (``high`` None: no upper bound), else
     ParameterError naming ``name``. A float that is a whole number counts (``1e6`` from a command line or a

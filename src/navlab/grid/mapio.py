@@ -25,7 +25,7 @@ import yaml
 
 from ..atomic import atomic_path
 from ..errors import NavlabError, ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, finite_number, short_name, shown
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_memory, check_path, finite_number, short_name, shown
 from ..wording import escaped
 from ..yamlio import read_yaml, regular_file
 from ..yamlcore import number_text
@@ -105,7 +105,7 @@ def read_pgm(path: PathLike) -> np.ndarray:
     converting to 8-bit grey does. The size is checked against
     :data:`~navlab.grid.occupancy.MAX_CELLS` before the pixels are read.
     """
-    p = Path(path)
+    p = check_path("path", path)
     with open(p, "rb") as f:
         magic, width, height, maxval = _pgm_header(p, f)
         count = width * height
@@ -341,7 +341,7 @@ def load_ros_map(yaml_path: PathLike, rule: str = "nav2") -> OccupancyGrid:
     """
     if rule not in MAP_RULES:
         raise ParameterError(f"rule must be one of {', '.join(MAP_RULES)}, got {rule!r}")
-    src = Path(yaml_path)
+    src = check_path("yaml_path", yaml_path)
     # a map YAML is a dozen fields: a megabyte is generous (a 200 MB one took 105 s to refuse)
     meta = read_yaml(src, MapFormatError, MAX_MAP_YAML_BYTES, what="map YAML file")
     if not isinstance(meta, dict):
@@ -378,7 +378,7 @@ def load_movingai_map(path: PathLike) -> OccupancyGrid:
     checked against :data:`~navlab.grid.occupancy.MAX_CELLS` before the rows
     are read.
     """
-    p = Path(path)
+    p = check_path("path", path)
     regular_file(p, str(p), MapFormatError, "Moving AI map")
     try:
         with open(p, "r", encoding="latin-1", newline=None) as f:
@@ -432,7 +432,7 @@ def load_map(path: PathLike, rule: str = "nav2") -> OccupancyGrid:
 
     ``rule`` chooses how a map_server image is read (see :func:`load_ros_map`).
     """
-    p = Path(path)
+    p = check_path("path", path)
     if p.is_dir():
         raise MapFormatError(f"{p}: is a directory, not a map file")
     if not p.exists():
@@ -454,9 +454,7 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     """
     if not isinstance(grid, OccupancyGrid):
         raise ParameterError(f"grid: expected an OccupancyGrid, got {type(grid).__name__}")
-    if not isinstance(yaml_path, (str, os.PathLike)) or "\0" in os.fspath(yaml_path):
-        raise ParameterError(f"yaml_path: expected a file name (text without NUL), got {shown(yaml_path)}")
-    ypath = Path(yaml_path)
+    ypath = check_path("yaml_path", yaml_path)
     if ypath.name in ("", ".", ".."):  # '' is Path('.'): with_suffix's ValueError was an internal error
         raise ParameterError(f"{os.fspath(yaml_path)!r}: not a file name for the map's YAML (say maze.yaml)")
     image = ypath.with_suffix(".pgm")

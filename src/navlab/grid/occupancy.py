@@ -17,7 +17,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number, shown
 
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
@@ -46,6 +46,8 @@ def _mask(values: Any, name: str) -> np.ndarray:
         given = np.asarray(values)
     except (TypeError, ValueError) as exc:
         raise ParameterError(f"{name} must be an array of bool: {exc}") from None
+    if given.size > MAX_CELLS:  # before any copy (a broadcast view of 4e10 cells was copied first: API attack)
+        raise ParameterError(f"{name} has {given.size} cells, more than the {MAX_CELLS:.0e} navlab supports")
     if given.dtype != bool:
         if given.dtype.kind not in "iuf":
             raise ParameterError(f"{name} must be an array of true/false (or 0/1) per cell, got dtype {given.dtype}")
@@ -103,8 +105,6 @@ class OccupancyGrid:
         blocked = _mask(self.blocked, "blocked")
         if blocked.ndim != 2 or 0 in blocked.shape:
             raise ParameterError(f"blocked must be a non-empty 2D array, got shape {blocked.shape}")
-        if blocked.size > MAX_CELLS:
-            raise ParameterError(f"blocked has {blocked.size} cells, more than the {MAX_CELLS:.0e} navlab supports")
         put(self, "blocked", blocked)
         resolution = finite_number("resolution", self.resolution)
         if not MIN_LENGTH <= resolution <= MAX_COORDINATE:
@@ -187,23 +187,31 @@ class OccupancyGrid:
 
     def cell_to_world(self, cells) -> np.ndarray:
         """World coordinates (m) of cell centres; ``cells`` is (N, 2) of (x, y)."""
-        if self.origin[2] == 0.0:
-            # the common unrotated map in two array operations: numpy's
-            # per-call overhead was a quarter of a query on den312d
-            if "centre_offset" not in self._cache:
-                self._cache["centre_offset"] = np.asarray(self.origin[:2]) + 0.5 * self.resolution
-            out = np.multiply(cells, self.resolution, dtype=float)
-            out += self._cache["centre_offset"]
-            return out
-        local = (np.asarray(cells, dtype=float) + 0.5) * self.resolution
-        return local @ self._rotation().T + np.asarray(self.origin[:2])
+        try:  # (text or a wrong shape raised numpy's own TypeError or ValueError: API attack, session 29)
+            if self.origin[2] == 0.0:
+                # the common unrotated map in two array operations: numpy's
+                # per-call overhead was a quarter of a query on den312d
+                if "centre_offset" not in self._cache:
+                    self._cache["centre_offset"] = np.asarray(self.origin[:2]) + 0.5 * self.resolution
+                out = np.multiply(cells, self.resolution, dtype=float)
+                out += self._cache["centre_offset"]
+                return out
+            local = (np.asarray(cells, dtype=float) + 0.5) * self.resolution
+            return local @ self._rotation().T + np.asarray(self.origin[:2])
+        except (TypeError, ValueError):
+            raise ParameterError(f"cells: expected (x, y) numbers or an (N, 2) array, got {shown(cells)}") from None
 
     def world_to_cell(self, xy) -> np.ndarray:
         """Integer cells (x, y) containing world points (may lie outside the grid).
 
         Points must be finite (a NaN or infinite coordinate has no cell).
         """
-        p = np.asarray(xy, dtype=float)
+        try:
+            p = np.asarray(xy, dtype=float)
+        except (TypeError, ValueError):  # ('ab': numpy's "could not convert string to float")
+            p = np.empty(0)
+        if p.ndim not in (1, 2) or p.shape[-1] != 2:
+            raise ParameterError(f"world points: expected (x, y) numbers or an (N, 2) array, got {shown(xy)}")
         if not np.all(np.isfinite(p)):
             raise ParameterError(f"world points must be finite, got {p.tolist()}")
         local = (p - np.asarray(self.origin[:2])) @ self._rotation()

@@ -4,10 +4,9 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from pathlib import Path
 from typing import List
 
-from ..limits import shown
+from ..limits import check_path, shown
 from .mapio import MapFormatError
 
 
@@ -35,7 +34,7 @@ def printed_decimals(text: str) -> int:
 
 
 def read_scen(path) -> List[Scenario]:
-    p = Path(path)
+    p = check_path("path", path)
     try:
         lines = p.read_text(encoding="utf-8").splitlines()
     except OSError as exc:

@@ -502,3 +502,23 @@ def test_world_to_cell_still_takes_one_point_and_many():
     grid = navlab.grid.OccupancyGrid(np.zeros((4, 4), bool), resolution=0.5)
     assert grid.world_to_cell((1.2, 0.3)).tolist() == [2, 0]
     assert grid.world_to_cell([[1.2, 0.3], [0.1, 1.9]]).tolist() == [[2, 0], [0, 3]]
+
+
+@pytest.mark.parametrize("make, words", [
+    (lambda: navlab.world.Circle((1, "b"), 1.0), "circle center must be two finite numbers [x, y], got (1, 'b')"),
+    (lambda: navlab.world.Rectangle("ab", (1, 1)), "rectangle min must be two finite numbers"),
+    (lambda: navlab.world.Polygon("abc"), "polygon point must be two finite numbers [x, y], got 'a'"),
+])
+def test_shapes_given_text_name_the_field(make, words):
+    """numpy's "could not convert string to float" before (API attack, session 29)."""
+    with pytest.raises(navlab.errors.ParameterError, match=re.escape(words)):
+        make()
+
+
+def test_robot_lengths_as_numpy_floats_are_taken_as_floats():
+    """np.float32(0.05) was refused as "must be a positive number" (API attack, session 29)."""
+    robot = make_robot("diff", wheel_radius=np.float32(0.05), track=np.float64(0.2), radius=np.int64(1))
+    assert type(robot.wheel_radius) is float and robot.wheel_radius == pytest.approx(0.05)
+    assert type(robot.radius) is float and robot.radius == 1.0
+    with pytest.raises(navlab.errors.ParameterError, match="wheel_radius must be a positive number, got True"):
+        make_robot("diff", wheel_radius=True)

@@ -60,11 +60,20 @@ def integrate_pose(pose: np.ndarray, vx: float, vy: float, omega: float, dt: flo
 LENGTHS = ("radius", "wheel_radius", "track", "base_radius", "wheelbase")
 
 
-def _positive(name: str, value: float) -> None:
-    if not (isinstance(value, (int, float)) and is_finite_real(value) and value > 0):
+def _positive(name: str, value: float) -> float:
+    """``value`` as a float, if a positive finite number (numpy's too: np.float32(0.05) was refused as not a
+    number; API attack, session 29) and, for a length, within navlab's range."""
+    if not (is_finite_real(value) and value > 0):
         raise ParameterError(f"{name} must be a positive number, got {shown(value)}")
     if name in LENGTHS:
         check_length(name, value, allow_zero=False)
+    return float(value)
+
+
+def _set_positive(robot, names) -> None:
+    """Each of the ``names`` settings of ``robot``, checked by :func:`_positive`, as a float."""
+    for name in names:
+        setattr(robot, name, _positive(name, getattr(robot, name)))
 
 
 def accelerate(previous, command, dt: float, max_accel: Optional[float], max_angular_accel: Optional[float]):
@@ -87,9 +96,7 @@ class _Shaped:
     """What every robot shares: its footprint and acceleration limits."""
 
     def _check_shape(self) -> None:
-        for name in ("max_accel", "max_angular_accel"):
-            if getattr(self, name) is not None:
-                _positive(name, getattr(self, name))
+        _set_positive(self, [name for name in ("max_accel", "max_angular_accel") if getattr(self, name) is not None])
         if self.footprint is not None:
             self.footprint = Footprint.from_value(self.footprint, "footprint")
 
@@ -141,8 +148,7 @@ class DiffDrive(_Shaped):
     n_wheels = 2
 
     def __post_init__(self) -> None:
-        for name in ("wheel_radius", "track", "max_speed", "max_turn_rate", "radius"):
-            _positive(name, getattr(self, name))
+        _set_positive(self, ("wheel_radius", "track", "max_speed", "max_turn_rate", "radius"))
         self._check_shape()
 
     def inverse(self, vx: float, vy: float = 0.0, omega: float = 0.0) -> np.ndarray:
@@ -241,8 +247,7 @@ class Car(DiffDrive):
 
     def __post_init__(self) -> None:
         super().__post_init__()
-        _positive("wheelbase", self.wheelbase)
-        _positive("max_steer", self.max_steer)
+        _set_positive(self, ("wheelbase", "max_steer"))
         if not self.max_steer < 0.5 * math.pi:
             raise ParameterError(f"max_steer must be below π/2 rad (90°), got {self.max_steer!r}")
 
@@ -309,8 +314,7 @@ class Omni3(_Shaped):
     _Jinv: np.ndarray = field(init=False, repr=False)
 
     def __post_init__(self) -> None:
-        for name in ("wheel_radius", "base_radius", "max_speed", "max_turn_rate", "max_wheel_speed", "radius"):
-            _positive(name, getattr(self, name))
+        _set_positive(self, ("wheel_radius", "base_radius", "max_speed", "max_turn_rate", "max_wheel_speed", "radius"))
         self._check_shape()
         angles = self.wheel_angles_deg
         try:  # (a single number, a string or a set was a TypeError, an internal error: attack run, session 18)

@@ -28,7 +28,10 @@ def _motion_dict(shape, out: Dict[str, Any]) -> Dict[str, Any]:
 
 
 def _point(value: Any, what: str) -> Point:
-    arr = np.asarray(value, dtype=float)
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):  # (text: numpy's own "could not convert string to float"; API attack)
+        arr = np.empty(0)
     if arr.shape != (2,) or not np.all(np.isfinite(arr)):
         raise ParameterError(f"{what} must be two finite numbers [x, y], got {value!r}")
     return (float(arr[0]), float(arr[1]))

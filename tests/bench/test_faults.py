@@ -96,7 +96,12 @@ def test_an_interrupted_pool_kills_its_workers_at_once():
     busy = [pool.submit(_sleep, 60) for _ in range(3)]
     assert wait_for(lambda: len(pool._processes) == 2 and all(alive(p) for p in pool._processes), timeout=30)
     pids = list(pool._processes)
+    manager = pool._executor_manager_thread
     _stop_workers(pool)
+    # and the manager thread is gone: left running, concurrent.futures' exit-time hook raced it for its wake-up
+    # pipe, an OSError traceback under the resume line (CI, session 30; the join read the thread after the
+    # shutdown had dropped it)
+    assert not manager.is_alive()
     # by pid: the pool's manager thread may reap a killed worker first, and Process.is_alive then errs
     assert wait_for(lambda: not any(alive(pid) for pid in pids), timeout=30), "a worker survived"
     assert wait_for(lambda: all(f.done() for f in busy), timeout=30)  # (the pool marks them broken, not run)

@@ -163,6 +163,10 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
     # pool's manager to join at exit: session 29), then takes effect
     with _ctrl_c_held():
         workers = list((getattr(pool, "_processes", None) or {}).values())
+        # (read before the shutdown, which drops the executor's reference: read after it, this was None and the
+        # manager was never joined; concurrent.futures' exit-time hook then raced it for its wake-up pipe, an
+        # "OSError: Bad file descriptor" traceback under the resume line in 1 of 25 double Ctrl-Cs at load 5)
+        manager = getattr(pool, "_executor_manager_thread", None)
         pool.shutdown(wait=False, cancel_futures=True)
         for worker in workers:
             try:
@@ -177,7 +181,6 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
         # and the pool's manager thread, which then closes its wake-up pipe: left running, concurrent.futures'
         # exit-time hook wrote to that pipe after the manager had gone, a BrokenPipeError traceback under the
         # resume line (session 29)
-        manager = getattr(pool, "_executor_manager_thread", None)
         if manager is not None:
             manager.join(5.0)
 

@@ -520,8 +520,11 @@ def _from_dict(data: Dict[str, Any]) -> Experiment:
                 raise ExperimentError(f"two map worlds are named '{checked['name']}'; give them distinct 'name's")
             maps[checked["name"]] = checked
             worlds.append(checked["name"])
-        else:
-            worlds.append(str(entry))
+        elif isinstance(entry, str):
+            worlds.append(entry)
+        else:  # (5 was looked up as the scene '5': API attack, session 29)
+            raise ExperimentError(f"each of 'worlds' is a scene name, a world or map file, or a mapping with 'map', "
+                                  f"'start' and 'goal', got {shown(entry)}")
     return Experiment(
         samplers_given=data.get("samplers") is not None,
         study=dict(study),
@@ -655,8 +658,10 @@ def _claims_list(value: Any) -> list:
 
 def _as_list(value: Any, what: str) -> list:
     items = value if isinstance(value, list) else [value]
-    if not items or any(v is None for v in items):
+    if not items or value is None:
         raise ExperimentError(f"'{what}' is empty: nothing to run")
+    if any(v is None for v in items):  # ("- " with nothing after it in YAML)
+        raise ExperimentError(f"'{what}' has an empty entry (null): give each a name")
     return items
 
 

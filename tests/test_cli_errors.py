@@ -264,8 +264,8 @@ def test_bench_stopped_by_a_ctrl_c_inside_a_kernel_prints_the_resume_command(tmp
 
 
 @pytest.mark.parametrize("kept, repeats_kept, said", [
-    (4, 2, "interrupted: 4 of 4 trials and 2 of 2 noise repeats are kept in {out}, every one; the summary and "
-           "report were not written: navlab bench"),
+    (4, 2, "interrupted: 4 of 4 trials and 2 of 2 noise repeats are kept in {out}, every one; the report is not "
+           "complete: navlab bench"),
     (4, 1, "interrupted: 4 of 4 trials and 1 of 2 noise repeats are kept in {out}; run the rest with: navlab bench"),
 ])
 def test_bench_stopped_after_its_last_trial_says_only_the_report_is_missing(kept, repeats_kept, said, tmp_path,

@@ -154,5 +154,5 @@ def test_a_ctrl_c_in_the_report_says_every_run_is_kept(tmp_path, monkeypatch):
     out = tmp_path / "barn"
     result = _run("--data", str(BARN), "--worlds", "0", "--controller", "rpp", "--out", str(out))
     assert result.exit_code == 130, result.output
-    assert f"interrupted: 1 of 1 runs are kept in {out}, every one" in result.output
+    assert f"interrupted: 1 of 1 runs are kept in {out}, every one; the report is not complete" in result.output
     assert "Traceback" not in result.output and len((out / "results.jsonl").read_text().splitlines()) == 1

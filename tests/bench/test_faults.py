@@ -293,3 +293,27 @@ def test_a_second_ctrl_c_while_the_workers_stop_is_the_same_request(tmp_path, mo
     with pytest.raises(runner.Interrupted) as stop:
         run_experiment(load_experiment(TINY), tmp_path / "o", executor="serial", progress=False, plots=False)
     assert closed == [True] and unraisable == [] and stop.value.kept == 0
+
+
+def _ctrl_c_left_to_the_parent(_):
+    return signal.getsignal(signal.SIGINT) == signal.SIG_IGN, os.getppid()
+
+
+def test_the_plot_pool_is_killed_on_ctrl_c_and_its_workers_leave_ctrl_c_to_the_run():
+    """The report's plot pool was a plain one: a double Ctrl-C while it drew hung navlab bench for good, its
+    workers outlived a kill -9 of the run, and an idle worker took a terminal's Ctrl-C with a KeyboardInterrupt
+    traceback (newcomer, session 30). It is a stoppable_pool now, as the trials' pool is."""
+    import navlab.bench.runner as runner
+    from navlab.bench.executors import stoppable_pool
+
+    assert "stoppable_pool" in runner.make_plots.__code__.co_names
+    with pytest.raises(KeyboardInterrupt):
+        with stoppable_pool(2) as pool:
+            set_up = list(pool.map(_ctrl_c_left_to_the_parent, range(2)))
+            busy = [pool.submit(_sleep, 60) for _ in range(2)]
+            assert wait_for(lambda: len(pool._processes) == 2 and all(alive(p) for p in pool._processes), timeout=30)
+            pids, manager = list(pool._processes), pool._executor_manager_thread
+            raise KeyboardInterrupt  # as a Ctrl-C lands while the figures are drawn
+    assert set_up == [(True, os.getpid())] * 2
+    assert not manager.is_alive() and wait_for(lambda: not any(alive(pid) for pid in pids), timeout=30)
+    assert all(f.done() for f in busy)

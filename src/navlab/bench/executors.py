@@ -90,20 +90,62 @@ def _alive(pid: int) -> bool:
     return True
 
 
-def _worker_start(lock_path: str, parent: int) -> None:
-    """Pool worker set-up: die with the parent, then the warm-up role.
+def _worker_start(lock_path: Optional[str], parent: int) -> None:
+    """Pool worker set-up: leave Ctrl-C to the parent, die with it, then the warm-up role (with ``lock_path``).
 
     A killed ``navlab bench`` left its workers running with PPID 1 (and, with
     the old flock, holding the folder's lock). Linux's PR_SET_PDEATHSIG sends
     the worker SIGKILL when its parent dies; a watchdog thread that polls the
     parent's pid covers other systems and a parent that died before the
-    signal was armed.
+    signal was armed. A terminal's Ctrl-C reaches the whole process group: the
+    parent stops its workers (:func:`_stop_workers`), and an idle worker that
+    took it too printed "Process ForkProcess-4: ... KeyboardInterrupt" above
+    the resume line (newcomer, session 30).
     """
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "pthread_sigmask"):  # forked with Ctrl-C blocked (_Pool.submit): ignored from here on
+        signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     _die_with_parent()
     if os.getppid() != parent:
         os._exit(1)
     threading.Thread(target=_watch_parent, args=(parent,), daemon=True, name="navlab-parent-watch").start()
-    claim_warm_up_role(lock_path)
+    if lock_path is not None:
+        claim_warm_up_role(lock_path)
+
+
+class _Pool(ProcessPoolExecutor):
+    """A process pool that forks its workers (at a submit) with Ctrl-C blocked in the forking thread, so that a
+    worker cannot take one before :func:`_worker_start` ignores it: a terminal's Ctrl-C as the report's plot
+    pool started printed "Exception ignored in: <function _releaseLock>" and a KeyboardInterrupt traceback, from
+    a worker still in its fork handlers (1 in 6 double Ctrl-Cs, session 30)."""
+
+    def submit(self, fn, /, *args, **kwargs):
+        if not hasattr(signal, "pthread_sigmask"):
+            return super().submit(fn, *args, **kwargs)
+        previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        try:
+            return super().submit(fn, *args, **kwargs)
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+def _new_pool(jobs: int, lock_path: Optional[str] = None) -> ProcessPoolExecutor:
+    """A process pool of ``jobs`` workers set up by :func:`_worker_start`."""
+    return _Pool(jobs, initializer=_worker_start, initargs=(lock_path, os.getpid()))
+
+
+@contextlib.contextmanager
+def stoppable_pool(jobs: int) -> Iterator[ProcessPoolExecutor]:
+    """A process pool for this block: its workers die with this process, leave Ctrl-C to it, and are killed,
+    not waited for, when the block ends by an exception (a Ctrl-C). The report's plot pool was a plain one: a
+    double Ctrl-C while it drew hung ``navlab bench`` for good (5 of 7 tries), and its workers outlived a
+    ``kill -9`` of the run (newcomer, session 30)."""
+    with _new_pool(jobs) as pool:
+        try:
+            yield pool
+        except BaseException:
+            _stop_workers(pool)
+            raise
 
 
 def _die_with_parent() -> None:
@@ -126,7 +168,7 @@ def _watch_parent(parent: int) -> None:
 def _pool_rounds(queue: List[Spec], in_doubt: List[Spec], jobs: int, trial: Callable[[Spec], Dict[str, Any]],
                  lock_path: str) -> Iterator[Dict[str, Any]]:
     while queue:
-        with ProcessPoolExecutor(jobs, initializer=_worker_start, initargs=(lock_path, os.getpid())) as pool:
+        with _new_pool(jobs, lock_path) as pool:
             running: Dict[Any, Spec] = {}
             try:
                 while queue or running:
@@ -203,7 +245,7 @@ def _ctrl_c_held():
 
 
 def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any]:
-    with ProcessPoolExecutor(1) as solo:
+    with _new_pool(1) as solo:
         try:
             return solo.submit(trial, spec).result()
         except BrokenProcessPool:

@@ -322,9 +322,9 @@ def make_plots(experiment: Experiment, rows: List[Dict[str, Any]], folder: Path,
                       {g: trees.get(r["cell_id"]) if r["trial"] == 0 else None for g, r in firsts.items()},
                       group_specs, str(folder), time_label))
     if jobs > 1 and len(tasks) > 1:
-        from concurrent.futures import ProcessPoolExecutor
+        from .executors import stoppable_pool
 
-        with ProcessPoolExecutor(min(jobs, len(tasks))) as pool:
+        with stoppable_pool(min(jobs, len(tasks))) as pool:
             done = list(pool.map(_plot_world, tasks))
     else:
         done = [_plot_world(t) for t in tasks]

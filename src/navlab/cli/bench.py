@@ -422,8 +422,10 @@ def _ends_at_ctrl_c(folder, unit: str):
     except Interrupted as stop:
         end_at_ctrl_c(EXIT_INTERRUPTED, click.get_current_context())
         if stop.complete:  # ("50 of 50 trials ... run the rest with" after the last one: attack, session 29)
-            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}, every one; the summary and report "
-                       f"were not written: {_resume_command()} writes them", err=True)
+            # ("the summary and report were not written" beside a summary.json written before the plots: newcomer,
+            # session 30)
+            click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}, every one; the report is not "
+                       f"complete: {_resume_command()} writes it", err=True)
         else:
             click.echo(f"\ninterrupted: {stop.counts} are kept in {stop.folder}; "
                        f"run the rest with: {_resume_command()}", err=True)

@@ -280,3 +280,12 @@ def test_a_weighted_path_is_said_to_be_possibly_longer_than_the_shortest():
     assert res.exit_code == 0 and "manhattan on 8 connections overestimates a diagonal move" in res.stdout
     res = run("grid", "plan", DATA / "arena.map", *query, "--heuristic", "manhattan", "--connectivity", 4)
     assert res.exit_code == 0 and "overestimates" not in res.stdout  # (exact on 4 connections)
+
+
+@pytest.mark.parametrize("name", ["m5.pgm", "m3.png", "m4"])
+def test_a_maze_written_to_a_name_that_is_not_a_yaml_is_refused_before_it_is_built(name, tmp_path):
+    """--out m5.pgm wrote the YAML over its own image (and m3.png, m4: a map nothing reads as one; newcomer,
+    session 30)."""
+    result = CliRunner().invoke(main, ["grid", "maze", "--cells", "4", "4", "--out", str(tmp_path / name)])
+    assert result.exit_code == 2 and "must end in .yaml or .yml" in result.output, result.output
+    assert list(tmp_path.iterdir()) == []

@@ -233,9 +233,11 @@ def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
     anything is built. Mazes of more than 1000 cells show a progress bar.
     """
     from ..grid import make_maze, save_map
+    from ..grid.mapio import check_map_yaml_path
     from ..grid.maze import maze_size
 
     maze_size(cells[0], cells[1], cell_size, wall, resolution)  # refuse before the bar and the carving
+    check_map_yaml_path(out)
     with progress_bar(cells[0] * cells[1], "cells", quiet, threshold=1000) as bar:
         grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution,
                          progress=lambda done: bar.update(done - bar.n))

@@ -444,6 +444,20 @@ def load_map(path: PathLike, rule: str = "nav2") -> OccupancyGrid:
     raise MapFormatError(f"{p}: unknown map format (expected a map_server .yaml or a Moving AI .map)")
 
 
+def check_map_yaml_path(yaml_path: PathLike) -> Path:
+    """``yaml_path`` as the Path of a map_server YAML that :func:`save_map` can write: a file name ending in
+    .yaml or .yml; else a ParameterError saying what to give (the CLI asks before it builds a map)."""
+    ypath = check_path("yaml_path", yaml_path)
+    if ypath.name in ("", ".", ".."):  # '' is Path('.'): with_suffix's ValueError was an internal error
+        raise ParameterError(f"{os.fspath(yaml_path)!r}: not a file name for the map's YAML (say maze.yaml)")
+    if ypath.suffix.lower() not in (".yaml", ".yml"):
+        # (maze.pgm: the YAML was written over its own image; maze.png or maze: a map load_map cannot read as
+        # one; newcomer, session 30)
+        raise ParameterError(f"{os.fspath(yaml_path)!r}: the map's YAML file name must end in .yaml or .yml (its "
+                             f"image is written beside it as .pgm): say {ypath.with_suffix('.yaml').name}")
+    return ypath
+
+
 def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     """Write map_server YAML + binary PGM (trinary: 0 occupied, 254 free, 205
     unknown, as map_saver does); returns the image path.
@@ -454,9 +468,7 @@ def save_map(grid: OccupancyGrid, yaml_path: PathLike) -> Path:
     """
     if not isinstance(grid, OccupancyGrid):
         raise ParameterError(f"grid: expected an OccupancyGrid, got {type(grid).__name__}")
-    ypath = check_path("yaml_path", yaml_path)
-    if ypath.name in ("", ".", ".."):  # '' is Path('.'): with_suffix's ValueError was an internal error
-        raise ParameterError(f"{os.fspath(yaml_path)!r}: not a file name for the map's YAML (say maze.yaml)")
+    ypath = check_map_yaml_path(yaml_path)
     image = ypath.with_suffix(".pgm")
     pixels = np.full(grid.blocked.shape, 254, dtype=np.uint8)
     pixels[grid.unknown] = 205

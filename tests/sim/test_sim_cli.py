@@ -214,3 +214,10 @@ def test_a_progress_that_is_not_a_function_is_refused_before_the_run():
     assert result.status.name == "REACHED" and len(seen) == result.steps + 1  # (t = 0 and each step's end)
     assert seen[-1][0] == pytest.approx(result.time_s)
     assert len({most for _, most in seen}) == 1 and seen[0][1] > result.time_s  # the run's max_time throughout
+
+
+def test_a_gif_to_a_name_that_is_not_a_gif_is_refused_before_the_run(tmp_path):
+    """--gif out.png wrote GIF data into out.png without a word (newcomer, session 30)."""
+    res = CliRunner().invoke(main, ["sim", "one_obstacle", "--gif", str(tmp_path / "out.png")])
+    assert res.exit_code == 2 and "it is written as GIF: give a name ending in .gif" in res.output, res.output
+    assert list(tmp_path.iterdir()) == []

@@ -253,13 +253,18 @@ def note_unused_grid_settings(algorithm: str, settings: Dict[str, Any], spelled)
         click.echo(line, err=True)
 
 
-def check_output_file(path: str, flag: str) -> None:
-    """Refuse, before any work, an output file whose folder is missing or not writable."""
+def check_output_file(path: str, flag: str, suffix: str = "") -> None:
+    """Refuse, before any work, an output file whose folder is missing or not writable, or (with ``suffix``,
+    the one format it is written in) whose name does not end in ``suffix``."""
     import os
 
     folder = os.path.dirname(os.path.abspath(path)) or "."
     if os.path.isdir(path):
         raise click.BadParameter(f"{path} is a folder; give a file name", param_hint=flag)
+    if suffix and not path.lower().endswith(suffix):
+        # (--gif out.png wrote GIF data into out.png without a word: newcomer, session 30)
+        raise click.BadParameter(f"it is written as {suffix[1:].upper()}: give a name ending in {suffix}, got {path}",
+                                 param_hint=flag)
     if not os.path.isdir(folder):
         raise click.BadParameter(f"cannot write {path}: the folder {folder} does not exist", param_hint=flag)
     if not os.access(folder, os.W_OK):

@@ -111,9 +111,9 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         raise click.UsageError("--runs applies to --experiment (a single simulation runs once)")
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
-    for flag, name in (("--trajectory", trajectory), ("--plot", plot), ("--gif", gif)):
+    for flag, name, suffix in (("--trajectory", trajectory, ""), ("--plot", plot, ""), ("--gif", gif, ".gif")):
         if name:
-            check_output_file(name, flag)
+            check_output_file(name, flag, suffix)
     from ..sim.runner import NoPathError, simulate
 
     before_first_kernel()  # numba is imported by now (the simulator's kernels)

@@ -282,3 +282,15 @@ def test_bench_stopped_after_its_last_trial_says_only_the_report_is_missing(kept
     result = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "rrt", "--trials", "2", "--out",
                                        str(out), "--no-plots", "-q"])
     assert result.exit_code == 130 and said.format(out=out) in result.output, result.output
+
+
+@pytest.mark.parametrize("args, said", [
+    (["bench", "{tmp}"], "cannot read: is a folder, not an experiment file"),
+    (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=1,2"],
+     "'expand_dis=1,2': a grid axis's values go in brackets: expand_dis=[1,2]"),
+])
+def test_newcomer_wording(args, said, tmp_path):
+    """"not a experiment file"; "expand_dis must be a number, got '1,2'" with no word of the brackets
+    (newcomer, session 30)."""
+    result = CliRunner().invoke(main, [a.format(tmp=tmp_path) for a in args])
+    assert result.exit_code == 2 and said in result.output, result.output

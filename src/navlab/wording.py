@@ -11,6 +11,11 @@ def counted(n: int, noun: str) -> str:
     return f"{n} {noun}" + ("" if n == 1 else "s")
 
 
+def with_article(noun: str) -> str:
+    """``noun`` after "a" or "an", by its first letter ("an experiment file", "a map YAML file")."""
+    return ("an " if noun[:1].lower() in "aeiou" and noun[:1] else "a ") + noun
+
+
 def listed(names) -> str:
     """``a``, ``a and b``, ``a, b and c``: names as a sentence lists them (a note read "heuristic and motion
     and sigma and turning_radius and weight": newcomer, session 24)."""

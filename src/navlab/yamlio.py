@@ -36,6 +36,7 @@ import numpy as np
 import yaml
 
 from .yamlcore import CORE, CORE_PATTERN, core_float
+from .wording import with_article
 
 #: most nodes a document may expand to (scalars, sequences and mappings, aliases counted at each use);
 #: a 2 MiB file without aliases has fewer than this
@@ -259,9 +260,9 @@ def regular_file(path: Union[str, os.PathLike], where: str, error: Type[Exceptio
     except OSError as exc:
         raise error(f"{where}: cannot read: {exc.strerror or exc}") from None
     if stat.S_ISDIR(info.st_mode):
-        raise error(f"{where}: cannot read: is a folder, not a {what}")
+        raise error(f"{where}: cannot read: is a folder, not {with_article(what)}")  # ("not a experiment file")
     if not stat.S_ISREG(info.st_mode):
-        raise error(f"{where}: not a regular file (a FIFO, device or socket); a {what} must be a file")
+        raise error(f"{where}: not a regular file (a FIFO, device or socket); {with_article(what)} must be a file")
     return info.st_size
 
 

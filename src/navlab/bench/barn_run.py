@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Dict, Iterable, List, Optional, Tuple
 
+from ..wording import counted
 from . import barn
 from .experiment import ExperimentError, content_digest, stable_hash, trial_seed
 
@@ -275,8 +276,9 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
         done = store.finished()
         todo = [s for s in specs if s["trial_id"] not in done]
         if todo:
-            bar = _progress(len(todo), f"BARN: {len(study.worlds)} worlds × {len(study.navigators)} navigators × "
-                            f"{study.runs} runs", progress)
+            # ("2 worlds × 2 navigators × 1 runs": newcomer, session 30)
+            bar = _progress(len(todo), f"BARN: {counted(len(study.worlds), 'world')} × "
+                            f"{counted(len(study.navigators), 'navigator')} × {counted(study.runs, 'run')}", progress)
             trials = run_trials(todo, jobs=jobs, scheduler=scheduler, trial=run_barn_trial)
             # (a bare KeyboardInterrupt caught here missed the SystemError form of a Ctrl-C, and the report's
             # Ctrl-C went up as a traceback: review, session 30)

@@ -248,9 +248,10 @@ def _check_reuse(folder: Path, experiment: Experiment, old_rows: List[Dict[str, 
                                   f"{', '.join(map(short_name, changed))} (the file changed since): use another "
                                   "--out, or --overwrite to discard them")
         if old_rows and not resume:
+            # (a BARN study has no noise repeats to count: newcomer, session 30)
+            counts = " (trials and noise repeats)" if hasattr(experiment, "noise_specs") else ""
             raise ExperimentError(f"'{folder}' already holds {counted(len(old_rows), 'finished run')} of this "
-                                  "experiment (trials and noise repeats); "
-                                  "pass --resume to continue it or --overwrite to start again")
+                                  f"experiment{counts}; pass --resume to continue it or --overwrite to start again")
     elif old_rows:
         raise ExperimentError(f"'{folder}' holds results without {EXPERIMENT_FILE}; use another --out")
 

@@ -317,3 +317,15 @@ def test_the_plot_pool_is_killed_on_ctrl_c_and_its_workers_leave_ctrl_c_to_the_r
     assert set_up == [(True, os.getpid())] * 2
     assert not manager.is_alive() and wait_for(lambda: not any(alive(pid) for pid in pids), timeout=30)
     assert all(f.done() for f in busy)
+
+
+def test_the_dask_workers_navlab_starts_leave_ctrl_c_to_the_run():
+    """A terminal's Ctrl-C reached the LocalCluster's worker processes too, and each printed a KeyboardInterrupt
+    traceback from its asyncio loop above the resume line (newcomer, session 30): they ignore it now (Dask's
+    preload navlab.bench.dask_worker); the run closes the cluster."""
+    pytest.importorskip("distributed")
+    from navlab.bench.executors import dask
+
+    rows = list(dask([{"trial_id": "t"}], jobs=1,
+                     trial=lambda spec: {"ignored": signal.getsignal(signal.SIGINT) == signal.SIG_IGN}))
+    assert rows == [{"ignored": True}]

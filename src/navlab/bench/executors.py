@@ -7,6 +7,7 @@ from __future__ import annotations
 
 import contextlib
 import glob
+import logging
 import os
 import shutil
 import signal
@@ -120,13 +121,23 @@ class _Pool(ProcessPoolExecutor):
     a worker still in its fork handlers (1 in 6 double Ctrl-Cs, session 30)."""
 
     def submit(self, fn, /, *args, **kwargs):
-        if not hasattr(signal, "pthread_sigmask"):
+        with _ctrl_c_blocked():
             return super().submit(fn, *args, **kwargs)
-        previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
-        try:
-            return super().submit(fn, *args, **kwargs)
-        finally:
-            signal.pthread_sigmask(signal.SIG_SETMASK, previous)
+
+
+@contextlib.contextmanager
+def _ctrl_c_blocked():
+    """SIGINT blocked in this thread within the block (where the system can): a process forked here inherits
+    the mask, so a terminal's Ctrl-C, sent to the whole process group, cannot reach it before it sets its own
+    handling."""
+    if not hasattr(signal, "pthread_sigmask"):
+        yield
+        return
+    previous = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
 def _new_pool(jobs: int, lock_path: Optional[str] = None) -> ProcessPoolExecutor:
@@ -333,10 +344,14 @@ def dask(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[str]
 
     cluster = None
     if scheduler is None:
+        # (its workers' warnings, "Async instruction ... ended with CancelledError" for each trial a Ctrl-C
+        # cancelled, came above the resume line: newcomer, session 30; errors still show)
         cluster = LocalCluster(n_workers=jobs or os.cpu_count() or 1, threads_per_worker=1, processes=True,
-                               dashboard_address=None)
+                               dashboard_address=None, silence_logs=logging.ERROR,
+                               preload=["navlab.bench.dask_worker"])  # (its workers leave Ctrl-C to this process)
         scheduler = cluster
     client = _client(scheduler)
+    stopped = False
     try:
         futures = client.map(trial, specs, pure=False)
         by_key = {f.key: s for f, s in zip(futures, specs)}
@@ -345,7 +360,26 @@ def dask(specs: List[Spec], jobs: Optional[int] = None, scheduler: Optional[str]
                 yield fut.result()
             except Exception as exc:  # noqa: BLE001 - KilledWorker and the like: record and go on
                 yield crash_row(by_key[fut.key], f"Dask could not run this trial: {type(exc).__name__}: {exc}")
+    except BaseException:  # Ctrl-C, or the consumer stopped
+        stopped = True
+        raise
     finally:
-        client.close()
-        if cluster is not None:
-            cluster.close()
+        # Closing takes seconds: a second Ctrl-C waits for it (it broke the close with a CancelledError
+        # traceback from distributed.client, newcomer, session 30), and after a stop the cancellations it
+        # logs are not news
+        with _ctrl_c_held(), (_quiet("distributed") if stopped else contextlib.nullcontext()):
+            client.close()
+            if cluster is not None:
+                cluster.close()
+
+
+@contextlib.contextmanager
+def _quiet(logger: str):
+    """``logger``'s records below CRITICAL dropped within the block."""
+    log = logging.getLogger(logger)
+    level = log.level
+    log.setLevel(logging.CRITICAL)
+    try:
+        yield
+    finally:
+        log.setLevel(level)

@@ -133,7 +133,8 @@ def test_a_footprint_robots_goal_off_the_map_is_invalid_goal(world, extra):
             pytest.skip("needs ../shared/data/barn")
     out = CliRunner().invoke(main, ["sim", str(world), "--robot", "jackal", "--goal", "100", "100", *extra])
     assert out.exit_code == 1, out.output
-    assert out.output.startswith("INVALID_GOAL (the goal is in collision: at (100, 100) the robot's footprint left")
+    # as a disc robot's is said (it was "the robot's footprint left the bounds", no bounds given: newcomer, s. 30)
+    assert out.output.startswith("INVALID_GOAL (the goal (100, 100) is outside the bounds x=[")
 
 
 def test_a_goal_a_lopsided_footprint_fits_at_one_heading_only_is_not_invalid():
@@ -221,3 +222,9 @@ def test_a_gif_to_a_name_that_is_not_a_gif_is_refused_before_the_run(tmp_path):
     res = CliRunner().invoke(main, ["sim", "one_obstacle", "--gif", str(tmp_path / "out.png")])
     assert res.exit_code == 2 and "it is written as GIF: give a name ending in .gif" in res.output, res.output
     assert list(tmp_path.iterdir()) == []
+
+
+def test_a_footprint_crossing_the_bounds_names_them():
+    """"the robot's footprint left the bounds" gave no bounds (newcomer, session 30)."""
+    out = CliRunner().invoke(main, ["sim", "clutter", "--robot", "jackal", "--goal", "13.9", "6"])
+    assert out.exit_code == 1 and "the robot's footprint left the bounds x=[0, 14] y=[0, 12]" in out.output, out.output

@@ -138,7 +138,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
     is_grid = isinstance(scene_world, OccupancyGrid)
     if start is None:
         if is_grid:
-            raise ParameterError("a map has no start of its own: give --start X Y THETA")
+            raise ParameterError("a map has no start of its own: give --start X Y [THETA] (and --goal X Y)")
         start = (*scene_world.start, getattr(scene_world, "start_heading", None) or 0.0)
     if goal is None:
         if is_grid:

@@ -173,3 +173,13 @@ def test_keep_tree_returns_consistent_tree():
     nodes, parent = r.tree["nodes"], r.tree["parent"]
     assert len(nodes) == r.stats["nodes"] and parent[0] == -1 and np.all(parent[1:] >= 0)
     assert np.all(parent[1:] < len(nodes))
+
+
+@pytest.mark.parametrize("name", ["rrt", "rrt_star", "informed_rrt_star"])
+def test_a_start_within_the_goal_tolerance_is_answered_at_once(name):
+    """RRT* ran its whole budget (5000 iterations) to return the cost-0 path of a start on the goal (newcomer,
+    session 30); no path is shorter, so every planner answers without iterating."""
+    world = navlab.load_world("trap")
+    at_goal = World("at goal", world.bounds, (1.0, 1.0), (1.0, 1.0), world.obstacles)
+    result = PLANNERS.get(name)(max_iter=500).plan(at_goal, rng=0)
+    assert result.status == Status.EXACT and result.cost == 0.0 and result.stats["iterations"] == 0

@@ -88,7 +88,8 @@ def test_cost_trace_from_change_points():
 def test_cost_trace_when_the_start_is_in_the_goal_region():
     world = World("t", Bounds(0, 10, 0, 10), (1, 1), (1.2, 1), goal_tolerance=0.5)
     r = navlab.plan(world, planner="rrt_star", max_iter=50, seed=0)
-    assert r.success and r.stats["cost_trace"][0] == 0.0 and len(r.stats["cost_trace"]) == 50
+    # no path beats cost 0: RRT* answers without iterating (session 30), and its trace has no iteration
+    assert r.success and r.cost == 0.0 and r.stats["iterations"] == 0 and len(r.stats["cost_trace"]) == 0
 
 
 @pytest.mark.parametrize("planner", PLANNERS.names())

@@ -195,7 +195,9 @@ class TreePlanner:
         box = BoxRegion(world.bounds)
         it = 0
         first_time = None
-        already_done = tree.istate[K.S_GOALS] > 0 and self.mode != K.MODE_RRT_STAR
+        # RRT* improves a path until its budget ends, but none beats a start already within the goal tolerance
+        # (cost 0): --start 1 1 --goal 1 1 ran all 5000 iterations to return it (newcomer, session 30)
+        already_done = tree.istate[K.S_GOALS] > 0 and (self.mode != K.MODE_RRT_STAR or tree.goal_extra[0] == 0.0)
         while it < max_iter and not already_done:
             if self.max_time is not None and time.perf_counter() - t0 > self.max_time:
                 break
@@ -293,7 +295,8 @@ class RRT(TreePlanner):
 class RRTStar(TreePlanner):
     """RRT* with choose-parent and rewiring (cost changes propagate to subtrees).
 
-    Runs all ``max_iter`` iterations (the seed's stop condition). The near
+    Runs all ``max_iter`` iterations (the seed's stop condition), unless the
+    start already lies within the goal tolerance (a path of cost 0). The near
     radius is ``min(connect_circle_dist · sqrt(log n / n), expand_dis)``.
 
     Parameters

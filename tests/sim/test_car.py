@@ -174,7 +174,7 @@ def test_the_parking_car_is_deterministic_and_ends_nose_out_in_the_bay():
     ({"planner": "astar"}, "plans for a point"),
     ({"controller": "rear_wheel_feedbak"}, "Did you mean 'rear_wheel_feedback'"),
     ({"plan_params": {"turning_radius": -1.0}}, "turning_radius must be positive"),
-    ({"goal": (16.4, 2.0, math.nan)}, "goal θ"),
+    ({"goal": (16.4, 2.0, math.nan)}, "goal theta"),
 ])
 def test_bad_car_runs_are_one_line_naming_what_is_wrong(kwargs, message):
     with pytest.raises(ValueError, match=message):

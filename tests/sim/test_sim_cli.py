@@ -55,7 +55,7 @@ def test_disk_full_while_writing_a_gif_is_one_line_and_leaves_no_file(tmp_path, 
 
 
 @pytest.mark.parametrize("args, words", [
-    (["clutter", "--start", "1", "1", "inf"], "start θ must be a finite heading in radians"),
+    (["clutter", "--start", "1", "1", "inf"], "start theta must be a finite heading in radians"),
     (["clutter", "--goal", "nan", "2"], "goal x must be finite"),
     (["one_obstacle", "--lidar-timing", "latency=-0.5"], "lidar: field 'latency'"),
     (["one_obstacle", "--odom-timing", "rate=0"], "odometry: field 'rate'"),
@@ -96,7 +96,7 @@ def test_the_simulator_takes_any_finite_heading_as_the_planners_do():
     from navlab.sim.runner import simulate
 
     far = 1e8
-    with pytest.warns(HeadingWarning, match="start θ 1e\\+08 is beyond ±2π"):
+    with pytest.warns(HeadingWarning, match="start theta 1e\\+08 is beyond ±2π"):
         a, _, _ = simulate("one_obstacle", robot="diff", start=(1.0, 1.0, far), seed=2, max_time=5.0)
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -104,7 +104,7 @@ def test_the_simulator_takes_any_finite_heading_as_the_planners_do():
                            max_time=5.0)
     assert a.status == b.status and np.array_equal(a.true_poses, b.true_poses)
     res = CliRunner().invoke(main, ["sim", "one_obstacle", "--start", "1", "1", "1e300"])
-    assert "Error" not in res.output and "note: start θ 1e+300 is beyond ±2π" in res.output, res.output
+    assert "Error" not in res.output and "note: start theta 1e+300 is beyond ±2π" in res.output, res.output
 
 
 def test_a_run_reports_its_simulated_time_at_every_step_to_the_progress_callback():

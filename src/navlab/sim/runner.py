@@ -96,7 +96,7 @@ def simulate(world: Any, robot: str = "omni3", controller: Optional[str] = None,
         for axis, v in zip("xy", values):
             check_coordinate(f"{name} {axis}", v)
         # any finite heading, wrapped (and a note beyond ±2π, most often degrees), as the planners take it
-        checked[name] = tuple(values[:2]) + ((planned_heading(f"{name} θ", values[2]),) if len(values) == 3 else ())
+        checked[name] = tuple(values[:2]) + ((planned_heading(f"{name} theta", values[2]),) if len(values) == 3 else ())
     start, goal = checked.get("start", start), checked.get("goal", goal)
     for name, value in (("robot_params", robot_params), ("controller_params", controller_params),
                         ("plan_params", plan_params)):

@@ -49,6 +49,7 @@ def test_two_worlds_end_to_end_and_resume(tmp_path):
     # a second navigator on the same folder is another study; resuming the same one runs nothing
     again = _run("--data", str(BARN), "--worlds", "0,36", "--controller", "rpp", "--out", str(out), "--resume")
     assert again.exit_code == 0 and "(0 run now)" in again.output
+    assert "time: total " in again.output and "; runs 0.0 s; start-up, compiling kernels" in again.output
 
 
 def test_any_navlab_planner_as_the_global_planner(tmp_path):

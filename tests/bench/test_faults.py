@@ -329,3 +329,63 @@ def test_the_dask_workers_navlab_starts_leave_ctrl_c_to_the_run():
     rows = list(dask([{"trial_id": "t"}], jobs=1,
                      trial=lambda spec: {"ignored": signal.getsignal(signal.SIGINT) == signal.SIG_IGN}))
     assert rows == [{"ignored": True}]
+
+
+def _doubled(x):
+    return 2 * x
+
+
+@pytest.mark.parametrize("method", ["fork", "forkserver", "spawn"])
+def test_pool_workers_start_under_every_start_method(method):
+    """Under forkserver (Linux's default from Python 3.14) a worker's parent is the fork server: the set-up's
+    getppid() check ended every worker, and every pooled trial was an ERROR row (review, session 30)."""
+    import multiprocessing
+
+    from navlab.bench.executors import stoppable_pool
+
+    if method not in multiprocessing.get_all_start_methods():
+        pytest.skip(f"no {method} here")
+    with stoppable_pool(2, mp_context=multiprocessing.get_context(method)) as pool:
+        assert list(pool.map(_doubled, range(4))) == [0, 2, 4, 6]
+
+
+class _Bar:
+    def __init__(self):
+        self.closed = 0
+
+    def update(self, n):
+        pass
+
+    def close(self):
+        self.closed += 1
+
+
+def test_the_bar_is_closed_when_the_trials_end_and_a_failed_clean_up_does_not_hide_a_ctrl_c(tmp_path, monkeypatch,
+                                                                                              capsys):
+    """The guard closed the bar only on a Ctrl-C (it stayed open through the report), and an error from the
+    executor's clean-up replaced the stop with its traceback (review, session 30)."""
+    import navlab.bench.runner as runner
+    from navlab.bench.trial import run_trial
+
+    bars = []
+    monkeypatch.setattr(runner, "_progress", lambda *a, **k: bars.append(_Bar()) or bars[-1])
+    run_experiment(load_experiment(TINY), tmp_path / "a", executor="serial", plots=False)
+    assert [b.closed for b in bars] == [1]
+
+    def executor(specs, jobs=None, scheduler=None):
+        try:
+            for spec in specs:
+                yield run_trial(spec)
+        finally:
+            raise OSError("the pool's folder could not be removed")
+
+    def first_ctrl_c(self, row):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(runner, "EXECUTORS", {"serial": executor})
+    monkeypatch.setattr(runner.ResultStore, "append", first_ctrl_c)
+    with pytest.raises(runner.Interrupted):
+        run_experiment(load_experiment(TINY), tmp_path / "b", executor="serial", plots=False)
+    assert "note: stopping the trials did not end cleanly: OSError: the pool's folder could not be removed" in \
+        capsys.readouterr().err
+    assert bars[-1].closed == 1

@@ -174,4 +174,4 @@ def test_ctrl_c_while_the_nodes_are_built_stops_after_the_one_being_built(tmp_pa
     assert proc.returncode == 0, proc.stderr[-4000:]
     seen = json.loads(proc.stdout.strip().splitlines()[-1])
     assert seen["built"] == ["map_server"] and seen["reason"] == "interrupted", seen
-    assert "stopping once the map_server node is built" in seen["stderr"], seen
+    assert "stopping once the map_server node is built" in proc.stderr, proc.stderr[-4000:]

@@ -279,11 +279,10 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
             # ("2 worlds × 2 navigators × 1 runs": newcomer, session 30)
             bar = _progress(len(todo), f"BARN: {counted(len(study.worlds), 'world')} × "
                             f"{counted(len(study.navigators), 'navigator')} × {counted(study.runs, 'run')}", progress)
-            trials = run_trials(todo, jobs=jobs, scheduler=scheduler, trial=run_barn_trial)
             # (a bare KeyboardInterrupt caught here missed the SystemError form of a Ctrl-C, and the report's
             # Ctrl-C went up as a traceback: review, session 30)
-            with stops_at_ctrl_c(lambda: stopped(store, specs, unit="runs"), trials, bar):
-                for row in trials:
+            with stops_at_ctrl_c(lambda: stopped(store, specs, unit="runs"), bar) as trials:
+                for row in trials.track(run_trials(todo, jobs=jobs, scheduler=scheduler, trial=run_barn_trial)):
                     store.append(row)
                     bar.update(1)
         rows = store.current_rows(specs)

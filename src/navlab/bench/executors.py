@@ -107,7 +107,9 @@ def _worker_start(lock_path: Optional[str], parent: int) -> None:
     if hasattr(signal, "pthread_sigmask"):  # forked with Ctrl-C blocked (_Pool.submit): ignored from here on
         signal.pthread_sigmask(signal.SIG_UNBLOCK, {signal.SIGINT})
     _die_with_parent()
-    if os.getppid() != parent:
+    # (the parent by pid, not as getppid(): under the forkserver start method, the default on Linux from
+    # Python 3.14, a worker's parent is the fork server, and every worker exited here: review, session 30)
+    if not _alive(parent):
         os._exit(1)
     threading.Thread(target=_watch_parent, args=(parent,), daemon=True, name="navlab-parent-watch").start()
     if lock_path is not None:
@@ -140,23 +142,20 @@ def _ctrl_c_blocked():
         signal.pthread_sigmask(signal.SIG_SETMASK, previous)
 
 
-def _new_pool(jobs: int, lock_path: Optional[str] = None) -> ProcessPoolExecutor:
-    """A process pool of ``jobs`` workers set up by :func:`_worker_start`."""
-    return _Pool(jobs, initializer=_worker_start, initargs=(lock_path, os.getpid()))
-
-
 @contextlib.contextmanager
-def stoppable_pool(jobs: int) -> Iterator[ProcessPoolExecutor]:
-    """A process pool for this block: its workers die with this process, leave Ctrl-C to it, and are killed,
-    not waited for, when the block ends by an exception (a Ctrl-C). The report's plot pool was a plain one: a
-    double Ctrl-C while it drew hung ``navlab bench`` for good (5 of 7 tries), and its workers outlived a
-    ``kill -9`` of the run (newcomer, session 30)."""
-    with _new_pool(jobs) as pool:
-        try:
-            yield pool
-        except BaseException:
-            _stop_workers(pool)
-            raise
+def stoppable_pool(jobs: int, lock_path: Optional[str] = None, mp_context=None) -> Iterator[ProcessPoolExecutor]:
+    """A process pool for this block, its workers set up by :func:`_worker_start` (they die with this process
+    and leave Ctrl-C to it; ``lock_path``: the warm-up role's lock) and killed, not waited for, when the block
+    or the wait for its workers to finish ends by an exception (a Ctrl-C). The report's plot pool was a plain
+    one: a double Ctrl-C while it drew hung ``navlab bench`` for good (5 of 7 tries), and its workers outlived
+    a ``kill -9`` of the run (newcomer, session 30)."""
+    pool = _Pool(jobs, mp_context=mp_context, initializer=_worker_start, initargs=(lock_path, os.getpid()))
+    try:
+        yield pool
+        pool.shutdown(wait=True)
+    except BaseException:  # Ctrl-C, an error, or the consumer of a generator stopped
+        _stop_workers(pool)
+        raise
 
 
 def _die_with_parent() -> None:
@@ -172,14 +171,14 @@ def _die_with_parent() -> None:
 def _watch_parent(parent: int) -> None:
     while True:
         time.sleep(PARENT_POLL_S)
-        if os.getppid() != parent:
+        if not _alive(parent):
             os._exit(1)
 
 
 def _pool_rounds(queue: List[Spec], in_doubt: List[Spec], jobs: int, trial: Callable[[Spec], Dict[str, Any]],
                  lock_path: str) -> Iterator[Dict[str, Any]]:
     while queue:
-        with _new_pool(jobs, lock_path) as pool:
+        with stoppable_pool(jobs, lock_path) as pool:  # (Ctrl-C, or the consumer stopped: no wait for trials)
             running: Dict[Any, Spec] = {}
             try:
                 while queue or running:
@@ -195,9 +194,6 @@ def _pool_rounds(queue: List[Spec], in_doubt: List[Spec], jobs: int, trial: Call
                             in_doubt.append(spec)
             except BrokenProcessPool:
                 pass  # submit() on a broken pool; those in flight are handled below
-            except BaseException:  # Ctrl-C, or the consumer stopped: do not wait for queued trials
-                _stop_workers(pool)
-                raise
             in_doubt.extend(running.values())
         for spec in in_doubt:
             yield _alone(spec, trial)
@@ -256,15 +252,12 @@ def _ctrl_c_held():
 
 
 def _alone(spec: Spec, trial: Callable[[Spec], Dict[str, Any]]) -> Dict[str, Any]:
-    with _new_pool(1) as solo:
+    with stoppable_pool(1) as solo:  # (Ctrl-C: as for the pool, not a wait for the trial to end)
         try:
             return solo.submit(trial, spec).result()
         except BrokenProcessPool:
             return crash_row(spec, "the worker process running this trial died (crash or killed); "
                                    "it died again when the trial was rerun alone")
-        except BaseException:  # Ctrl-C: as for the pool (_stop_workers), not a wait for the trial to end
-            _stop_workers(solo)
-            raise
 
 
 #: seconds to wait for a Dask scheduler before giving up

@@ -142,9 +142,8 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         if todo:
             bar = _progress(len(todo), _bar_label(experiment.name, len(specs), trials_todo, len(repeats_todo)),
                             progress)
-            trials = run_trials(todo, jobs=jobs, scheduler=scheduler)
-            with stops_at_ctrl_c(lambda: stopped(store, specs, experiment.noise_specs()), trials, bar):
-                for row in trials:
+            with stops_at_ctrl_c(lambda: stopped(store, specs, experiment.noise_specs()), bar) as trials:
+                for row in trials.track(run_trials(todo, jobs=jobs, scheduler=scheduler)):
                     tree = row.pop("tree", None)
                     if tree is not None:
                         trees[row["cell_id"]] = tree
@@ -173,37 +172,56 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 
-@contextlib.contextmanager
-def stops_at_ctrl_c(stop: Callable[[], Interrupted], trials: Optional[Iterator[Dict[str, Any]]] = None, bar=None):
-    """A Ctrl-C within the block raises ``stop()`` (an :class:`Interrupted`) instead; a Ctrl-C handed back as a
-    SystemError (:func:`~navlab.errors.interrupted_by_ctrl_c`) is one too. ``trials``, the executor's row
-    generator, is closed when the block ends early, stopping its workers, and ``bar`` is closed.
+class _Trials:
+    """What :func:`stops_at_ctrl_c` yields: :meth:`track` hands it the executor's row iterator to close."""
 
-    The generator is closed here, not left to be freed: a Ctrl-C that reached this process between two rows
+    def __init__(self) -> None:
+        self.rows: Optional[Iterator[Dict[str, Any]]] = None
+
+    def track(self, rows: Iterator[Dict[str, Any]]) -> Iterator[Dict[str, Any]]:
+        self.rows = rows
+        return rows
+
+
+@contextlib.contextmanager
+def stops_at_ctrl_c(stop: Callable[[], Interrupted], bar=None) -> Iterator[_Trials]:
+    """A Ctrl-C within the block raises ``stop()`` (an :class:`Interrupted`) instead; a Ctrl-C handed back as a
+    SystemError (:func:`~navlab.errors.interrupted_by_ctrl_c`) is one too. The executor's row iterator given to
+    the yielded :meth:`_Trials.track` is closed when the block ends early, stopping its workers; ``bar`` is
+    closed however the block ends.
+
+    The iterator is closed here, not left to be freed: a Ctrl-C that reached this process between two rows
     left it to be closed as it was freed, and a second Ctrl-C while its workers stopped printed "Exception
     ignored in: <generator object process>" and a traceback above the resume line (CI, session 29). A second
-    Ctrl-C then asks for what the first did.
+    Ctrl-C then asks for what the first did, and a clean-up that fails is a line on stderr, not what ends the
+    run.
     """
+    trials = _Trials()
     try:
-        yield
+        yield trials
     except BaseException as exc:
-        if trials is not None:
-            _close_quietly(trials)
+        if trials.rows is not None:
+            _close_quietly(trials.rows)
         if bar is not None:
             bar.close()
         if interrupted_by_ctrl_c(exc):
             raise stop() from None
         raise
+    if bar is not None:
+        bar.close()
 
 
-def _close_quietly(trials: Iterator[Dict[str, Any]]) -> None:
-    close = getattr(trials, "close", None)  # an executor may return a plain iterator
+def _close_quietly(rows: Iterator[Dict[str, Any]]) -> None:
+    """Close ``rows`` (a generator: an executor may return a plain iterator) after the run ended early; a Ctrl-C
+    meanwhile asks for the same end, and a failed clean-up (the pool's temporary folder, a Dask cluster) is one
+    line on stderr (review, session 30: its traceback replaced the resume line)."""
+    close = getattr(rows, "close", None)
     try:
         if close is not None:
             close()
-    except (KeyboardInterrupt, SystemError) as exc:
+    except (KeyboardInterrupt, Exception) as exc:
         if not interrupted_by_ctrl_c(exc):
-            raise
+            print(f"note: stopping the trials did not end cleanly: {type(exc).__name__}: {exc}", file=sys.stderr)
 
 
 def _note_rows_of_no_cell(store: ResultStore, cells: Set[str]) -> None:

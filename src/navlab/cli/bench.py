@@ -172,7 +172,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if params:
         data["params"] = {**(data.get("params") or {}), **parse_params(params)}
     if grid:
-        data["grid"] = {**(data.get("grid") or {}), **parse_params(grid, "--grid")}
+        data["grid"] = {**(data.get("grid") or {}), **_grid_axes(grid)}
     budget = data.get("budget") or {}
     if not isinstance(budget, dict):
         raise click.UsageError(f"{where}: 'budget' must be a mapping (max_iter, max_time), got {budget!r}")
@@ -412,6 +412,18 @@ def _adhoc_name(data, fingerprint: str) -> str:
 
     parts = [short(w) for w in data.get("worlds", [])[:2]] + [short(p) for p in data.get("planners", [])[:2]]
     return "-".join(["adhoc", *parts, fingerprint[:8]])
+
+
+def _grid_axes(items) -> Dict[str, Any]:
+    """``--grid KEY=[V1,V2]`` flags as an experiment's grid; values with commas and no brackets are refused
+    with the bracketed form ("expand_dis must be a number, got '1,2'" came from the planner: newcomer,
+    session 30)."""
+    axes = parse_params(items, "--grid")
+    for key, value in axes.items():
+        if isinstance(value, str) and "," in value:
+            raise click.BadParameter(f"'{key}={value}': a grid axis's values go in brackets: {key}=[{value}]",
+                                     param_hint="--grid")
+    return axes
 
 
 @contextlib.contextmanager

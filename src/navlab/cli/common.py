@@ -242,10 +242,6 @@ def parse_params(items: Tuple[str, ...], flag: str = "--param") -> Dict[str, Any
         except ValueError as exc:  # (a constructor of PyYAML's own that raises one)
             raise click.BadParameter(f"cannot read the value of '{key}': {_one_line(exc, 300)}",
                                      param_hint=flag) from None
-        if flag == "--grid" and isinstance(out[key], str) and "," in out[key]:
-            # a grid axis is a list ("expand_dis must be a number, got '1,2'" came from the planner: newcomer, s. 30)
-            raise click.BadParameter(f"'{key}={value}': a grid axis's values go in brackets: "
-                                     f"{key}=[{value.strip()}]", param_hint=flag)
     return out
 
 

@@ -21,7 +21,6 @@ import math
 import os
 import shutil
 import signal
-import sys
 import tempfile
 import threading
 import time
@@ -184,9 +183,10 @@ class _StopRequest(threading.Event):
 
     def request(self, signum=None, frame=None) -> None:
         if self.starting is not None and not self.is_set():
-            sys.stderr.write(f"stopping once the {self.starting} node is built (its first start compiles its "
-                             "kernels) ...\n")
-            sys.stderr.flush()
+            # os.write, not sys.stderr: a handler that wrote through the buffered stream while the main thread
+            # was in it would raise "reentrant call" there (review, session 30)
+            os.write(2, f"stopping once the {self.starting} node is built (a first start may compile kernels) "
+                        "...\n".encode())
         self.set()
 
 

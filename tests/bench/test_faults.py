@@ -389,3 +389,23 @@ def test_the_bar_is_closed_when_the_trials_end_and_a_failed_clean_up_does_not_hi
     assert "note: stopping the trials did not end cleanly: OSError: the pool's folder could not be removed" in \
         capsys.readouterr().err
     assert bars[-1].closed == 1
+
+
+def test_a_result_torn_by_a_killed_worker_does_not_leave_the_pool_manager_waiting():
+    """A worker killed while it sent its result left half a message in the result pipe: the pool's manager
+    waited for the rest for ever, and Python's exit joined it, so navlab bench printed its resume line and
+    never ended (1 of 155 double Ctrl-Cs under load, session 30). Here the torn message is written by hand: a
+    header promising 1000 bytes, then 10."""
+    import struct
+    from concurrent.futures import ProcessPoolExecutor
+
+    from navlab.bench.executors import _stop_workers
+
+    pool = ProcessPoolExecutor(1)
+    assert pool.submit(_sleep, 0).result(timeout=60) == 0  # the manager runs, waiting on the result pipe
+    manager = pool._executor_manager_thread
+    os.write(pool._result_queue._writer.fileno(), struct.pack("!i", 1000) + b"x" * 10)
+    time.sleep(0.2)  # (the manager reads the header and waits for the rest)
+    _stop_workers(pool)
+    manager.join(30)
+    assert not manager.is_alive()

@@ -216,6 +216,7 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
         # manager was never joined; concurrent.futures' exit-time hook then raced it for its wake-up pipe, an
         # "OSError: Bad file descriptor" traceback under the resume line in 1 of 25 double Ctrl-Cs at load 5)
         manager = getattr(pool, "_executor_manager_thread", None)
+        results = getattr(pool, "_result_queue", None)  # (dropped by the shutdown too)
         pool.shutdown(wait=False, cancel_futures=True)
         for worker in workers:
             try:
@@ -231,7 +232,41 @@ def _stop_workers(pool: ProcessPoolExecutor) -> None:
         # exit-time hook wrote to that pipe after the manager had gone, a BrokenPipeError traceback under the
         # resume line (session 29)
         if manager is not None:
-            manager.join(5.0)
+            manager.join(MANAGER_JOIN_S)
+            if manager.is_alive() and results is not None:
+                _complete_a_torn_result(manager, results)
+
+
+#: [s] how long the pool's stop waits for its manager thread before it looks for a torn result, and then
+#: at most how long it feeds the result pipe
+MANAGER_JOIN_S, UNBLOCK_S = 0.5, 5.0
+
+
+def _complete_a_torn_result(manager: threading.Thread, results) -> None:
+    """Unblock a pool's manager thread stuck reading a result a killed worker had half written.
+
+    A worker killed in the middle of sending its result leaves the message's header and part of its body in
+    the result pipe; the manager then waits for the rest for ever (this process holds the pipe's other end
+    too, so no end of file comes), and Python's exit joins the manager: ``navlab bench`` printed its resume
+    line and never ended (1 of 155 double Ctrl-Cs at load 5-7; faulthandler's stacks showed the manager in
+    ``Connection._recv``, session 30). Zero bytes written into the pipe complete the message, which does not
+    unpickle; the manager then takes the pool for broken and ends, as it would for a worker that died.
+    """
+    try:
+        fd = results._writer.fileno()
+        os.set_blocking(fd, False)
+    except (AttributeError, OSError, ValueError):
+        return
+    filler = bytes(1 << 16)
+    end = time.monotonic() + UNBLOCK_S
+    while manager.is_alive() and time.monotonic() < end:
+        try:
+            os.write(fd, filler)
+        except BlockingIOError:
+            pass  # the pipe is full until the manager reads on
+        except OSError:
+            return
+        manager.join(0.05)
 
 
 @contextlib.contextmanager

@@ -185,6 +185,16 @@ MAX_COUNT = 2 ** 62
 MAX_JOBS = 256
 
 
+def float_array(value: Any) -> np.ndarray:
+    """``value`` as a float array, or an empty one when it is not numbers (text, None, an object): for the
+    callers' own shape check to refuse with a message naming the field, instead of numpy's "could not
+    convert string to float"."""
+    try:
+        return np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        return np.empty(0)
+
+
 def check_path(name: str, value: Any):
     """``value`` as a :class:`pathlib.Path`: a file name given as text or a path object, without NUL;
     else a ParameterError naming ``name`` (``load_map(None)`` raised Python's own TypeError: API attack,

@@ -17,7 +17,7 @@ from typing import Any, Optional, Tuple
 import numpy as np
 
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number, shown
+from ..limits import MAX_COORDINATE, MIN_LENGTH, check_coordinate, check_length, finite_number, float_array, shown
 
 #: Largest number of cells navlab builds a grid of (a map image, a ``.map``,
 #: a maze): 10⁸ cells is a 10 km × 10 km site at 1 m, or 500 m × 500 m at
@@ -206,10 +206,7 @@ class OccupancyGrid:
 
         Points must be finite (a NaN or infinite coordinate has no cell).
         """
-        try:
-            p = np.asarray(xy, dtype=float)
-        except (TypeError, ValueError):  # ('ab': numpy's "could not convert string to float")
-            p = np.empty(0)
+        p = float_array(xy)  # ('ab': numpy's "could not convert string to float")
         if p.ndim not in (1, 2) or p.shape[-1] != 2:
             raise ParameterError(f"world points: expected (x, y) numbers or an (N, 2) array, got {shown(xy)}")
         if not np.all(np.isfinite(p)):

@@ -22,7 +22,7 @@ import numpy as np
 from ..arrays import grown
 from ..control.base import REACHED, STALLED, Controller
 from ..errors import ParameterError
-from ..limits import MAX_COORDINATE, check_flag, is_finite_real, shown
+from ..limits import MAX_COORDINATE, check_flag, float_array, is_finite_real, shown
 from ..robots.proprioception import Compass, WheelEncoders
 from ..sensors.lidar import Lidar
 from ..sensors.timing import DelayLine, SensorTiming
@@ -133,7 +133,6 @@ def check_progress(progress: Any) -> None:
         raise ParameterError(f"progress must be a function of (t, max_time) or None, got {shown(progress)}")
 
 
-
 def _check_parts(robot, controller, start, goal) -> None:
     """ParameterError naming a robot, controller, start or goal the simulation cannot take: a robot or a
     controller given by name, a start of None or text, met AttributeError or TypeError inside (API attack,
@@ -144,10 +143,7 @@ def _check_parts(robot, controller, start, goal) -> None:
     if not all(hasattr(robot, part) for part in ("radius", "holonomic", "shape")):
         raise ParameterError(f"robot: expected a robot (navlab.robots.make_robot), got {shown(robot)}")
     for name, point, sizes in (("start", start, (2, 3)), ("goal", goal, (2, 3))):  # (a goal's heading: its own)
-        try:
-            values = np.asarray(point, dtype=float)
-        except (TypeError, ValueError):
-            values = np.empty(0)
+        values = float_array(point)
         if values.ndim != 1 or len(values) not in sizes or not np.isfinite(values).all():
             raise ParameterError(f"{name}: expected {' or '.join(f'{n} numbers' for n in sizes)} "
                                  f"(x, y [m][, heading rad]), got {shown(point)}")
@@ -168,6 +164,7 @@ def _checked_path(path) -> np.ndarray:
         raise ParameterError(f"path: waypoints must be finite and within ±{MAX_COORDINATE:g} m "
                              f"(navlab.limits), got {shown(points.tolist())}")
     return points
+
 
 class Simulation:
     """One robot in one world.

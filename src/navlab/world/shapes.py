@@ -16,7 +16,7 @@ from typing import Any, Dict, Optional, Tuple
 
 import numpy as np
 from ..errors import ParameterError
-from ..limits import is_finite_real, shown
+from ..limits import float_array, is_finite_real, shown
 
 Point = Tuple[float, float]
 
@@ -28,10 +28,7 @@ def _motion_dict(shape, out: Dict[str, Any]) -> Dict[str, Any]:
 
 
 def _point(value: Any, what: str) -> Point:
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):  # (text: numpy's own "could not convert string to float"; API attack)
-        arr = np.empty(0)
+    arr = float_array(value)  # (text: numpy's own "could not convert string to float"; API attack)
     if arr.shape != (2,) or not np.all(np.isfinite(arr)):
         raise ParameterError(f"{what} must be two finite numbers [x, y], got {value!r}")
     return (float(arr[0]), float(arr[1]))

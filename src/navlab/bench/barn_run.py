@@ -275,13 +275,17 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
         specs = study.trial_specs()
         done = store.finished()
         todo = [s for s in specs if s["trial_id"] not in done]
+
+        def stop():  # what a Ctrl-C raises, in the runs and in the report alike
+            return stopped(store, specs, unit="runs")
+
         if todo:
             # ("2 worlds × 2 navigators × 1 runs": newcomer, session 30)
             bar = _progress(len(todo), f"BARN: {counted(len(study.worlds), 'world')} × "
                             f"{counted(len(study.navigators), 'navigator')} × {counted(study.runs, 'run')}", progress)
             # (a bare KeyboardInterrupt caught here missed the SystemError form of a Ctrl-C, and the report's
             # Ctrl-C went up as a traceback: review, session 30)
-            with stops_at_ctrl_c(lambda: stopped(store, specs, unit="runs"), bar) as trials:
+            with stops_at_ctrl_c(stop, bar) as trials:
                 for row in trials.track(run_trials(todo, jobs=jobs, scheduler=scheduler, trial=run_barn_trial)):
                     store.append(row)
                     bar.update(1)
@@ -293,7 +297,7 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
         from .barn_report import write_barn_report
         from .export import write_csv
 
-        with stops_at_ctrl_c(lambda: stopped(store, specs, unit="runs")):
+        with stops_at_ctrl_c(stop):
             write_text_atomic(store.folder / "summary.json", json.dumps(summary, indent=1, default=str))
             write_barn_report(study, rows, summary, store.folder, plots=plots)
             try:  # the same runs as one flat table, as every navlab bench folder has

@@ -139,10 +139,14 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         trees: Dict[str, Dict[str, Any]] = {}
         t0 = time.perf_counter()
         new_rows: List[Dict[str, Any]] = []
+
+        def stop() -> Interrupted:  # what a Ctrl-C raises, in the trials and in the report alike
+            return stopped(store, specs, experiment.noise_specs())
+
         if todo:
             bar = _progress(len(todo), _bar_label(experiment.name, len(specs), trials_todo, len(repeats_todo)),
                             progress)
-            with stops_at_ctrl_c(lambda: stopped(store, specs, experiment.noise_specs()), bar) as trials:
+            with stops_at_ctrl_c(stop, bar) as trials:
                 for row in trials.track(run_trials(todo, jobs=jobs, scheduler=scheduler)):
                     tree = row.pop("tree", None)
                     if tree is not None:
@@ -160,7 +164,7 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
         repeats = [store.rows[s["trial_id"]] for s in experiment.noise_specs() if s["trial_id"] in store.rows]
         # every trial is on disk: a Ctrl-C here says so (it said "run the rest with", as if trials were missing,
         # through the report's seconds of plotting: review, session 29)
-        with stops_at_ctrl_c(lambda: stopped(store, specs, experiment.noise_specs())):
+        with stops_at_ctrl_c(stop):
             summary = write_report(experiment, rows + repeats, store.folder, elapsed if todo else None, plots=plots,
                                    time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
                                    plot_jobs=1 if executor == "serial" else min(phases["workers"],

@@ -1,4 +1,5 @@
 import json
+import shlex
 
 import pytest
 from click.testing import CliRunner
@@ -41,6 +42,28 @@ def maze(tmp_path_factory):
     res = CliRunner().invoke(main, ["grid", "maze", "--cells", "10", "10", "--seed", "1", "--out", str(path)])
     assert res.exit_code == 0, res.output
     return str(path)
+
+
+def test_a_maze_names_the_cells_to_plan_between_and_that_command_plans_across_it(tmp_path):
+    """(newcomer, session 30: the map gave no free coordinates to plan between)"""
+    path = tmp_path / "my maze.yaml"
+    res = CliRunner().invoke(main, ["grid", "maze", "--cells", "3", "7", "--cell-size", "0.33", "--seed", "2",
+                                    "--out", str(path)])
+    assert res.exit_code == 0, res.output
+    line = res.output.splitlines()[-1]
+    # cell (i, j)'s centre is wall/2 + (i + 0.5) * cell_size: 0.05 + 0.165 and 0.05 + 6.5 * 0.33
+    assert line.startswith("corner cells' centres: (0.215, 0.215) and (0.875, 2.195) m: navlab grid plan ")
+    args = shlex.split(line.partition(": navlab ")[2])
+    assert args[:2] == ["grid", "plan"] and args[2] == str(path)
+    planned = CliRunner().invoke(main, args + ["--json"])
+    assert planned.exit_code == 0, planned.output
+    assert json.loads(planned.output)["status"] == "EXACT"
+
+
+def test_a_maze_into_a_missing_folder_is_refused_before_it_is_built(tmp_path):
+    res = CliRunner().invoke(main, ["grid", "maze", "--out", str(tmp_path / "nodir" / "m.yaml")])
+    assert res.exit_code == 2
+    assert f"the folder {tmp_path / 'nodir'} does not exist" in res.output and "--out" in res.output
 
 
 @pytest.mark.parametrize("planner", ["rrt_star", "astar", "theta_star"])

@@ -40,6 +40,13 @@ def duration(seconds: float) -> str:
     return f"{ms} ms" if ms < 10_000 else f"{seconds:.1f} s"
 
 
+def decimal(x: float, places: int = 6) -> str:
+    """``x`` to ``places`` decimals without trailing zeros (``0.3``, ``4.8``, ``1234.5678``, ``2``): a
+    coordinate as a command line would take it (``{:g}`` keeps six significant digits, 12345.675 -> 12345.7)."""
+    text = f"{x:.{places}f}".rstrip("0").rstrip(".")
+    return "0" if text == "-0" else text
+
+
 def escaped(text: str) -> str:
     """``text`` with its control characters written as escapes (``\\n``, ``\\x1b``): a message shows them
     rather than obeying them (a file name holding ESC [31m turned the terminal red; newcomer run, session 21)."""

@@ -5,15 +5,16 @@ from __future__ import annotations
 import json
 import math
 import os
+import shlex
 import sys
 
 import click
 import numpy as np
 
 from ..errors import ParameterError
-from ..wording import counted, duration
+from ..wording import counted, decimal, duration
 from .common import (Count, ExactNumber, PositiveNumber, SuggestingChoice, SuggestingGroup, before_first_kernel,
-                     before_numba_import, note_unused_grid_settings)
+                     before_numba_import, check_output_file, note_unused_grid_settings)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -234,10 +235,11 @@ def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
     """
     from ..grid import make_maze, save_map
     from ..grid.mapio import check_map_yaml_path
-    from ..grid.maze import maze_size
+    from ..grid.maze import maze_cell_center, maze_size
 
     maze_size(cells[0], cells[1], cell_size, wall, resolution)  # refuse before the bar and the carving
     check_map_yaml_path(out)
+    check_output_file(out, "--out")  # (a missing folder was named as the .pgm's after the carving: newcomer, s30)
     with progress_bar(cells[0] * cells[1], "cells", quiet, threshold=1000) as bar:
         grid = make_maze(cells[0], cells[1], seed=seed, cell_size=cell_size, wall=wall, resolution=resolution,
                          progress=lambda done: bar.update(done - bar.n))
@@ -247,3 +249,8 @@ def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
         fail(str(exc.strerror or exc))
     click.echo(f"wrote {out} and {image}: {cells[0]}x{cells[1]} cells, {grid.width}x{grid.height} pixels "
                f"at {resolution} m")
+    # where to plan: the first and last cells' centres (the map gave no free coordinates: newcomer, session 30)
+    (x0, y0), (x1, y1) = (maze_cell_center(i, j, cell_size, wall) for i, j in ((0, 0), (cells[0] - 1, cells[1] - 1)))
+    x0, y0, x1, y1 = (decimal(v) for v in (x0, y0, x1, y1))
+    click.echo(f"corner cells' centres: ({x0}, {y0}) and ({x1}, {y1}) m: "
+               f"navlab grid plan {shlex.quote(out)} --world --start {x0} {y0} --goal {x1} {y1}")

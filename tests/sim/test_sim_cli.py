@@ -55,8 +55,8 @@ def test_disk_full_while_writing_a_gif_is_one_line_and_leaves_no_file(tmp_path, 
 
 
 @pytest.mark.parametrize("args, words", [
-    (["clutter", "--start", "1", "1", "inf"], "start theta must be a finite heading in radians"),
-    (["clutter", "--goal", "nan", "2"], "goal x must be finite"),
+    (["clutter", "--start", "1", "1", "inf"], "Invalid value for '--start': coordinates and headings must be finite"),
+    (["clutter", "--goal", "nan", "2"], "Invalid value for '--goal': coordinates and headings must be finite"),
     (["one_obstacle", "--lidar-timing", "latency=-0.5"], "lidar: field 'latency'"),
     (["one_obstacle", "--odom-timing", "rate=0"], "odometry: field 'rate'"),
 ])

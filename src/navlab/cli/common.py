@@ -326,6 +326,9 @@ class PointOrPoseOption(click.Option):
             if math.isinf(number) and "inf" not in token.lower():  # float() made 10**400 written out inf
                 digits = f"{token[:12]}... ({len(token)} characters)" if len(token) > 24 else token
                 raise click.BadParameter(f"{digits} is past the largest number a float holds", ctx=ctx, param=self)
+        if not all(math.isfinite(n) for n in numbers):  # (the planner's "goal x must be finite" named no flag)
+            raise click.BadParameter(f"coordinates and headings must be finite, got {str(value)!r}", ctx=ctx,
+                                     param=self)
         # (a heading beyond ±2π is legal, but more often degrees: the planner's HeadingWarning says so,
         # printed as a note by the command: navlab.cli.heading_notes)
         return numbers

@@ -400,7 +400,7 @@ def test_a_goal_bias_base_that_is_no_sampler_names_the_field():
       "sim_granularity=1e-9"], "give rollouts of up to 2.2e+08 steps, more than 10000"),
     (["grid", "maze", "--cells", "3", "3", "--out", ""], "'': not a file name for the map's YAML"),
     (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=[!!timestamp 2001-01-01]", "--trials", "1"],
-     "the command line: grid.expand_dis[0]: a date is not an experiment value"),
+     "Error: grid.expand_dis[0]: a date is not an experiment value"),
     (["bench", "--suite", "smoke", "--out", ""], "--out must name a folder, got ''"),  # it wrote into '.'
 ])
 def test_bad_input_an_attack_found_reaching_internal_errors_is_one_line(args, words, tmp_path, monkeypatch):

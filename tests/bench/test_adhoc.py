@@ -251,3 +251,20 @@ def test_a_resume_with_nothing_to_resume_says_it_is_a_new_run(tmp_path, monkeypa
                                     "--no-plots", "--executor", "serial", "--out", "fresh", "--resume"])
     assert res.exit_code == 0
     assert "note: nothing to resume in fresh (no results there): a new run" in res.stderr
+
+
+@pytest.mark.parametrize("args, line", [
+    (["--world", "nothere", "--planner", "rrt"], "Error: unknown scene 'nothere'; valid: "),
+    (["--world", "trap", "--planner", "rrtx"], "Error: unknown planner 'rrtx'; valid: "),
+    (["--world", "trap", "--planner", "astar", "--grid", "heuristic=0"],
+     "Error: grid: planner 'astar' where heuristic=0: heuristic must be one of "),
+])
+def test_a_bad_flag_is_said_as_any_commands_error_is(args, line, tmp_path):
+    """(each opened with "the command line: ", which a file's errors have in the file's place: newcomer,
+    session 30); an experiment file's errors still name the file"""
+    res = CliRunner().invoke(main, ["bench", *args, "--out", str(tmp_path / "out")])
+    assert res.exit_code == 2 and res.output.startswith(line) and len(res.output.splitlines()) == 1
+    study = tmp_path / "study.yaml"
+    study.write_text("worlds: [nothere]\nplanners: [rrt]\n")
+    res = CliRunner().invoke(main, ["bench", str(study), "--out", str(tmp_path / "out")])
+    assert res.exit_code == 2 and f"{study}: unknown scene 'nothere'" in res.output

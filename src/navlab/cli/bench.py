@@ -190,10 +190,13 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         # (its values checked first: the name hashes them, and a date was an internal TypeError there)
         try:
             check_plain(data)
-        except ExperimentError as exc:
-            raise ExperimentError(f"{where}: {exc}") from None
-        data["name"] = "adhoc"  # (named below by what it runs)
-    exp = load_experiment(data, where)
+            data["name"] = "adhoc"  # (named below by what it runs)
+            exp = load_experiment(data, where)
+        except ExperimentError as exc:  # said as any command's error is ("the command line: unknown scene
+            # 'x'" opened each of them: newcomer, session 30)
+            raise ExperimentError(str(exc).removeprefix(f"{where}: ")) from None
+    else:
+        exp = load_experiment(data, where)
     if not (experiment or suite):
         exp.name = data["name"] = _adhoc_name(data, exp.fingerprint())
     if show:

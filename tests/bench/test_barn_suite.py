@@ -50,6 +50,8 @@ def test_two_worlds_end_to_end_and_resume(tmp_path):
     again = _run("--data", str(BARN), "--worlds", "0,36", "--controller", "rpp", "--out", str(out), "--resume")
     assert again.exit_code == 0 and "(0 run now)" in again.output
     assert "time: total " in again.output and "; runs 0.0 s; start-up, compiling kernels" in again.output
+    assert again.output.splitlines()[-2].startswith("report: ")  # then the time, as an experiment's run ends
+    assert again.output.splitlines()[-1].startswith("time: total ")
 
 
 def test_any_navlab_planner_as_the_global_planner(tmp_path):

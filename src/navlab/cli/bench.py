@@ -310,10 +310,11 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
     click.echo(disclaimer(study.lidar))
     # where the rest of the command's time went ("1 run in 4.4 s" of a 23.9 s command, the rest unsaid: newcomer,
     # session 30)
+    # (the report's line, then the time's, as navlab bench's experiments end: newcomer, session 30)
+    click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl, results.csv)")
     total = _since_navlab_start()
     click.echo(f"time: total {total:.1f} s since navlab started; runs {summary['elapsed_s']:.1f} s; start-up, "
                f"compiling kernels on a first use, and the report {max(0.0, total - summary['elapsed_s']):.1f} s")
-    click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl, results.csv)")
     if any(r["status"] == "ERROR" for r in rows):
         sys.exit(1)
 

@@ -264,7 +264,7 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
     from ..atomic import write_text_atomic
     from .executors import EXECUTORS, check_executor
     from .runner import _progress, stopped, stops_at_ctrl_c
-    from .store import ResultStore, write_error
+    from .store import ResultStore
 
     for nav in study.navigators:
         check_navigator(nav, str(study.data / f"world_{study.worlds[0]}.world") if study.worlds else None)
@@ -295,15 +295,12 @@ def run_barn(study: BarnStudy, out, executor: str = "process", jobs: Optional[in
         summary["elapsed_s"] = elapsed
         summary["ran"] = len(todo)
         from .barn_report import write_barn_report
-        from .export import write_csv
+        from .export import write_store_csv
 
         with stops_at_ctrl_c(stop):
             write_text_atomic(store.folder / "summary.json", json.dumps(summary, indent=1, default=str))
             write_barn_report(study, rows, summary, store.folder, plots=plots)
-            try:  # the same runs as one flat table, as every navlab bench folder has
-                write_csv(store.results_path, store.folder / "results.csv")
-            except OSError as exc:
-                raise write_error(store.folder / "results.csv", exc) from None
+            write_store_csv(store)
     return store.folder, rows, summary
 
 

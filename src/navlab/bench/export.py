@@ -22,7 +22,7 @@ from typing import Any, Dict, Iterable, List
 
 from ..atomic import atomic_path
 from .experiment import ExperimentError
-from .store import read_rows
+from .store import read_rows, write_error
 
 #: identity columns first, in this order; every other column follows alphabetically
 LEADING = ("trial_id", "cell_id", "label", "world", "planner", "planner_name", "sampler", "trial", "seed", "repeat",
@@ -55,6 +55,16 @@ def columns(rows: Iterable[Dict[str, Any]]) -> List[str]:
     for row in rows:
         seen.update(flatten(row))
     return [c for c in LEADING if c in seen] + sorted(seen - set(LEADING))
+
+
+def write_store_csv(store) -> int:
+    """A run folder's trials (its ``ResultStore``'s results.jsonl) as results.csv, the one flat table every
+    navlab bench folder has, for pandas, R or a spreadsheet; a file that cannot be written is an
+    ExperimentError naming it (:func:`navlab.bench.store.write_error`)."""
+    try:
+        return write_csv(store.results_path, store.folder / "results.csv")
+    except OSError as exc:
+        raise write_error(store.folder / "results.csv", exc) from None
 
 
 def write_csv(results: Path, target: Path) -> int:

@@ -32,7 +32,7 @@ from ..wording import counted
 from .analysis import by_world, compared_rows, judge_claims, scope_text, summarize, timed
 from .errors import ExperimentError
 from .executors import EXECUTORS, check_executor
-from .export import write_csv
+from .export import write_store_csv
 from .experiment import OMPL_PREFIX, Experiment
 from .report import build, to_html, to_markdown
 from .store import OutputError, ResultStore, read_rows, write_error
@@ -169,10 +169,7 @@ def run_experiment(experiment: Experiment, out, executor: str = "process", jobs:
                                    time_kind=time_kind, trees=trees, torn=store.torn, phases=phases,
                                    plot_jobs=1 if executor == "serial" else min(phases["workers"],
                                                                                 os.cpu_count() or 1))
-            try:  # the same trials as one flat table, for pandas, R or a spreadsheet
-                write_csv(store.results_path, store.folder / "results.csv")
-            except OSError as exc:
-                raise write_error(store.folder / "results.csv", exc) from None
+            write_store_csv(store)
     return BenchRun(store.folder, rows, summary, len(todo), elapsed, phases)
 
 

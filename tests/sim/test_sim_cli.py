@@ -162,8 +162,8 @@ def test_a_goal_a_lopsided_footprint_fits_at_one_heading_only_is_not_invalid():
     # refused at its own heading only, it is described at that heading (facing +x it read "is free": review,
     # session 29): free facing east 0.3 m from the west edge, the footprint leaves the bounds facing west
     check_endpoints(world, robot, world.start, (-0.7, 1.35), goal_heading=0.0)
-    with pytest.raises(Exception, match=r"the goal is in collision: at \(-0.7, 1.35\) the robot's footprint left "
-                                        "the bounds"):
+    with pytest.raises(Exception, match=r"the goal is in collision: at \(-0.7, 1.35\) the robot's footprint "
+                                        "crossed the bounds"):
         check_endpoints(world, robot, world.start, (-0.7, 1.35), goal_heading=math.pi)
 
 
@@ -227,4 +227,9 @@ def test_a_gif_to_a_name_that_is_not_a_gif_is_refused_before_the_run(tmp_path):
 def test_a_footprint_crossing_the_bounds_names_them():
     """"the robot's footprint left the bounds" gave no bounds (newcomer, session 30)."""
     out = CliRunner().invoke(main, ["sim", "clutter", "--robot", "jackal", "--goal", "13.9", "6"])
-    assert out.exit_code == 1 and "the robot's footprint left the bounds x=[0, 14] y=[0, 12]" in out.output, out.output
+    assert out.exit_code == 1, out.output
+    assert "the robot's footprint crossed the bounds x=[0, 14] y=[0, 12]" in out.output
+    # a start pose that never was inside: no "left" (it read as driving out: newcomer, session 30)
+    start = CliRunner().invoke(main, ["sim", "trap", "--robot", "jackal", "--start", "0.1", "0.1", "0"])
+    assert start.exit_code == 1 and "at (0.1, 0.1) the robot's footprint crossed the bounds x=[0, 18] y=[0, 12]" \
+        in start.output, start.output

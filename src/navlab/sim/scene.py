@@ -182,7 +182,9 @@ class Scene:
         t = t0 + (t1 - t0) * (k / n)
         x, y, _ = F.arc_pose(pose[0], pose[1], pose[2], *twist, dt * k / n)
         if kind == F.KIND_BOUNDS:
-            what = f"the robot's footprint left the {'map' if self.is_grid else 'bounds ' + self._bounds_text()}"
+            # ("left the bounds" read as driving out, for a start pose that never was inside: newcomer, s30)
+            edge = "the map edge" if self.is_grid else "the bounds " + self._bounds_text()
+            what = f"the robot's footprint crossed {edge}"
         elif kind == F.KIND_CELL:
             w = self.world.blocked.shape[1]
             what = f"the robot's footprint touched blocked cell (x={row % w}, y={row // w})"

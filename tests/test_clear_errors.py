@@ -402,6 +402,12 @@ def test_a_goal_bias_base_that_is_no_sampler_names_the_field():
     (["bench", "--world", "trap", "--planner", "rrt", "--grid", "expand_dis=[!!timestamp 2001-01-01]", "--trials", "1"],
      "Error: grid.expand_dis[0]: a date is not an experiment value"),
     (["bench", "--suite", "smoke", "--out", ""], "--out must name a folder, got ''"),  # it wrote into '.'
+    # (a field of the experiment the flags make, "worlds[0].queries[0][0]: numbers must be finite", and the
+    # node's "goal y must be finite": review, session 31)
+    (["bench", "--world", "maze.yaml", "--start", "nan", "0.3", "--goal", "1", "1", "--planner", "astar"],
+     "Invalid value for '--start': 'nan' is not a finite number"),
+    (["ros", "demo", "--goal", "3.5", "nan"], "Invalid value for '--goal': 'nan' is not a finite number"),
+    (["ros", "demo", "--yaw", "inf"], "Invalid value for '--yaw': 'inf' is not a finite number"),
 ])
 def test_bad_input_an_attack_found_reaching_internal_errors_is_one_line(args, words, tmp_path, monkeypatch):
     """An attack on the command (session 17, after only navlab's own errors counted as bad input) found

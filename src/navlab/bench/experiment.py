@@ -432,23 +432,29 @@ def _beside(world: Any, folder: Path) -> Any:
     return str(folder / world)
 
 
-def load_experiment(source: Union[str, Path, Dict[str, Any]], where: str = "experiment") -> Experiment:
+def load_experiment(source: Union[str, Path, Dict[str, Any]], where: Optional[str] = "experiment") -> Experiment:
     """Read an experiment from a YAML file, a built-in suite name or a mapping,
-    and check every name and parameter before anything runs."""
+    and check every name and parameter before anything runs. Its errors open with
+    ``where`` (a file's or suite's own name for those), or, with ``where=None`` and a
+    mapping, with nothing (``navlab bench``'s flags: said as any command's errors are)."""
     data = source
     if not isinstance(source, (dict, str, os.PathLike)):  # (5, None, a list: a TypeError from pathlib: API attack)
-        raise ExperimentError(f"{where}: expected a YAML file's path, a suite name or a mapping, got "
-                              f"{type(source).__name__}")
+        raise ExperimentError(_at(where, "expected a YAML file's path, a suite name or a mapping, got "
+                                         f"{type(source).__name__}"))
     if not isinstance(source, dict):
         data, where = experiment_data(source)
     if not isinstance(data, dict):
-        raise ExperimentError(f"{where}: expected a mapping with fields {', '.join(FIELDS)}")
+        raise ExperimentError(_at(where, f"expected a mapping with fields {', '.join(FIELDS)}"))
     try:
         exp = _from_dict(data)
         validate(exp)
     except ValueError as exc:  # ExperimentError, and unknown names/parameters from the registries
-        raise ExperimentError(f"{where}: {exc}") from None
+        raise ExperimentError(_at(where, str(exc))) from None
     return exp
+
+
+def _at(where: Optional[str], message: str) -> str:
+    return message if where is None else f"{where}: {message}"
 
 
 def check_plain(value: Any, path: str = "") -> None:

@@ -17,7 +17,7 @@ from ..bench.suites import suite_help
 from ..errors import interrupted_by_ctrl_c
 from ..limits import MAX_JOBS
 from ..wording import counted, listed
-from .common import EXIT_INTERRUPTED, Count, PositiveNumber, SuggestingChoice, end_at_ctrl_c, parse_params
+from .common import EXIT_INTERRUPTED, Count, FiniteNumber, PositiveNumber, SuggestingChoice, end_at_ctrl_c, parse_params
 
 
 class BenchCommand(click.Command):
@@ -75,9 +75,10 @@ def export_cmd(folder, fmt, out) -> None:
               help="Output folder (default: bench-results/NAME).")
 @click.option("--world", "worlds", multiple=True,
               help="World, scene or map file (repeatable; replaces the file's). A map needs --start and --goal.")
-@click.option("--start", type=float, nargs=2, default=None, metavar="X Y",
+@click.option("--start", type=FiniteNumber(), nargs=2, default=None, metavar="X Y",
               help="Start [m] for the --world maps (map_server YAML or Moving AI .map), which have none.")
-@click.option("--goal", type=float, nargs=2, default=None, metavar="X Y", help="Goal [m] for the --world maps.")
+@click.option("--goal", type=FiniteNumber(), nargs=2, default=None, metavar="X Y",
+              help="Goal [m] for the --world maps.")
 @click.option("--planner", "planners", multiple=True, help="Planner, e.g. rrt_star or ompl:RRTstar (repeatable).")
 @click.option("--sampler", "samplers", multiple=True, help="Sampler (repeatable).")
 @click.option("--param", "params", multiple=True, metavar="KEY=VALUE", help="Setting for every cell (repeatable).")
@@ -135,7 +136,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
       navlab bench --suite barn --data ../shared/data/barn --controller dwa_barn --controller rpp
     """
     from ..bench import load_experiment, run_experiment
-    from ..bench.experiment import (ExperimentError, check_max_iter, check_max_time, check_plain, check_seed,
+    from ..bench.experiment import (check_max_iter, check_max_time, check_plain, check_seed,
                                     check_trials, experiment_data)
     from ..bench.runner import breakdown_lines
 
@@ -188,13 +189,10 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     if not (experiment or suite):
         # an experiment made of flags: named by what it runs, so two different ones never share a folder
         # (its values checked first: the name hashes them, and a date was an internal TypeError there)
-        try:
-            check_plain(data)
-            data["name"] = "adhoc"  # (named below by what it runs)
-            exp = load_experiment(data, where)
-        except ExperimentError as exc:  # said as any command's error is ("the command line: unknown scene
-            # 'x'" opened each of them: newcomer, session 30)
-            raise ExperimentError(str(exc).removeprefix(f"{where}: ")) from None
+        check_plain(data)
+        data["name"] = "adhoc"  # (named below by what it runs)
+        # its errors said as any command's are ("the command line: unknown scene 'x'" opened each: newcomer, s30)
+        exp = load_experiment(data, None)
     else:
         exp = load_experiment(data, where)
     if not (experiment or suite):
@@ -308,10 +306,10 @@ def _barn(data, worlds, controllers, planners, params, runs, seed, out, executor
     for line in means_table(summary):
         click.echo(line)
     click.echo(disclaimer(study.lidar))
-    # where the rest of the command's time went ("1 run in 4.4 s" of a 23.9 s command, the rest unsaid: newcomer,
-    # session 30)
     # (the report's line, then the time's, as navlab bench's experiments end: newcomer, session 30)
     click.echo(f"report: {folder / 'report.md'} (and summary.json, results.jsonl, results.csv)")
+    # where the rest of the command's time went ("1 run in 4.4 s" of a 23.9 s command, the rest unsaid: newcomer,
+    # session 30)
     total = _since_navlab_start()
     click.echo(f"time: total {total:.1f} s since navlab started; runs {summary['elapsed_s']:.1f} s; start-up, "
                f"compiling kernels on a first use, and the report {max(0.0, total - summary['elapsed_s']):.1f} s")

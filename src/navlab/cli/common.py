@@ -75,6 +75,22 @@ class ExactNumber(click.ParamType):
         self.fail(f"{value!r} is not a number", param, ctx)
 
 
+class FiniteNumber(click.ParamType):
+    """A finite number: a coordinate or a heading (click's ``float`` lets ``nan`` and ``inf`` through, and the
+    experiment or node then named a field the user never wrote: review, session 31)."""
+
+    name = "number"
+
+    def convert(self, value, param, ctx):
+        try:
+            number = float(value)
+        except (TypeError, ValueError, OverflowError):
+            self.fail(f"{value!r} is not a number", param, ctx)
+        if not math.isfinite(number):
+            self.fail(f"{value!r} is not a finite number", param, ctx)
+        return number
+
+
 class PositiveNumber(click.ParamType):
     """A finite number above 0 (click's ``FloatRange(min=0, min_open=True)`` lets ``nan`` and ``inf`` through:
     ``navlab bench --max-time nan`` was blamed on the experiment file's budget; review, session 21)."""

@@ -10,7 +10,7 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import EXIT_INTERRUPTED, Count, SuggestingChoice, SuggestingGroup, parse_params
+from .common import EXIT_INTERRUPTED, Count, FiniteNumber, SuggestingChoice, SuggestingGroup, parse_params
 
 
 def ros_hint() -> str:
@@ -143,9 +143,9 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
 @click.option("--robot", type=SuggestingChoice(["diff", "omni3"]), default="diff", show_default=True,
               help="diff: map_server + sim + pathplanner + goto_waypoint; omni3: sim + "
                    "potential_field_navigator.")
-@click.option("--start", nargs=2, type=float, default=None, metavar="X Y", help="Start (m); maps need one.")
-@click.option("--yaw", type=float, default=0.0, show_default=True, help="Start heading (rad).")
-@click.option("--goal", nargs=2, type=float, default=None, metavar="X Y", help="Goal (m); maps need one.")
+@click.option("--start", nargs=2, type=FiniteNumber(), default=None, metavar="X Y", help="Start (m); maps need one.")
+@click.option("--yaw", type=FiniteNumber(), default=0.0, show_default=True, help="Start heading (rad).")
+@click.option("--goal", nargs=2, type=FiniteNumber(), default=None, metavar="X Y", help="Goal (m); maps need one.")
 @click.option("--maze-size", type=Count(low=2), default=8, show_default=True,
               help="Cells per side of the generated maze (when no --map is given).")
 @click.option("--real-time-factor", "--rtf", type=click.FloatRange(min=0, min_open=True), default=5.0,

@@ -60,6 +60,21 @@ def test_a_maze_names_the_cells_to_plan_between_and_that_command_plans_across_it
     assert json.loads(planned.output)["status"] == "EXACT"
 
 
+@pytest.mark.parametrize("name, size", [("-dash.yaml", ["--cells", "3", "3"]),
+                                        ("tiny.yaml", ["--cells", "3", "3", "--cell-size", "1e-6", "--wall", "1e-7",
+                                                       "--resolution", "1e-7"])])
+def test_the_printed_plan_command_works_for_odd_names_and_tiny_pixels(name, size, tmp_path, monkeypatch):
+    """(review, session 31: '-dash.yaml' was read back as an option; a 1e-7 m pixel's centre, to six places,
+    was another cell, INVALID_START)"""
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["grid", "maze", *size, "--out", name])
+    assert res.exit_code == 0, res.output
+    args = shlex.split(res.output.splitlines()[-1].partition(": navlab ")[2])
+    planned = CliRunner().invoke(main, args + ["--json"])
+    assert planned.exit_code == 0, planned.output
+    assert json.loads(planned.output)["status"] == "EXACT"
+
+
 def test_a_maze_into_a_missing_folder_is_refused_before_it_is_built(tmp_path):
     res = CliRunner().invoke(main, ["grid", "maze", "--out", str(tmp_path / "nodir" / "m.yaml")])
     assert res.exit_code == 2

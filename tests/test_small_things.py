@@ -53,6 +53,16 @@ def test_durations_read_in_ms_then_seconds():
                                                                              "53.9 s"]
 
 
+def test_decimals_lose_only_a_fractions_trailing_zeros():
+    """(review, session 31: to no places, 10 and 100 both read "1", and -0.4 read "-")"""
+    from navlab.wording import decimal
+
+    assert [decimal(x, 0) for x in (10.0, 100, -0.4, 2.5)] == ["10", "100", "0", "2"]
+    assert [decimal(x) for x in (0.3, 4.8, -0.0, -1e-7, -0.5, 12345.675, 2)] == \
+        ["0.3", "4.8", "0", "0", "-0.5", "12345.675", "2"]
+    assert decimal(5.5e-7, 8) == "0.00000055"
+
+
 def test_one_expanded_cell_is_singular():
     """"(1 cells expanded)" was a failed grid search's reason (session 28's left-alone list)."""
     import numpy as np

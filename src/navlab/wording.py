@@ -43,7 +43,9 @@ def duration(seconds: float) -> str:
 def decimal(x: float, places: int = 6) -> str:
     """``x`` to ``places`` decimals without trailing zeros (``0.3``, ``4.8``, ``1234.5678``, ``2``): a
     coordinate as a command line would take it (``{:g}`` keeps six significant digits, 12345.675 -> 12345.7)."""
-    text = f"{x:.{places}f}".rstrip("0").rstrip(".")
+    text = f"{x:.{places}f}"
+    if "." in text:  # (10 to no places is "10": only a fraction's zeros go; review, session 31)
+        text = text.rstrip("0").rstrip(".")
     return "0" if text == "-0" else text
 
 

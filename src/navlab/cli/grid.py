@@ -235,7 +235,7 @@ def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
     """
     from ..grid import make_maze, save_map
     from ..grid.mapio import check_map_yaml_path
-    from ..grid.maze import maze_cell_center, maze_size
+    from ..grid.maze import maze_size
 
     maze_size(cells[0], cells[1], cell_size, wall, resolution)  # refuse before the bar and the carving
     check_map_yaml_path(out)
@@ -249,8 +249,18 @@ def grid_maze(cells, seed, cell_size, wall, resolution, out, quiet) -> None:
         fail(str(exc.strerror or exc))
     click.echo(f"wrote {out} and {image}: {cells[0]}x{cells[1]} cells, {grid.width}x{grid.height} pixels "
                f"at {resolution} m")
-    # where to plan: the first and last cells' centres (the map gave no free coordinates: newcomer, session 30)
-    (x0, y0), (x1, y1) = (maze_cell_center(i, j, cell_size, wall) for i, j in ((0, 0), (cells[0] - 1, cells[1] - 1)))
-    x0, y0, x1, y1 = (decimal(v) for v in (x0, y0, x1, y1))
-    click.echo(f"corner cells' centres: ({x0}, {y0}) and ({x1}, {y1}) m: "
-               f"navlab grid plan {shlex.quote(out)} --world --start {x0} {y0} --goal {x1} {y1}")
+    click.echo(_where_to_plan(out, cells, cell_size, wall, resolution))
+
+
+def _where_to_plan(out: str, cells, cell_size: float, wall: float, resolution: float) -> str:
+    """The maze's first and last cells' centres and the command that plans between them (the map gave
+    no free coordinates to plan between: newcomer, session 30): to a hundredth of a pixel, and the map's
+    path as the shell reads it back (quoted; one starting with '-' read as an option: review, session 31)."""
+    from ..grid.maze import maze_cell_center
+
+    places = max(6, math.ceil(-math.log10(resolution)) + 2)  # (0.000001 rounded a 1e-7 m pixel's centre off)
+    corners = [maze_cell_center(i, j, cell_size, wall) for i, j in ((0, 0), (cells[0] - 1, cells[1] - 1))]
+    (x0, y0), (x1, y1) = ((decimal(x, places), decimal(y, places)) for x, y in corners)
+    path = out if not out.startswith("-") else os.path.join(".", out)
+    return (f"corner cells' centres: ({x0}, {y0}) and ({x1}, {y1}) m: "
+            f"navlab grid plan {shlex.quote(path)} --world --start {x0} {y0} --goal {x1} {y1}")

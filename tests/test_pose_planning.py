@@ -109,6 +109,9 @@ def test_a_start_pose_whose_footprint_touches_an_obstacle_names_it():
     assert r.status is Status.INVALID_START and "obstacle 2 (rectangle)" in r.reason
     r = navlab.plan("trap_car", planner="hybrid_astar", goal=(0.2, 6.0, 0.0))
     assert r.status is Status.INVALID_GOAL and "bounds" in r.reason
+    # a pose never inside does not "leave" them, and the bounds are named (review, session 31)
+    b = navlab.load_world("trap_car").bounds
+    assert f"crosses the world's bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]" in r.reason
 
 
 @pytest.mark.parametrize("kwargs, field", [

@@ -362,7 +362,7 @@ def pose_problem(world, footprint, pose, label: str) -> Optional[str]:
 
 def first_touch(world, footprint, poses: np.ndarray) -> Optional[Tuple[int, str]]:
     """The first of ``poses`` (N, 3) at which the footprint touches an
-    obstacle of the exact world or leaves its bounds, and what it touches."""
+    obstacle of the exact world or crosses its bounds, and what it touches."""
     import shapely
 
     from .world.shapes import Circle, Rectangle
@@ -377,7 +377,9 @@ def first_touch(world, footprint, poses: np.ndarray) -> Optional[Tuple[int, str]
     found: Optional[Tuple[int, str]] = None
     outside = ~shapely.covered_by(shapes, shapely.box(b.xmin, b.ymin, b.xmax, b.ymax))
     if np.any(outside):
-        found = (int(np.argmax(outside)), "leaves the world's bounds")
+        # (it said "leaves", as for driving out, of a start pose never inside, and gave no bounds: review, s31)
+        found = (int(np.argmax(outside)), f"crosses the world's bounds x=[{b.xmin:g}, {b.xmax:g}] "
+                                          f"y=[{b.ymin:g}, {b.ymax:g}]")
     if world.occupancy is not None:
         return found  # the map's cells are checked by the search itself
     index = shapely.STRtree(shapes)  # each obstacle meets only the poses near it

@@ -348,7 +348,7 @@ class Scene:
             contact = self._footprint_contact(pose, pose, 0.0, 0.0, None, 0)
             return f"{where} is free" if contact is None else f"at {where} {contact[3]}"
         if self.is_grid:
-            return f"{where} overlaps a blocked cell or leaves the map (robot radius {self.radius:g} m)"
+            return f"{where} overlaps a blocked cell or crosses the map edge (robot radius {self.radius:g} m)"
         b = self.world.bounds
         near = self._nearest_static(p)
         if near is not None and near[1] <= self.radius + 1e-6:

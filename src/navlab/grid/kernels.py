@@ -671,10 +671,14 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
     # f = g + weight·h: one rounding instead of two, and fewer instructions in the relaxation loop
     # (0.975 / 0.959 of the time on random4096 / maze1001, paired in-process A/B of 21 pairs, with the
     # same expansions and the same state bit for bit; JPS measured 1.000 and keeps plain arithmetic).
-    # Only "contract": no reassociation, and nothing assumed about NaN or infinity. Exact answers need
-    # no particular rounding here: g is the packed integers (a, b), compared as floats only where
-    # distinct values lie 5e-5 or more apart, keys within TIE are equal, and the path is traced back
-    # from the integers (trace_back). Theta*'s g sums square roots and keeps plain arithmetic.
+    # Only "contract": no reassociation, and nothing assumed about NaN or infinity. g is the packed
+    # integers (a, b) and the path is traced back from them (trace_back), so costs do not depend on the
+    # rounding. What it can change is which keys count as equal (within TIE) when two differ by about
+    # TIE: with a weight such as 1 + 1e-9/3, or keys past about 5e6, where one rounding step is TIE's
+    # size. Then equally good nodes expand in another order (review, session 31: 1 837 expansions
+    # instead of 1 835 on a 160² grid, the same path and cost); A* stays exact at weight 1 and within
+    # its weight otherwise, and on a CPU without FMA such near-ties break as they did before.
+    # Theta*'s g sums square roots and keeps plain arithmetic.
     contract = False if any_angle else {"contract"}
 
     @njit(cache=True, nogil=True, fastmath=contract)

@@ -80,31 +80,29 @@ class FiniteNumber(click.ParamType):
     experiment or node then named a field the user never wrote: review, session 31)."""
 
     name = "number"
+    what = "a finite number"
+
+    def accepts(self, number: float) -> bool:
+        return math.isfinite(number)
 
     def convert(self, value, param, ctx):
         try:
             number = float(value)
         except (TypeError, ValueError, OverflowError):
             self.fail(f"{value!r} is not a number", param, ctx)
-        if not math.isfinite(number):
-            self.fail(f"{value!r} is not a finite number", param, ctx)
+        if not self.accepts(number):
+            self.fail(f"{value!r} is not {self.what}", param, ctx)
         return number
 
 
-class PositiveNumber(click.ParamType):
+class PositiveNumber(FiniteNumber):
     """A finite number above 0 (click's ``FloatRange(min=0, min_open=True)`` lets ``nan`` and ``inf`` through:
     ``navlab bench --max-time nan`` was blamed on the experiment file's budget; review, session 21)."""
 
-    name = "number"
+    what = "a positive finite number"
 
-    def convert(self, value, param, ctx):
-        try:
-            number = float(value)
-        except (TypeError, ValueError, OverflowError):
-            self.fail(f"{value!r} is not a number", param, ctx)
-        if not (math.isfinite(number) and number > 0):
-            self.fail(f"{value!r} is not a positive finite number", param, ctx)
-        return number
+    def accepts(self, number: float) -> bool:
+        return math.isfinite(number) and number > 0
 
 
 class Count(click.ParamType):

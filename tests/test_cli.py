@@ -75,6 +75,22 @@ def test_the_printed_plan_command_works_for_odd_names_and_tiny_pixels(name, size
     assert json.loads(planned.output)["status"] == "EXACT"
 
 
+@pytest.mark.parametrize("verb", [["plan", "trap", "--max-iter", "200000"], ["sim", "trap"],
+                                  ["grid", "plan", "MAZE", "--start", "6", "6", "--goal", "20", "20"]])
+@pytest.mark.parametrize("name, words", [("nodir/p.png", "the folder"), ("out.txt", "no figure format is named .txt")])
+def test_a_figure_that_cannot_be_written_is_refused_before_the_work(verb, name, words, tmp_path, monkeypatch):
+    """(newcomer, session 31: navlab plan --plot nosuchdir/p.png planned for 11 s, then printed only the
+    error, the plan lost)"""
+    monkeypatch.chdir(tmp_path)
+    if "MAZE" in verb:
+        made = CliRunner().invoke(main, ["grid", "maze", "--cells", "3", "3", "--out", "m.yaml"])
+        assert made.exit_code == 0, made.output
+        verb = [v.replace("MAZE", "m.yaml") for v in verb]
+    res = CliRunner().invoke(main, [*verb, "--plot", name])
+    assert res.exit_code == 2 and "Invalid value for --plot" in res.output and words in res.output, res.output
+    assert len(res.output.strip().splitlines()) == 1 and "EXACT" not in res.output and "REACHED" not in res.output
+
+
 def test_a_maze_into_a_missing_folder_is_refused_before_it_is_built(tmp_path):
     res = CliRunner().invoke(main, ["grid", "maze", "--out", str(tmp_path / "nodir" / "m.yaml")])
     assert res.exit_code == 2

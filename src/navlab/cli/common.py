@@ -285,6 +285,25 @@ def check_output_file(path: str, flag: str, suffix: str = "") -> None:
         raise click.BadParameter(f"cannot write {path}: the folder {folder} is not writable", param_hint=flag)
 
 
+def check_figure_file(path: str, flag: str) -> None:
+    """Refuse, before any work, a figure that cannot be written: as :func:`check_output_file`, and a
+    suffix matplotlib has no format for (``navlab plan --plot nosuchdir/p.png`` or ``--plot out.txt``
+    planned for 11 s and then printed only the error, the plan lost: newcomer, session 31). No
+    suffix is matplotlib's default format (PNG)."""
+    import os
+
+    check_output_file(path, flag)
+    suffix = os.path.splitext(path)[1][1:].lower()
+    if suffix:
+        from ..viz.save import figure_formats
+
+        formats = figure_formats()
+        if suffix not in formats:
+            names = ["." + f for f in sorted(formats)]
+            raise click.BadParameter(f"no figure format is named .{suffix}: give a name ending in "
+                                     f"{', '.join(names[:-1])} or {names[-1]}, got {path}", param_hint=flag)
+
+
 def _is_number(token: str) -> bool:
     try:
         float(token)

@@ -14,7 +14,7 @@ import numpy as np
 from ..errors import ParameterError
 from ..wording import counted, decimal, duration
 from .common import (Count, ExactNumber, PositiveNumber, SuggestingChoice, SuggestingGroup, before_first_kernel,
-                     before_numba_import, check_output_file, note_unused_grid_settings)
+                     before_numba_import, check_figure_file, check_output_file, note_unused_grid_settings)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -57,6 +57,8 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
               allow_unknown, map_rule, as_json, plot) -> None:
     """Plan a path on MAP between two cells (x = column, y = row)."""
     before_numba_import()
+    if plot:  # (after numba's lean import, as navlab plan's)
+        check_figure_file(plot, "--plot")
     from ..grid import load_map, plan, plan_world
     from ..grid.planner import path_bound_note
     from ..limits import check_length, shown

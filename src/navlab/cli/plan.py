@@ -11,7 +11,7 @@ import click
 from ..errors import ParameterError
 from ..wording import counted, duration
 from .common import (Count, PointOrPoseOption, PositiveNumber, before_first_kernel, before_numba_import,
-                     note_unused_grid_settings, parse_params, status_if_output_is_cut)
+                     check_figure_file, note_unused_grid_settings, parse_params, status_if_output_is_cut)
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -75,6 +75,8 @@ def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_
     # the exit, and the query's own objects are freed by reference counting, so collections would only walk
     # the ~110 000 long-lived objects again and again (~0.1 s of CPU); reference cycles wait for the exit.
     before_numba_import()
+    if plot:  # (after numba's lean import: matplotlib's own imports would take what it defers)
+        check_figure_file(plot, "--plot")
     with collections_paused():
         from ..planning import is_grid_planner, plan
         from ..pose_queries import POSE_PLANNERS, check_radius_not_dropped, is_pose_query

@@ -10,8 +10,8 @@ from pathlib import Path
 import click
 
 from ..wording import counted
-from .common import (Count, PointOrPoseOption, SuggestingChoice, before_first_kernel, check_output_file,
-                     parse_params, status_if_output_is_cut)
+from .common import (Count, PointOrPoseOption, SuggestingChoice, before_first_kernel, check_figure_file,
+                     check_output_file, parse_params, status_if_output_is_cut)
 
 #: runs per setting an experiment takes (each is a whole simulation: 10 000 of the shortest take minutes)
 MAX_EXPERIMENT_RUNS = 10_000
@@ -111,9 +111,11 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
         raise click.UsageError("--runs applies to --experiment (a single simulation runs once)")
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
-    for flag, name, suffix in (("--trajectory", trajectory, ""), ("--plot", plot, ""), ("--gif", gif, ".gif")):
+    for flag, name, suffix in (("--trajectory", trajectory, ""), ("--gif", gif, ".gif")):
         if name:
             check_output_file(name, flag, suffix)
+    if plot:
+        check_figure_file(plot, "--plot")
     from ..sim.runner import NoPathError, simulate
 
     before_first_kernel()  # numba is imported by now (the simulator's kernels)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import os
 from pathlib import Path
-from typing import Any, Union
+from typing import Any, Dict, Union
 
 from ..atomic import atomic_path
 
@@ -32,3 +32,12 @@ def save_figure(fig: Any, target: Union[str, os.PathLike], **savefig_kwargs: Any
     except OSError as exc:
         raise OSError(exc.errno, exc.strerror or str(exc), str(target)) from None
     return target
+
+
+def figure_formats() -> Dict[str, str]:
+    """The file formats ``save_figure`` writes, by suffix (matplotlib's: png, pdf, svg, ...), each
+    with its description."""
+    from matplotlib.backend_bases import FigureCanvasBase
+
+    return dict(FigureCanvasBase.get_supported_filetypes())
+

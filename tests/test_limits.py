@@ -100,3 +100,16 @@ def test_a_short_name_keeps_its_limit_with_control_characters_escaped():
         text = short_name(name)
         assert len(text) <= 300 + 3 + len(f" (a name of {len(name)} characters)") and "\n" not in text
         assert text.endswith(f" (a name of {len(name)} characters)")
+
+
+def test_text_that_reads_as_infinity_is_refused_as_not_finite():
+    """(--param expand_dis=inf: YAML keeps the text 'inf', and "must be a number" read as if infinity were not
+    one: newcomer, session 31)"""
+    from navlab.errors import ParameterError
+    from navlab.limits import finite_number
+
+    for text in ("inf", "-Infinity", "nan"):
+        with pytest.raises(ParameterError, match=f"x must be finite, got '{text}'"):
+            finite_number("x", text)
+    with pytest.raises(ParameterError, match="x must be a number, got 'abc'"):
+        finite_number("x", "abc")

@@ -30,6 +30,9 @@ def finite_number(name: str, value: Any) -> float:
     """``value`` as a float if it is a finite real number (Python or numpy;
     not a bool, not a string), else ParameterError naming ``name``."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        if isinstance(value, str) and _reads_as_non_finite(value):  # (--param expand_dis=inf: YAML keeps 'inf'
+            # text, and "must be a number" read as if infinity were none: newcomer, session 31)
+            raise ParameterError(f"{name} must be finite, got {shown(value)}")
         raise ParameterError(f"{name} must be a number, got {shown(value)}")
     try:
         v = float(value)
@@ -38,6 +41,13 @@ def finite_number(name: str, value: Any) -> float:
     if not math.isfinite(v):
         raise ParameterError(f"{name} must be finite, got {shown(value)}")
     return v
+
+
+def _reads_as_non_finite(text: str) -> bool:
+    try:
+        return not math.isfinite(float(text))
+    except ValueError:
+        return False
 
 
 #: the largest heuristic weight (A*'s and Hybrid A*'s ``weight``): past it a search orders nodes by the

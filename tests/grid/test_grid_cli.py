@@ -218,9 +218,8 @@ def test_progress_is_reported_per_scenario_and_per_carved_cell(tmp_path):
     assert carved == [1024, 1200]  # every 1024 cells and at the end
 
 
-@pytest.mark.parametrize("radius, words", [("-1", "--robot-radius must be non-negative"),
-                                           ("nan", "--robot-radius must be finite")])
-def test_a_bad_robot_radius_is_named_by_its_flag(tmp_path, radius, words):
+@pytest.mark.parametrize("radius", ["-1", "nan"])
+def test_a_bad_robot_radius_is_named_by_its_flag(tmp_path, radius):
     """(it said "inflation radius", OccupancyGrid.inflate's name for it: second attack run, session 18)"""
     from navlab.grid import OccupancyGrid
     from navlab.grid.mapio import save_map
@@ -228,6 +227,7 @@ def test_a_bad_robot_radius_is_named_by_its_flag(tmp_path, radius, words):
     save_map(OccupancyGrid(np.zeros((8, 8), bool), resolution=0.1), tmp_path / "open.yaml")
     res = run("grid", "plan", str(tmp_path / "open.yaml"), "--start", "0", "0", "--goal", "7", "4",
               "--robot-radius", radius)
+    words = f"Invalid value for '--robot-radius' / '--inflate': '{radius}' is not a finite number of at least 0"
     assert res.exit_code == 2 and f"Error: {words}" in res.output
 
 

@@ -105,10 +105,14 @@ def test_navigator_stands_still_without_a_scan_and_refuses_bad_input(seen):
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "dt:=1e-300"], "below the smallest supported step"),
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "lidar_beams:=1000000000"], "beams must be an integer"),
     # the attack run of session 18: NaN past click's range checks, an unchecked timeout, an internal error
-    (["ros", "demo", "--maze-size", "3", "--timeout", "nan"], "timeout must be a positive number of seconds"),
-    (["ros", "demo", "--maze-size", "3", "--max-time", "nan"], "max_time must be a positive number of seconds"),
-    (["ros", "demo", "--maze-size", "3", "--goal", "3.5", "nan"], "goal y must be finite, got nan"),
-    (["ros", "delay", "/odom", "--wait", "nan"], "--wait must be a number of seconds ≥ 0, got nan"),
+    (["ros", "demo", "--maze-size", "3", "--timeout", "nan"],
+     "Invalid value for '--timeout': 'nan' is not a positive finite number"),
+    (["ros", "demo", "--maze-size", "3", "--max-time", "nan"],
+     "Invalid value for '--max-time': 'nan' is not a positive finite number"),
+    (["ros", "demo", "--maze-size", "3", "--goal", "3.5", "nan"],
+     "Invalid value for '--goal': 'nan' is not a finite number"),
+    (["ros", "delay", "/odom", "--wait", "nan"],
+     "Invalid value for '--wait': 'nan' is not a finite number of at least 0"),
     (["ros", "delay", "bad topic!", "--wait", "1"], "'bad topic!' is not a topic name: topic name must not"),
     (["ros", "sim", "--ros-args", "-p", "world:=trap", "-p", "x:=2"], "set the start's x and y together"),
     (["ros", "sim", "-p", "world:=trap"],  # rclpy ignored -p without --ros-args, and said "sim needs a world"

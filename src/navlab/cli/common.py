@@ -95,6 +95,16 @@ class FiniteNumber(click.ParamType):
         return number
 
 
+class NonNegativeNumber(FiniteNumber):
+    """A finite number of at least 0: a radius, a wait (click's ``FloatRange(min=0)`` lets ``nan`` and ``inf``
+    through, and the planner then named its own field, not the flag: newcomer, session 31)."""
+
+    what = "a finite number of at least 0"
+
+    def accepts(self, number: float) -> bool:
+        return math.isfinite(number) and number >= 0
+
+
 class PositiveNumber(FiniteNumber):
     """A finite number above 0 (click's ``FloatRange(min=0, min_open=True)`` lets ``nan`` and ``inf`` through:
     ``navlab bench --max-time nan`` was blamed on the experiment file's budget; review, session 21)."""

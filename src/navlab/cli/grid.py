@@ -13,8 +13,9 @@ import numpy as np
 
 from ..errors import ParameterError
 from ..wording import counted, decimal, duration
-from .common import (Count, ExactNumber, PositiveNumber, SuggestingChoice, SuggestingGroup, before_first_kernel,
-                     before_numba_import, check_figure_file, check_output_file, note_unused_grid_settings)
+from .common import (Count, ExactNumber, FiniteNumber, NonNegativeNumber, PositiveNumber, SuggestingChoice,
+                     SuggestingGroup, before_first_kernel, before_numba_import, check_figure_file, check_output_file,
+                     note_unused_grid_settings)
 
 
 @click.group("grid", cls=SuggestingGroup)
@@ -39,11 +40,11 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
 @click.option("--heuristic", type=SuggestingChoice(HEURISTICS), default="octile", show_default=True,
               help=HEURISTIC_HELP)
 @click.option("--connectivity", type=SuggestingChoice(["4", "8"]), default="8", show_default=True)
-@click.option("--weight", type=float, default=1.0, show_default=True,
+@click.option("--weight", type=FiniteNumber(), default=1.0, show_default=True,
               help="Weighted A*: the heuristic times this (>= 1; 1 finds shortest paths). Only astar with a "
                    "heuristic takes one (a note says so otherwise).")
 @click.option("--smooth", is_flag=True, help="Shortcut the path along Bresenham lines of sight.")
-@click.option("--robot-radius", "--inflate", "inflate", type=float, default=0.0, show_default=True,
+@click.option("--robot-radius", "--inflate", "inflate", type=NonNegativeNumber(), default=0.0, show_default=True,
               help="The robot's radius [m]: a cell is blocked when its centre is within it of a blocked cell's "
                    "centre (OccupancyGrid.inflate; --inflate is the old name). navlab plan's --robot-radius is "
                    "stricter: it blocks a cell when any part of its square is within the radius of a blocked "

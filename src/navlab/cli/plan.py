@@ -10,8 +10,9 @@ import click
 
 from ..errors import ParameterError
 from ..wording import counted, duration
-from .common import (Count, PointOrPoseOption, PositiveNumber, before_first_kernel, before_numba_import,
-                     check_figure_file, note_unused_grid_settings, parse_params, status_if_output_is_cut)
+from .common import (Count, NonNegativeNumber, PointOrPoseOption, PositiveNumber, before_first_kernel,
+                     before_numba_import, check_figure_file, note_unused_grid_settings, parse_params,
+                     status_if_output_is_cut)
 
 _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
 
@@ -29,7 +30,7 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
                    "matters to hybrid_astar.")
 @click.option("--goal", cls=PointOrPoseOption, default=None,
               help="Goal in metres (overrides the world's; required for maps); THETA as for --start.")
-@click.option("--robot-radius", type=click.FloatRange(min=0), default=None,
+@click.option("--robot-radius", type=NonNegativeNumber(), default=None,
               help="Robot radius in metres (overrides the world's; maps: 0).")
 @click.option("--max-iter", type=Count(), default=None,
               help="Iterations (default: 5000 for rrt_star and informed_rrt_star, 10 000 for rrt and "

@@ -10,7 +10,8 @@ import sys
 import click
 
 from ..ros.launch import NODES
-from .common import EXIT_INTERRUPTED, Count, FiniteNumber, SuggestingChoice, SuggestingGroup, parse_params
+from .common import (EXIT_INTERRUPTED, Count, FiniteNumber, NonNegativeNumber, PositiveNumber, SuggestingChoice,
+                     SuggestingGroup, parse_params)
 
 
 def ros_hint() -> str:
@@ -107,9 +108,9 @@ for _node in NODES:
 
 @ros_group.command("delay", short_help="Measure how late messages arrive on topics.")
 @click.argument("topics", nargs=-1, required=True)
-@click.option("--duration", type=float, default=10.0, show_default=True,
+@click.option("--duration", type=PositiveNumber(), default=10.0, show_default=True,
               help="How long to listen (wall-clock seconds, from when the first topic appears).")
-@click.option("--wait", type=click.FloatRange(min=0), default=10.0, show_default=True,
+@click.option("--wait", type=NonNegativeNumber(), default=10.0, show_default=True,
               help="How long to wait for the topics to appear (wall-clock seconds).")
 @click.option("--time", "clock", type=SuggestingChoice(["auto", "sim", "wall"]), default="auto", show_default=True,
               help="Receive time from /clock (sim) or the system clock (wall); auto: sim when /clock is published.")
@@ -148,14 +149,14 @@ def delay_cmd(topics, duration, wait, clock, as_json) -> None:
 @click.option("--goal", nargs=2, type=FiniteNumber(), default=None, metavar="X Y", help="Goal (m); maps need one.")
 @click.option("--maze-size", type=Count(low=2), default=8, show_default=True,
               help="Cells per side of the generated maze (when no --map is given).")
-@click.option("--real-time-factor", "--rtf", type=click.FloatRange(min=0, min_open=True), default=5.0,
+@click.option("--real-time-factor", "--rtf", type=PositiveNumber(), default=5.0,
               show_default=True, help="Simulated seconds per wall-clock second.")
 @click.option("--processes", is_flag=True, help="Run each node in its own process (as a real system does).")
 @click.option("--record", type=click.Path(file_okay=False), default=None,
               help="Record every topic to this new rosbag2 (MCAP) directory.")
-@click.option("--max-time", type=click.FloatRange(min=0, min_open=True), default=600.0, show_default=True,
+@click.option("--max-time", type=PositiveNumber(), default=600.0, show_default=True,
               help="Simulated-time budget after the goal is sent (s).")
-@click.option("--timeout", type=click.FloatRange(min=0, min_open=True), default=300.0, show_default=True,
+@click.option("--timeout", type=PositiveNumber(), default=300.0, show_default=True,
               help="Wall-clock limit (s).")
 @click.option("--log-dir", type=click.Path(file_okay=False), default=None,
               help="With --processes: one log file per node here.")

@@ -10,7 +10,7 @@ from pathlib import Path
 import click
 
 from ..wording import counted
-from .common import (Count, PointOrPoseOption, SuggestingChoice, before_first_kernel, check_figure_file,
+from .common import (Count, PointOrPoseOption, PositiveNumber, SuggestingChoice, before_first_kernel, check_figure_file,
                      check_output_file, parse_params, status_if_output_is_cut)
 
 #: runs per setting an experiment takes (each is a whole simulation: 10 000 of the shortest take minutes)
@@ -51,8 +51,8 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
               help="Robot setting, e.g. wheel_radius=0.04 (see the docs).")
 @click.option("--controller-param", "controller_params", multiple=True, metavar="KEY=VALUE",
               help="Controller setting, e.g. alpha=0.8 max_speed=0.25.")
-@click.option("--dt", type=float, default=0.05, show_default=True, help="Time step [s].")
-@click.option("--max-time", type=float, default=None,
+@click.option("--dt", type=PositiveNumber(), default=0.05, show_default=True, help="Time step [s].")
+@click.option("--max-time", type=PositiveNumber(), default=None,
               help="Simulated time limit [s] (default: 60 s + 4× the path's length at the robot's speed).")
 @click.option("--lidar-timing", "lidar_timing", multiple=True, metavar="KEY=VALUE[,...]",
               help="LiDAR rate [Hz], latency [s] and jitter [s], e.g. rate=10,latency=0.5,jitter=0.12 (default: "

@@ -249,3 +249,12 @@ def test_a_time_budget_starts_after_the_warm_up(tmp_path):
     assert proc.returncode == 0, err
     rows = list(read_rows(tmp_path / "results.jsonl"))
     assert all(r["success"] for r in rows), [(r["status"], r["iterations"]) for r in rows]
+
+
+def test_a_results_folder_that_cannot_be_made_is_named_as_such(tmp_path):
+    """(it read "cannot write '/proc/nope'", a file's write: newcomer, session 31)"""
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    res = CliRunner().invoke(main, ["bench", "--suite", "smoke", "--out", str(blocker / "out"), "-q"])
+    assert res.exit_code == 2
+    assert res.output.strip().startswith(f"Error: cannot make the results folder '{blocker / 'out'}': ")

@@ -130,8 +130,8 @@ class ResultStore:
             raise ExperimentError(f"output '{folder}' exists and is not a folder")
         try:
             self.folder.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise write_error(self.folder, exc) from None
+        except OSError as exc:  # (said as a file's write, "cannot write '/proc/nope'": newcomer, session 31)
+            raise OutputError(f"cannot make the results folder '{folder}': {exc.strerror or exc}") from None
         self._lock: Optional[FolderLock] = FolderLock(self.folder)
         #: pid of a killed run whose lock this run took over (None when the folder was free)
         self.taken_over_from = self._lock.taken_over_from

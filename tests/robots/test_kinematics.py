@@ -100,3 +100,15 @@ def test_omni3_wheel_angles_must_be_three_finite_numbers(angles):
     assert make_robot("omni3", wheel_angles_deg=(0, 120.0, 240)).n_wheels == 3
     with pytest.raises(ParameterError, match=r"wheel_angles_deg must be finite, got \[30, 150, an integer of 401 "):
         make_robot("omni3", wheel_angles_deg=[30, 150, 10 ** 400])
+
+
+def test_a_robot_settings_error_names_the_robot():
+    """(--robot-param radius=-1 said "radius must be a positive number", the robot unnamed, where the
+    controllers' errors say "controller 'rpp': ...": newcomer, session 31)"""
+    import pytest
+
+    from navlab.errors import ParameterError
+    from navlab.robots.kinematics import make_robot
+
+    with pytest.raises(ParameterError, match=r"^robot 'diff': radius must be a positive number, got -1$"):
+        make_robot("diff", radius=-1)

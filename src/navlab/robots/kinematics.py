@@ -371,4 +371,8 @@ def make_robot(name: str, **params) -> object:
     cls = ROBOTS.get(name)
     check_params(cls, params, f"robot '{name}'")
     check_finite(params, f"robot '{name}'", cls)
-    return cls(**params)
+    try:
+        return cls(**params)
+    except ParameterError as exc:  # named as the checks above name it (--robot-param radius=-1 said only
+        # "radius must be a positive number", where --controller-param's say "controller 'rpp': ...": newcomer, s31)
+        raise ParameterError(f"robot '{name}': {exc}") from None

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import argparse
 import math
+import resource
 import statistics
 import time
 from pathlib import Path
@@ -128,6 +129,16 @@ def corners(free: np.ndarray):
     return tuple(int(v) for v in free[0][::-1]), tuple(int(v) for v in free[-1][::-1])
 
 
+def faulted(fn):
+    """(minor page faults, system CPU seconds) this thread took in one call of ``fn``: what a first
+    query pays to map fresh memory (pyastar2d's arrays come on 4 KB pages, navlab's state on huge
+    ones), the part of a time that moves most from host to host."""
+    r0 = resource.getrusage(resource.RUSAGE_THREAD)
+    fn()
+    r1 = resource.getrusage(resource.RUSAGE_THREAD)
+    return r1.ru_minflt - r0.ru_minflt, r1.ru_stime - r0.ru_stime
+
+
 def timed(fn):
     """(wall seconds, this thread's CPU seconds, result) of one call: on a
     shared machine the CPU time is what other jobs' load inflates least."""
@@ -152,7 +163,8 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     cell: the search state the query touched over the cells it expanded,
     counted two ways: cells written (their 4-byte state and the
     legal-move byte) and whole 4 KB pages of the state
-    array written (what a first query pays to map). With ``with_scipy``,
+    array written (what a first query pays to map); below each row, the minor page faults and system
+    time of one more first query and one more pyastar2d call (:func:`faulted`). With ``with_scipy``,
     navlab's Dijkstra against scipy's on the explicit graph (built apart,
     untimed; scipy has no goal, so it settles every reachable cell)."""
     import pyastar2d
@@ -196,12 +208,16 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
             reps = [w for w, _ in runs]
             rep, rep_cpu = statistics.median(reps), statistics.median(c for _, c in runs)
             ref, ref_cpu = statistics.median(w for w, _ in pya), statistics.median(c for _, c in pya)
+            another = grid.replace()  # (made outside: the copy of the cells is not the query's)
+            page_faults = [faulted(lambda: plan(another, s, t, **kw)), faulted(pya_call)]
             cells_b, pages_b = touched_bytes(fresh)
             expanded = max(r.stats["expanded"], 1)
             print(f"{name:<16} {label:<10} {first:>8.3f} {spread([w for w, _ in firsts], 3, ' s'):>12} "
                   f"{rep:>9.3f} {spread(reps, 3, ' s'):>12} {ref:>12.3f} {spread([w for w, _ in pya], 3, ' s'):>12} "
                   f"{first / ref:>9.2f} {rep / ref:>8.2f} {first_cpu / ref_cpu:>9.2f} {rep_cpu / ref_cpu:>9.2f} "
                   f"{r.stats['expanded']:>9} {cells_b / expanded:>11.1f} {pages_b / expanded:>11.1f}")
+            print(f"{'':<16} {'':<10} page faults, one call each: navlab first query {page_faults[0][0]} "
+                  f"({page_faults[0][1]:.3f} s system), pyastar2d {page_faults[1][0]} ({page_faults[1][1]:.3f} s)")
         if with_scipy:
             scipy_dijkstra(name, grid, s, t, repeat)
     print("pyastar2d's 8-connected mode cuts corners and prices diagonals at 1 (an easier problem than astar's);")

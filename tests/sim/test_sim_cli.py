@@ -233,3 +233,18 @@ def test_a_footprint_crossing_the_bounds_names_them():
     start = CliRunner().invoke(main, ["sim", "trap", "--robot", "jackal", "--start", "0.1", "0.1", "0"])
     assert start.exit_code == 1 and "at (0.1, 0.1) the robot's footprint crossed the bounds x=[0, 18] y=[0, 12]" \
         in start.output, start.output
+
+
+@pytest.mark.parametrize("name, content", [("notes.txt", "x: 1\n"), ("map.pgm", "P5\n1 1\n255\n\x00")])
+def test_sim_says_what_a_file_is_not_as_plan_does(name, content, tmp_path):
+    """(sim read notes.txt as a world file, "field 'x': unknown field", and a map's image as "not a UTF-8
+    text file", where plan said "unknown source format" and "an image alone is not a map": newcomer, s31)"""
+    path = tmp_path / name
+    path.write_text(content, encoding="latin-1")
+    said = {}
+    for verb in ("plan", "sim"):
+        res = CliRunner().invoke(main, [verb, str(path)])
+        assert res.exit_code == 2 and len(res.output.strip().splitlines()) == 1, res.output
+        said[verb] = res.output.split(" (see ")[0]
+    assert said["sim"] == said["plan"]
+    assert ("unknown source format '.txt'" if name.endswith(".txt") else "an image alone is not a map") in said["sim"]

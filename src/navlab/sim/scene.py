@@ -376,22 +376,17 @@ def _as_shapely(shape):
 
 
 def load_scene_world(source: Any) -> Union[World, OccupancyGrid]:
-    """A World (scene name or world YAML) or an OccupancyGrid (map_server YAML
-    or Moving AI .map): map files are told apart by their keys."""
-    if isinstance(source, (World, OccupancyGrid)):
-        return source
-    from pathlib import Path
-
+    """A World (scene name, world YAML or Gazebo SDF) or an OccupancyGrid (map_server YAML
+    or Moving AI .map), told apart as ``navlab plan`` tells them
+    (:func:`navlab.world.sources.source_kind`: a text file or a lone map image was a
+    "world file" here, with that reader's errors, where plan said what it is: newcomer, session 31)."""
     from ..grid.mapio import load_map
     from ..world import load_world
-    from ..world.io import read_yaml_document
+    from ..world.sources import source_kind
 
-    path = Path(str(source))
-    if path.suffix == ".map":
-        return load_map(path)
-    if path.suffix in (".yaml", ".yml") and path.exists():
-        # read once, bounded (a FIFO, an alias bomb): the world reader's errors name the file
-        data = read_yaml_document(path)
-        if isinstance(data, dict) and "image" in data:
-            return load_map(path)
+    kind = source_kind(source)
+    if kind in ("world", "occupancy"):
+        return source
+    if kind in ("ros_map", "movingai_map"):
+        return load_map(source)
     return load_world(source)

@@ -268,3 +268,16 @@ def test_a_bad_flag_is_said_as_any_commands_error_is(args, line, tmp_path):
     study.write_text("worlds: [nothere]\nplanners: [rrt]\n")
     res = CliRunner().invoke(main, ["bench", str(study), "--out", str(tmp_path / "out")])
     assert res.exit_code == 2 and f"{study}: unknown scene 'nothere'" in res.output
+
+
+def test_an_executor_that_cannot_run_is_said_before_where_results_would_go(tmp_path, monkeypatch):
+    """(--executor dask without Dask printed "results go to ..." and then the install line: newcomer, s31)"""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "distributed", None)  # as if Dask were not installed
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["bench", "--world", "trap", "--planner", "rrt", "--executor", "dask",
+                                    "--trials", "1"])
+    assert res.exit_code == 2, res.output
+    assert res.output.startswith("Error: the dask executor needs Dask, which is not installed: ")
+    assert "results go to" not in res.output and not (tmp_path / "bench-results").exists()

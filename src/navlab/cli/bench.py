@@ -138,6 +138,7 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
     from ..bench import load_experiment, run_experiment
     from ..bench.experiment import (check_max_iter, check_max_time, check_plain, check_seed,
                                     check_trials, experiment_data)
+    from ..bench.executors import check_executor
     from ..bench.runner import breakdown_lines
 
     if resume and overwrite:
@@ -205,6 +206,9 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
                    + yaml.safe_dump(data, sort_keys=False))
         return
     note_unused_settings(exp)
+    # what cannot run here is said before where results would go (--executor dask without Dask printed "results
+    # go to ..." first: newcomer, session 31); reaching a --scheduler is left to the run, which connects once
+    check_executor(executor, None if executor == "dask" else scheduler)
     folder = out or f"bench-results/{exp.name}"
     if not (experiment or suite) and not out and not resume:
         click.echo(f"results go to {folder} (--out DIR to choose; the same flags again with --resume continue it)",

@@ -68,7 +68,7 @@ def endpoint_problem(world, point, label: str, checker) -> Optional[str]:
     grid = world.occupancy
     cell = tuple(int(v) for v in grid.world_to_cell(p)) if grid is not None else None
     if not b.contains(p)[0]:
-        return f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]" + \
+        return f"{where} is outside the bounds {b.text()}" + \
             (f" (cell {cell}, outside the {grid.width}x{grid.height} map)" if grid is not None else "")
     if grid is not None:
         if not grid.contains([cell])[0]:

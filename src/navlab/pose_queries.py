@@ -378,8 +378,7 @@ def first_touch(world, footprint, poses: np.ndarray) -> Optional[Tuple[int, str]
     outside = ~shapely.covered_by(shapes, shapely.box(b.xmin, b.ymin, b.xmax, b.ymax))
     if np.any(outside):
         # (it said "leaves", as for driving out, of a start pose never inside, and gave no bounds: review, s31)
-        found = (int(np.argmax(outside)), f"crosses the world's bounds x=[{b.xmin:g}, {b.xmax:g}] "
-                                          f"y=[{b.ymin:g}, {b.ymax:g}]")
+        found = (int(np.argmax(outside)), f"crosses the world's bounds {b.text()}")
     if world.occupancy is not None:
         return found  # the map's cells are checked by the search itself
     index = shapely.STRtree(shapes)  # each obstacle meets only the poses near it

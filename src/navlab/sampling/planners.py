@@ -268,8 +268,7 @@ def _check_query(world, checker) -> Optional[Result]:
         p = np.asarray(point, float)
         where = f"{label} ({p[0]:g}, {p[1]:g})"
         if not world.bounds.contains(p)[0]:
-            b = world.bounds
-            return Result(status=status, reason=f"{where} is outside the bounds x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]")
+            return Result(status=status, reason=f"{where} is outside the bounds {world.bounds.text()}")
         if not checker.points_free(p)[0]:
             gap = float(checker.clearance(p)[0])
             why = "inside an obstacle (clearance 0 m)" if gap == 0 else \

@@ -183,7 +183,7 @@ class Scene:
         x, y, _ = F.arc_pose(pose[0], pose[1], pose[2], *twist, dt * k / n)
         if kind == F.KIND_BOUNDS:
             # ("left the bounds" read as driving out, for a start pose that never was inside: newcomer, s30)
-            edge = "the map edge" if self.is_grid else "the bounds " + self._bounds_text()
+            edge = "the map edge" if self.is_grid else "the bounds " + self.world.bounds.text()
             what = f"the robot's footprint crossed {edge}"
         elif kind == F.KIND_CELL:
             w = self.world.blocked.shape[1]
@@ -333,16 +333,12 @@ class Scene:
     def _kind(self, i: int) -> str:
         return type(self.world.obstacles[i]).__name__.lower()
 
-    def _bounds_text(self) -> str:
-        b = self.world.bounds
-        return f"x=[{b.xmin:g}, {b.xmax:g}] y=[{b.ymin:g}, {b.ymax:g}]"
-
     def describe(self, p) -> str:
         where = f"({p[0]:g}, {p[1]:g})"
         # a point outside the bounds is said so, whatever the robot's shape (a footprint's "left the bounds"
         # gave no bounds: newcomer, session 30)
         if not self.is_grid and not self.world.bounds.contains(np.asarray(p[:2], float))[0]:
-            return f"{where} is outside the bounds {self._bounds_text()}"
+            return f"{where} is outside the bounds {self.world.bounds.text()}"
         if self.footprint is not None:  # a point (x, y) as the robot facing +x there
             pose = (p[0], p[1], p[2] if len(p) > 2 else 0.0)
             contact = self._footprint_contact(pose, pose, 0.0, 0.0, None, 0)
@@ -359,7 +355,7 @@ class Scene:
                     f"clearance {gap:.4g} m)")
         edge = min(p[0] - b.xmin, b.xmax - p[0], p[1] - b.ymin, b.ymax - p[1])
         if edge <= self.radius + 1e-6:
-            return f"{where} is within the robot radius {self.radius:g} m of the bounds {self._bounds_text()}"
+            return f"{where} is within the robot radius {self.radius:g} m of the bounds {b.text()}"
         return f"{where} is within the robot radius {self.radius:g} m of an obstacle"  # a moving one, where it is then
 
 

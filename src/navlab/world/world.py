@@ -84,6 +84,10 @@ class Bounds:
     def as_array(self) -> np.ndarray:
         return np.array([self.xmin, self.xmax, self.ymin, self.ymax], dtype=float)
 
+    def text(self) -> str:
+        """``x=[0, 18] y=[0, 12]``: the bounds as the messages that name them write them."""
+        return f"x=[{self.xmin:g}, {self.xmax:g}] y=[{self.ymin:g}, {self.ymax:g}]"
+
 
 @dataclass(frozen=True)
 class World:

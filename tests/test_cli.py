@@ -124,7 +124,8 @@ def test_plan_on_a_map_prints_the_grid_and_draws_the_map(run, maze, tmp_path):
      "unknown parameter 'max_iter' for grid planner 'jps'"),
     (("--start", "0.3", "0.3", "--goal", "4.8", "4.8", "--planner", "astar", "--sampler", "gaussian"),
      "draws no samples"),
-    (("--start", "0.3", "nan", "--goal", "4.8", "4.8"), "Invalid value for '--start': coordinates and headings must be finite"),
+    (("--start", "0.3", "nan", "--goal", "4.8", "4.8"),
+     "Invalid value for '--start': coordinates and headings must be finite"),
 ])
 def test_bad_map_queries_are_one_line_naming_the_flag(maze, args, text):
     res = CliRunner().invoke(main, ["plan", maze, *args])

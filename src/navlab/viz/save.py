@@ -40,4 +40,3 @@ def figure_formats() -> Dict[str, str]:
     from matplotlib.backend_bases import FigureCanvasBase
 
     return dict(FigureCanvasBase.get_supported_filetypes())
-

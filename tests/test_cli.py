@@ -330,3 +330,16 @@ def test_the_summary_says_when_goal_bias_wraps_the_sampler():
     assert out.output.startswith("trap: rrt_star + uniform with goal bias 0.5, seed 0: ")
     out = CliRunner().invoke(main, ["plan", "trap", "--sampler", "goal_bias", "--param", "max_iter=300"])
     assert out.output.startswith("trap: rrt_star + goal_bias, seed 0: ")
+
+
+@pytest.mark.parametrize("verb", ["plan", "sim"])
+def test_a_point_whose_y_is_not_a_number_is_echoed_whole(verb):
+    """(--start 1 abc was echoed as "got '1'", the abc typed dropped: newcomer, session 31)"""
+    res = CliRunner().invoke(main, [verb, "trap", "--start", "1", "abc"])
+    assert res.exit_code == 2 and "expected X Y or X Y THETA (numbers), got '1 abc'" in res.output, res.output
+
+
+def test_one_simulated_step_is_singular():
+    """("... 1 steps)": newcomer, session 31)"""
+    res = CliRunner().invoke(main, ["sim", "trap", "--max-time", "0.001"])
+    assert "(real-time factor" in res.output and ", 1 step)" in res.output, res.output

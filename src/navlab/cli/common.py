@@ -350,9 +350,11 @@ class PointOrPoseOption(click.Option):
             def process(value: str, state: Any, take=take) -> None:
                 values = [value]
                 while len(values) < 3 and state.rargs and (_is_number(state.rargs[0]) or
-                                                           len(values) == 2 and _mistyped_number(state.rargs[0])):
+                                                           len(values) == 2 and _mistyped_number(state.rargs[0])
+                                                           or len(values) == 1 and not state.rargs[0].startswith("-")):
                     # (a mistyped heading, "1.5x" or "90deg", is taken too, so the error names the pose: left
-                    # behind it was "unexpected extra argument")
+                    # behind it was "unexpected extra argument"; and a Y that is not a number, so "--start 1 abc"
+                    # is not echoed as "got '1'": newcomer, session 31)
                     values.append(state.rargs.pop(0))
                 take(" ".join(values), state)
 

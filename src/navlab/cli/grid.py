@@ -53,7 +53,8 @@ HEURISTIC_HELP = ("A*'s heuristic (none: uniform-cost search, as dijkstra; manha
 @click.option("--map-rule", type=SuggestingChoice(["nav2", "ros1"]), default="nav2", show_default=True,
               help="How a map_server image is read: Nav2's map_io (inclusive thresholds) or ROS 1's map_server.")
 @click.option("--json", "as_json", is_flag=True, help="Print the result as JSON.")
-@click.option("--plot", type=click.Path(dir_okay=False), default=None, help="Write a PNG of grid and path.")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None,
+              help="Write a figure of grid and path: PNG, or the format its suffix names (.svg, .pdf, ...).")
 def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivity, weight, smooth, inflate,
               allow_unknown, map_rule, as_json, plot) -> None:
     """Plan a path on MAP between two cells (x = column, y = row)."""

@@ -73,7 +73,8 @@ EXPERIMENT_NAMES = ["omni-potential-field", "seed004", "maze-astar", "seed002", 
 @click.option("--plot-dir", type=click.Path(file_okay=False), default=None,
               help="Experiments: write a PNG per run here (seed002 default: sim-results/seed002).")
 @click.option("--json", "as_json", is_flag=True, help="JSON output (one object per run for experiments).")
-@click.option("--plot", type=click.Path(dir_okay=False), default=None, help="PNG of the run.")
+@click.option("--plot", type=click.Path(dir_okay=False), default=None,
+              help="Figure of the run: PNG, or the format its suffix names (.svg, .pdf, ...).")
 @click.option("--gif", type=click.Path(dir_okay=False), default=None, help="GIF animation of the run.")
 @click.option("--trajectory", type=click.Path(dir_okay=False), default=None,
               help="CSV of the true pose at every step (header t,x,y,theta; s, m, m, rad).")
@@ -158,7 +159,7 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
     else:
         click.echo(f"{result.status.name}" + (f" ({result.reason})" if result.reason else "")
                    + f" after {result.time_s:.2f} s simulated in {result.wall_time_s * 1000:.0f} ms "
-                   f"(real-time factor {result.real_time_factor:.0f}x, {result.steps} steps)")
+                   f"(real-time factor {result.real_time_factor:.0f}x, {counted(result.steps, 'step')})")
         setup_s = time.perf_counter() - began - result.wall_time_s
         if setup_s > 3.0:  # a first use compiles for up to minutes (loading them takes about a second): say so
             click.echo(f"  set-up before the run {setup_s:.1f} s (the world, the plan, compiling or loading kernels: "

@@ -57,8 +57,8 @@ _FLAGS = {"start": "--start X Y", "goal": "--goal X Y"}
               help="Print status, cost, path, stats and all parameters as JSON (without the cost trace).")
 @click.option("--trace", is_flag=True, help="With --json: include the per-iteration cost trace.")
 @click.option("--plot", type=click.Path(dir_okay=False), default=None,
-              help="Write a figure of the world or map, tree, path, start and goal: PNG, or the format its suffix names "
-                   "(.svg, .pdf, ...).")
+              help="Write a figure of the world or map, tree, path, start and goal: PNG, or the format its "
+                   "suffix names (.svg, .pdf, ...).")
 def plan_cmd(source, planner, sampler, start, goal, robot_radius, max_iter, max_time, seed, params, as_json,
              trace, plot) -> None:
     """Plan a path in SOURCE: a built-in scene name (navlab list), a world

@@ -804,9 +804,11 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                 # loading their state and moves, which a first visit finds in memory, not in cache
                 # (4% of A*'s time on random4096, 5% on maze1001, paired in-process A/B). The address
                 # may lie outside the arrays near the border: a prefetch never faults.
-                # (Across a strip's edge the line bends: that prefetch is wasted, never wrong.)
+                # (Across a strip's edge the line bends: that prefetch is wasted, never wrong.) The lead
+                # move's step is read from ``offsets`` (a cell inside a strip), not from _DX and _DY: 0.964
+                # to 0.976 of random4096 A*'s time, and 1.031 with the versions swapped (paired in-process A/B).
                 lead = LEAD[np.uint64(allowed)]
-                ahead = u + LOOK * (_DX[np.uint64(lead)] + (_DY[np.uint64(lead)] << wbits))
+                ahead = u + LOOK * offsets[np.uint64(lead)]
                 _prefetch(gs, ahead)
                 _prefetch(moves, ahead)
             if top > 0:

@@ -739,11 +739,13 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                     cell[np.uint64(n)] = v * 256 + 255
                     b = np.int64(f * inv_width) & mask
                     hb = head[np.uint64(b)]
-                    if hb < 0 or f < low[np.uint64(b)]:
+                    if hb < 0:  # (a bucket's bit is set while it holds a node: only its first push sets it)
+                        low[np.uint64(b)] = f
+                        occupied[np.uint64(b >> 6)] |= np.uint64(1) << np.uint64(b & 63)
+                    elif f < low[np.uint64(b)]:
                         low[np.uint64(b)] = f
                     nxt[np.uint64(n)] = hb
                     head[np.uint64(b)] = n
-                    occupied[np.uint64(b >> 6)] |= np.uint64(1) << np.uint64(b & 63)
                     size += 1
             if fcur == math.inf or (fmax - fcur) * inv_width > N_BUCKETS - 3:
                 return WIDEN, 0
@@ -915,11 +917,15 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                     cell[np.uint64(n)] = entry
                     b = np.int64(f * inv_width) & mask
                     hb = head[np.uint64(b)]
-                    if hb < 0 or f < low[np.uint64(b)]:
+                    # A bucket's bit is set while it holds a node, so only its first push sets it (random4096
+                    # 0.980 of the time, 1.028 swapped; maze1001 0.958 and 1.033; paired in-process A/B)
+                    if hb < 0:
+                        low[np.uint64(b)] = f
+                        occupied[np.uint64(b >> 6)] |= np.uint64(1) << np.uint64(b & 63)
+                    elif f < low[np.uint64(b)]:
                         low[np.uint64(b)] = f
                     nxt[np.uint64(n)] = hb
                     head[np.uint64(b)] = n
-                    occupied[np.uint64(b >> 6)] |= np.uint64(1) << np.uint64(b & 63)
                     size += 1
             if status == OVERFLOW:
                 break

@@ -697,7 +697,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
         word_mask = N_BUCKETS // 64 - 1
         free_node = -1
         bump = 0
-        size = 0
         cap_pool = key.shape[0]
         cap_stack = stack.shape[0]
         expanded = 0
@@ -746,7 +745,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                         low[np.uint64(b)] = f
                     nxt[np.uint64(n)] = hb
                     head[np.uint64(b)] = n
-                    size += 1
             if fcur == math.inf or (fmax - fcur) * inv_width > N_BUCKETS - 3:
                 return WIDEN, 0
             cb = np.int64(fcur * inv_width) & mask
@@ -764,13 +762,20 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
             cb = np.int64(fcur * inv_width) & mask
             stack[np.uint64(0)] = start * 256 + 255  # open entries: cell * 256 + the moves it may expand
             top = 1
-        while size > 0 or top > 0:
+        while True:
             if top == 0:  # the next non-empty bucket (circularly from cb): its smallest keys go on the stack
                 word = cb >> 6
                 bits = occupied[np.uint64(word)] & (ALL_BITS << np.uint64(cb & 63))
-                while bits == 0:
+                # (no count of queued nodes: an empty open list is found here, every word read once and
+                # this one whole; random4096 0.981 of the time, 1.009 swapped, maze1001 0.979 and 0.995;
+                # paired in-process A/B)
+                for _ in range(word_mask + 1):  # the other words, then this one whole
+                    if bits != 0:
+                        break
                     word = (word + 1) & word_mask
                     bits = occupied[np.uint64(word)]
+                if bits == 0:
+                    break  # the open list is empty: no path
                 cb = word * 64 + np.int64(_cttz(bits))
                 fcur = low[np.uint64(cb)]
                 n = head[np.uint64(cb)]
@@ -786,7 +791,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                         top += 1
                         nxt[np.uint64(n)] = free_node
                         free_node = n
-                        size -= 1
                     else:
                         if head[np.uint64(cb)] < 0 or kn < low[np.uint64(cb)]:
                             low[np.uint64(cb)] = kn
@@ -926,7 +930,6 @@ def make_astar(conn: int, hcode: int, any_angle: bool, wide: bool = False):
                         low[np.uint64(b)] = f
                     nxt[np.uint64(n)] = hb
                     head[np.uint64(b)] = n
-                    size += 1
             if status == OVERFLOW:
                 break
         return status, expanded

@@ -6,6 +6,7 @@
     python benchmarks/bench_grid.py --large --scipy        # and Dijkstra against scipy's on them
     python benchmarks/bench_grid.py --large --bound        # could a bidirectional search expand fewer cells?
     python benchmarks/bench_grid.py --threads [--repeat 3] # random4096 queries on 1 and on 2 threads at once
+    python benchmarks/bench_grid.py --alternate 21         # random4096: navlab's first query and pyastar2d, one at a time
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an
@@ -47,6 +48,9 @@ def main() -> None:
     ap.add_argument("--bound", action="store_true",
                     help="with --large: the fewest cells any front-to-end bidirectional search must expand on "
                          "each map (from two Dijkstra fields; no timing; peaks at about 2 GB on the 4096x4096 map)")
+    ap.add_argument("--alternate", type=int, metavar="PAIRS",
+                    help="the 4096x4096 random map's A* query one call at a time: a fresh grid's first query and "
+                         "pyastar2d's call, alternating, PAIRS times; medians, the fastest, pairs at 0.5 or under")
     ap.add_argument("--threads", action="store_true",
                     help="the 4096x4096 random map's corner-to-corner A* query alone, then two at once on two "
                          "threads (each on its own grid, and both on one grid): do the searches run in parallel?")
@@ -57,6 +61,13 @@ def main() -> None:
         ap.error("--every must be at least 1")
     if args.threads and (args.large or args.scipy or args.bound):
         ap.error("--threads runs on its own: not with --large, --scipy or --bound")
+    if args.alternate is not None:
+        if args.alternate < 1:
+            ap.error("--alternate must be at least 1")
+        if args.threads or args.large or args.scipy or args.bound:
+            ap.error("--alternate runs on its own: not with --threads, --large, --scipy or --bound")
+        alternate(args.alternate)
+        return
     for flag in ("scipy", "bound"):
         if getattr(args, flag) and not args.large:
             ap.error(f"--{flag} goes with --large")
@@ -261,6 +272,41 @@ def threads(repeat: int) -> None:
     for label, walls in times.items():
         print(f"{name} astar, {label:<24} {statistics.median(walls):.3f} s wall ({spread(walls, 3, ' s')}; "
               f"{statistics.median(walls) / alone:.2f}x one query)")
+    print(load_line("at end"))
+
+
+def alternate(pairs: int) -> None:
+    """Issue 22's A* query on the 4096x4096 random map one call at a time: a fresh grid's first query
+    (the grid copied outside the timing) and pyastar2d's call, alternating, which goes first swapped
+    every pair. Printed: medians and minima of each, their ratios, and how many pairs have navlab at
+    0.5 of pyastar2d's time or less."""
+    import pyastar2d
+
+    from conditions import load_line
+
+    print(load_line("at start"))
+    name, make = next(iter(_large_maps()))
+    grid = make()
+    s, t = corners(np.argwhere(~grid.blocked))
+    weights = np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
+
+    def pya_call():
+        return pyastar2d.astar_path(weights, (s[1], s[0]), (t[1], t[0]), allow_diagonal=True)
+
+    plan(grid.replace(), s, t)  # the kernels loaded, and each tool's first large allocation in the process
+    pya_call()
+    navlab, pya = [], []
+    for k in range(pairs):
+        fresh = grid.replace()
+        calls = [(navlab, lambda: plan(fresh, s, t)), (pya, pya_call)]
+        for times, call in calls if k % 2 else calls[::-1]:
+            times.append(timed(call)[0])
+    nav_med, pya_med = statistics.median(navlab), statistics.median(pya)
+    under = sum(a <= 0.5 * b for a, b in zip(navlab, pya))
+    print(f"{name} astar, one call at a time, {pairs} pairs: navlab's first query {nav_med:.3f} s "
+          f"(fastest {min(navlab):.3f}), pyastar2d {pya_med:.3f} s (fastest {min(pya):.3f}); "
+          f"ratio of medians {nav_med / pya_med:.3f}, of the fastest {min(navlab) / min(pya):.3f}; "
+          f"pairs at 0.5 or under: {under} of {pairs}")
     print(load_line("at end"))
 
 

@@ -6,7 +6,7 @@
     python benchmarks/bench_grid.py --large --scipy        # and Dijkstra against scipy's on them
     python benchmarks/bench_grid.py --large --bound        # could a bidirectional search expand fewer cells?
     python benchmarks/bench_grid.py --threads [--repeat 3] # random4096 queries on 1 and on 2 threads at once
-    python benchmarks/bench_grid.py --alternate 21         # random4096: navlab's first query and pyastar2d, one at a time
+    python benchmarks/bench_grid.py --alternate 21         # random4096 one call at a time: first query vs pyastar2d
 
 Same scenarios, same process, interleaved query by query. pyastar2d's
 8-connected mode cuts corners and prices diagonals at 1, so it solves an

@@ -6,7 +6,10 @@ import numpy as np
 import pytest
 
 import navlab
+from navlab.errors import ParameterError
+from navlab.grid import OccupancyGrid
 from navlab.limits import check_count
+from navlab.world.shapes import Circle
 
 
 @pytest.mark.parametrize("value, expected", [(1, 1), (np.int64(7), 7), (1e3, 1000), (np.float64(5.0), 5),
@@ -105,7 +108,6 @@ def test_a_short_name_keeps_its_limit_with_control_characters_escaped():
 def test_text_that_reads_as_infinity_is_refused_as_not_finite():
     """(--param expand_dis=inf: YAML keeps the text 'inf', and "must be a number" read as if infinity were not
     one: newcomer, session 31)"""
-    from navlab.errors import ParameterError
     from navlab.limits import finite_number
 
     for text in ("inf", "-Infinity", "nan"):
@@ -113,3 +115,13 @@ def test_text_that_reads_as_infinity_is_refused_as_not_finite():
             finite_number("x", text)
     with pytest.raises(ParameterError, match="x must be a number, got 'abc'"):
         finite_number("x", "abc")
+
+
+@pytest.mark.parametrize("call, said", [
+    (lambda: OccupancyGrid(np.zeros((4, 4), bool)).world_to_cell([10 ** 400, 1]), "world points: expected"),
+    (lambda: Circle([10 ** 400, 1], 1.0), "must be two finite numbers"),
+])
+def test_a_whole_number_past_a_float_is_refused_naming_the_field(call, said):
+    # (numpy's OverflowError "int too large to convert to float" went up as an internal error: review, s32)
+    with pytest.raises(ParameterError, match=said):
+        call()

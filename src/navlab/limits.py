@@ -198,10 +198,10 @@ MAX_JOBS = 256
 def float_array(value: Any) -> np.ndarray:
     """``value`` as a float array, or an empty one when it is not numbers (text, None, an object): for the
     callers' own shape check to refuse with a message naming the field, instead of numpy's "could not
-    convert string to float"."""
+    convert string to float" (or "int too large to convert to float" for a whole number such as 10**400)."""
     try:
         return np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         return np.empty(0)
 
 

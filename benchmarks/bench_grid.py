@@ -91,7 +91,7 @@ def main() -> None:
     for map_name, scen_name in MAPS:
         grid = load_map(DATA / map_name)
         scenarios = read_scen(DATA / scen_name)[::args.every]
-        weights = np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
+        weights = pyastar2d_weights(grid)
         times = {"astar": [], "jps": [], "pya": []}
         excess = []
         for algo in ("astar", "jps"):
@@ -150,6 +150,19 @@ def faulted(fn):
     return r1.ru_minflt - r0.ru_minflt, r1.ru_stime - r0.ru_stime
 
 
+def pyastar2d_weights(grid) -> np.ndarray:
+    """pyastar2d's cost array for ``grid``: 1 on a free cell, infinite on a blocked one (float32)."""
+    return np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
+
+
+def pyastar2d_query(weights: np.ndarray, start, goal, diagonal: bool):
+    """pyastar2d's call for the query from cell ``start`` to ``goal`` (x, y; it takes (row, column)),
+    as a function of no arguments to time."""
+    import pyastar2d
+
+    return lambda: pyastar2d.astar_path(weights, (start[1], start[0]), (goal[1], goal[0]), allow_diagonal=diagonal)
+
+
 def timed(fn):
     """(wall seconds, this thread's CPU seconds, result) of one call: on a
     shared machine the CPU time is what other jobs' load inflates least."""
@@ -178,8 +191,6 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
     time of one more first query and one more pyastar2d call (:func:`faulted`). With ``with_scipy``,
     navlab's Dijkstra against scipy's on the explicit graph (built apart,
     untimed; scipy has no goal, so it settles every reachable cell)."""
-    import pyastar2d
-
     from conditions import load_line, spread
 
     print(load_line("at start"))
@@ -194,12 +205,10 @@ def large_maps(repeat: int, with_scipy: bool) -> None:
         grid = make()
         free = np.argwhere(~grid.blocked)
         s, t = corners(free)
-        weights = np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
+        weights = pyastar2d_weights(grid)
         for label, kw, diagonal in (("astar", {}, True), ("jps", {"algorithm": "jps"}, True),
                                     ("astar-4", {"connectivity": 4, "heuristic": "manhattan"}, False)):
-            def pya_call():
-                return pyastar2d.astar_path(weights, (s[1], s[0]), (t[1], t[0]), allow_diagonal=diagonal)
-
+            pya_call = pyastar2d_query(weights, s, t, diagonal)
             if not process_warm:  # the process's first large allocation, apart from the table (see above)
                 once, _, _ = timed(lambda: plan(grid.replace(), s, t, **kw))
                 pya_call()
@@ -280,19 +289,13 @@ def alternate(pairs: int) -> None:
     (the grid copied outside the timing) and pyastar2d's call, alternating, which goes first swapped
     every pair. Printed: medians and minima of each, their ratios, and how many pairs have navlab at
     0.5 of pyastar2d's time or less."""
-    import pyastar2d
-
     from conditions import load_line
 
     print(load_line("at start"))
     name, make = next(iter(_large_maps()))
     grid = make()
     s, t = corners(np.argwhere(~grid.blocked))
-    weights = np.where(grid.blocked, np.inf, 1.0).astype(np.float32)
-
-    def pya_call():
-        return pyastar2d.astar_path(weights, (s[1], s[0]), (t[1], t[0]), allow_diagonal=True)
-
+    pya_call = pyastar2d_query(pyastar2d_weights(grid), s, t, True)
     plan(grid.replace(), s, t)  # the kernels loaded, and each tool's first large allocation in the process
     pya_call()
     navlab, pya = [], []

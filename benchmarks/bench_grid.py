@@ -66,6 +66,8 @@ def main() -> None:
             ap.error("--alternate must be at least 1")
         if args.threads or args.large or args.scipy or args.bound:
             ap.error("--alternate runs on its own: not with --threads, --large, --scipy or --bound")
+        if not has_pyastar2d():
+            ap.error(f"--alternate times pyastar2d, which is not installed: {PYASTAR2D_INSTALL}")
         alternate(args.alternate)
         return
     for flag in ("scipy", "bound"):
@@ -79,13 +81,16 @@ def main() -> None:
             bidirectional_bound(name, make())
         return
     if args.large:
+        if not has_pyastar2d():
+            ap.error(f"--large times pyastar2d, which is not installed: {PYASTAR2D_INSTALL} (--bound needs "
+                     "no pyastar2d)")
         large_maps(args.repeat, args.scipy)
         return
     try:
         import pyastar2d
     except ImportError:
         pyastar2d = None
-        print("pyastar2d not installed (pip install -e '.[bench]'): navlab figures only")
+        print(f"pyastar2d not installed ({PYASTAR2D_INSTALL}): navlab figures only")
     print(f"{'map':<14} {'queries':>7} {'astar ms':>9} {'jps ms':>8} {'pyastar2d ms':>13} "
           f"{'astar/pya':>10} {'pya/jps':>8} {'pya excess':>11}")
     for map_name, scen_name in MAPS:
@@ -148,6 +153,16 @@ def faulted(fn):
     fn()
     r1 = resource.getrusage(resource.RUSAGE_THREAD)
     return r1.ru_minflt - r0.ru_minflt, r1.ru_stime - r0.ru_stime
+
+
+PYASTAR2D_INSTALL = "pip install -e '.[bench]'"
+
+
+def has_pyastar2d() -> bool:
+    """Whether the anchor pyastar2d can be imported (the ``bench`` extra)."""
+    import importlib.util
+
+    return importlib.util.find_spec("pyastar2d") is not None
 
 
 def pyastar2d_weights(grid) -> np.ndarray:

@@ -248,3 +248,18 @@ def test_sim_says_what_a_file_is_not_as_plan_does(name, content, tmp_path):
         said[verb] = res.output.split(" (see ")[0]
     assert said["sim"] == said["plan"]
     assert ("unknown source format '.txt'" if name.endswith(".txt") else "an image alone is not a map") in said["sim"]
+
+
+@pytest.mark.parametrize("args, named", [
+    (["--experiment", "maze-astar", "--runs", "1", "--max-time", "2", "--dt", "0.2", "--robot", "car", "--plot",
+      "e.png", "--gif", "e.gif"], "--robot, --dt, --max-time, --plot, --gif do not apply"),
+    (["--experiment", "maze-astar", "--dt", "0.05"], "--dt does not apply"),  # (its default, given: still said)
+    (["trap", "--plot-dir", "figs"], "--plot-dir applies to --experiment"),
+])
+def test_flags_an_experiment_does_not_take_are_refused_not_ignored(args, named, tmp_path, monkeypatch):
+    """(--experiment ran with its own time step, time limit and robot whatever the flags said, and wrote no
+    --plot or --gif: newcomer, session 32)"""
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["sim", *args])
+    assert res.exit_code == 2 and named in res.output, res.output
+    assert not list(tmp_path.iterdir())

@@ -106,10 +106,13 @@ def sim_cmd(world, robot, controller, start, goal, planner, plan_params, sampler
     if experiment:
         if world:
             raise click.UsageError("--experiment takes no WORLD")
+        _refuse_flags_experiments_do_not_take()
         _experiment(experiment, runs, seed, plot_dir, as_json)
         return
     if runs is not None:
         raise click.UsageError("--runs applies to --experiment (a single simulation runs once)")
+    if plot_dir is not None:
+        raise click.UsageError("--plot-dir applies to --experiment (a single simulation's figure: --plot FILE)")
     if not world:
         raise click.UsageError("give a WORLD or --experiment")
     for flag, name, suffix in (("--trajectory", trajectory, ""), ("--gif", gif, ".gif")):
@@ -237,6 +240,26 @@ def _timing(items, flag: str):
     if not items:
         return None
     return parse_params(tuple(part for item in items for part in item.split(",") if part.strip()), flag)
+
+
+#: the flags an --experiment takes: its runs are set by the experiment itself (robot, controller, time step...)
+EXPERIMENT_FLAGS = ("experiment", "runs", "seed", "plot_dir", "as_json")
+
+
+def _refuse_flags_experiments_do_not_take() -> None:
+    """A usage error naming every flag given with --experiment that it does not take (--dt, --max-time,
+    --robot, --plot, --gif... ran the experiment's own settings and wrote nothing, unsaid: newcomer,
+    session 32)."""
+    from click.core import ParameterSource
+
+    ctx = click.get_current_context()
+    given = [max(p.opts, key=len) for p in ctx.command.params
+             if p.name not in EXPERIMENT_FLAGS and p.param_type_name == "option"
+             and ctx.get_parameter_source(p.name) not in (None, ParameterSource.DEFAULT)]
+    if given:
+        raise click.UsageError(f"--experiment runs with its own settings: {', '.join(given)} "
+                               f"{'does' if len(given) == 1 else 'do'} not apply to it (it takes --runs, --seed, "
+                               "--plot-dir and --json)")
 
 
 def _experiment(name: str, runs, seed: int, plot_dir, as_json: bool) -> None:

@@ -281,3 +281,14 @@ def test_an_executor_that_cannot_run_is_said_before_where_results_would_go(tmp_p
     assert res.exit_code == 2, res.output
     assert res.output.startswith("Error: the dask executor needs Dask, which is not installed: ")
     assert "results go to" not in res.output and not (tmp_path / "bench-results").exists()
+
+
+@pytest.mark.parametrize("args, words", [
+    (["--executor", "serial", "-j", "2"], "serial runs one trial at a time"),
+    (["--executor", "dask", "--scheduler", "tcp://127.0.0.1:1", "--jobs", "2"], "a --scheduler's cluster has its own"),
+])
+def test_jobs_that_would_be_ignored_are_refused(args, words, tmp_path):
+    """(-j with --executor serial was ignored, unsaid, where --scheduler with serial is refused: newcomer, s32)"""
+    res = CliRunner().invoke(main, ["bench", "--suite", "smoke", "--out", str(tmp_path / "out"), *args])
+    assert res.exit_code == 2 and "--jobs sets the process executor's workers" in res.output and words in res.output
+    assert not (tmp_path / "out").exists()

@@ -90,7 +90,8 @@ def export_cmd(folder, fmt, out) -> None:
 @click.option("--executor", type=SuggestingChoice(["process", "serial", "dask"]), default="process", show_default=True,
               help="process: all local cores; dask: a Dask cluster (--scheduler, or a local one).")
 @click.option("--jobs", "-j", type=Count(1, MAX_JOBS), default=None,
-              help=f"Worker processes, 1 to {MAX_JOBS} (default: all cores).")
+              help=f"Worker processes, 1 to {MAX_JOBS} (default: all cores), of the process executor or a local "
+                   "Dask cluster.")
 @click.option("--scheduler", default=None, metavar="ADDRESS", help="Dask scheduler, e.g. tcp://10.0.0.5:8786.")
 @click.option("--resume", is_flag=True, help="Keep the finished trials in --out and run the rest.")
 @click.option("--overwrite", is_flag=True, help="Discard the results in --out and start again.")
@@ -145,6 +146,11 @@ def bench_cmd(experiment, suite, out, worlds, start, goal, planners, samplers, p
         raise click.UsageError("--resume keeps the finished trials and --overwrite discards them: give one")
     if out is not None and not str(out).strip():  # '' wrote the run into the current folder
         raise click.UsageError("--out must name a folder, got ''")
+    if jobs is not None and (executor == "serial" or executor == "dask" and scheduler):
+        # (it was ignored, unsaid, where --scheduler with serial is refused: newcomer, session 32)
+        raise click.UsageError("--jobs sets the process executor's workers, or a local Dask cluster's: "
+                               + ("serial runs one trial at a time" if executor == "serial"
+                                  else "a --scheduler's cluster has its own workers"))
     if suite == "barn":
         _barn(data, barn_worlds, controllers, planners, params, trials, seed, out, executor, jobs, scheduler, resume,
               overwrite, no_plots, quiet, straight_line, barn_lidar, experiment or worlds or samplers or grid or show)

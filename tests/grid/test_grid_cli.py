@@ -289,3 +289,11 @@ def test_a_maze_written_to_a_name_that_is_not_a_yaml_is_refused_before_it_is_bui
     result = CliRunner().invoke(main, ["grid", "maze", "--cells", "4", "4", "--out", str(tmp_path / name)])
     assert result.exit_code == 2 and "must end in .yaml or .yml" in result.output, result.output
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("name", ["nofile.txt", "nofile", "trap"])
+def test_a_missing_map_is_said_missing_not_an_unknown_scene(name, tmp_path, monkeypatch):
+    """(grid plan nofile.txt listed the built-in scenes, which grid plan does not take: newcomer, session 32)"""
+    monkeypatch.chdir(tmp_path)
+    res = CliRunner().invoke(main, ["grid", "plan", name, "--start", "1", "1", "--goal", "2", "2"])
+    assert res.exit_code == 2 and res.output.strip() == f"Error: {name}: no such file", res.output

@@ -73,7 +73,9 @@ def grid_plan(map_path, start, goal, in_world, algorithm, heuristic, connectivit
             raise ParameterError(f"{label}: cells are integers; use --world for metres, got {got}")
     from ..world.sources import source_kind
 
-    if source_kind(map_path) == "world_file":
+    # (a missing file is load_map's "no such file": source_kind takes a name it cannot find for a scene's,
+    # and a scene is no map: "unknown scene 'nofile.txt'; valid: ...": newcomer, session 32)
+    if os.path.exists(map_path) and source_kind(map_path) == "world_file":
         raise ParameterError(f"{map_path}: this is a world file (shapes, start and goal), not a map: use "
                              f"navlab plan {map_path} --planner {algorithm}")
     grid = load_map(map_path, rule=map_rule)

@@ -79,3 +79,23 @@ def test_suggest_names_the_closest_or_the_one_name_begun(name, valid, hint):
     from navlab.registry import suggest
 
     assert suggest(name, valid) == hint
+
+
+def _caused(exc: BaseException, cause: BaseException) -> BaseException:
+    exc.__cause__ = cause
+    return exc
+
+
+@pytest.mark.parametrize("exc, is_ctrl_c", [
+    (KeyboardInterrupt(), True),
+    (_caused(SystemError("returned a result with an exception set"), KeyboardInterrupt()), True),
+    # nested, each the cause of the next (an RRT* plan interrupted in a kernel: fresh-clone CI, session 32)
+    (_caused(SystemError("a"), _caused(SystemError("b"), _caused(SystemError("c"), KeyboardInterrupt()))), True),
+    (_caused(SystemError("a"), _caused(SystemError("b"), ValueError("not an interrupt"))), False),
+    (SystemError("no cause"), False),
+    (_caused(ValueError("x"), KeyboardInterrupt()), False),  # only SystemError stands in for the interrupt
+])
+def test_a_ctrl_c_is_known_through_the_system_errors_that_carry_it(exc, is_ctrl_c):
+    from navlab.errors import interrupted_by_ctrl_c
+
+    assert interrupted_by_ctrl_c(exc) is is_ctrl_c
